@@ -1,0 +1,208 @@
+//! The one enum through which keys change the console's state.
+
+/// Everything a key can ask for. Keymap files name these in snake_case.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum Action {
+    // Modes of seed 001 ("Operating Modes").
+    ModeManual,
+    ModeExplore,
+    ModeThink,
+    ModeFollow,
+    ModeRace,
+    ModeLoad,
+    GripperOpen,
+    GripperClose,
+    Quit,
+    // Driving: held keys move the robot; the deadman stops it when keys stop.
+    Forward,
+    Backward,
+    TurnLeft,
+    TurnRight,
+    ForwardLeft,
+    ForwardRight,
+    BackwardLeft,
+    BackwardRight,
+    Stop,
+    EmergencyStop,
+    SpeedUp,
+    SpeedDown,
+    LinearUp,
+    LinearDown,
+    AngularUp,
+    AngularDown,
+    // The view.
+    Help,
+    ZoomIn,
+    ZoomOut,
+    PanLeft,
+    PanRight,
+    PanUp,
+    PanDown,
+    CenterView,
+    ToggleBraille,
+    ToggleTruth,
+    /// Unbinds a key that a lower layer of the keymap bound.
+    Unbound,
+}
+
+impl Action {
+    /// Every action, in the order the help overlay lists them.
+    pub const ALL: [Action; 36] = [
+        Action::ModeManual,
+        Action::ModeExplore,
+        Action::ModeThink,
+        Action::ModeFollow,
+        Action::ModeRace,
+        Action::ModeLoad,
+        Action::GripperOpen,
+        Action::GripperClose,
+        Action::Quit,
+        Action::Forward,
+        Action::Backward,
+        Action::TurnLeft,
+        Action::TurnRight,
+        Action::ForwardLeft,
+        Action::ForwardRight,
+        Action::BackwardLeft,
+        Action::BackwardRight,
+        Action::Stop,
+        Action::EmergencyStop,
+        Action::SpeedUp,
+        Action::SpeedDown,
+        Action::LinearUp,
+        Action::LinearDown,
+        Action::AngularUp,
+        Action::AngularDown,
+        Action::Help,
+        Action::ZoomIn,
+        Action::ZoomOut,
+        Action::PanLeft,
+        Action::PanRight,
+        Action::PanUp,
+        Action::PanDown,
+        Action::CenterView,
+        Action::ToggleBraille,
+        Action::ToggleTruth,
+        Action::Unbound,
+    ];
+
+    /// The name keymap files use.
+    pub fn name(self) -> &'static str {
+        match self {
+            Action::ModeManual => "mode_manual",
+            Action::ModeExplore => "mode_explore",
+            Action::ModeThink => "mode_think",
+            Action::ModeFollow => "mode_follow",
+            Action::ModeRace => "mode_race",
+            Action::ModeLoad => "mode_load",
+            Action::GripperOpen => "gripper_open",
+            Action::GripperClose => "gripper_close",
+            Action::Quit => "quit",
+            Action::Forward => "forward",
+            Action::Backward => "backward",
+            Action::TurnLeft => "turn_left",
+            Action::TurnRight => "turn_right",
+            Action::ForwardLeft => "forward_left",
+            Action::ForwardRight => "forward_right",
+            Action::BackwardLeft => "backward_left",
+            Action::BackwardRight => "backward_right",
+            Action::Stop => "stop",
+            Action::EmergencyStop => "emergency_stop",
+            Action::SpeedUp => "speed_up",
+            Action::SpeedDown => "speed_down",
+            Action::LinearUp => "linear_up",
+            Action::LinearDown => "linear_down",
+            Action::AngularUp => "angular_up",
+            Action::AngularDown => "angular_down",
+            Action::Help => "help",
+            Action::ZoomIn => "zoom_in",
+            Action::ZoomOut => "zoom_out",
+            Action::PanLeft => "pan_left",
+            Action::PanRight => "pan_right",
+            Action::PanUp => "pan_up",
+            Action::PanDown => "pan_down",
+            Action::CenterView => "center_view",
+            Action::ToggleBraille => "toggle_braille",
+            Action::ToggleTruth => "toggle_truth",
+            Action::Unbound => "none",
+        }
+    }
+
+    /// Looks an action up by its keymap name.
+    pub fn from_name(name: &str) -> Option<Action> {
+        Action::ALL.into_iter().find(|a| a.name() == name)
+    }
+
+    /// One line for the help overlay.
+    pub fn description(self) -> &'static str {
+        match self {
+            Action::ModeManual => "manual mode (drive by keys)",
+            Action::ModeExplore => "exploration mode",
+            Action::ModeThink => "thinking mode (plan a path)",
+            Action::ModeFollow => "path-following mode",
+            Action::ModeRace => "race mode (fast, fewer SLAM updates)",
+            Action::ModeLoad => "load a saved map",
+            Action::GripperOpen => "open the gripper",
+            Action::GripperClose => "close the gripper",
+            Action::Quit => "stop the robot and quit",
+            Action::Forward => "drive forward",
+            Action::Backward => "drive backward",
+            Action::TurnLeft => "turn left on the spot",
+            Action::TurnRight => "turn right on the spot",
+            Action::ForwardLeft => "forward while turning left",
+            Action::ForwardRight => "forward while turning right",
+            Action::BackwardLeft => "backward while turning left",
+            Action::BackwardRight => "backward while turning right",
+            Action::Stop => "stop",
+            Action::EmergencyStop => "emergency stop (any mode)",
+            Action::SpeedUp => "all speeds +10 %",
+            Action::SpeedDown => "all speeds -10 %",
+            Action::LinearUp => "linear speed +10 %",
+            Action::LinearDown => "linear speed -10 %",
+            Action::AngularUp => "turn rate +10 %",
+            Action::AngularDown => "turn rate -10 %",
+            Action::Help => "show or hide this help",
+            Action::ZoomIn => "zoom in",
+            Action::ZoomOut => "zoom out",
+            Action::PanLeft => "pan the map left",
+            Action::PanRight => "pan the map right",
+            Action::PanUp => "pan the map up",
+            Action::PanDown => "pan the map down",
+            Action::CenterView => "centre the map on the robot",
+            Action::ToggleBraille => "braille / ASCII map",
+            Action::ToggleTruth => "show the twin's true pose",
+            Action::Unbound => "(unbound)",
+        }
+    }
+
+    /// For drive keys: direction of (linear, angular) as -1, 0 or +1.
+    pub fn motion(self) -> Option<(i8, i8)> {
+        match self {
+            Action::Forward => Some((1, 0)),
+            Action::Backward => Some((-1, 0)),
+            Action::TurnLeft => Some((0, 1)),
+            Action::TurnRight => Some((0, -1)),
+            Action::ForwardLeft => Some((1, 1)),
+            Action::ForwardRight => Some((1, -1)),
+            // Backing while turning left swings the nose left, as teleop_twist_keyboard's `m`.
+            Action::BackwardLeft => Some((-1, -1)),
+            Action::BackwardRight => Some((-1, 1)),
+            _ => None,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn names_round_trip_and_are_unique() {
+        let mut seen = std::collections::HashSet::new();
+        for a in Action::ALL {
+            assert_eq!(Action::from_name(a.name()), Some(a));
+            assert!(seen.insert(a.name()), "duplicate name {}", a.name());
+        }
+        assert_eq!(Action::from_name("fly"), None);
+    }
+}

@@ -1,0 +1,56 @@
+//! The operating modes of seed 001 ("Operating Modes": m e t p r l).
+
+/// What the console is doing with the robot.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum Mode {
+    Manual,
+    Exploration,
+    Thinking,
+    PathFollowing,
+    Race,
+    Load,
+}
+
+impl Mode {
+    pub const ALL: [Mode; 6] = [
+        Mode::Manual,
+        Mode::Exploration,
+        Mode::Thinking,
+        Mode::PathFollowing,
+        Mode::Race,
+        Mode::Load,
+    ];
+
+    /// The keymap section that holds this mode's bindings.
+    pub fn section(self) -> &'static str {
+        match self {
+            Mode::Manual => "manual",
+            Mode::Exploration => "exploration",
+            Mode::Thinking => "thinking",
+            Mode::PathFollowing => "path_following",
+            Mode::Race => "race",
+            Mode::Load => "load",
+        }
+    }
+
+    pub fn from_section(name: &str) -> Option<Mode> {
+        Mode::ALL.into_iter().find(|m| m.section() == name)
+    }
+
+    /// Name shown in the status panel.
+    pub fn label(self) -> &'static str {
+        match self {
+            Mode::Manual => "MANUAL",
+            Mode::Exploration => "EXPLORATION",
+            Mode::Thinking => "THINKING",
+            Mode::PathFollowing => "PATH FOLLOWING",
+            Mode::Race => "RACE",
+            Mode::Load => "LOAD",
+        }
+    }
+
+    /// Whether this build can run the mode; the others log that they are not built yet.
+    pub fn is_built(self) -> bool {
+        matches!(self, Mode::Manual)
+    }
+}

@@ -1,0 +1,170 @@
+//! Planar geometry shared by every layer: poses, twists, angle wrapping and segments.
+//! Frames follow REP-103: x forward, y left, angles counter-clockwise positive, radians.
+
+use serde::{Deserialize, Serialize};
+use std::f64::consts::PI;
+
+/// Wraps an angle to (-pi, pi] (seed 001 section 6 wraps the heading error the same way).
+pub fn wrap_angle(a: f64) -> f64 {
+    let mut w = a.rem_euclid(2.0 * PI);
+    if w > PI {
+        w -= 2.0 * PI;
+    }
+    w
+}
+
+/// A 2D point in metres.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct Point2 {
+    pub x: f64,
+    pub y: f64,
+}
+
+impl Point2 {
+    pub const fn new(x: f64, y: f64) -> Self {
+        Self { x, y }
+    }
+
+    pub fn distance(self, other: Point2) -> f64 {
+        (self.x - other.x).hypot(self.y - other.y)
+    }
+}
+
+/// A robot pose in a planar frame: position in metres, heading in radians.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct Pose2 {
+    pub x: f64,
+    pub y: f64,
+    pub theta: f64,
+}
+
+impl Pose2 {
+    pub const fn new(x: f64, y: f64, theta: f64) -> Self {
+        Self { x, y, theta }
+    }
+
+    pub fn position(self) -> Point2 {
+        Point2::new(self.x, self.y)
+    }
+
+    /// Maps a point given in this pose's frame into the parent frame.
+    pub fn transform_point(self, local: Point2) -> Point2 {
+        let (s, c) = self.theta.sin_cos();
+        Point2::new(
+            self.x + c * local.x - s * local.y,
+            self.y + s * local.x + c * local.y,
+        )
+    }
+
+    /// Maps a point given in the parent frame into this pose's frame.
+    pub fn inverse_transform_point(self, world: Point2) -> Point2 {
+        let (s, c) = self.theta.sin_cos();
+        let dx = world.x - self.x;
+        let dy = world.y - self.y;
+        Point2::new(c * dx + s * dy, -s * dx + c * dy)
+    }
+}
+
+/// A velocity command or measurement: linear (m/s, forward positive) and angular (rad/s, CCW positive).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct Twist {
+    pub linear: f64,
+    pub angular: f64,
+}
+
+impl Twist {
+    pub const ZERO: Twist = Twist {
+        linear: 0.0,
+        angular: 0.0,
+    };
+
+    pub const fn new(linear: f64, angular: f64) -> Self {
+        Self { linear, angular }
+    }
+
+    pub fn is_zero(self) -> bool {
+        self.linear == 0.0 && self.angular == 0.0
+    }
+}
+
+/// A line segment between two points, the building block of walls and obstacle outlines.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Segment {
+    pub a: Point2,
+    pub b: Point2,
+}
+
+impl Segment {
+    pub const fn new(a: Point2, b: Point2) -> Self {
+        Self { a, b }
+    }
+
+    pub fn length(self) -> f64 {
+        self.a.distance(self.b)
+    }
+
+    /// Shortest distance from `p` to this segment (orthogonal projection clamped to the ends).
+    pub fn distance_to(self, p: Point2) -> f64 {
+        let (dx, dy) = (self.b.x - self.a.x, self.b.y - self.a.y);
+        let len2 = dx * dx + dy * dy;
+        let t = if len2 > 0.0 {
+            (((p.x - self.a.x) * dx + (p.y - self.a.y) * dy) / len2).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
+        p.distance(Point2::new(self.a.x + t * dx, self.a.y + t * dy))
+    }
+
+    /// Distance along the ray `origin + t * (cos a, sin a)` to this segment, if the ray hits it.
+    pub fn ray_hit(self, origin: Point2, dir: (f64, f64)) -> Option<f64> {
+        let (ex, ey) = (self.b.x - self.a.x, self.b.y - self.a.y);
+        let denom = dir.0 * ey - dir.1 * ex;
+        if denom.abs() < 1e-12 {
+            return None;
+        }
+        let (wx, wy) = (self.a.x - origin.x, self.a.y - origin.y);
+        let t = (wx * ey - wy * ex) / denom;
+        let u = (wx * dir.1 - wy * dir.0) / denom;
+        (t >= 0.0 && (0.0..=1.0).contains(&u)).then_some(t)
+    }
+
+    /// True when the open segment p-q crosses this segment.
+    pub fn intersects(self, p: Point2, q: Point2) -> bool {
+        let dir = (q.x - p.x, q.y - p.y);
+        match self.ray_hit(p, dir) {
+            Some(t) => t < 1.0,
+            None => false,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn wrap_angle_lands_in_half_open_interval() {
+        assert!((wrap_angle(3.0 * PI) - PI).abs() < 1e-12);
+        assert!((wrap_angle(-PI) - PI).abs() < 1e-12);
+        assert!((wrap_angle(-0.5) + 0.5).abs() < 1e-12);
+        assert!((wrap_angle(2.0 * PI + 0.25) - 0.25).abs() < 1e-12);
+    }
+
+    #[test]
+    fn pose_transforms_round_trip() {
+        let pose = Pose2::new(1.0, -2.0, 0.7);
+        let local = Point2::new(0.3, 0.4);
+        let world = pose.transform_point(local);
+        let back = pose.inverse_transform_point(world);
+        assert!((back.x - local.x).abs() < 1e-12 && (back.y - local.y).abs() < 1e-12);
+    }
+
+    #[test]
+    fn ray_hits_wall_at_expected_range() {
+        let wall = Segment::new(Point2::new(2.0, -1.0), Point2::new(2.0, 1.0));
+        let hit = wall.ray_hit(Point2::new(0.0, 0.0), (1.0, 0.0)).unwrap();
+        assert!((hit - 2.0).abs() < 1e-12);
+        assert!(wall.ray_hit(Point2::new(0.0, 0.0), (-1.0, 0.0)).is_none());
+        assert!((wall.distance_to(Point2::new(0.0, 3.0)) - 8.0_f64.sqrt()).abs() < 1e-12);
+    }
+}

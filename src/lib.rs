@@ -1,0 +1,10 @@
+//! navdeck: a terminal teleop-and-autonomy console for small differential-drive robots.
+
+pub mod app;
+pub mod config;
+pub mod geometry;
+pub mod keymap;
+pub mod link;
+pub mod map;
+pub mod perception;
+pub mod sim;

@@ -1,0 +1,47 @@
+//! The twin behind the link trait: the default robot when no hardware is at hand.
+
+use super::{Command, LinkError, RobotLink, SensorFrame};
+use crate::sim::Twin;
+
+/// Drives the digital twin; `poll(now)` steps its physics up to `now`.
+pub struct SimLink {
+    twin: Twin,
+    clock: f64,
+}
+
+impl SimLink {
+    /// A link whose session clock starts at `start` seconds.
+    pub fn new(twin: Twin, start: f64) -> Self {
+        Self { twin, clock: start }
+    }
+}
+
+impl RobotLink for SimLink {
+    fn label(&self) -> String {
+        format!("sim:{}", self.twin.world().name)
+    }
+
+    fn send(&mut self, command: &Command) -> Result<(), LinkError> {
+        self.twin.set_command(command.twist);
+        if let Some(g) = command.gripper {
+            self.twin.command_gripper(g);
+        }
+        Ok(())
+    }
+
+    fn poll(&mut self, now: f64) -> Result<SensorFrame, LinkError> {
+        if now > self.clock {
+            self.twin.step(now - self.clock);
+            self.clock = now;
+        }
+        Ok(self.twin.take_frame())
+    }
+
+    fn stop(&mut self) {
+        self.twin.set_command(crate::geometry::Twist::ZERO);
+    }
+
+    fn twin(&self) -> Option<&Twin> {
+        Some(&self.twin)
+    }
+}

@@ -1,0 +1,119 @@
+//! An occupancy grid in nav_msgs/OccupancyGrid's convention: -1 unknown, 0 free .. 100 occupied.
+
+use crate::geometry::Point2;
+
+pub const UNKNOWN: i8 = -1;
+pub const FREE: i8 = 0;
+pub const OCCUPIED: i8 = 100;
+
+/// A row-major grid; cell (0, 0) is the lower-left corner at `origin`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct OccupancyGrid {
+    pub width: usize,
+    pub height: usize,
+    /// Cell side, metres.
+    pub resolution: f64,
+    /// World position of the lower-left corner of cell (0, 0).
+    pub origin: Point2,
+    pub cells: Vec<i8>,
+}
+
+impl OccupancyGrid {
+    pub fn new(width: usize, height: usize, resolution: f64, origin: Point2, fill: i8) -> Self {
+        Self {
+            width,
+            height,
+            resolution,
+            origin,
+            cells: vec![fill; width * height],
+        }
+    }
+
+    /// Cell holding world point `p`, if it lies on the grid (seed 001 `world_to_grid`).
+    pub fn cell_of(&self, p: Point2) -> Option<(usize, usize)> {
+        let cx = ((p.x - self.origin.x) / self.resolution).floor();
+        let cy = ((p.y - self.origin.y) / self.resolution).floor();
+        if cx < 0.0 || cy < 0.0 || cx >= self.width as f64 || cy >= self.height as f64 {
+            return None;
+        }
+        Some((cx as usize, cy as usize))
+    }
+
+    /// World position of a cell's centre.
+    pub fn center_of(&self, cx: usize, cy: usize) -> Point2 {
+        Point2::new(
+            self.origin.x + (cx as f64 + 0.5) * self.resolution,
+            self.origin.y + (cy as f64 + 0.5) * self.resolution,
+        )
+    }
+
+    pub fn get(&self, cx: usize, cy: usize) -> i8 {
+        self.cells[cy * self.width + cx]
+    }
+
+    pub fn set(&mut self, cx: usize, cy: usize, value: i8) {
+        self.cells[cy * self.width + cx] = value;
+    }
+
+    /// Value at a world point; unknown off the grid.
+    pub fn at(&self, p: Point2) -> i8 {
+        self.cell_of(p).map_or(UNKNOWN, |(cx, cy)| self.get(cx, cy))
+    }
+
+    /// Width and height in metres.
+    pub fn extent(&self) -> (f64, f64) {
+        (
+            self.width as f64 * self.resolution,
+            self.height as f64 * self.resolution,
+        )
+    }
+
+    /// The highest value among cells overlapping the world rectangle [x0, x1) x [y0, y1):
+    /// occupied wins over free, free over unknown. Used to draw a grid coarser than it is.
+    pub fn max_in(&self, x0: f64, y0: f64, x1: f64, y1: f64) -> i8 {
+        let r = self.resolution;
+        let to_col = |x: f64| ((x - self.origin.x) / r).floor();
+        let to_row = |y: f64| ((y - self.origin.y) / r).floor();
+        let (c0, c1) = (to_col(x0).max(0.0), (to_col(x1 - 1e-9)).min(self.width as f64 - 1.0));
+        let (r0, r1) = (to_row(y0).max(0.0), (to_row(y1 - 1e-9)).min(self.height as f64 - 1.0));
+        if c0 > c1 || r0 > r1 {
+            return UNKNOWN;
+        }
+        let mut best = UNKNOWN;
+        for row in r0 as usize..=r1 as usize {
+            let line = &self.cells[row * self.width..(row + 1) * self.width];
+            for &v in &line[c0 as usize..=c1 as usize] {
+                if v > best {
+                    best = v;
+                    if best >= OCCUPIED {
+                        return best;
+                    }
+                }
+            }
+        }
+        best
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn world_to_cell_matches_seed_001_convention() {
+        // Seed 001 section 4: 4 m x 4 m at 1 cm, centred on (0, 0): (x + 2) / 0.01.
+        let g = OccupancyGrid::new(400, 400, 0.01, Point2::new(-2.0, -2.0), FREE);
+        assert_eq!(g.cell_of(Point2::new(0.0, 0.0)), Some((200, 200)));
+        assert_eq!(g.cell_of(Point2::new(-1.995, 1.999)), Some((0, 399)));
+        assert_eq!(g.cell_of(Point2::new(2.0, 0.0)), None);
+    }
+
+    #[test]
+    fn max_in_prefers_occupied() {
+        let mut g = OccupancyGrid::new(10, 10, 0.1, Point2::new(0.0, 0.0), FREE);
+        g.set(3, 4, OCCUPIED);
+        assert_eq!(g.max_in(0.25, 0.35, 0.45, 0.55), OCCUPIED);
+        assert_eq!(g.max_in(0.5, 0.5, 0.9, 0.9), FREE);
+        assert_eq!(g.max_in(2.0, 2.0, 3.0, 3.0), UNKNOWN);
+    }
+}

@@ -1,0 +1,3 @@
+//! Maps: occupancy grids and, later, their files.
+
+pub mod grid;

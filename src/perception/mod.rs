@@ -1,0 +1,3 @@
+//! What the robot perceives: marker ID conventions now, camera detection later.
+
+pub mod markers;

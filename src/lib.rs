@@ -3,8 +3,12 @@
 pub mod app;
 pub mod config;
 pub mod geometry;
+pub mod headless;
 pub mod keymap;
 pub mod link;
 pub mod map;
 pub mod perception;
+pub mod session;
 pub mod sim;
+pub mod slam;
+pub mod tui;

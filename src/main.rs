@@ -1,1 +1,158 @@
-fn main() {}
+//! navdeck's command line: the console by default, or a headless run.
+
+use anyhow::{Context, Result, bail};
+use clap::Parser;
+use navdeck::headless;
+use navdeck::keymap::parse_key_sequence;
+use navdeck::session::{LinkChoice, Session, SessionSpec};
+use navdeck::tui::events::{TerminalEvents, WallClock};
+use navdeck::tui::run::{Exit, RunStats, run, signal_name};
+use navdeck::tui::terminal::{TerminalGuard, watch_signals};
+use navdeck::tui::theme::Theme;
+use std::path::PathBuf;
+use std::process::ExitCode;
+use std::time::Instant;
+
+/// A terminal teleop-and-autonomy console for small differential-drive robots.
+///
+/// With no options it opens the console on the built-in digital twin in seed 001's
+/// 4 m x 4 m arena. Drive with w a s d (held keys drive; the robot stops 0.5 s after
+/// the last key), space is an emergency stop, ? lists every key, q quits.
+#[derive(Debug, Parser)]
+#[command(name = "navdeck", version, about, long_about)]
+struct Cli {
+    /// Robot to drive: `sim` (the built-in digital twin), `ros2`, or `serial:PATH[@BAUD]`.
+    #[arg(long, default_value = "sim", value_name = "LINK")]
+    link: LinkChoice,
+
+    /// World file for the twin (TOML, see maps/); default: the built-in arena.
+    #[arg(long, value_name = "FILE")]
+    world: Option<PathBuf>,
+
+    /// Seed for the twin's sensor noise: the same seed replays the same run.
+    #[arg(long, default_value_t = 1, value_name = "N")]
+    seed: u64,
+
+    /// Robot, teleop and twin parameters (TOML); unset fields keep seed 001's values.
+    #[arg(long, value_name = "FILE")]
+    config: Option<PathBuf>,
+
+    /// Keymap overlaid on the defaults, e.g. keymaps/teleop_twist_keyboard.toml.
+    #[arg(long, value_name = "FILE")]
+    keymap: Option<PathBuf>,
+
+    /// Start with the braille map instead of ASCII.
+    #[arg(long)]
+    braille: bool,
+
+    /// Run without a terminal: play --keys on simulated time, print a report.
+    #[arg(long)]
+    headless: bool,
+
+    /// Headless: keys to press, e.g. "wwwwddd"; `<space>`, `<up>`, `<ctrl-c>` name keys.
+    #[arg(long, value_name = "KEYS", requires = "headless")]
+    keys: Option<String>,
+
+    /// Headless: keys per second of simulated time.
+    #[arg(long, default_value_t = 10.0, value_name = "HZ", requires = "headless")]
+    key_rate: f64,
+
+    /// Headless: print the report as one JSON object.
+    #[arg(long, requires = "headless")]
+    json: bool,
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    match real_main(cli) {
+        Ok(code) => code,
+        Err(e) => {
+            eprintln!("navdeck: {e:#}");
+            ExitCode::from(2)
+        }
+    }
+}
+
+fn real_main(cli: Cli) -> Result<ExitCode> {
+    let spec = SessionSpec {
+        world: cli.world.clone(),
+        seed: cli.seed,
+        config: cli.config.clone(),
+        keymap: cli.keymap.clone(),
+        link: cli.link.clone(),
+    };
+    // Everything is loaded and validated before the terminal is touched.
+    let session = Session::load(&spec)?;
+    if cli.headless {
+        return run_headless(session, &cli);
+    }
+    run_console(session, &cli)
+}
+
+fn run_headless(session: Session, cli: &Cli) -> Result<ExitCode> {
+    if !(cli.key_rate.is_finite() && cli.key_rate > 0.0) {
+        bail!("--key-rate {} must be a positive number", cli.key_rate);
+    }
+    let keys =
+        parse_key_sequence(cli.keys.as_deref().unwrap_or("")).context("cannot read --keys")?;
+    let mut app = session.into_app(0.0);
+    let started = Instant::now();
+    let mut report = headless::run(&mut app, &keys, cli.key_rate);
+    let wall = started.elapsed().as_secs_f64();
+    report.wall_time_s = Some(wall);
+    report.realtime_factor = Some(report.sim_time / wall.max(1e-9));
+    if cli.json {
+        println!("{}", serde_json::to_string(&report)?);
+    } else {
+        print!("{}", headless::human(&report));
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
+fn run_console(session: Session, cli: &Cli) -> Result<ExitCode> {
+    let signal = watch_signals().context("cannot watch signals")?;
+    let theme = Theme::from_env(std::env::var_os("NO_COLOR"));
+    let clock = WallClock::start();
+    let mut app = session.into_app(0.0);
+    if cli.braille {
+        app.apply(navdeck::app::action::Action::ToggleBraille);
+    }
+    let mut stats = RunStats::default();
+    let outcome = {
+        let mut guard = TerminalGuard::enter().context("cannot set up the terminal")?;
+        app.set_release_events(guard.release_events);
+        run(
+            &mut guard.terminal,
+            &mut app,
+            &mut TerminalEvents,
+            &clock,
+            &signal,
+            theme,
+            &mut stats,
+        )
+        // The guard drops here: the terminal is restored before anything is printed.
+    };
+    let label = app.link().label();
+    drop(app);
+    match outcome {
+        Ok(Exit::Quit) => {
+            eprintln!("navdeck: robot on {label} stopped; quit by user");
+            Ok(ExitCode::SUCCESS)
+        }
+        Ok(Exit::InputClosed) => {
+            eprintln!("navdeck: robot on {label} stopped; input closed");
+            Ok(ExitCode::SUCCESS)
+        }
+        Ok(Exit::Signal(n)) => {
+            eprintln!(
+                "navdeck: robot on {label} stopped; {} received",
+                signal_name(n)
+            );
+            Ok(ExitCode::from(128 + (n as u8)))
+        }
+        Err(e) => {
+            eprintln!("navdeck: robot on {label} stopped; {e}");
+            Ok(ExitCode::from(1))
+        }
+    }
+}

@@ -1,4 +1,496 @@
 //! The console's state and behaviour, free of terminal and clock: actions in, commands out.
+//!
+//! Time is passed in as `now` (seconds on the session clock): the TUI passes wall time,
+//! the headless runner and the tests pass simulated time.
 
 pub mod action;
+mod control;
+pub mod log;
 pub mod mode;
+pub mod screen;
+pub mod teleop;
+pub mod view;
+
+use crate::config::Config;
+use crate::geometry::{Point2, Pose2, Twist};
+use crate::keymap::{Key, Keymap};
+use crate::link::{GripperCommand, GripperState, LaserScan, MarkerSighting, RobotLink};
+use crate::map::grid::OccupancyGrid;
+use crate::slam::odometry::Odometry;
+use action::Action;
+use log::{Level, LogBook};
+use mode::Mode;
+use teleop::Teleop;
+use view::ViewState;
+
+/// What a key event was: terminals without the kitty protocol only ever report `Press`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum KeyKind {
+    Press,
+    Repeat,
+    Release,
+}
+
+/// Whether the robot link is answering.
+#[derive(Clone, Debug, PartialEq)]
+pub enum LinkStatus {
+    Ok,
+    Lost(String),
+}
+
+/// Resolution of the world raster drawn on the map, metres.
+pub const WORLD_RASTER: f64 = 0.02;
+
+/// Everything the console knows, and the only place actions change it.
+pub struct App {
+    config: Config,
+    keymap: Keymap,
+    link: Box<dyn RobotLink>,
+    mode: Mode,
+    teleop: Teleop,
+    odometry: Odometry,
+    log: LogBook,
+    view: ViewState,
+    /// Terminal size in cells, as last reported.
+    screen: (u16, u16),
+    now: f64,
+    clock: control::ControlClock,
+    commanded: Twist,
+    measured: Twist,
+    gripper: Option<GripperState>,
+    pending_gripper: Option<GripperCommand>,
+    estop: bool,
+    quit: bool,
+    sightings: Vec<MarkerSighting>,
+    scan: Option<LaserScan>,
+    link_status: LinkStatus,
+    world_grid: Option<OccupancyGrid>,
+    revision: u64,
+    visible: Option<Visible>,
+}
+
+/// The rounded values the screen shows; a change means a redraw is due.
+#[derive(Clone, Debug, PartialEq)]
+struct Visible {
+    mode: Mode,
+    pose: (i64, i64, i64),
+    truth: Option<(i64, i64, i64)>,
+    commanded: (i64, i64),
+    measured: (i64, i64),
+    speeds: (i64, i64),
+    second: i64,
+    loop_rate: i64,
+    log: u64,
+    gripper: Option<GripperState>,
+    estop: bool,
+    held: usize,
+    link: LinkStatus,
+    view: ViewState,
+    screen: (u16, u16),
+    collisions: u32,
+    sightings: Vec<u32>,
+    blocks: Vec<(i64, i64)>,
+}
+
+fn centi(v: f64) -> i64 {
+    (v * 100.0).round() as i64
+}
+
+impl App {
+    /// A console on `link`, starting at session time `now`.
+    pub fn new(config: Config, keymap: Keymap, link: Box<dyn RobotLink>, now: f64) -> Self {
+        let start = link.twin().map_or(Pose2::default(), |t| t.pose());
+        let world_grid = link.twin().map(|t| t.world().rasterize(WORLD_RASTER));
+        let teleop = Teleop::new(
+            &config.teleop,
+            config.robot.max_linear,
+            config.robot.max_angular,
+        );
+        let mut app = Self {
+            odometry: Odometry::new(start, config.robot.track),
+            clock: control::ControlClock::new(now, config.robot.control_period),
+            teleop,
+            keymap,
+            link,
+            mode: Mode::Manual,
+            log: LogBook::new(500),
+            view: ViewState::default(),
+            screen: (80, 24),
+            now,
+            commanded: Twist::ZERO,
+            measured: Twist::ZERO,
+            gripper: None,
+            pending_gripper: None,
+            estop: false,
+            quit: false,
+            sightings: Vec::new(),
+            scan: None,
+            link_status: LinkStatus::Ok,
+            world_grid,
+            revision: 0,
+            visible: None,
+            config,
+        };
+        let label = app.link.label();
+        app.log(
+            Level::Info,
+            format!("navdeck {} on {label}", env!("CARGO_PKG_VERSION")),
+        );
+        app.log(
+            Level::Info,
+            format!("keymap {}; press ? for help", app.keymap.source()),
+        );
+        app
+    }
+
+    fn log(&mut self, level: Level, text: impl Into<String>) {
+        self.log.push(self.now, level, text);
+    }
+
+    /// Resolves a key through the active mode's keymap and acts on it.
+    pub fn handle_key(&mut self, key: Key, kind: KeyKind, now: f64) {
+        self.advance_to(now);
+        if kind == KeyKind::Release && !self.teleop.release_events() {
+            self.teleop.set_release_events(true);
+        }
+        let Some(action) = self.keymap.lookup(self.mode, key) else {
+            if kind == KeyKind::Press && self.view.help {
+                // Any unbound key closes the help overlay.
+                self.view.help = false;
+            }
+            return;
+        };
+        match kind {
+            KeyKind::Release => {
+                if action.motion().is_some() {
+                    self.teleop.release(action);
+                    self.control_step(self.now);
+                }
+            }
+            KeyKind::Press | KeyKind::Repeat => {
+                if action.motion().is_some() {
+                    self.drive_key(action, kind == KeyKind::Repeat);
+                } else if kind == KeyKind::Press {
+                    self.apply(action);
+                }
+            }
+        }
+    }
+
+    /// Tells the console the terminal reports key releases (kitty keyboard protocol).
+    pub fn set_release_events(&mut self, on: bool) {
+        self.teleop.set_release_events(on);
+    }
+
+    fn drive_key(&mut self, action: Action, repeat: bool) {
+        if self.mode != Mode::Manual {
+            if !repeat {
+                self.log(
+                    Level::Warn,
+                    format!(
+                        "{} ignored: driving keys work in manual mode (m)",
+                        action.name()
+                    ),
+                );
+            }
+            return;
+        }
+        if self.estop {
+            self.estop = false;
+            self.log(Level::Info, "emergency stop released by a drive key");
+        }
+        self.teleop.press(action, self.now, repeat);
+        // Act on the key now rather than at the next tick: a tap moves at once.
+        self.control_step(self.now);
+    }
+
+    /// The one place actions change the console's state.
+    pub fn apply(&mut self, action: Action) {
+        match action {
+            Action::ModeManual => self.set_mode(Mode::Manual),
+            Action::ModeExplore => self.set_mode(Mode::Exploration),
+            Action::ModeThink => self.set_mode(Mode::Thinking),
+            Action::ModeFollow => self.set_mode(Mode::PathFollowing),
+            Action::ModeRace => self.set_mode(Mode::Race),
+            Action::ModeLoad => self.set_mode(Mode::Load),
+            Action::GripperOpen => self.gripper_command(GripperCommand::Open),
+            Action::GripperClose => self.gripper_command(GripperCommand::Close),
+            Action::Quit => {
+                self.shutdown("quit by user");
+                self.quit = true;
+            }
+            Action::Stop => {
+                self.teleop.clear();
+                self.control_step(self.now);
+                self.log(Level::Info, "stop");
+            }
+            Action::EmergencyStop => self.emergency_stop(),
+            Action::SpeedUp
+            | Action::SpeedDown
+            | Action::LinearUp
+            | Action::LinearDown
+            | Action::AngularUp
+            | Action::AngularDown => {
+                if self.teleop.adjust(action) {
+                    let (v, w) = (self.teleop.linear_speed, self.teleop.angular_speed);
+                    self.log(Level::Info, format!("speed {v:.2} m/s, turn {w:.2} rad/s"));
+                } else {
+                    self.log(Level::Warn, "speeds already at their limit");
+                }
+            }
+            Action::Help => self.view.help = !self.view.help,
+            Action::ZoomIn | Action::ZoomOut => {
+                let fitted = self.fitted_scale();
+                self.view.zoom_step(fitted, action == Action::ZoomIn);
+            }
+            Action::PanLeft | Action::PanRight | Action::PanUp | Action::PanDown => {
+                let (dx, dy) = match action {
+                    Action::PanLeft => (-1.0, 0.0),
+                    Action::PanRight => (1.0, 0.0),
+                    Action::PanUp => (0.0, 1.0),
+                    _ => (0.0, -1.0),
+                };
+                let from = self.map_center();
+                let span = self.map_span();
+                self.view.pan(from, span, dx, dy);
+            }
+            Action::CenterView => {
+                self.view.center = None;
+                self.view.zoom = None;
+            }
+            Action::ToggleBraille => self.view.braille = !self.view.braille,
+            Action::ToggleTruth => {
+                if self.link.twin().is_some() {
+                    self.view.show_truth = !self.view.show_truth;
+                } else {
+                    self.log(Level::Warn, "true pose exists only in the twin");
+                }
+            }
+            Action::Forward
+            | Action::Backward
+            | Action::TurnLeft
+            | Action::TurnRight
+            | Action::ForwardLeft
+            | Action::ForwardRight
+            | Action::BackwardLeft
+            | Action::BackwardRight => self.drive_key(action, false),
+            Action::Unbound => {}
+        }
+    }
+
+    fn set_mode(&mut self, mode: Mode) {
+        if !mode.is_built() {
+            self.log(
+                Level::Warn,
+                format!("{} mode is not built yet", mode.label().to_lowercase()),
+            );
+            return;
+        }
+        if mode != self.mode {
+            self.teleop.clear();
+            self.mode = mode;
+            self.control_step(self.now);
+            self.log(Level::Info, format!("mode {}", mode.label()));
+        }
+    }
+
+    fn gripper_command(&mut self, cmd: GripperCommand) {
+        self.pending_gripper = Some(cmd);
+        let verb = match cmd {
+            GripperCommand::Open => "opening",
+            GripperCommand::Close => "closing",
+        };
+        self.log(Level::Info, format!("{verb} gripper"));
+        self.control_step(self.now);
+    }
+
+    fn emergency_stop(&mut self) {
+        self.teleop.clear();
+        self.estop = true;
+        if self.mode != Mode::Manual {
+            self.mode = Mode::Manual;
+        }
+        self.control_step(self.now);
+        self.log(
+            Level::Error,
+            "EMERGENCY STOP: robot halted; drive keys release it",
+        );
+    }
+
+    /// Commands the robot to stop and logs why; used on quit, signals and lost input.
+    pub fn shutdown(&mut self, reason: &str) {
+        self.teleop.clear();
+        self.commanded = Twist::ZERO;
+        self.link.stop();
+        self.log(Level::Warn, format!("robot stopped: {reason}"));
+    }
+
+    // ----- read-only views for the renderer and the runners -----
+
+    pub fn mode(&self) -> Mode {
+        self.mode
+    }
+    pub fn now(&self) -> f64 {
+        self.now
+    }
+    pub fn config(&self) -> &Config {
+        &self.config
+    }
+    pub fn keymap(&self) -> &Keymap {
+        &self.keymap
+    }
+    pub fn link(&self) -> &dyn RobotLink {
+        self.link.as_ref()
+    }
+    pub fn link_status(&self) -> &LinkStatus {
+        &self.link_status
+    }
+    pub fn log_book(&self) -> &LogBook {
+        &self.log
+    }
+    pub fn view(&self) -> &ViewState {
+        &self.view
+    }
+    pub fn teleop(&self) -> &Teleop {
+        &self.teleop
+    }
+    pub fn estimated_pose(&self) -> Pose2 {
+        self.odometry.pose()
+    }
+    pub fn odometry_distance(&self) -> f64 {
+        self.odometry.distance()
+    }
+    pub fn true_pose(&self) -> Option<Pose2> {
+        self.link.twin().map(|t| t.pose())
+    }
+    pub fn commanded(&self) -> Twist {
+        self.commanded
+    }
+    pub fn measured(&self) -> Twist {
+        self.measured
+    }
+    pub fn gripper(&self) -> Option<GripperState> {
+        self.gripper
+    }
+    pub fn estop(&self) -> bool {
+        self.estop
+    }
+    pub fn should_quit(&self) -> bool {
+        self.quit
+    }
+    pub fn sightings(&self) -> &[MarkerSighting] {
+        &self.sightings
+    }
+    pub fn scan(&self) -> Option<&LaserScan> {
+        self.scan.as_ref()
+    }
+    pub fn world_grid(&self) -> Option<&OccupancyGrid> {
+        self.world_grid.as_ref()
+    }
+    pub fn loop_rate(&self) -> f64 {
+        self.clock.rate()
+    }
+    pub fn screen(&self) -> (u16, u16) {
+        self.screen
+    }
+    /// Drive keys currently held, for the status panel.
+    pub fn held_keys(&self) -> Vec<Action> {
+        self.teleop.clone().held_at(self.now, self.brake_margin())
+    }
+
+    /// Tells the console the terminal's size (the map scale depends on it).
+    pub fn resize(&mut self, width: u16, height: u16) {
+        self.screen = (width, height);
+        self.refresh_revision();
+    }
+
+    /// Increases whenever something on screen changed: the TUI draws only then.
+    pub fn revision(&self) -> u64 {
+        self.revision
+    }
+
+    /// The world extent the map fits to: the twin's world, else 4 m x 4 m (seed 001's grid).
+    pub fn world_extent(&self) -> (Point2, (f64, f64)) {
+        match self.link.twin() {
+            Some(t) => (Point2::new(0.0, 0.0), (t.world().width, t.world().height)),
+            None => (Point2::new(0.0, 0.0), (4.0, 4.0)),
+        }
+    }
+
+    /// Metres per column that fits the world into the map area.
+    pub fn fitted_scale(&self) -> f64 {
+        let area = screen::map_area(self.screen);
+        let (_, (w, h)) = self.world_extent();
+        let cols = f64::from(area.2.max(1));
+        // A terminal cell is about twice as tall as wide: rows cover twice a column's metres.
+        let rows = f64::from(area.3.max(1));
+        (w / cols).max(h / (2.0 * rows)) * 1.02
+    }
+
+    /// The map's centre point in the world.
+    pub fn map_center(&self) -> Point2 {
+        if let Some(c) = self.view.center {
+            return c;
+        }
+        if self.view.zoom.is_none() {
+            self.world_extent().0
+        } else {
+            self.estimated_pose().position()
+        }
+    }
+
+    /// Visible span of the map in metres (width, height).
+    pub fn map_span(&self) -> (f64, f64) {
+        let area = screen::map_area(self.screen);
+        let scale = self.view.scale(self.fitted_scale());
+        (f64::from(area.2) * scale, f64::from(area.3) * 2.0 * scale)
+    }
+
+    fn refresh_revision(&mut self) {
+        let pose = self.odometry.pose();
+        let deg = |t: f64| t.to_degrees().round() as i64;
+        let twin = self.link.twin();
+        let visible = Visible {
+            mode: self.mode,
+            pose: (centi(pose.x), centi(pose.y), deg(pose.theta)),
+            truth: twin.map(|t| {
+                let p = t.pose();
+                (centi(p.x), centi(p.y), deg(p.theta))
+            }),
+            commanded: (centi(self.commanded.linear), centi(self.commanded.angular)),
+            measured: (centi(self.measured.linear), centi(self.measured.angular)),
+            speeds: (
+                centi(self.teleop.linear_speed),
+                centi(self.teleop.angular_speed),
+            ),
+            second: self.now.floor() as i64,
+            loop_rate: self.clock.rate().round() as i64,
+            log: self.log.written(),
+            gripper: self.gripper,
+            estop: self.estop,
+            held: self.held_keys().len(),
+            link: self.link_status.clone(),
+            view: self.view.clone(),
+            screen: self.screen,
+            collisions: twin.map_or(0, |t| t.collisions()),
+            sightings: self.sightings.iter().map(|s| s.id).collect(),
+            blocks: twin.map_or(Vec::new(), |t| {
+                t.blocks()
+                    .iter()
+                    .map(|b| (centi(b.pose.x), centi(b.pose.y)))
+                    .collect()
+            }),
+        };
+        if self.visible.as_ref() != Some(&visible) {
+            self.visible = Some(visible);
+            self.revision += 1;
+        }
+    }
+}
+
+impl Drop for App {
+    /// However the console ends, even by panic, the robot is told to stop.
+    fn drop(&mut self) {
+        self.link.stop();
+    }
+}

@@ -1,0 +1,173 @@
+//! The control loop: sense, decide, act at the robot's control period (seed 001: 0.1 s).
+
+use super::log::Level;
+use super::{App, LinkStatus, Mode};
+use crate::geometry::Twist;
+use crate::link::Command;
+use crate::slam::odometry::twist_from_wheels;
+
+/// A stall longer than this is skipped rather than caught up, seconds.
+const MAX_CATCH_UP: f64 = 1.0;
+/// At most one overrun warning per this many seconds.
+const WARN_EVERY: f64 = 5.0;
+
+/// When the next control step is due, and how regularly steps have run.
+#[derive(Clone, Debug)]
+pub(super) struct ControlClock {
+    period: f64,
+    next_tick: f64,
+    last_update: f64,
+    rate: f64,
+    last_warning: f64,
+}
+
+impl ControlClock {
+    pub(super) fn new(now: f64, period: f64) -> Self {
+        Self {
+            period,
+            next_tick: now,
+            last_update: now,
+            rate: 1.0 / period,
+            last_warning: f64::NEG_INFINITY,
+        }
+    }
+
+    /// Control steps completed per second, smoothed.
+    pub(super) fn rate(&self) -> f64 {
+        self.rate
+    }
+}
+
+impl App {
+    /// Runs every control step due up to `now` (periodic ticks and deadman expiries).
+    pub fn update(&mut self, now: f64) {
+        self.advance_to(now);
+        self.refresh_revision();
+    }
+
+    /// Seconds of session time until the console next needs to run, for the event wait.
+    pub fn next_deadline(&self) -> f64 {
+        let tick = self.clock.next_tick;
+        self.teleop_cutoff().map_or(tick, |c| c.min(tick))
+    }
+
+    pub(super) fn advance_to(&mut self, now: f64) {
+        if now < self.now {
+            return;
+        }
+        let gap = now - self.clock.last_update;
+        if gap > 1.5 * self.clock.period && self.clock.next_tick <= now {
+            if now - self.clock.last_warning >= WARN_EVERY {
+                self.clock.last_warning = now;
+                self.log.push(
+                    now,
+                    Level::Warn,
+                    format!(
+                        "Warning! dt = {gap:.2} s: control loop overran its {:.2} s period",
+                        self.clock.period
+                    ),
+                );
+            }
+            if now - self.clock.next_tick > MAX_CATCH_UP {
+                self.clock.next_tick = now;
+            }
+        }
+        loop {
+            let tick = self.clock.next_tick;
+            let due = self.teleop_cutoff().map_or(tick, |c| c.min(tick));
+            if due > now {
+                break;
+            }
+            self.control_step(due);
+            if due >= tick {
+                self.clock.next_tick = tick + self.clock.period;
+                let dt = due - self.clock.last_update;
+                if dt > 0.0 {
+                    // Exponential smoothing over about ten ticks.
+                    self.clock.rate += 0.1 * (1.0 / dt - self.clock.rate);
+                }
+                self.clock.last_update = due;
+            }
+        }
+        self.now = now;
+    }
+
+    /// When the held keys' deadman cuts the drive command: early enough that the robot,
+    /// braking at its acceleration limits, is at rest `deadman_timeout` after the last key.
+    fn teleop_cutoff(&self) -> Option<f64> {
+        let expiry = self.teleop.next_expiry(self.brake_margin())?;
+        Some(expiry.max(self.now))
+    }
+
+    /// One sense-decide-act cycle at session time `t`.
+    pub(super) fn control_step(&mut self, t: f64) {
+        self.now = self.now.max(t);
+        match self.link.poll(t) {
+            Ok(frame) => {
+                if let LinkStatus::Lost(_) = self.link_status {
+                    self.link_status = LinkStatus::Ok;
+                    self.log.push(t, Level::Success, "link back");
+                }
+                if let Some(wheels) = frame.wheels {
+                    self.odometry.update(wheels);
+                    if frame.elapsed > 0.0 {
+                        self.measured =
+                            twist_from_wheels(wheels, self.config.robot.track, frame.elapsed);
+                    }
+                }
+                if let Some(s) = frame.sightings {
+                    self.sightings = s;
+                }
+                if frame.scan.is_some() {
+                    self.scan = frame.scan;
+                }
+                if let Some(g) = frame.gripper {
+                    if self.gripper.is_some() && self.gripper != Some(g) {
+                        self.log
+                            .push(t, Level::Info, format!("gripper {}", g.label()));
+                    }
+                    self.gripper = Some(g);
+                }
+            }
+            Err(e) => {
+                if self.link_status == LinkStatus::Ok {
+                    self.log.push(t, Level::Error, e.to_string());
+                }
+                self.link_status = LinkStatus::Lost(e.to_string());
+                self.teleop.clear();
+            }
+        }
+        let twist = self.decide(t);
+        let command = Command {
+            twist,
+            gripper: self.pending_gripper.take(),
+        };
+        self.commanded = twist;
+        if let Err(e) = self.link.send(&command) {
+            self.link_status = LinkStatus::Lost(e.to_string());
+            self.log
+                .push(t, Level::Error, format!("command not sent: {e}"));
+        }
+    }
+
+    /// The twist the active mode asks for at `t`; zero whenever control is in doubt.
+    fn decide(&mut self, t: f64) -> Twist {
+        if self.estop || self.quit || self.link_status != LinkStatus::Ok {
+            return Twist::ZERO;
+        }
+        match self.mode {
+            Mode::Manual => {
+                let brake = self.brake_margin();
+                self.teleop.twist(t, brake)
+            }
+            _ => Twist::ZERO,
+        }
+    }
+
+    /// Seconds the robot needs to brake from the current command at its acceleration limits.
+    pub(super) fn brake_margin(&self) -> f64 {
+        let r = &self.config.robot;
+        (self.commanded.linear.abs() / r.max_linear_accel)
+            .max(self.commanded.angular.abs() / r.max_angular_accel)
+    }
+}

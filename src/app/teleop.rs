@@ -1,0 +1,218 @@
+//! Keyboard driving with a deadman: held keys drive, and the robot stops when keys stop.
+//!
+//! Terminals send no key release unless they speak the kitty keyboard protocol, so a key
+//! counts as held until `deadman_timeout` after its last press or auto-repeat. Where
+//! release events arrive, a release ends the key at once, and a key that has not yet
+//! auto-repeated is given `initial_repeat_delay` before the deadman judges it, so the
+//! robot does not stutter in the pause before auto-repeat starts (teleop_twist_keyboard
+//! issues 8 and 29 show both failure modes).
+
+use super::action::Action;
+use crate::config::TeleopConfig;
+use crate::geometry::Twist;
+
+/// Auto-repeat delays of common terminals run from about 0.25 s to 0.66 s (X11's default).
+pub const INITIAL_REPEAT_DELAY: f64 = 0.7;
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Held {
+    action: Action,
+    /// Time of the newest press or repeat.
+    last_event: f64,
+    repeated: bool,
+}
+
+/// Speeds and held drive keys.
+#[derive(Clone, Debug)]
+pub struct Teleop {
+    pub linear_speed: f64,
+    pub angular_speed: f64,
+    max_linear: f64,
+    max_angular: f64,
+    step: f64,
+    deadman_timeout: f64,
+    release_events: bool,
+    held: Vec<Held>,
+}
+
+impl Teleop {
+    pub fn new(config: &TeleopConfig, max_linear: f64, max_angular: f64) -> Self {
+        Self {
+            linear_speed: config.linear_speed.min(max_linear),
+            angular_speed: config.angular_speed.min(max_angular),
+            max_linear,
+            max_angular,
+            step: config.speed_step,
+            deadman_timeout: config.deadman_timeout,
+            release_events: false,
+            held: Vec::new(),
+        }
+    }
+
+    /// Whether the terminal reports key releases (kitty keyboard protocol).
+    pub fn set_release_events(&mut self, on: bool) {
+        self.release_events = on;
+    }
+
+    pub fn release_events(&self) -> bool {
+        self.release_events
+    }
+
+    pub fn limits(&self) -> (f64, f64) {
+        (self.max_linear, self.max_angular)
+    }
+
+    /// A press (`repeat == false`) or auto-repeat of a drive key at `now`.
+    pub fn press(&mut self, action: Action, now: f64, repeat: bool) {
+        debug_assert!(action.motion().is_some());
+        match self.held.iter_mut().find(|h| h.action == action) {
+            Some(h) => {
+                h.repeated |= repeat || now > h.last_event;
+                h.last_event = now;
+            }
+            None => self.held.push(Held {
+                action,
+                last_event: now,
+                repeated: repeat,
+            }),
+        }
+    }
+
+    pub fn release(&mut self, action: Action) {
+        self.held.retain(|h| h.action != action);
+    }
+
+    /// Forgets every held key: stop, e-stop, mode change.
+    pub fn clear(&mut self) {
+        self.held.clear();
+    }
+
+    /// How long after its last event a key still counts as held.
+    fn limit(&self, h: &Held) -> f64 {
+        if h.repeated || !self.release_events {
+            self.deadman_timeout
+        } else {
+            INITIAL_REPEAT_DELAY.max(self.deadman_timeout)
+        }
+    }
+
+    /// Drive keys still held at `now`, dropping those whose deadman ran out. The deadman
+    /// fires `brake` seconds early so that a robot needing that long to brake is at rest
+    /// when the timeout ends.
+    pub fn held_at(&mut self, now: f64, brake: f64) -> Vec<Action> {
+        let kept: Vec<Held> = (self.held.iter().copied())
+            .filter(|h| now - h.last_event < (self.limit(h) - brake).max(0.0))
+            .collect();
+        self.held = kept;
+        self.held.iter().map(|h| h.action).collect()
+    }
+
+    /// The twist the held keys ask for at `now`: the sum of their directions, each axis
+    /// clamped to one unit, scaled by the current speeds.
+    pub fn twist(&mut self, now: f64, brake: f64) -> Twist {
+        let (mut lin, mut ang) = (0i32, 0i32);
+        for action in self.held_at(now, brake) {
+            if let Some((l, a)) = action.motion() {
+                lin += i32::from(l);
+                ang += i32::from(a);
+            }
+        }
+        Twist::new(
+            f64::from(lin.clamp(-1, 1)) * self.linear_speed,
+            f64::from(ang.clamp(-1, 1)) * self.angular_speed,
+        )
+    }
+
+    /// Time when the earliest held key's deadman fires (`brake` seconds early), if any is held.
+    pub fn next_expiry(&self, brake: f64) -> Option<f64> {
+        self.held
+            .iter()
+            .map(|h| h.last_event + (self.limit(h) - brake).max(0.0))
+            .reduce(f64::min)
+    }
+
+    /// Applies a speed key; returns false when the speeds were already at their limit.
+    pub fn adjust(&mut self, action: Action) -> bool {
+        let (lin, ang) = match action {
+            Action::SpeedUp => (self.step, self.step),
+            Action::SpeedDown => (1.0 / self.step, 1.0 / self.step),
+            Action::LinearUp => (self.step, 1.0),
+            Action::LinearDown => (1.0 / self.step, 1.0),
+            Action::AngularUp => (1.0, self.step),
+            Action::AngularDown => (1.0, 1.0 / self.step),
+            _ => return false,
+        };
+        let before = (self.linear_speed, self.angular_speed);
+        // Floors keep a slowed robot able to move: 1 cm/s and 0.05 rad/s.
+        self.linear_speed = (self.linear_speed * lin).clamp(0.01, self.max_linear);
+        self.angular_speed = (self.angular_speed * ang).clamp(0.05, self.max_angular);
+        before != (self.linear_speed, self.angular_speed)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn teleop() -> Teleop {
+        Teleop::new(&TeleopConfig::default(), 0.4, 4.0)
+    }
+
+    #[test]
+    fn tap_drives_until_deadman_then_stops() {
+        let mut t = teleop();
+        t.press(Action::Forward, 1.0, false);
+        assert_eq!(t.twist(1.2, 0.0).linear, 0.15);
+        assert_eq!(t.twist(1.49, 0.0).linear, 0.15);
+        assert!(t.twist(1.5, 0.0).is_zero());
+    }
+
+    #[test]
+    fn auto_repeat_keeps_driving_without_gaps() {
+        let mut t = teleop();
+        // Auto-repeat at 30 Hz for two seconds: never a zero in between.
+        let mut now = 0.0;
+        t.press(Action::Forward, now, false);
+        while now < 2.0 {
+            assert_eq!(t.twist(now, 0.0).linear, 0.15, "stutter at {now}");
+            now += 1.0 / 30.0;
+            t.press(Action::Forward, now, true);
+        }
+        assert!(t.twist(now + 0.5, 0.0).is_zero());
+    }
+
+    #[test]
+    fn release_stops_at_once_and_grace_covers_repeat_delay() {
+        let mut t = teleop();
+        t.set_release_events(true);
+        t.press(Action::Forward, 0.0, false);
+        // 0.6 s before the first repeat: still driving with release events on.
+        assert_eq!(t.twist(0.6, 0.0).linear, 0.15);
+        t.press(Action::Forward, 0.65, true);
+        t.release(Action::Forward);
+        assert!(t.twist(0.66, 0.0).is_zero());
+    }
+
+    #[test]
+    fn keys_combine_and_cancel() {
+        let mut t = teleop();
+        t.press(Action::Forward, 0.0, false);
+        t.press(Action::TurnLeft, 0.0, false);
+        let tw = t.twist(0.1, 0.0);
+        assert!(tw.linear > 0.0 && tw.angular > 0.0);
+        t.press(Action::Backward, 0.0, false);
+        assert_eq!(t.twist(0.1, 0.0).linear, 0.0);
+    }
+
+    #[test]
+    fn speed_keys_respect_limits() {
+        let mut t = teleop();
+        for _ in 0..100 {
+            t.adjust(Action::SpeedUp);
+        }
+        assert_eq!((t.linear_speed, t.angular_speed), (0.4, 4.0));
+        assert!(!t.adjust(Action::SpeedUp));
+        assert!(t.adjust(Action::LinearDown));
+        assert!(t.linear_speed < 0.4 && t.angular_speed == 4.0);
+    }
+}

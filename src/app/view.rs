@@ -1,0 +1,75 @@
+//! How the map is looked at: zoom, pan, rendering style, overlays. Changed only by actions.
+
+use crate::geometry::Point2;
+
+/// Zoom steps: metres per character column.
+pub const ZOOM_LEVELS: [f64; 9] = [0.01, 0.02, 0.03, 0.05, 0.08, 0.12, 0.2, 0.3, 0.5];
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct ViewState {
+    /// `None` fits the world into the map area; `Some(i)` picks `ZOOM_LEVELS[i]`.
+    pub zoom: Option<usize>,
+    /// Map centre; `None` follows the robot's estimate (or the world centre when fitting).
+    pub center: Option<Point2>,
+    pub braille: bool,
+    pub show_truth: bool,
+    pub help: bool,
+}
+
+impl Default for ViewState {
+    fn default() -> Self {
+        Self {
+            zoom: None,
+            center: None,
+            braille: false,
+            show_truth: true,
+            help: false,
+        }
+    }
+}
+
+impl ViewState {
+    /// Metres per column given the fitted scale the renderer computed.
+    pub fn scale(&self, fitted: f64) -> f64 {
+        self.zoom.map_or(fitted, |i| ZOOM_LEVELS[i])
+    }
+
+    /// One step in (`finer`) or out from the current scale.
+    pub fn zoom_step(&mut self, fitted: f64, finer: bool) {
+        let current = self.scale(fitted);
+        let next = if finer {
+            ZOOM_LEVELS.iter().rposition(|&z| z < current - 1e-12)
+        } else {
+            ZOOM_LEVELS.iter().position(|&z| z > current + 1e-12)
+        };
+        if let Some(i) = next {
+            self.zoom = Some(i);
+        }
+    }
+
+    /// Moves the centre by a quarter of the visible span in the given direction.
+    pub fn pan(&mut self, from: Point2, span: (f64, f64), dx: f64, dy: f64) {
+        let c = self.center.unwrap_or(from);
+        self.center = Some(Point2::new(
+            c.x + dx * span.0 / 4.0,
+            c.y + dy * span.1 / 4.0,
+        ));
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn zoom_steps_from_fitted_scale() {
+        let mut v = ViewState::default();
+        v.zoom_step(0.07, true);
+        assert_eq!(v.scale(0.07), 0.05);
+        v.zoom_step(0.07, false);
+        assert_eq!(v.scale(0.07), 0.08);
+        v.zoom = Some(0);
+        v.zoom_step(0.07, true);
+        assert_eq!(v.zoom, Some(0), "finest zoom stays");
+    }
+}

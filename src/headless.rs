@@ -1,0 +1,117 @@
+//! Running navdeck without a terminal: play keys on simulated time, report the outcome.
+//! The single way scripts and tests run a whole session.
+
+use crate::app::{App, KeyKind};
+use crate::geometry::Pose2;
+use crate::keymap::Key;
+use serde::Serialize;
+
+/// Seconds the runner lets pass after the last key, beyond the deadman, for the robot to settle.
+pub const SETTLE: f64 = 1.0;
+
+/// What a headless run ended with.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Report {
+    pub navdeck: &'static str,
+    pub link: String,
+    pub keys: usize,
+    /// Simulated seconds the run covered.
+    pub sim_time: f64,
+    pub mode: String,
+    pub true_pose: Option<Pose2>,
+    pub estimated_pose: Pose2,
+    /// True path length in the twin; the wheels' figure where there is no twin.
+    pub distance_driven: f64,
+    pub odometry_distance: f64,
+    pub collisions: Option<u32>,
+    pub gripper: Option<String>,
+    pub quit: bool,
+    /// Warnings and errors the session logged, in order.
+    pub warnings: Vec<String>,
+    /// Wall-clock figures, filled in by the caller (the core reads no clock).
+    pub wall_time_s: Option<f64>,
+    pub realtime_factor: Option<f64>,
+}
+
+/// Presses `keys` through the active keymap at `rate` keys per simulated second, lets the
+/// robot come to rest, and reports.
+pub fn run(app: &mut App, keys: &[Key], rate: f64) -> Report {
+    let gap = 1.0 / rate;
+    let start = app.now();
+    let mut t = start;
+    for key in keys {
+        app.update(t);
+        app.handle_key(*key, KeyKind::Press, t);
+        if app.should_quit() {
+            break;
+        }
+        t += gap;
+    }
+    if !app.should_quit() {
+        let end = t + app.config().teleop.deadman_timeout + SETTLE;
+        let period = app.config().robot.control_period;
+        while t < end {
+            t = (t + period).min(end);
+            app.update(t);
+        }
+    }
+    report(app, keys.len())
+}
+
+/// The report of the session as it stands.
+pub fn report(app: &App, keys: usize) -> Report {
+    let twin = app.link().twin();
+    Report {
+        navdeck: env!("CARGO_PKG_VERSION"),
+        link: app.link().label(),
+        keys,
+        sim_time: app.now(),
+        mode: app.mode().label().to_string(),
+        true_pose: app.true_pose(),
+        estimated_pose: app.estimated_pose(),
+        distance_driven: twin.map_or(app.odometry_distance(), |t| t.distance_driven()),
+        odometry_distance: app.odometry_distance(),
+        collisions: twin.map(|t| t.collisions()),
+        gripper: app.gripper().map(|g| g.label().to_string()),
+        quit: app.should_quit(),
+        warnings: app
+            .log_book()
+            .iter()
+            .filter(|e| e.level >= crate::app::log::Level::Warn)
+            .map(|e| e.text.clone())
+            .collect(),
+        wall_time_s: None,
+        realtime_factor: None,
+    }
+}
+
+/// A report as the few lines a person reads.
+pub fn human(report: &Report) -> String {
+    let mut out = format!(
+        "navdeck headless on {}: {} keys, {:.1} s simulated\n",
+        report.link, report.keys, report.sim_time
+    );
+    let p = report.estimated_pose;
+    out += &format!(
+        "estimated pose  x {:.3} y {:.3} theta {:.1} deg\n",
+        p.x,
+        p.y,
+        p.theta.to_degrees()
+    );
+    if let Some(t) = report.true_pose {
+        out += &format!(
+            "true pose       x {:.3} y {:.3} theta {:.1} deg\n",
+            t.x,
+            t.y,
+            t.theta.to_degrees()
+        );
+    }
+    out += &format!("distance driven {:.3} m\n", report.distance_driven);
+    if let Some(c) = report.collisions {
+        out += &format!("collisions      {c}\n");
+    }
+    if let (Some(w), Some(f)) = (report.wall_time_s, report.realtime_factor) {
+        out += &format!("wall time       {w:.3} s ({f:.0}x real time)\n");
+    }
+    out
+}

@@ -1,0 +1,109 @@
+//! Building a session from the command line's choices: config, keymap, world, link.
+//! Everything is loaded and checked here, before the terminal is touched.
+
+use crate::app::App;
+use crate::config::Config;
+use crate::keymap::Keymap;
+use crate::link::RobotLink;
+use crate::link::sim::SimLink;
+use crate::sim::{Twin, World};
+use anyhow::{Context, Result, bail};
+use std::path::PathBuf;
+
+/// Which robot to drive.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum LinkChoice {
+    Sim,
+    Ros2,
+    Serial(String),
+}
+
+impl std::str::FromStr for LinkChoice {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        match s {
+            "sim" => Ok(LinkChoice::Sim),
+            "ros2" => Ok(LinkChoice::Ros2),
+            _ => match s.strip_prefix("serial:") {
+                Some(path) if !path.is_empty() => Ok(LinkChoice::Serial(path.to_string())),
+                _ => Err(format!(
+                    "unknown link {s:?}: expected sim, ros2 or serial:PATH[@BAUD]"
+                )),
+            },
+        }
+    }
+}
+
+/// The choices a session is built from.
+#[derive(Clone, Debug)]
+pub struct SessionSpec {
+    pub world: Option<PathBuf>,
+    pub seed: u64,
+    pub config: Option<PathBuf>,
+    pub keymap: Option<PathBuf>,
+    pub link: LinkChoice,
+}
+
+/// A loaded, validated session, ready for the TUI or the headless runner.
+pub struct Session {
+    pub config: Config,
+    pub keymap: Keymap,
+    pub link: Box<dyn RobotLink>,
+    pub world_name: Option<String>,
+}
+
+impl Session {
+    pub fn load(spec: &SessionSpec) -> Result<Session> {
+        let config = match &spec.config {
+            Some(path) => Config::load(path)?,
+            None => Config::default(),
+        };
+        let keymap = match &spec.keymap {
+            Some(path) => Keymap::load(path)?,
+            None => Keymap::default_map(),
+        };
+        let (link, world_name): (Box<dyn RobotLink>, _) = match &spec.link {
+            LinkChoice::Sim => {
+                let world = match &spec.world {
+                    Some(path) => World::load(path)
+                        .with_context(|| format!("cannot use world {}", path.display()))?,
+                    None => World::default_arena(),
+                };
+                let name = world.name.clone();
+                let twin = Twin::new(world, &config, spec.seed);
+                (Box::new(SimLink::new(twin, 0.0)), Some(name))
+            }
+            LinkChoice::Ros2 => bail!("the ROS 2 link is not built yet; use --link sim"),
+            LinkChoice::Serial(path) => {
+                bail!("the serial link ({path}) is not built yet; use --link sim")
+            }
+        };
+        Ok(Session {
+            config,
+            keymap,
+            link,
+            world_name,
+        })
+    }
+
+    /// The console on this session, starting at session time `now`.
+    pub fn into_app(self, now: f64) -> App {
+        App::new(self.config, self.keymap, self.link, now)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn link_choices_parse() {
+        assert_eq!("sim".parse::<LinkChoice>(), Ok(LinkChoice::Sim));
+        assert_eq!(
+            "serial:/dev/ttyACM0@57600".parse::<LinkChoice>(),
+            Ok(LinkChoice::Serial("/dev/ttyACM0@57600".into()))
+        );
+        assert!("serial:".parse::<LinkChoice>().is_err());
+        assert!("can".parse::<LinkChoice>().unwrap_err().contains("can"));
+    }
+}

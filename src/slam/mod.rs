@@ -1,0 +1,3 @@
+//! Estimating where the robot is: wheel odometry now, EKF-SLAM later.
+
+pub mod odometry;

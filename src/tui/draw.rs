@@ -1,0 +1,117 @@
+//! Composes one frame from the panels; reads the app, never changes it.
+
+use super::theme::Theme;
+use super::widgets::{help, log, map, status, title};
+use crate::app::App;
+use crate::app::screen::{Area, MIN_SIZE, layout};
+use ratatui::Frame;
+use ratatui::layout::Rect;
+use ratatui::text::Line;
+use ratatui::widgets::{Block, Clear, Paragraph};
+
+fn rect((x, y, w, h): Area) -> Rect {
+    Rect::new(x, y, w, h)
+}
+
+pub fn draw(frame: &mut Frame, app: &App, theme: Theme) {
+    let size = frame.area();
+    if size.width < MIN_SIZE.0 || size.height < MIN_SIZE.1 {
+        let text = format!(
+            "navdeck needs {}x{}; this terminal is {}x{}. q quits.",
+            MIN_SIZE.0, MIN_SIZE.1, size.width, size.height
+        );
+        frame.render_widget(Paragraph::new(text).wrap(Default::default()), size);
+        return;
+    }
+    let parts = layout((size.width, size.height));
+    frame.render_widget(Paragraph::new(title::line(app, theme)), rect(parts.title));
+
+    let map_block = Block::bordered()
+        .title(map_title(app))
+        .border_style(theme.border());
+    let map_rect = rect(parts.map);
+    let inner = map_block.inner(map_rect);
+    frame.render_widget(map_block, map_rect);
+    map::render(app, theme, inner, frame.buffer_mut());
+
+    let status_block = Block::bordered()
+        .title(" Status ")
+        .border_style(theme.border());
+    frame.render_widget(
+        Paragraph::new(status::lines(app, theme)).block(status_block),
+        rect(parts.status),
+    );
+
+    let log_rect = rect(parts.log);
+    let log_block = Block::bordered()
+        .title(" Log ")
+        .border_style(theme.border());
+    let rows = usize::from(log_rect.height.saturating_sub(2));
+    frame.render_widget(
+        Paragraph::new(log::lines(app, theme, rows)).block(log_block),
+        log_rect,
+    );
+
+    if app.view().help {
+        draw_help(frame, app, theme, size);
+    }
+}
+
+fn map_title(app: &App) -> String {
+    let style = if app.view().braille {
+        "braille"
+    } else {
+        "ascii"
+    };
+    let scale = app.view().scale(app.fitted_scale());
+    format!(" Map {:.0} cm/col {style} ", scale * 100.0)
+}
+
+/// The help popup: bindings in as many columns as fit, the legend underneath.
+fn draw_help(frame: &mut Frame, app: &App, theme: Theme, size: Rect) {
+    let entries = help::entries(app, theme);
+    let width = size.width.saturating_sub(4).min(100);
+    let height = size.height.saturating_sub(2);
+    let area = Rect::new(
+        (size.width - width) / 2,
+        (size.height - height) / 2,
+        width,
+        height,
+    );
+    let inner_w = usize::from(width.saturating_sub(2));
+    let rows = usize::from(height.saturating_sub(4)).max(1);
+    let col_w = 38;
+    let columns = (inner_w / col_w).max(1);
+    let mut lines: Vec<Line> = Vec::new();
+    for r in 0..rows {
+        let mut spans = Vec::new();
+        for c in 0..columns {
+            if let Some(entry) = entries.get(c * rows + r) {
+                let text_len: usize = entry.spans.iter().map(|s| s.content.chars().count()).sum();
+                spans.extend(entry.spans.iter().cloned());
+                if c + 1 < columns {
+                    spans.push(" ".repeat(col_w.saturating_sub(text_len)).into());
+                }
+            }
+        }
+        lines.push(Line::from(spans));
+    }
+    if entries.len() > rows * columns {
+        lines.push(Line::from(format!(
+            "... {} more: widen the terminal",
+            entries.len() - rows * columns
+        )));
+    } else {
+        lines.push(Line::default());
+    }
+    lines.push(Line::styled(help::LEGEND, theme.label()));
+    let block = Block::bordered()
+        .title(format!(
+            " Keys in {} mode ({}): any other key closes ",
+            app.mode().label().to_lowercase(),
+            app.keymap().source()
+        ))
+        .border_style(theme.border());
+    frame.render_widget(Clear, area);
+    frame.render_widget(Paragraph::new(lines).block(block), area);
+}

@@ -1,0 +1,9 @@
+//! The terminal face of navdeck: event sources, the main loop, and the widgets.
+//! Everything here reads the `App`; only the loop feeds it events.
+
+pub mod draw;
+pub mod events;
+pub mod run;
+pub mod terminal;
+pub mod theme;
+pub mod widgets;

@@ -1,0 +1,109 @@
+//! The main loop: events in, actions to the app, frames out when something changed.
+//! It takes its backend, event source and clock as parameters, so tests drive it
+//! with a script and a `TestBackend`.
+
+use super::draw::draw;
+use super::events::{Clock, Event, EventSource};
+use super::theme::Theme;
+use crate::app::App;
+use ratatui::Terminal;
+use ratatui::backend::Backend;
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::time::Duration;
+
+/// The loop wakes at least this often, so signals are seen promptly.
+const MAX_WAIT: f64 = 0.1;
+
+/// Why the loop ended. In every case the robot has been told to stop.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Exit {
+    Quit,
+    /// A signal arrived (SIGINT, SIGTERM, SIGHUP on an SSH drop): its number.
+    Signal(usize),
+    /// The input ended.
+    InputClosed,
+}
+
+#[derive(Debug, thiserror::Error)]
+pub enum RunError {
+    #[error("cannot draw to the terminal: {0}")]
+    Draw(String),
+    #[error("cannot read the terminal: {0}")]
+    Input(#[from] std::io::Error),
+}
+
+/// What the loop did, for tests and the exit message.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct RunStats {
+    pub frames_drawn: u64,
+    pub events: u64,
+}
+
+/// Runs the console until quit, a signal, closed input or a terminal error.
+/// `signal` holds the number of a pending signal, 0 for none.
+pub fn run<B: Backend>(
+    terminal: &mut Terminal<B>,
+    app: &mut App,
+    events: &mut dyn EventSource,
+    clock: &dyn Clock,
+    signal: &AtomicUsize,
+    theme: Theme,
+    stats: &mut RunStats,
+) -> Result<Exit, RunError> {
+    let size = terminal.size().map_err(|e| fail(app, e))?;
+    app.resize(size.width, size.height);
+    let mut drawn: Option<u64> = None;
+    loop {
+        let pending = signal.load(Ordering::SeqCst);
+        if pending != 0 {
+            app.shutdown(&format!("signal {}", signal_name(pending)));
+            return Ok(Exit::Signal(pending));
+        }
+        app.update(clock.now());
+        if app.should_quit() {
+            return Ok(Exit::Quit);
+        }
+        if drawn != Some(app.revision()) {
+            terminal
+                .draw(|frame| draw(frame, app, theme))
+                .map_err(|e| fail(app, e))?;
+            drawn = Some(app.revision());
+            stats.frames_drawn += 1;
+        }
+        let wait = (app.next_deadline() - clock.now()).clamp(0.0, MAX_WAIT);
+        match events.next_event(Duration::from_secs_f64(wait)) {
+            Ok(Some(event)) => {
+                stats.events += 1;
+                match event {
+                    Event::Key(key, kind) => app.handle_key(key, kind, clock.now()),
+                    Event::Resize(w, h) => app.resize(w, h),
+                    Event::Closed => {
+                        app.shutdown("input closed");
+                        return Ok(Exit::InputClosed);
+                    }
+                }
+            }
+            Ok(None) => {}
+            Err(e) => {
+                app.shutdown(&format!("terminal input failed: {e}"));
+                return Err(RunError::Input(e));
+            }
+        }
+    }
+}
+
+fn fail(app: &mut App, e: impl std::fmt::Display) -> RunError {
+    let message = e.to_string();
+    app.shutdown(&format!("terminal output failed: {message}"));
+    RunError::Draw(message)
+}
+
+/// The conventional name of a signal number.
+pub fn signal_name(signal: usize) -> String {
+    match signal {
+        1 => "SIGHUP".into(),
+        2 => "SIGINT".into(),
+        15 => "SIGTERM".into(),
+        n => format!("{n}"),
+    }
+}

@@ -1,0 +1,198 @@
+//! The map: the occupancy grid as ASCII (or braille), markers, blocks and the robot.
+
+use crate::app::App;
+use crate::geometry::{Point2, Pose2};
+use crate::map::grid::{FREE, OCCUPIED, OccupancyGrid};
+use crate::perception::markers::MarkerCategory;
+use crate::tui::theme::{Theme, marker_glyph};
+use ratatui::buffer::Buffer;
+use ratatui::layout::Rect;
+use ratatui::style::Style;
+
+/// Where the map area sits in the world: left edge, top edge, metres per column.
+#[derive(Clone, Copy, Debug)]
+pub struct Viewport {
+    pub area: Rect,
+    pub left: f64,
+    pub top: f64,
+    /// Metres per column; a row covers twice as much (terminal cells are about 1:2).
+    pub scale: f64,
+}
+
+impl Viewport {
+    pub fn new(area: Rect, center: Point2, scale: f64) -> Self {
+        Self {
+            area,
+            left: center.x - f64::from(area.width) * scale / 2.0,
+            top: center.y + f64::from(area.height) * scale,
+            scale,
+        }
+    }
+
+    /// The cell showing world point `p`, if it is on screen.
+    pub fn cell(&self, p: Point2) -> Option<(u16, u16)> {
+        let c = ((p.x - self.left) / self.scale).floor();
+        let r = ((self.top - p.y) / (2.0 * self.scale)).floor();
+        let (w, h) = (f64::from(self.area.width), f64::from(self.area.height));
+        if c < 0.0 || r < 0.0 || c >= w || r >= h {
+            return None;
+        }
+        Some((self.area.x + c as u16, self.area.y + r as u16))
+    }
+
+    /// World rectangle (x0, y0, x1, y1) of the cell at column `c`, row `r` of the area.
+    fn rect(&self, c: u16, r: u16) -> (f64, f64, f64, f64) {
+        let x0 = self.left + f64::from(c) * self.scale;
+        let y1 = self.top - f64::from(r) * 2.0 * self.scale;
+        (x0, y1 - 2.0 * self.scale, x0 + self.scale, y1)
+    }
+}
+
+/// Draws the map into `area` of `buf`.
+pub fn render(app: &App, theme: Theme, area: Rect, buf: &mut Buffer) {
+    if area.width == 0 || area.height == 0 {
+        return;
+    }
+    let scale = app.view().scale(app.fitted_scale());
+    let vp = Viewport::new(area, app.map_center(), scale);
+    if let Some(grid) = app.world_grid() {
+        if app.view().braille {
+            draw_grid_braille(grid, &vp, theme, buf);
+        } else {
+            draw_grid_ascii(grid, &vp, theme, buf);
+        }
+    }
+    draw_world_objects(app, &vp, theme, buf);
+    if app.view().show_truth
+        && let Some(truth) = app.true_pose()
+    {
+        draw_robot(truth, 'o', &vp, theme.truth(), buf);
+    }
+    draw_robot(app.estimated_pose(), '@', &vp, theme.robot(), buf);
+}
+
+fn draw_grid_ascii(grid: &OccupancyGrid, vp: &Viewport, theme: Theme, buf: &mut Buffer) {
+    let (occupied, free) = (theme.occupied(), theme.free());
+    for r in 0..vp.area.height {
+        for c in 0..vp.area.width {
+            let (x0, y0, x1, y1) = vp.rect(c, r);
+            let (glyph, style) = match grid.max_in(x0, y0, x1, y1) {
+                v if v >= OCCUPIED / 2 => ('#', occupied),
+                v if v >= FREE => ('.', free),
+                _ => continue,
+            };
+            buf[(vp.area.x + c, vp.area.y + r)]
+                .set_char(glyph)
+                .set_style(style);
+        }
+    }
+}
+
+/// Braille: each cell holds 2 x 4 dots, so the map gets twice the columns and four
+/// times the rows of the ASCII view (the technique termviz uses).
+fn draw_grid_braille(grid: &OccupancyGrid, vp: &Viewport, theme: Theme, buf: &mut Buffer) {
+    // Unicode braille: dot (column, row) -> bit, rows top to bottom.
+    const BITS: [[u32; 4]; 2] = [[0x01, 0x02, 0x04, 0x40], [0x08, 0x10, 0x20, 0x80]];
+    let (dw, dh) = (vp.scale / 2.0, vp.scale / 2.0);
+    let style = theme.occupied();
+    for r in 0..vp.area.height {
+        for c in 0..vp.area.width {
+            let (x0, _, _, y1) = vp.rect(c, r);
+            let mut bits = 0;
+            for (dx, column) in BITS.iter().enumerate() {
+                for (dy, bit) in column.iter().enumerate() {
+                    let (px, py) = (x0 + dx as f64 * dw, y1 - (dy + 1) as f64 * dh);
+                    if grid.max_in(px, py, px + dw, py + dh) >= OCCUPIED / 2 {
+                        bits |= bit;
+                    }
+                }
+            }
+            if bits != 0
+                && let Some(ch) = char::from_u32(0x2800 + bits)
+            {
+                buf[(vp.area.x + c, vp.area.y + r)]
+                    .set_char(ch)
+                    .set_style(style);
+            }
+        }
+    }
+}
+
+fn put(buf: &mut Buffer, vp: &Viewport, p: Point2, glyph: char, style: Style) {
+    if let Some(cell) = vp.cell(p) {
+        buf[cell].set_char(glyph).set_style(style);
+    }
+}
+
+/// Markers by category, blocks where they are now; markers in view of the camera reversed.
+fn draw_world_objects(app: &App, vp: &Viewport, theme: Theme, buf: &mut Buffer) {
+    let Some(twin) = app.link().twin() else {
+        return;
+    };
+    let seen: Vec<u32> = app.sightings().iter().map(|s| s.id).collect();
+    let block_ids: Vec<u32> = twin.blocks().iter().flat_map(|b| b.markers).collect();
+    for m in twin
+        .world()
+        .markers
+        .iter()
+        .filter(|m| !block_ids.contains(&m.id))
+    {
+        let category = MarkerCategory::of(m.id);
+        let mut style = theme.marker(category);
+        if seen.contains(&m.id) {
+            style = style.add_modifier(ratatui::style::Modifier::REVERSED);
+        }
+        put(buf, vp, m.position, marker_glyph(category), style);
+    }
+    for b in twin.blocks() {
+        let category = MarkerCategory::of(b.markers[0]);
+        let mut style = theme.marker(category);
+        if b.markers.iter().any(|id| seen.contains(id)) {
+            style = style.add_modifier(ratatui::style::Modifier::REVERSED);
+        }
+        put(buf, vp, b.pose.position(), marker_glyph(category), style);
+    }
+}
+
+/// The robot as `body` with a heading tick in the neighbouring cell it faces.
+fn draw_robot(pose: Pose2, body: char, vp: &Viewport, style: Style, buf: &mut Buffer) {
+    let Some((cx, cy)) = vp.cell(pose.position()) else {
+        return;
+    };
+    // Heading in screen cells: rows are twice as tall as columns are wide.
+    let screen_angle = (pose.theta.sin() / 2.0).atan2(pose.theta.cos());
+    let octant = ((screen_angle / std::f64::consts::FRAC_PI_4).round() as i32).rem_euclid(8);
+    let (dx, dy, tick) = match octant {
+        0 => (1, 0, '-'),
+        1 => (1, -1, '/'),
+        2 => (0, -1, '|'),
+        3 => (-1, -1, '\\'),
+        4 => (-1, 0, '-'),
+        5 => (-1, 1, '/'),
+        6 => (0, 1, '|'),
+        _ => (1, 1, '\\'),
+    };
+    let (tx, ty) = (i32::from(cx) + dx, i32::from(cy) + dy);
+    let a = vp.area;
+    if tx >= i32::from(a.x)
+        && ty >= i32::from(a.y)
+        && tx < i32::from(a.x + a.width)
+        && ty < i32::from(a.y + a.height)
+    {
+        buf[(tx as u16, ty as u16)].set_char(tick).set_style(style);
+    }
+    buf[(cx, cy)].set_char(body).set_style(style);
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn viewport_maps_centre_and_corners() {
+        let vp = Viewport::new(Rect::new(10, 5, 40, 20), Point2::new(0.0, 0.0), 0.1);
+        assert_eq!(vp.cell(Point2::new(0.0, 0.0)), Some((30, 15)));
+        assert_eq!(vp.cell(Point2::new(-1.99, 1.99)), Some((10, 5)));
+        assert_eq!(vp.cell(Point2::new(2.01, 0.0)), None);
+    }
+}

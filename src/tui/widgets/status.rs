@@ -1,0 +1,110 @@
+//! The status panel: mode, link, pose, velocities, limits, loop rate, sim time.
+
+use crate::app::{App, LinkStatus};
+use crate::geometry::Pose2;
+use crate::tui::theme::Theme;
+use ratatui::text::{Line, Span};
+
+fn row(theme: Theme, label: &str, value: String) -> Line<'static> {
+    Line::from(vec![
+        Span::styled(format!("{label:<8}"), theme.label()),
+        Span::styled(value, theme.value()),
+    ])
+}
+
+fn pose_text(p: Pose2) -> String {
+    format!("{:6.2} {:6.2} {:4.0}°", p.x, p.y, p.theta.to_degrees())
+}
+
+/// Session time as h:mm:ss.
+fn clock_text(t: f64) -> String {
+    let s = t.max(0.0).floor() as u64;
+    format!("{}:{:02}:{:02}", s / 3600, (s / 60) % 60, s % 60)
+}
+
+/// Status rows, most important first (a short panel shows the top ones).
+pub fn lines(app: &App, theme: Theme) -> Vec<Line<'static>> {
+    let link = match app.link_status() {
+        LinkStatus::Ok => "ok".to_string(),
+        LinkStatus::Lost(_) => "LOST".to_string(),
+    };
+    let (cmd, meas) = (app.commanded(), app.measured());
+    let t = app.teleop();
+    let (max_v, max_w) = t.limits();
+    let mut rows = vec![
+        row(theme, "Mode", app.mode().label().to_string()),
+        row(theme, "Link", format!("{} {link}", app.link().label())),
+        row(theme, "Pose", pose_text(app.estimated_pose())),
+    ];
+    if let Some(truth) = app.true_pose() {
+        rows.push(row(theme, "Truth", pose_text(truth)));
+    }
+    rows.extend([
+        row(
+            theme,
+            "Cmd",
+            format!("v {:5.2} w {:5.2}", cmd.linear, cmd.angular),
+        ),
+        row(
+            theme,
+            "Meas",
+            format!("v {:5.2} w {:5.2}", meas.linear, meas.angular),
+        ),
+        row(
+            theme,
+            "Speed",
+            format!(
+                "v {:.2}/{max_v:.2} w {:.1}/{max_w:.1}",
+                t.linear_speed, t.angular_speed
+            ),
+        ),
+        row(
+            theme,
+            "Gripper",
+            app.gripper().map_or("-".into(), |g| g.label().to_string()),
+        ),
+        row(
+            theme,
+            "Loop",
+            format!("{:.0} Hz  t {}", app.loop_rate(), clock_text(app.now())),
+        ),
+    ]);
+    if let Some(twin) = app.link().twin() {
+        rows.push(row(
+            theme,
+            "Hits",
+            format!("{} collisions", twin.collisions()),
+        ));
+    }
+    let held: Vec<&str> = app.held_keys().iter().map(|a| a.name()).collect();
+    rows.push(row(
+        theme,
+        "Driving",
+        if held.is_empty() {
+            "-".into()
+        } else {
+            held.join("+")
+        },
+    ));
+    let seen: Vec<String> = app.sightings().iter().map(|s| s.id.to_string()).collect();
+    rows.push(row(
+        theme,
+        "Seen",
+        if seen.is_empty() {
+            "-".into()
+        } else {
+            seen.join(" ")
+        },
+    ));
+    rows
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn clock_reads_hours_minutes_seconds() {
+        assert_eq!(clock_text(3725.9), "1:02:05");
+    }
+}

@@ -1,0 +1,24 @@
+//! The top line: name, mode, link and the way to help.
+
+use crate::app::{App, LinkStatus};
+use crate::tui::theme::Theme;
+use ratatui::text::{Line, Span};
+
+pub fn line(app: &App, theme: Theme) -> Line<'static> {
+    let mut spans = vec![
+        Span::styled(" navdeck ", theme.title()),
+        Span::styled(format!(" {} ", app.mode().label()), theme.mode()),
+        Span::raw(" "),
+        Span::styled(app.link().label(), theme.value()),
+    ];
+    if let LinkStatus::Lost(_) = app.link_status() {
+        spans.push(Span::raw(" "));
+        spans.push(Span::styled(" LINK LOST ", theme.alert()));
+    }
+    if app.estop() {
+        spans.push(Span::raw(" "));
+        spans.push(Span::styled(" E-STOP ", theme.alert()));
+    }
+    spans.push(Span::styled("  ? help  q quit", theme.label()));
+    Line::from(spans)
+}

@@ -1,0 +1,242 @@
+//! The console's behaviour as a user at the keyboard sees it, on the digital twin.
+
+mod common;
+
+use common::*;
+use navdeck::app::mode::Mode;
+use navdeck::app::{App, KeyKind};
+use navdeck::keymap::Key;
+use navdeck::link::GripperState;
+use navdeck::tui::events::Step;
+use navdeck::tui::run::Exit;
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+/// Steps the console through `seconds` of session time with no input.
+fn idle(app: &mut App, seconds: f64) {
+    let end = app.now() + seconds;
+    while app.now() < end - 1e-9 {
+        let t = (app.now() + 0.01).min(end);
+        app.update(t);
+    }
+}
+
+fn true_speed(app: &App) -> f64 {
+    app.link().twin().unwrap().velocity().linear
+}
+
+#[test]
+fn holding_w_drives_forward_and_robot_rests_within_deadman_of_last_key() {
+    let mut app = default_app();
+    let start = app.true_pose().unwrap();
+    let mut t = 0.0;
+    // Auto-repeat at 30 Hz for 2 s, as a terminal without release events sends it.
+    while t < 2.0 {
+        app.handle_key(Key::char('w'), KeyKind::Press, t);
+        t += 1.0 / 30.0;
+        app.update(t);
+        assert!(app.commanded().linear > 0.0, "command dropped at {t:.3} s");
+    }
+    let last_key = t - 1.0 / 30.0;
+    let moved = app.true_pose().unwrap();
+    let heading = (start.theta.cos(), start.theta.sin());
+    let forward = (moved.x - start.x) * heading.0 + (moved.y - start.y) * heading.1;
+    assert!(forward > 0.2, "drove only {forward:.3} m forward");
+    let wait = last_key + 0.5 - app.now();
+    idle(&mut app, wait);
+    assert!(
+        true_speed(&app).abs() < 1e-9,
+        "still moving 0.5 s after the key"
+    );
+    let rest = app.true_pose().unwrap();
+    idle(&mut app, 2.0);
+    let later = app.true_pose().unwrap();
+    assert!((later.x - rest.x).abs() < 1e-9 && (later.y - rest.y).abs() < 1e-9);
+}
+
+#[test]
+fn a_single_tap_moves_a_little_then_stops() {
+    let mut app = default_app();
+    let start = app.true_pose().unwrap();
+    app.handle_key(Key::char('w'), KeyKind::Press, 0.0);
+    idle(&mut app, 3.0);
+    let end = app.true_pose().unwrap();
+    let d = ((end.x - start.x).powi(2) + (end.y - start.y).powi(2)).sqrt();
+    assert!(d > 0.01 && d < 0.1, "a tap moved {d:.3} m");
+    assert_eq!(true_speed(&app), 0.0);
+}
+
+#[test]
+fn release_event_stops_at_once_in_kitty_terminals() {
+    let mut app = default_app();
+    app.set_release_events(true);
+    app.handle_key(Key::char('w'), KeyKind::Press, 0.0);
+    idle(&mut app, 0.6);
+    // No repeat yet after 0.6 s: with release events the key is still held.
+    assert!(app.commanded().linear > 0.0);
+    app.handle_key(Key::char('w'), KeyKind::Release, 0.6);
+    assert_eq!(app.commanded().linear, 0.0);
+}
+
+#[test]
+fn space_is_an_emergency_stop_and_a_drive_key_releases_it() {
+    let mut app = default_app();
+    for i in 0..10 {
+        app.handle_key(Key::char('w'), KeyKind::Press, f64::from(i) * 0.05);
+    }
+    app.update(0.5);
+    assert!(true_speed(&app) > 0.0);
+    app.handle_key(key("space"), KeyKind::Press, 0.5);
+    assert!(app.estop());
+    assert_eq!(app.commanded().linear, 0.0);
+    idle(&mut app, 0.3);
+    assert_eq!(true_speed(&app), 0.0);
+    assert!(
+        app.log_book()
+            .iter()
+            .any(|e| e.text.contains("EMERGENCY STOP"))
+    );
+    app.handle_key(Key::char('w'), KeyKind::Press, app.now());
+    assert!(!app.estop() && app.commanded().linear > 0.0);
+}
+
+#[test]
+fn unbuilt_modes_say_so_and_change_nothing() {
+    let mut app = default_app();
+    for c in ['e', 't', 'p', 'r', 'l'] {
+        app.handle_key(Key::char(c), KeyKind::Press, 0.0);
+        assert_eq!(app.mode(), Mode::Manual, "key {c} changed the mode");
+    }
+    let said: Vec<&str> = app.log_book().iter().map(|e| e.text.as_str()).collect();
+    for mode in ["exploration", "thinking", "path following", "race", "load"] {
+        let line = format!("{mode} mode is not built yet");
+        assert!(
+            said.contains(&line.as_str()),
+            "missing {line:?} in {said:?}"
+        );
+    }
+}
+
+#[test]
+fn gripper_keys_open_and_close_the_twins_gripper() {
+    let mut app = default_app();
+    app.handle_key(Key::char('o'), KeyKind::Press, 0.0);
+    idle(&mut app, 2.0);
+    assert_eq!(app.gripper(), Some(GripperState::Open));
+    // In manual mode `c` stops (seed 001); the gripper closes from other bindings only.
+    app.handle_key(Key::char('c'), KeyKind::Press, app.now());
+    idle(&mut app, 2.0);
+    assert_eq!(app.gripper(), Some(GripperState::Open));
+}
+
+#[test]
+fn speed_keys_change_the_drive_speed_within_limits() {
+    let mut app = default_app();
+    let before = app.teleop().linear_speed;
+    app.handle_key(Key::char(']'), KeyKind::Press, 0.0);
+    assert!(app.teleop().linear_speed > before);
+    for _ in 0..50 {
+        app.handle_key(Key::char(']'), KeyKind::Press, 0.0);
+    }
+    let (max_v, max_w) = app.teleop().limits();
+    assert_eq!(app.teleop().linear_speed, max_v);
+    assert_eq!(app.teleop().angular_speed, max_w);
+    assert!(
+        app.log_book()
+            .iter()
+            .any(|e| e.text.contains("already at their limit"))
+    );
+}
+
+#[test]
+fn quit_stops_the_robot_and_ends_the_loop() {
+    let mut steps = hold('w', 1.0);
+    steps.push(press('q'));
+    steps.push(Step::Wait(5.0));
+    let s = run_script(default_app(), 80, 24, steps);
+    assert_eq!(s.exit, Exit::Quit);
+    assert_eq!(s.app.commanded().linear, 0.0);
+    assert!(
+        s.app
+            .log_book()
+            .last()
+            .unwrap()
+            .text
+            .contains("quit by user")
+    );
+}
+
+#[test]
+fn a_signal_stops_the_robot_and_ends_the_loop() {
+    let signal = AtomicUsize::new(0);
+    let mut app = default_app();
+    app.handle_key(Key::char('w'), KeyKind::Press, 0.0);
+    signal.store(15, Ordering::SeqCst);
+    let s = run_script_with_signal(app, 80, 24, hold('w', 1.0), &signal);
+    assert_eq!(s.exit, Exit::Signal(15));
+    assert!(s.app.log_book().last().unwrap().text.contains("SIGTERM"));
+    assert_eq!(s.app.commanded().linear, 0.0);
+}
+
+#[test]
+fn closed_input_stops_the_robot() {
+    let s = run_script(default_app(), 80, 24, hold('w', 0.5));
+    assert_eq!(s.exit, Exit::InputClosed);
+    assert!(
+        s.app
+            .log_book()
+            .last()
+            .unwrap()
+            .text
+            .contains("input closed")
+    );
+}
+
+#[test]
+fn a_panic_still_stops_the_robot() {
+    let (app, link) = recording_app();
+    let stops = link.stops.clone();
+    let result = std::panic::catch_unwind(std::panic::AssertUnwindSafe(move || {
+        let mut app = app;
+        app.handle_key(Key::char('w'), KeyKind::Press, 0.0);
+        app.update(0.2);
+        panic!("a bug somewhere in the console");
+    }));
+    assert!(result.is_err());
+    assert!(*stops.lock().unwrap() >= 1, "the link was not told to stop");
+}
+
+#[test]
+fn idle_console_redraws_about_once_a_second_and_driving_more() {
+    let idle = run_script(default_app(), 80, 24, vec![Step::Wait(10.0)]);
+    assert!(
+        idle.stats.frames_drawn <= 12,
+        "idle drew {} frames in 10 s",
+        idle.stats.frames_drawn
+    );
+    let driving = run_script(default_app(), 80, 24, hold('w', 3.0));
+    assert!(
+        driving.stats.frames_drawn >= 20,
+        "driving drew only {} frames in 3 s",
+        driving.stats.frames_drawn
+    );
+}
+
+#[test]
+fn help_overlay_lists_the_active_modes_bindings() {
+    let s = run_script(default_app(), 120, 40, vec![press('?'), Step::Wait(0.2)]);
+    let text = screen(&s.terminal);
+    assert!(text.contains("Keys in manual mode"), "{text}");
+    assert!(text.contains("drive forward"), "{text}");
+    assert!(text.contains("emergency stop"), "{text}");
+}
+
+#[test]
+fn status_panel_shows_mode_link_pose_and_velocities() {
+    let s = run_script(default_app(), 100, 30, hold('w', 1.0));
+    let text = screen(&s.terminal);
+    for label in [
+        "MANUAL", "sim:", "Pose", "Cmd", "Meas", "Speed", "Loop", "10 Hz",
+    ] {
+        assert!(text.contains(label), "missing {label:?} in\n{text}");
+    }
+}

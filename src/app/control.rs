@@ -3,7 +3,7 @@
 use super::log::Level;
 use super::{App, LinkStatus, Mode};
 use crate::geometry::Twist;
-use crate::link::Command;
+use crate::link::{Command, WheelTravel};
 use crate::slam::odometry::twist_from_wheels;
 
 /// A stall longer than this is skipped rather than caught up, seconds.
@@ -19,6 +19,9 @@ pub(super) struct ControlClock {
     last_update: f64,
     rate: f64,
     last_warning: f64,
+    /// Wheel travel and time since the last periodic tick, for the measured twist.
+    travel: WheelTravel,
+    travel_time: f64,
 }
 
 impl ControlClock {
@@ -29,6 +32,8 @@ impl ControlClock {
             last_update: now,
             rate: 1.0 / period,
             last_warning: f64::NEG_INFINITY,
+            travel: WheelTravel::default(),
+            travel_time: 0.0,
         }
     }
 
@@ -87,6 +92,7 @@ impl App {
                     self.clock.rate += 0.1 * (1.0 / dt - self.clock.rate);
                 }
                 self.clock.last_update = due;
+                self.measure();
             }
         }
         self.now = now;
@@ -110,10 +116,9 @@ impl App {
                 }
                 if let Some(wheels) = frame.wheels {
                     self.odometry.update(wheels);
-                    if frame.elapsed > 0.0 {
-                        self.measured =
-                            twist_from_wheels(wheels, self.config.robot.track, frame.elapsed);
-                    }
+                    self.clock.travel.left += wheels.left;
+                    self.clock.travel.right += wheels.right;
+                    self.clock.travel_time += frame.elapsed;
                 }
                 if let Some(s) = frame.sightings {
                     self.sightings = s;
@@ -147,6 +152,17 @@ impl App {
             self.link_status = LinkStatus::Lost(e.to_string());
             self.log
                 .push(t, Level::Error, format!("command not sent: {e}"));
+        }
+    }
+
+    /// The measured twist over the last control period: whole periods, so that encoder
+    /// quantisation does not make it flicker.
+    fn measure(&mut self) {
+        let c = &mut self.clock;
+        if c.travel_time >= 0.5 * c.period {
+            self.measured = twist_from_wheels(c.travel, self.config.robot.track, c.travel_time);
+            c.travel = WheelTravel::default();
+            c.travel_time = 0.0;
         }
     }
 

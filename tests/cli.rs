@@ -1,0 +1,145 @@
+//! The binary from the outside: headless runs, help, and refusals of bad input.
+
+use serde_json::Value;
+use std::path::PathBuf;
+use std::process::{Command, Output};
+
+fn navdeck(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_navdeck"))
+        .args(args)
+        .env("NO_COLOR", "1")
+        .output()
+        .expect("navdeck runs")
+}
+
+fn headless_json(args: &[&str]) -> Value {
+    let mut all = vec!["--headless", "--json"];
+    all.extend_from_slice(args);
+    let out = navdeck(&all);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    serde_json::from_slice(&out.stdout).expect("one JSON object")
+}
+
+fn stderr(out: &Output) -> String {
+    String::from_utf8_lossy(&out.stderr).into_owned()
+}
+
+fn scratch(name: &str, text: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("navdeck-cli-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join(name);
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
+#[test]
+fn headless_keys_drive_the_twin_and_report_json() {
+    let r = headless_json(&["--keys", "wwwwwwddd", "--seed", "7"]);
+    let truth = &r["true_pose"];
+    let est = &r["estimated_pose"];
+    assert!(r["distance_driven"].as_f64().unwrap() > 0.05, "{r}");
+    assert_eq!(r["collisions"], 0);
+    assert_eq!(r["keys"], 9);
+    assert!(r["sim_time"].as_f64().unwrap() >= 0.9);
+    // Odometry tracks the truth closely over such a short drive.
+    let dx = truth["x"].as_f64().unwrap() - est["x"].as_f64().unwrap();
+    let dy = truth["y"].as_f64().unwrap() - est["y"].as_f64().unwrap();
+    assert!(dx.hypot(dy) < 0.05, "{r}");
+    assert!(r["realtime_factor"].as_f64().unwrap() > 0.0);
+}
+
+#[test]
+fn same_seed_same_run_other_seed_other_noise() {
+    let strip = |mut v: Value| {
+        v.as_object_mut().unwrap().remove("wall_time_s");
+        v.as_object_mut().unwrap().remove("realtime_factor");
+        v
+    };
+    let a = strip(headless_json(&["--keys", "wwwwwwwwaaaww", "--seed", "3"]));
+    let b = strip(headless_json(&["--keys", "wwwwwwwwaaaww", "--seed", "3"]));
+    let c = strip(headless_json(&["--keys", "wwwwwwwwaaaww", "--seed", "4"]));
+    assert_eq!(a, b);
+    assert_ne!(a["estimated_pose"], c["estimated_pose"]);
+}
+
+#[test]
+fn headless_runs_the_larger_world_too() {
+    let world = concat!(env!("CARGO_MANIFEST_DIR"), "/maps/warehouse.toml");
+    let r = headless_json(&["--world", world, "--keys", "wwww"]);
+    assert!(r["link"].as_str().unwrap().starts_with("sim:"));
+}
+
+#[test]
+fn help_documents_every_option() {
+    let out = navdeck(&["--help"]);
+    let text = String::from_utf8_lossy(&out.stdout);
+    for option in [
+        "--link",
+        "--world",
+        "--seed",
+        "--config",
+        "--keymap",
+        "--braille",
+        "--headless",
+        "--keys",
+        "--key-rate",
+        "--json",
+        "--help",
+        "--version",
+    ] {
+        assert!(text.contains(option), "--help lacks {option}:\n{text}");
+    }
+}
+
+#[test]
+fn bad_keymap_is_refused_with_file_and_line_before_the_terminal() {
+    let path = scratch(
+        "bad-keymap.toml",
+        "[manual]\nw = \"forward\"\nx = \"fly\"\n",
+    );
+    let out = navdeck(&["--keymap", path.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(2));
+    let err = stderr(&out);
+    assert!(err.contains("bad-keymap.toml:3"), "{err}");
+    assert!(err.contains("fly"), "{err}");
+    // Nothing was drawn: no alternate screen was entered.
+    assert!(!String::from_utf8_lossy(&out.stdout).contains("\x1b[?1049h"));
+}
+
+#[test]
+fn bad_world_and_config_are_refused_with_names() {
+    let world = scratch(
+        "bad-world.toml",
+        "name = \"w\"\nsize = [4.0, 4.0]\nbogus = 1\n",
+    );
+    let out = navdeck(&["--headless", "--world", world.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(2));
+    let err = stderr(&out);
+    assert!(
+        err.contains("bad-world.toml") && err.contains("bogus"),
+        "{err}"
+    );
+
+    let config = scratch("bad-config.toml", "[teleop]\ndeadman_timeout = -1\n");
+    let out = navdeck(&["--headless", "--config", config.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(2));
+    let err = stderr(&out);
+    assert!(
+        err.contains("teleop.deadman_timeout") && err.contains("-1"),
+        "{err}"
+    );
+}
+
+#[test]
+fn unknown_keys_and_links_are_refused() {
+    let out = navdeck(&["--headless", "--keys", "ww<bogus>"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(stderr(&out).contains("bogus"), "{}", stderr(&out));
+    let out = navdeck(&["--link", "can0"]);
+    assert!(!out.status.success());
+    assert!(stderr(&out).contains("can0"));
+}

@@ -1,0 +1,69 @@
+//! Headless snapshots of the console's screen (insta over ratatui's TestBackend).
+
+mod common;
+
+use common::*;
+use navdeck::tui::events::Step;
+
+fn snapshot_after(width: u16, height: u16, steps: Vec<Step>) -> String {
+    screen(&run_script(default_app(), width, height, steps).terminal)
+}
+
+#[test]
+fn start_screen_80x24() {
+    insta::assert_snapshot!(snapshot_after(80, 24, vec![Step::Wait(0.5)]));
+}
+
+#[test]
+fn start_screen_120x40() {
+    insta::assert_snapshot!(snapshot_after(120, 40, vec![Step::Wait(0.5)]));
+}
+
+#[test]
+fn manual_driving_after_keys_80x24() {
+    let mut steps = hold('w', 2.0);
+    steps.extend(hold('a', 0.5));
+    steps.extend(hold('w', 1.0));
+    insta::assert_snapshot!(snapshot_after(80, 24, steps));
+}
+
+#[test]
+fn manual_driving_after_keys_120x40() {
+    let mut steps = hold('d', 0.6);
+    steps.extend(hold('w', 3.0));
+    steps.push(Step::Wait(1.0));
+    insta::assert_snapshot!(snapshot_after(120, 40, steps));
+}
+
+#[test]
+fn help_overlay_80x24() {
+    insta::assert_snapshot!(snapshot_after(80, 24, vec![press('?'), Step::Wait(0.1)]));
+}
+
+#[test]
+fn help_overlay_120x40() {
+    insta::assert_snapshot!(snapshot_after(120, 40, vec![press('?'), Step::Wait(0.1)]));
+}
+
+#[test]
+fn narrow_terminal_60x24_stacks_the_status_under_the_map() {
+    insta::assert_snapshot!(snapshot_after(60, 24, vec![Step::Wait(0.5)]));
+}
+
+#[test]
+fn tiny_terminal_asks_for_more_room() {
+    insta::assert_snapshot!(snapshot_after(30, 10, vec![Step::Wait(0.5)]));
+}
+
+#[test]
+fn braille_map_zoomed_in_100x30() {
+    let steps = vec![press('b'), press('+'), press('+'), Step::Wait(0.5)];
+    insta::assert_snapshot!(snapshot_after(100, 30, steps));
+}
+
+#[test]
+fn unbuilt_mode_and_estop_in_the_log_80x24() {
+    let mut steps = hold('w', 1.0);
+    steps.extend([press('e'), press(' '), Step::Wait(0.5)]);
+    insta::assert_snapshot!(snapshot_after(80, 24, steps));
+}

@@ -268,9 +268,18 @@ impl Config {
             }
         }
         let probabilities = [
-            ("sim.encoders.slip_probability", self.sim.encoders.slip_probability),
-            ("sim.encoders.slip_fraction", self.sim.encoders.slip_fraction),
-            ("sim.camera.miss_probability", self.sim.camera.miss_probability),
+            (
+                "sim.encoders.slip_probability",
+                self.sim.encoders.slip_probability,
+            ),
+            (
+                "sim.encoders.slip_fraction",
+                self.sim.encoders.slip_fraction,
+            ),
+            (
+                "sim.camera.miss_probability",
+                self.sim.camera.miss_probability,
+            ),
         ];
         for (field, value) in probabilities {
             if !(0.0..=1.0).contains(&value) {
@@ -308,7 +317,12 @@ impl Config {
             return Err(invalid(path, "sim.lidar.beams", 0.0, "must be at least 1"));
         }
         if self.sim.encoders.ticks_per_rev == 0 {
-            return Err(invalid(path, "sim.encoders.ticks_per_rev", 0.0, "must be at least 1"));
+            return Err(invalid(
+                path,
+                "sim.encoders.ticks_per_rev",
+                0.0,
+                "must be at least 1",
+            ));
         }
         Ok(())
     }
@@ -346,9 +360,12 @@ mod tests {
 
     #[test]
     fn unknown_field_is_named_with_its_line() {
-        let err = Config::parse("[robot]\ntrack = 0.2\nwheel_radus = 0.03\n", Path::new("bad.toml"))
-            .unwrap_err()
-            .to_string();
+        let err = Config::parse(
+            "[robot]\ntrack = 0.2\nwheel_radus = 0.03\n",
+            Path::new("bad.toml"),
+        )
+        .unwrap_err()
+        .to_string();
         assert!(err.contains("bad.toml"), "{err}");
         assert!(err.contains("wheel_radus"), "{err}");
         assert!(err.contains("line 3"), "{err}");

@@ -74,8 +74,14 @@ impl OccupancyGrid {
         let r = self.resolution;
         let to_col = |x: f64| ((x - self.origin.x) / r).floor();
         let to_row = |y: f64| ((y - self.origin.y) / r).floor();
-        let (c0, c1) = (to_col(x0).max(0.0), (to_col(x1 - 1e-9)).min(self.width as f64 - 1.0));
-        let (r0, r1) = (to_row(y0).max(0.0), (to_row(y1 - 1e-9)).min(self.height as f64 - 1.0));
+        let (c0, c1) = (
+            to_col(x0).max(0.0),
+            (to_col(x1 - 1e-9)).min(self.width as f64 - 1.0),
+        );
+        let (r0, r1) = (
+            to_row(y0).max(0.0),
+            (to_row(y1 - 1e-9)).min(self.height as f64 - 1.0),
+        );
         if c0 > c1 || r0 > r1 {
             return UNKNOWN;
         }

@@ -1,0 +1,336 @@
+//! The twin itself: a differential-drive robot with encoders, camera, lidar and gripper in a
+//! world, advanced only by `step(dt)` and driven by one seeded random generator.
+
+use super::blocks::BlockState;
+use super::camera::Camera;
+use super::clock::SensorClock;
+use super::collision::{Collider, Disc};
+use super::drive::{clamp_twist, integrate, ramp, wheel_travel};
+use super::encoders::Encoders;
+use super::gripper::Gripper;
+use super::lidar::Lidar;
+use super::{Marker, World};
+use crate::config::{Config, PhysicsConfig, RobotConfig};
+use crate::geometry::{Pose2, Segment, Twist};
+use crate::link::{GripperCommand, GripperState, LaserScan, MarkerSighting, SensorFrame};
+use rand::SeedableRng;
+use rand_chacha::ChaCha8Rng;
+use std::sync::Arc;
+
+/// A simulated robot in a simulated world. Cloning copies the whole state, random
+/// generator included, so a clone replays exactly what the original would do.
+///
+/// Simplifications: the footprint is a circle; a held block rides in the jaws without
+/// colliding and is invisible to camera and lidar; the camera and lidar sit at the robot
+/// centre; a bumped block does not move.
+#[derive(Clone, Debug)]
+pub struct Twin {
+    world: Arc<World>,
+    robot: RobotConfig,
+    /// Physics step, seconds.
+    h: f64,
+    rng: ChaCha8Rng,
+    /// Physics steps taken; twin time is `ticks * h`.
+    ticks: u64,
+    /// Requested time not yet simulated, always under one physics step.
+    carry: f64,
+    pose: Pose2,
+    command: Twist,
+    /// The base's actual (speed- and acceleration-limited) twist.
+    drive: Twist,
+    encoders: Encoders,
+    camera: Camera,
+    camera_clock: SensorClock,
+    lidar: Option<(Lidar, SensorClock)>,
+    gripper: Gripper,
+    blocks: Vec<BlockState>,
+    collider: Collider,
+    in_contact: bool,
+    collisions: u32,
+    distance: f64,
+    sightings: Option<Vec<MarkerSighting>>,
+    scan: Option<LaserScan>,
+    /// `ticks` at the previous `take_frame`.
+    taken_at: u64,
+    discs: Vec<Disc>,
+    /// Outlines and markers of the free blocks, rebuilt only when a block moved.
+    block_edges: Vec<Segment>,
+    block_markers: Vec<Marker>,
+    blocks_moved: bool,
+}
+
+impl Twin {
+    /// A twin at the world's start pose, its noise drawn from `seed`. Config values are
+    /// expected validated; a physics step that is not a positive number falls back to the
+    /// default, and a sensor rate that is not positive turns that sensor off.
+    pub fn new(world: World, config: &Config, seed: u64) -> Twin {
+        let sim = &config.sim;
+        let h = if sim.physics.step.is_finite() && sim.physics.step > 0.0 {
+            sim.physics.step
+        } else {
+            PhysicsConfig::default().step
+        };
+        let lidar = sim
+            .lidar
+            .enabled
+            .then(|| (Lidar::new(&sim.lidar), SensorClock::new(sim.lidar.rate_hz)));
+        Twin {
+            pose: world.start,
+            blocks: world.blocks.iter().map(BlockState::from_block).collect(),
+            world: Arc::new(world),
+            robot: config.robot.clone(),
+            h,
+            rng: ChaCha8Rng::seed_from_u64(seed),
+            ticks: 0,
+            carry: 0.0,
+            command: Twist::ZERO,
+            drive: Twist::ZERO,
+            encoders: Encoders::new(&config.robot, &sim.encoders),
+            camera: Camera::new(&sim.camera),
+            camera_clock: SensorClock::new(sim.camera.rate_hz),
+            lidar,
+            gripper: Gripper::new(&sim.gripper),
+            collider: Collider::new(config.robot.footprint_radius),
+            in_contact: false,
+            collisions: 0,
+            distance: 0.0,
+            sightings: None,
+            scan: None,
+            taken_at: 0,
+            discs: Vec::new(),
+            block_edges: Vec::new(),
+            block_markers: Vec::new(),
+            blocks_moved: true,
+        }
+    }
+
+    pub fn world(&self) -> &World {
+        &self.world
+    }
+
+    /// Twin time in seconds: whole physics steps taken.
+    pub fn time(&self) -> f64 {
+        self.ticks as f64 * self.h
+    }
+
+    /// True pose (ground truth).
+    pub fn pose(&self) -> Pose2 {
+        self.pose
+    }
+
+    /// The base's actual twist after speed and acceleration limits (zero after a collision).
+    pub fn velocity(&self) -> Twist {
+        self.drive
+    }
+
+    /// The twist asked for; held until the next call.
+    pub fn set_command(&mut self, twist: Twist) {
+        self.command = twist;
+    }
+
+    /// The twist last asked for.
+    pub fn command(&self) -> Twist {
+        self.command
+    }
+
+    /// Starts the jaws moving; opening lets a held block go where it is.
+    pub fn command_gripper(&mut self, cmd: GripperCommand) {
+        let held = self.gripper.held();
+        if self.gripper.command(cmd) {
+            self.catch_block();
+        }
+        if let (Some(i), None) = (held, self.gripper.held()) {
+            self.blocks[i].held = false;
+            self.blocks_moved = true;
+        }
+    }
+
+    /// Advances the twin by `dt` seconds in whole physics steps; the remainder under one
+    /// step carries to the next call, so one call of 1.0 s equals ten calls of 0.1 s.
+    /// A `dt` that is not a positive finite number does nothing.
+    pub fn step(&mut self, dt: f64) {
+        if !(dt.is_finite() && dt > 0.0) {
+            return;
+        }
+        self.carry += dt;
+        // Slack of a millionth of a step absorbs sums like 10 x 0.1 != 1.0.
+        let n = (self.carry / self.h + 1e-6).floor();
+        if n < 1.0 {
+            return;
+        }
+        self.carry = (self.carry - n * self.h).max(0.0);
+        for _ in 0..n as u64 {
+            self.tick();
+        }
+    }
+
+    /// What the robot reported since the previous take: wheel travel (always), the newest
+    /// camera frame and scan (if any arrived) and the gripper state (always).
+    pub fn take_frame(&mut self) -> SensorFrame {
+        let elapsed = (self.ticks - self.taken_at) as f64 * self.h;
+        self.taken_at = self.ticks;
+        SensorFrame {
+            stamp: self.time(),
+            elapsed,
+            wheels: Some(self.encoders.take()),
+            sightings: self.sightings.take(),
+            scan: self.scan.take(),
+            gripper: Some(self.gripper.state()),
+        }
+    }
+
+    pub fn blocks(&self) -> &[BlockState] {
+        &self.blocks
+    }
+
+    pub fn gripper(&self) -> GripperState {
+        self.gripper.state()
+    }
+
+    /// Contacts so far; a contact lasting many steps counts once.
+    pub fn collisions(&self) -> u32 {
+        self.collisions
+    }
+
+    /// True while the robot rests against something it ran into.
+    pub fn in_contact(&self) -> bool {
+        self.in_contact
+    }
+
+    /// True path length of the robot centre, metres.
+    pub fn distance_driven(&self) -> f64 {
+        self.distance
+    }
+
+    /// One physics step: gripper, drive, collision, then any sensor that is due.
+    fn tick(&mut self) {
+        let h = self.h;
+        if self.gripper.advance(h) {
+            self.catch_block();
+        }
+        let before = self.drive;
+        self.drive = ramp(
+            before,
+            clamp_twist(self.command, &self.robot),
+            &self.robot,
+            h,
+        );
+        // Speed changes linearly within the step, so the mean twist gives the exact travel
+        // under constant acceleration (trapezoidal rule).
+        let mean = Twist::new(
+            (before.linear + self.drive.linear) / 2.0,
+            (before.angular + self.drive.angular) / 2.0,
+        );
+        if !mean.is_zero() {
+            self.move_base(mean);
+        }
+        self.ticks += 1;
+        let now = self.time();
+        if self.camera_clock.due(now) {
+            self.capture_camera();
+        }
+        if self.lidar.as_mut().is_some_and(|(_, clock)| clock.due(now)) {
+            self.capture_scan();
+        }
+    }
+
+    /// Turns the wheels for one step, unless that would run the footprint into something.
+    fn move_base(&mut self, twist: Twist) {
+        let track = self.robot.track;
+        let (l, r) = wheel_travel(twist, track, self.h);
+        let wheels = self.encoders.sample(&mut self.rng, [l, r]);
+        let next = integrate(self.pose, wheels.ground[0], wheels.ground[1], track);
+        self.discs.clear();
+        for b in self.blocks.iter().filter(|b| !b.held) {
+            // A block may slide into open jaws (seed 001 approaches blocks with the gripper open).
+            if self.gripper.jaws_open()
+                && self.gripper.jaw_offset(next, b.pose.position()).is_some()
+            {
+                continue;
+            }
+            self.discs.push(Disc {
+                center: b.pose.position(),
+                radius: b.radius(),
+            });
+        }
+        let verdict = self.collider.check(
+            &self.world.walls,
+            &self.discs,
+            self.pose.position(),
+            next.position(),
+            self.in_contact,
+        );
+        if verdict.blocked {
+            self.drive = Twist::ZERO;
+            if !self.in_contact {
+                self.collisions += 1;
+                self.in_contact = true;
+            }
+            return;
+        }
+        if verdict.moves_away {
+            self.in_contact = false;
+        }
+        self.encoders.commit(&wheels);
+        self.distance += ((wheels.ground[0] + wheels.ground[1]) / 2.0).abs();
+        self.pose = next;
+        if let Some((i, pose)) = self.gripper.held_pose(self.pose) {
+            self.blocks[i].pose = pose;
+            self.blocks_moved = true;
+        }
+    }
+
+    /// At the end of closing: catch the free block nearest the middle of the jaw zone.
+    fn catch_block(&mut self) {
+        let pose = self.pose;
+        let best = self
+            .blocks
+            .iter()
+            .enumerate()
+            .filter(|(_, b)| !b.held)
+            .filter_map(|(i, b)| {
+                self.gripper
+                    .jaw_offset(pose, b.pose.position())
+                    .map(|d| (i, d))
+            })
+            .min_by(|a, b| a.1.total_cmp(&b.1));
+        if let Some((i, _)) = best {
+            self.gripper.grab(i, pose, self.blocks[i].pose);
+            self.blocks[i].held = true;
+            self.blocks_moved = true;
+        }
+    }
+
+    /// Outlines and markers of the blocks not in the gripper (a held block is carried out
+    /// of sight of both sensors).
+    fn refresh_blocks(&mut self) {
+        if !self.blocks_moved {
+            return;
+        }
+        self.block_edges.clear();
+        self.block_markers.clear();
+        for b in self.blocks.iter().filter(|b| !b.held) {
+            self.block_edges.extend(b.edges());
+            self.block_markers.extend(b.current_markers());
+        }
+        self.blocks_moved = false;
+    }
+
+    fn capture_camera(&mut self) {
+        self.refresh_blocks();
+        let occluders: [&[Segment]; 2] = [&self.world.walls, &self.block_edges];
+        let markers = self.world.markers.iter().chain(&self.block_markers);
+        self.sightings = Some(
+            self.camera
+                .observe(self.pose, markers, &occluders, &mut self.rng),
+        );
+    }
+
+    fn capture_scan(&mut self) {
+        self.refresh_blocks();
+        if let Some((lidar, _)) = self.lidar.as_mut() {
+            let solids: [&[Segment]; 2] = [&self.world.walls, &self.block_edges];
+            self.scan = Some(lidar.scan(self.pose, &solids, &mut self.rng));
+        }
+    }
+}

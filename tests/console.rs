@@ -240,3 +240,26 @@ fn status_panel_shows_mode_link_pose_and_velocities() {
         assert!(text.contains(label), "missing {label:?} in\n{text}");
     }
 }
+
+#[test]
+fn driving_into_a_wall_is_logged_as_a_collision() {
+    // From the start pose facing east, turn right to face the south wall and drive on.
+    let mut app = default_app();
+    let mut t = 0.0;
+    for (c, seconds) in [('d', 1.1), ('w', 6.0)] {
+        let end = t + seconds;
+        while t < end {
+            app.handle_key(Key::char(c), KeyKind::Press, t);
+            t += 1.0 / 30.0;
+            app.update(t);
+        }
+    }
+    assert!(app.link().twin().unwrap().collisions() >= 1);
+    assert!(
+        app.log_book()
+            .iter()
+            .any(|e| e.text.starts_with("collision at")),
+        "no collision line in the log"
+    );
+    assert_eq!(true_speed(&app), 0.0);
+}

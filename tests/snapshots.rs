@@ -29,7 +29,7 @@ fn manual_driving_after_keys_80x24() {
 
 #[test]
 fn manual_driving_after_keys_120x40() {
-    let mut steps = hold('d', 0.6);
+    let mut steps = hold('a', 0.6);
     steps.extend(hold('w', 3.0));
     steps.push(Step::Wait(1.0));
     insta::assert_snapshot!(snapshot_after(120, 40, steps));

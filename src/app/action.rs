@@ -140,7 +140,7 @@ impl Action {
             Action::ModeExplore => "exploration mode",
             Action::ModeThink => "thinking mode (plan a path)",
             Action::ModeFollow => "path-following mode",
-            Action::ModeRace => "race mode (fast, fewer SLAM updates)",
+            Action::ModeRace => "race mode (fast, less SLAM)",
             Action::ModeLoad => "load a saved map",
             Action::GripperOpen => "open the gripper",
             Action::GripperClose => "close the gripper",
@@ -149,10 +149,10 @@ impl Action {
             Action::Backward => "drive backward",
             Action::TurnLeft => "turn left on the spot",
             Action::TurnRight => "turn right on the spot",
-            Action::ForwardLeft => "forward while turning left",
-            Action::ForwardRight => "forward while turning right",
-            Action::BackwardLeft => "backward while turning left",
-            Action::BackwardRight => "backward while turning right",
+            Action::ForwardLeft => "forward, turning left",
+            Action::ForwardRight => "forward, turning right",
+            Action::BackwardLeft => "backward, turning left",
+            Action::BackwardRight => "backward, turning right",
             Action::Stop => "stop",
             Action::EmergencyStop => "emergency stop (any mode)",
             Action::SpeedUp => "all speeds +10 %",
@@ -195,6 +195,17 @@ impl Action {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn descriptions_fit_a_help_column_at_80_columns() {
+        for a in Action::ALL {
+            assert!(
+                a.description().chars().count() <= 27,
+                "{:?}",
+                a.description()
+            );
+        }
+    }
 
     #[test]
     fn names_round_trip_and_are_unique() {

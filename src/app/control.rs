@@ -47,6 +47,8 @@ impl App {
     /// Runs every control step due up to `now` (periodic ticks and deadman expiries).
     pub fn update(&mut self, now: f64) {
         self.advance_to(now);
+        // Between control steps, still bring what the robot reports up to date.
+        self.sense(now);
         self.refresh_revision();
     }
 
@@ -77,12 +79,14 @@ impl App {
                 self.clock.next_tick = now;
             }
         }
+        let mut previous = f64::NEG_INFINITY;
         loop {
             let tick = self.clock.next_tick;
             let due = self.teleop_cutoff().map_or(tick, |c| c.min(tick));
-            if due > now {
+            if due > now || (due <= previous && due < tick) {
                 break;
             }
+            previous = due;
             self.control_step(due);
             if due >= tick {
                 self.clock.next_tick = tick + self.clock.period;
@@ -107,6 +111,12 @@ impl App {
 
     /// One sense-decide-act cycle at session time `t`.
     pub(super) fn control_step(&mut self, t: f64) {
+        self.sense(t);
+        self.act(t);
+    }
+
+    /// Collects what the robot reported up to `t`.
+    pub(super) fn sense(&mut self, t: f64) {
         self.now = self.now.max(t);
         match self.link.poll(t) {
             Ok(frame) => {
@@ -121,11 +131,12 @@ impl App {
                     self.clock.travel_time += frame.elapsed;
                 }
                 if let Some(s) = frame.sightings {
-                    self.sightings = s;
+                    self.note_sightings(t, s);
                 }
                 if frame.scan.is_some() {
                     self.scan = frame.scan;
                 }
+                self.note_collisions(t);
                 if let Some(g) = frame.gripper {
                     if self.gripper.is_some() && self.gripper != Some(g) {
                         self.log
@@ -142,6 +153,27 @@ impl App {
                 self.teleop.clear();
             }
         }
+    }
+
+    /// The twin counts contacts; each new one is worth a line in the log.
+    fn note_collisions(&mut self, t: f64) {
+        let count = self.link.twin().map_or(0, |twin| twin.collisions());
+        if count > self.collisions_logged {
+            self.collisions_logged = count;
+            let p = self.link.twin().map(|twin| twin.pose()).unwrap_or_default();
+            self.log.push(
+                t,
+                Level::Warn,
+                format!(
+                    "collision at ({:.2}, {:.2}): robot stopped against an obstacle ({count} so far)",
+                    p.x, p.y
+                ),
+            );
+        }
+    }
+
+    /// Decides and sends the command for `t`.
+    fn act(&mut self, t: f64) {
         let twist = self.decide(t);
         let command = Command {
             twist,

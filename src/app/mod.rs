@@ -38,6 +38,9 @@ pub enum LinkStatus {
     Lost(String),
 }
 
+/// How long a marker stays marked "in view" after its last sighting, seconds.
+pub const IN_VIEW_HOLD: f64 = 0.5;
+
 /// Resolution of the world raster drawn on the map, metres.
 pub const WORLD_RASTER: f64 = 0.02;
 
@@ -62,8 +65,11 @@ pub struct App {
     estop: bool,
     quit: bool,
     sightings: Vec<MarkerSighting>,
+    /// Marker IDs and when each was last seen: the map marks them "in view" for a while.
+    in_view: Vec<(u32, f64)>,
     scan: Option<LaserScan>,
     link_status: LinkStatus,
+    collisions_logged: u32,
     world_grid: Option<OccupancyGrid>,
     revision: u64,
     visible: Option<Visible>,
@@ -124,8 +130,10 @@ impl App {
             estop: false,
             quit: false,
             sightings: Vec::new(),
+            in_view: Vec::new(),
             scan: None,
             link_status: LinkStatus::Ok,
+            collisions_logged: 0,
             world_grid,
             revision: 0,
             visible: None,
@@ -381,6 +389,25 @@ impl App {
     pub fn sightings(&self) -> &[MarkerSighting] {
         &self.sightings
     }
+    /// IDs seen within the last `IN_VIEW_HOLD` seconds, sorted: steadier than one frame,
+    /// whose set flickers with every missed detection.
+    pub fn in_view(&self) -> Vec<u32> {
+        let mut ids: Vec<u32> = self.in_view.iter().map(|(id, _)| *id).collect();
+        ids.sort_unstable();
+        ids
+    }
+
+    fn note_sightings(&mut self, t: f64, sightings: Vec<MarkerSighting>) {
+        for s in &sightings {
+            match self.in_view.iter_mut().find(|(id, _)| *id == s.id) {
+                Some(entry) => entry.1 = t,
+                None => self.in_view.push((s.id, t)),
+            }
+        }
+        self.in_view.retain(|(_, seen)| t - seen <= IN_VIEW_HOLD);
+        self.sightings = sightings;
+    }
+
     pub fn scan(&self) -> Option<&LaserScan> {
         self.scan.as_ref()
     }
@@ -473,7 +500,7 @@ impl App {
             view: self.view.clone(),
             screen: self.screen,
             collisions: twin.map_or(0, |t| t.collisions()),
-            sightings: self.sightings.iter().map(|s| s.id).collect(),
+            sightings: self.in_view(),
             blocks: twin.map_or(Vec::new(), |t| {
                 t.blocks()
                     .iter()

@@ -87,21 +87,22 @@ impl Teleop {
         self.held.clear();
     }
 
-    /// How long after its last event a key still counts as held.
-    fn limit(&self, h: &Held) -> f64 {
-        if h.repeated || !self.release_events {
-            self.deadman_timeout
+    /// When a held key's deadman fires: `brake` seconds before its timeout, so that a robot
+    /// needing that long to brake is at rest when the timeout ends. With release events, a
+    /// key not yet auto-repeating keeps `INITIAL_REPEAT_DELAY`: its release will stop it.
+    fn expiry(&self, h: &Held, brake: f64) -> f64 {
+        let deadman = (self.deadman_timeout - brake).max(0.0);
+        if self.release_events && !h.repeated {
+            h.last_event + deadman.max(INITIAL_REPEAT_DELAY)
         } else {
-            INITIAL_REPEAT_DELAY.max(self.deadman_timeout)
+            h.last_event + deadman
         }
     }
 
-    /// Drive keys still held at `now`, dropping those whose deadman ran out. The deadman
-    /// fires `brake` seconds early so that a robot needing that long to brake is at rest
-    /// when the timeout ends.
+    /// Drive keys still held at `now`, dropping those whose deadman fired.
     pub fn held_at(&mut self, now: f64, brake: f64) -> Vec<Action> {
         let kept: Vec<Held> = (self.held.iter().copied())
-            .filter(|h| now - h.last_event < (self.limit(h) - brake).max(0.0))
+            .filter(|h| now < self.expiry(h, brake))
             .collect();
         self.held = kept;
         self.held.iter().map(|h| h.action).collect()
@@ -127,7 +128,7 @@ impl Teleop {
     pub fn next_expiry(&self, brake: f64) -> Option<f64> {
         self.held
             .iter()
-            .map(|h| h.last_event + (self.limit(h) - brake).max(0.0))
+            .map(|h| self.expiry(h, brake))
             .reduce(f64::min)
     }
 

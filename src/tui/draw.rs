@@ -80,7 +80,8 @@ fn draw_help(frame: &mut Frame, app: &App, theme: Theme, size: Rect) {
     );
     let inner_w = usize::from(width.saturating_sub(2));
     let rows = usize::from(height.saturating_sub(4)).max(1);
-    let col_w = 38;
+    // Keys take 9 characters and descriptions at most 27: 37 a column fits two at 80 wide.
+    let col_w = 37;
     let columns = (inner_w / col_w).max(1);
     let mut lines: Vec<Line> = Vec::new();
     for r in 0..rows {

@@ -129,7 +129,7 @@ fn draw_world_objects(app: &App, vp: &Viewport, theme: Theme, buf: &mut Buffer) 
     let Some(twin) = app.link().twin() else {
         return;
     };
-    let seen: Vec<u32> = app.sightings().iter().map(|s| s.id).collect();
+    let seen = app.in_view();
     let block_ids: Vec<u32> = twin.blocks().iter().flat_map(|b| b.markers).collect();
     for m in twin
         .world()

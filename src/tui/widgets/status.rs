@@ -86,7 +86,7 @@ pub fn lines(app: &App, theme: Theme) -> Vec<Line<'static>> {
             held.join("+")
         },
     ));
-    let seen: Vec<String> = app.sightings().iter().map(|s| s.id.to_string()).collect();
+    let seen: Vec<String> = app.in_view().iter().map(|id| id.to_string()).collect();
     rows.push(row(
         theme,
         "Seen",

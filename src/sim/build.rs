@@ -350,7 +350,7 @@ fn add_block(
     let mfield = format!("{field}.markers");
     ck.category(line, &format!("{mfield}[0]"), b.markers[0], &[want])?;
     ck.category(line, &format!("{mfield}[1]"), b.markers[1], &[want])?;
-    if b.markers[0] % 2 == 0 || b.markers[1] != b.markers[0] + 1 {
+    if b.markers[0].is_multiple_of(2) || b.markers[1] != b.markers[0] + 1 {
         let reason = "a block carries an odd id n (local +x face) and n + 1 (local +y face), e.g. [421, 422]";
         return Err(ck.err(line, &mfield, fmt_list(&b.markers), reason));
     }

@@ -71,24 +71,28 @@ impl OccupancyGrid {
     /// The highest value among cells overlapping the world rectangle [x0, x1) x [y0, y1):
     /// occupied wins over free, free over unknown. Used to draw a grid coarser than it is.
     pub fn max_in(&self, x0: f64, y0: f64, x1: f64, y1: f64) -> i8 {
-        let r = self.resolution;
-        let to_col = |x: f64| ((x - self.origin.x) / r).floor();
-        let to_row = |y: f64| ((y - self.origin.y) / r).floor();
-        let (c0, c1) = (
-            to_col(x0).max(0.0),
-            (to_col(x1 - 1e-9)).min(self.width as f64 - 1.0),
-        );
-        let (r0, r1) = (
-            to_row(y0).max(0.0),
-            (to_row(y1 - 1e-9)).min(self.height as f64 - 1.0),
-        );
-        if c0 > c1 || r0 > r1 {
-            return UNKNOWN;
+        match (self.columns_in(x0, x1), self.rows_in(y0, y1)) {
+            (Some(cols), Some(rows)) => self.max_in_cells(cols, rows),
+            _ => UNKNOWN,
         }
+    }
+
+    /// Inclusive column range overlapping [x0, x1), if any lies on the grid.
+    pub fn columns_in(&self, x0: f64, x1: f64) -> Option<(usize, usize)> {
+        index_range(self.origin.x, self.resolution, self.width, x0, x1)
+    }
+
+    /// Inclusive row range overlapping [y0, y1), if any lies on the grid.
+    pub fn rows_in(&self, y0: f64, y1: f64) -> Option<(usize, usize)> {
+        index_range(self.origin.y, self.resolution, self.height, y0, y1)
+    }
+
+    /// The highest value in the inclusive block of cells `cols` x `rows`.
+    pub fn max_in_cells(&self, (c0, c1): (usize, usize), (r0, r1): (usize, usize)) -> i8 {
         let mut best = UNKNOWN;
-        for row in r0 as usize..=r1 as usize {
-            let line = &self.cells[row * self.width..(row + 1) * self.width];
-            for &v in &line[c0 as usize..=c1 as usize] {
+        for row in r0..=r1 {
+            let line = &self.cells[row * self.width + c0..=row * self.width + c1];
+            for &v in line {
                 if v > best {
                     best = v;
                     if best >= OCCUPIED {
@@ -99,6 +103,21 @@ impl OccupancyGrid {
         }
         best
     }
+}
+
+/// Cells of one axis (origin, cell size, count) overlapping [lo, hi), clamped to the grid.
+fn index_range(
+    origin: f64,
+    resolution: f64,
+    count: usize,
+    lo: f64,
+    hi: f64,
+) -> Option<(usize, usize)> {
+    let first = ((lo - origin) / resolution).floor().max(0.0);
+    let last = ((hi - 1e-9 - origin) / resolution)
+        .floor()
+        .min(count as f64 - 1.0);
+    (first <= last).then_some((first as usize, last as usize))
 }
 
 #[cfg(test)]

@@ -40,11 +40,30 @@ impl Viewport {
         Some((self.area.x + c as u16, self.area.y + r as u16))
     }
 
-    /// World rectangle (x0, y0, x1, y1) of the cell at column `c`, row `r` of the area.
-    fn rect(&self, c: u16, r: u16) -> (f64, f64, f64, f64) {
-        let x0 = self.left + f64::from(c) * self.scale;
-        let y1 = self.top - f64::from(r) * 2.0 * self.scale;
-        (x0, y1 - 2.0 * self.scale, x0 + self.scale, y1)
+    /// Grid index ranges under each of `per_col` sub-columns of every column and `per_row`
+    /// sub-rows of every row, computed once per frame rather than once per cell.
+    #[allow(clippy::type_complexity)]
+    fn grid_spans(
+        &self,
+        grid: &OccupancyGrid,
+        per_col: u16,
+        per_row: u16,
+    ) -> (Vec<Option<(usize, usize)>>, Vec<Option<(usize, usize)>>) {
+        let dx = self.scale / f64::from(per_col);
+        let dy = 2.0 * self.scale / f64::from(per_row);
+        let cols = (0..self.area.width * per_col)
+            .map(|i| {
+                let x0 = self.left + f64::from(i) * dx;
+                grid.columns_in(x0, x0 + dx)
+            })
+            .collect();
+        let rows = (0..self.area.height * per_row)
+            .map(|i| {
+                let y1 = self.top - f64::from(i) * dy;
+                grid.rows_in(y1 - dy, y1)
+            })
+            .collect();
+        (cols, rows)
     }
 }
 
@@ -73,15 +92,17 @@ pub fn render(app: &App, theme: Theme, area: Rect, buf: &mut Buffer) {
 
 fn draw_grid_ascii(grid: &OccupancyGrid, vp: &Viewport, theme: Theme, buf: &mut Buffer) {
     let (occupied, free) = (theme.occupied(), theme.free());
-    for r in 0..vp.area.height {
-        for c in 0..vp.area.width {
-            let (x0, y0, x1, y1) = vp.rect(c, r);
-            let (glyph, style) = match grid.max_in(x0, y0, x1, y1) {
+    let (cols, rows) = vp.grid_spans(grid, 1, 1);
+    for (r, row_span) in rows.iter().enumerate() {
+        let Some(row_span) = *row_span else { continue };
+        for (c, col_span) in cols.iter().enumerate() {
+            let Some(col_span) = *col_span else { continue };
+            let (glyph, style) = match grid.max_in_cells(col_span, row_span) {
                 v if v >= OCCUPIED / 2 => ('#', occupied),
                 v if v >= FREE => ('.', free),
                 _ => continue,
             };
-            buf[(vp.area.x + c, vp.area.y + r)]
+            buf[(vp.area.x + c as u16, vp.area.y + r as u16)]
                 .set_char(glyph)
                 .set_style(style);
         }
@@ -93,16 +114,18 @@ fn draw_grid_ascii(grid: &OccupancyGrid, vp: &Viewport, theme: Theme, buf: &mut 
 fn draw_grid_braille(grid: &OccupancyGrid, vp: &Viewport, theme: Theme, buf: &mut Buffer) {
     // Unicode braille: dot (column, row) -> bit, rows top to bottom.
     const BITS: [[u32; 4]; 2] = [[0x01, 0x02, 0x04, 0x40], [0x08, 0x10, 0x20, 0x80]];
-    let (dw, dh) = (vp.scale / 2.0, vp.scale / 2.0);
     let style = theme.occupied();
-    for r in 0..vp.area.height {
-        for c in 0..vp.area.width {
-            let (x0, _, _, y1) = vp.rect(c, r);
+    let (cols, rows) = vp.grid_spans(grid, 2, 4);
+    let occupied = |c: usize, r: usize| match (cols[c], rows[r]) {
+        (Some(cs), Some(rs)) => grid.max_in_cells(cs, rs) >= OCCUPIED / 2,
+        _ => false,
+    };
+    for r in 0..usize::from(vp.area.height) {
+        for c in 0..usize::from(vp.area.width) {
             let mut bits = 0;
             for (dx, column) in BITS.iter().enumerate() {
                 for (dy, bit) in column.iter().enumerate() {
-                    let (px, py) = (x0 + dx as f64 * dw, y1 - (dy + 1) as f64 * dh);
-                    if grid.max_in(px, py, px + dw, py + dh) >= OCCUPIED / 2 {
+                    if occupied(2 * c + dx, 4 * r + dy) {
                         bits |= bit;
                     }
                 }
@@ -110,7 +133,7 @@ fn draw_grid_braille(grid: &OccupancyGrid, vp: &Viewport, theme: Theme, buf: &mu
             if bits != 0
                 && let Some(ch) = char::from_u32(0x2800 + bits)
             {
-                buf[(vp.area.x + c, vp.area.y + r)]
+                buf[(vp.area.x + c as u16, vp.area.y + r as u16)]
                     .set_char(ch)
                     .set_style(style);
             }

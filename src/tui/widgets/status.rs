@@ -93,7 +93,7 @@ pub fn lines(app: &App, theme: Theme) -> Vec<Line<'static>> {
         if seen.is_empty() {
             "-".into()
         } else {
-            seen.join(" ")
+            format!("{}: {}", seen.len(), seen.join(" "))
         },
     ));
     rows

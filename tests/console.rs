@@ -20,6 +20,10 @@ fn idle(app: &mut App, seconds: f64) {
     }
 }
 
+fn last_log(app: &App) -> &str {
+    &app.log_book().last().expect("a log line").text
+}
+
 fn true_speed(app: &App) -> f64 {
     app.link().twin().unwrap().velocity().linear
 }
@@ -156,12 +160,9 @@ fn quit_stops_the_robot_and_ends_the_loop() {
     assert_eq!(s.exit, Exit::Quit);
     assert_eq!(s.app.commanded().linear, 0.0);
     assert!(
-        s.app
-            .log_book()
-            .last()
-            .unwrap()
-            .text
-            .contains("quit by user")
+        last_log(&s.app).contains("quit by user"),
+        "{}",
+        last_log(&s.app)
     );
 }
 
@@ -173,7 +174,8 @@ fn a_signal_stops_the_robot_and_ends_the_loop() {
     signal.store(15, Ordering::SeqCst);
     let s = run_script_with_signal(app, 80, 24, hold('w', 1.0), &signal);
     assert_eq!(s.exit, Exit::Signal(15));
-    assert!(s.app.log_book().last().unwrap().text.contains("SIGTERM"));
+    assert_eq!(s.app.link().twin().unwrap().command().linear, 0.0);
+    assert!(last_log(&s.app).contains("SIGTERM"), "{}", last_log(&s.app));
     assert_eq!(s.app.commanded().linear, 0.0);
 }
 
@@ -182,12 +184,9 @@ fn closed_input_stops_the_robot() {
     let s = run_script(default_app(), 80, 24, hold('w', 0.5));
     assert_eq!(s.exit, Exit::InputClosed);
     assert!(
-        s.app
-            .log_book()
-            .last()
-            .unwrap()
-            .text
-            .contains("input closed")
+        last_log(&s.app).contains("input closed"),
+        "{}",
+        last_log(&s.app)
     );
 }
 

@@ -22,6 +22,11 @@ fn clock_text(t: f64) -> String {
     format!("{}:{:02}:{:02}", s / 3600, (s / 60) % 60, s % 60)
 }
 
+/// `text`, or a dash when there is nothing to list.
+fn dash_if_empty<T>(items: &[T], text: String) -> String {
+    if items.is_empty() { "-".into() } else { text }
+}
+
 /// Status rows, most important first (a short panel shows the top ones).
 pub fn lines(app: &App, theme: Theme) -> Vec<Line<'static>> {
     let link = match app.link_status() {
@@ -77,24 +82,12 @@ pub fn lines(app: &App, theme: Theme) -> Vec<Line<'static>> {
         ));
     }
     let held: Vec<&str> = app.held_keys().iter().map(|a| a.name()).collect();
-    rows.push(row(
-        theme,
-        "Driving",
-        if held.is_empty() {
-            "-".into()
-        } else {
-            held.join("+")
-        },
-    ));
+    rows.push(row(theme, "Driving", dash_if_empty(&held, held.join("+"))));
     let seen: Vec<String> = app.in_view().iter().map(|id| id.to_string()).collect();
     rows.push(row(
         theme,
         "Seen",
-        if seen.is_empty() {
-            "-".into()
-        } else {
-            format!("{}: {}", seen.len(), seen.join(" "))
-        },
+        dash_if_empty(&seen, format!("{}: {}", seen.len(), seen.join(" "))),
     ));
     rows
 }

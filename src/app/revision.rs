@@ -1,0 +1,77 @@
+//! Deciding when the screen needs drawing: a redraw is due only when a value shown on it
+//! changes at the precision it is shown with.
+
+use super::mode::Mode;
+use super::view::ViewState;
+use super::{App, LinkStatus};
+use crate::link::GripperState;
+
+/// The rounded values the screen shows; a change means a redraw is due.
+#[derive(Clone, Debug, PartialEq)]
+pub(super) struct Visible {
+    mode: Mode,
+    pose: (i64, i64, i64),
+    truth: Option<(i64, i64, i64)>,
+    commanded: (i64, i64),
+    measured: (i64, i64),
+    speeds: (i64, i64),
+    second: i64,
+    loop_rate: i64,
+    log: u64,
+    gripper: Option<GripperState>,
+    estop: bool,
+    held: usize,
+    link: LinkStatus,
+    view: ViewState,
+    screen: (u16, u16),
+    collisions: u32,
+    sightings: Vec<u32>,
+    blocks: Vec<(i64, i64)>,
+}
+
+fn centi(v: f64) -> i64 {
+    (v * 100.0).round() as i64
+}
+
+impl App {
+    pub(super) fn refresh_revision(&mut self) {
+        let pose = self.odometry.pose();
+        let deg = |t: f64| t.to_degrees().round() as i64;
+        let twin = self.link.twin();
+        let visible = Visible {
+            mode: self.mode,
+            pose: (centi(pose.x), centi(pose.y), deg(pose.theta)),
+            truth: twin.map(|t| {
+                let p = t.pose();
+                (centi(p.x), centi(p.y), deg(p.theta))
+            }),
+            commanded: (centi(self.commanded.linear), centi(self.commanded.angular)),
+            measured: (centi(self.measured.linear), centi(self.measured.angular)),
+            speeds: (
+                centi(self.teleop.linear_speed),
+                centi(self.teleop.angular_speed),
+            ),
+            second: self.now.floor() as i64,
+            loop_rate: self.clock.rate().round() as i64,
+            log: self.log.written(),
+            gripper: self.gripper,
+            estop: self.estop,
+            held: self.held_keys().len(),
+            link: self.link_status.clone(),
+            view: self.view.clone(),
+            screen: self.screen,
+            collisions: twin.map_or(0, |t| t.collisions()),
+            sightings: self.in_view(),
+            blocks: twin.map_or(Vec::new(), |t| {
+                t.blocks()
+                    .iter()
+                    .map(|b| (centi(b.pose.x), centi(b.pose.y)))
+                    .collect()
+            }),
+        };
+        if self.visible.as_ref() != Some(&visible) {
+            self.visible = Some(visible);
+            self.revision += 1;
+        }
+    }
+}

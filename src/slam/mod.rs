@@ -1,3 +1,5 @@
 //! Estimating where the robot is: wheel odometry now, EKF-SLAM later.
 
+pub mod ekf;
+pub mod motion;
 pub mod odometry;

@@ -24,6 +24,15 @@ pub struct Report {
     pub distance_driven: f64,
     pub odometry_distance: f64,
     pub collisions: Option<u32>,
+    /// Landmarks in the EKF's state at the end.
+    pub landmarks: usize,
+    /// Sightings beyond the EKF's chi-square gate.
+    pub rejected_sightings: u64,
+    /// Against the twin's truth, sampled every control period: metres and degrees.
+    pub position_rmse: Option<f64>,
+    pub heading_rmse_deg: Option<f64>,
+    /// Mean normalised estimation error squared of the pose (3 degrees of freedom).
+    pub mean_nees: Option<f64>,
     pub gripper: Option<String>,
     pub quit: bool,
     /// Warnings and errors the session logged, in order.
@@ -72,6 +81,11 @@ pub fn report(app: &App, keys: usize) -> Report {
         distance_driven: twin.map_or(app.odometry_distance(), |t| t.distance_driven()),
         odometry_distance: app.odometry_distance(),
         collisions: twin.map(|t| t.collisions()),
+        landmarks: app.slam().landmark_count(),
+        rejected_sightings: app.slam().rejected(),
+        position_rmse: twin.map(|_| app.accuracy().position_rmse()),
+        heading_rmse_deg: twin.map(|_| app.accuracy().heading_rmse().to_degrees()),
+        mean_nees: twin.map(|_| app.accuracy().mean_nees()),
         gripper: app.gripper().map(|g| g.label().to_string()),
         quit: app.should_quit(),
         warnings: app
@@ -109,6 +123,17 @@ pub fn human(report: &Report) -> String {
     out += &format!("distance driven {:.3} m\n", report.distance_driven);
     if let Some(c) = report.collisions {
         out += &format!("collisions      {c}\n");
+    }
+    out += &format!(
+        "landmarks       {} ({} sightings rejected)\n",
+        report.landmarks, report.rejected_sightings
+    );
+    if let (Some(p), Some(h), Some(n)) = (
+        report.position_rmse,
+        report.heading_rmse_deg,
+        report.mean_nees,
+    ) {
+        out += &format!("error vs truth  RMSE {p:.3} m, {h:.2} deg; mean NEES {n:.2}\n");
     }
     if let (Some(w), Some(f)) = (report.wall_time_s, report.realtime_factor) {
         out += &format!("wall time       {w:.3} s ({f:.0}x real time)\n");

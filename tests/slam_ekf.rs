@@ -48,3 +48,39 @@ fn an_hour_of_driving_keeps_sigma_symmetric_and_psd() {
     );
     assert!(worst < 0.3, "estimate strayed {worst:.3} m from the truth");
 }
+
+/// Seed 001 claims +-5 cm and +-3 degrees; the filter must do that in its own arena, and
+/// its confidence must be honest (mean NEES in the 95 % band of a 3-dof chi-square).
+#[test]
+fn scripted_five_minute_loop_meets_seed_accuracy_with_consistent_covariance() {
+    use navdeck::app::estimate::NEES_BAND_3DOF;
+    use navdeck::keymap::parse_key_sequence;
+    use navdeck::session::{LinkChoice, Session, SessionSpec};
+    let loop_keys = format!("{}{}", "w".repeat(30), "a".repeat(9)).repeat(77);
+    let keys = parse_key_sequence(&loop_keys).unwrap();
+    for seed in [1, 2] {
+        let spec = SessionSpec {
+            world: None,
+            seed,
+            config: None,
+            keymap: None,
+            link: LinkChoice::Sim,
+        };
+        let mut app = Session::load(&spec).unwrap().into_app(0.0);
+        let r = navdeck::headless::run(&mut app, &keys, 10.0);
+        assert!(r.sim_time > 300.0);
+        assert_eq!(r.collisions, Some(0), "the loop should stay clear of walls");
+        let (pos, head, nees) = (
+            r.position_rmse.unwrap(),
+            r.heading_rmse_deg.unwrap(),
+            r.mean_nees.unwrap(),
+        );
+        assert!(pos < 0.05, "seed {seed}: position RMSE {pos:.4} m");
+        assert!(head < 3.0, "seed {seed}: heading RMSE {head:.3} deg");
+        assert!(
+            nees > NEES_BAND_3DOF.0 && nees < NEES_BAND_3DOF.1,
+            "seed {seed}: mean NEES {nees:.3}"
+        );
+        assert!(r.landmarks >= 20);
+    }
+}

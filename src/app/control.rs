@@ -97,6 +97,7 @@ impl App {
                 }
                 self.clock.last_update = due;
                 self.measure();
+                self.sample_accuracy();
             }
         }
         self.now = now;
@@ -125,12 +126,13 @@ impl App {
                     self.log.push(t, Level::Success, "link back");
                 }
                 if let Some(wheels) = frame.wheels {
-                    self.odometry.update(wheels);
+                    self.estimate_motion(wheels);
                     self.clock.travel.left += wheels.left;
                     self.clock.travel.right += wheels.right;
                     self.clock.travel_time += frame.elapsed;
                 }
                 if let Some(s) = frame.sightings {
+                    self.estimate_sightings(&s);
                     self.note_sightings(t, s);
                 }
                 if frame.scan.is_some() {

@@ -5,6 +5,7 @@
 
 pub mod action;
 mod control;
+pub mod estimate;
 pub mod log;
 pub mod mode;
 mod revision;
@@ -17,10 +18,12 @@ use crate::geometry::{Point2, Pose2, Twist};
 use crate::keymap::{Key, Keymap};
 use crate::link::{GripperCommand, GripperState, LaserScan, MarkerSighting, RobotLink};
 use crate::map::grid::OccupancyGrid;
+use crate::slam::ekf::EkfSlam;
 use crate::slam::odometry::Odometry;
 use action::Action;
 use log::{Level, LogBook};
 use mode::Mode;
+use nalgebra::Matrix3;
 use teleop::Teleop;
 use view::ViewState;
 
@@ -53,6 +56,9 @@ pub struct App {
     mode: Mode,
     teleop: Teleop,
     odometry: Odometry,
+    ekf: EkfSlam,
+    accuracy: estimate::Accuracy,
+    invalid_sightings: u64,
     log: LogBook,
     view: ViewState,
     /// Terminal size in cells, as last reported.
@@ -88,6 +94,10 @@ impl App {
         );
         let mut app = Self {
             odometry: Odometry::new(start, config.robot.track),
+            // The map frame starts at the robot: its pose is known exactly there.
+            ekf: EkfSlam::new(start, Matrix3::zeros(), &config.slam, config.robot.track),
+            accuracy: estimate::Accuracy::default(),
+            invalid_sightings: 0,
             clock: control::ControlClock::new(now, config.robot.control_period),
             teleop,
             keymap,
@@ -337,7 +347,7 @@ impl App {
         &self.teleop
     }
     pub fn estimated_pose(&self) -> Pose2 {
-        self.odometry.pose()
+        self.ekf.pose()
     }
     pub fn odometry_distance(&self) -> f64 {
         self.odometry.distance()

@@ -35,7 +35,7 @@ fn centi(v: f64) -> i64 {
 
 impl App {
     pub(super) fn refresh_revision(&mut self) {
-        let pose = self.odometry.pose();
+        let pose = self.estimated_pose();
         let deg = |t: f64| t.to_degrees().round() as i64;
         let twin = self.link.twin();
         let visible = Visible {

@@ -41,8 +41,25 @@ pub fn lines(app: &App, theme: Theme) -> Vec<Line<'static>> {
         row(theme, "Link", format!("{} {link}", app.link().label())),
         row(theme, "Pose", pose_text(app.estimated_pose())),
     ];
+    let (sx, sy, st) = app.pose_sigma();
+    rows.push(row(
+        theme,
+        "Sigma",
+        format!("{sx:6.3} {sy:6.3} {:4.1}°", st.to_degrees()),
+    ));
     if let Some(truth) = app.true_pose() {
         rows.push(row(theme, "Truth", pose_text(truth)));
+        let est = app.estimated_pose();
+        let dtheta = crate::geometry::wrap_angle(truth.theta - est.theta);
+        rows.push(row(
+            theme,
+            "Error",
+            format!(
+                "{:.3} m {:4.1}°",
+                (truth.x - est.x).hypot(truth.y - est.y),
+                dtheta.to_degrees()
+            ),
+        ));
     }
     rows.extend([
         row(
@@ -61,6 +78,15 @@ pub fn lines(app: &App, theme: Theme) -> Vec<Line<'static>> {
             format!(
                 "v {:.2}/{max_v:.2} w {:.1}/{max_w:.1}",
                 t.linear_speed, t.angular_speed
+            ),
+        ),
+        row(
+            theme,
+            "SLAM",
+            format!(
+                "{} landmarks {} rejected",
+                app.slam().landmark_count(),
+                app.slam().rejected()
             ),
         ),
         row(

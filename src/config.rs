@@ -32,7 +32,35 @@ pub struct Config {
     pub robot: RobotConfig,
     pub teleop: TeleopConfig,
     pub slam: SlamConfig,
+    pub race: RaceConfig,
     pub sim: SimConfig,
+}
+
+/// Race mode (seed 001: "High-speed mode (reduced SLAM updates)").
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct RaceConfig {
+    /// Drive speeds on entering race mode, m/s and rad/s; the limits are the robot's.
+    pub linear_speed: f64,
+    pub angular_speed: f64,
+    /// Correct with every k-th camera frame only.
+    pub correct_every: u32,
+    /// Within a used frame, only the m nearest sightings (0: all of them).
+    pub nearest: u32,
+    /// Warn when the position's standard deviation grows past this, metres.
+    pub sigma_warning: f64,
+}
+
+impl Default for RaceConfig {
+    fn default() -> Self {
+        Self {
+            linear_speed: 0.3,
+            angular_speed: 3.0,
+            correct_every: 3,
+            nearest: 0,
+            sigma_warning: 0.05,
+        }
+    }
 }
 
 /// EKF-SLAM noise and landmark management (seed 001 `ekf_slam` and "Landmark Management").
@@ -115,6 +143,9 @@ pub struct TeleopConfig {
     pub speed_step: f64,
     /// Stop when no key event arrived for this long, seconds.
     pub deadman_timeout: f64,
+    /// Manual mode's speed limits, m/s and rad/s; race mode may go up to the robot's.
+    pub max_linear: f64,
+    pub max_angular: f64,
 }
 
 impl Default for TeleopConfig {
@@ -124,6 +155,8 @@ impl Default for TeleopConfig {
             angular_speed: 1.5,
             speed_step: 1.1,
             deadman_timeout: 0.5,
+            max_linear: 0.25,
+            max_angular: 2.5,
         }
     }
 }
@@ -278,7 +311,7 @@ impl Config {
 
     /// Checks values a parser cannot: signs and ranges.
     pub fn validate(&self, path: &Path) -> Result<(), ConfigError> {
-        let positive: [(&'static str, f64); 19] = [
+        let positive: [(&'static str, f64); 24] = [
             ("robot.wheel_radius", self.robot.wheel_radius),
             ("robot.track", self.robot.track),
             ("robot.control_period", self.robot.control_period),
@@ -290,6 +323,11 @@ impl Config {
             ("teleop.linear_speed", self.teleop.linear_speed),
             ("teleop.angular_speed", self.teleop.angular_speed),
             ("teleop.deadman_timeout", self.teleop.deadman_timeout),
+            ("teleop.max_linear", self.teleop.max_linear),
+            ("teleop.max_angular", self.teleop.max_angular),
+            ("race.linear_speed", self.race.linear_speed),
+            ("race.angular_speed", self.race.angular_speed),
+            ("race.sigma_warning", self.race.sigma_warning),
             ("sim.physics.step", self.sim.physics.step),
             ("slam.dist_std", self.slam.dist_std),
             ("slam.angle_std_deg", self.slam.angle_std_deg),
@@ -348,6 +386,14 @@ impl Config {
                 "sim.camera.fov_deg",
                 self.sim.camera.fov_deg,
                 "must lie in (0, 360)",
+            ));
+        }
+        if self.race.correct_every == 0 {
+            return Err(invalid(
+                path,
+                "race.correct_every",
+                0.0,
+                "must be at least 1",
             ));
         }
         if self.sim.lidar.beams == 0 {

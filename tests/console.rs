@@ -106,12 +106,12 @@ fn space_is_an_emergency_stop_and_a_drive_key_releases_it() {
 #[test]
 fn unbuilt_modes_say_so_and_change_nothing() {
     let mut app = default_app();
-    for c in ['e', 't', 'p', 'r', 'l'] {
+    for c in ['e', 't', 'p', 'l'] {
         app.handle_key(Key::char(c), KeyKind::Press, 0.0);
         assert_eq!(app.mode(), Mode::Manual, "key {c} changed the mode");
     }
     let said: Vec<&str> = app.log_book().iter().map(|e| e.text.as_str()).collect();
-    for mode in ["exploration", "thinking", "path following", "race", "load"] {
+    for mode in ["exploration", "thinking", "path following", "load"] {
         let line = format!("{mode} mode is not built yet");
         assert!(
             said.contains(&line.as_str()),
@@ -261,4 +261,74 @@ fn driving_into_a_wall_is_logged_as_a_collision() {
         "no collision line in the log"
     );
     assert_eq!(true_speed(&app), 0.0);
+}
+
+/// Drives a fixed pattern in `mode` for about 30 s; returns the app afterwards.
+fn drive_pattern(mut app: App, mode_key: char) -> App {
+    app.handle_key(Key::char(mode_key), KeyKind::Press, 0.0);
+    let mut t = 0.0;
+    for _ in 0..6 {
+        for (c, seconds) in [('w', 1.5), ('a', 1.0)] {
+            let end = t + seconds;
+            while t < end {
+                app.handle_key(Key::char(c), KeyKind::Press, t);
+                t += 1.0 / 30.0;
+                app.update(t);
+            }
+        }
+    }
+    app
+}
+
+fn corrections(app: &App) -> u32 {
+    app.slam().landmarks().map(|l| l.sightings).sum()
+}
+
+#[test]
+fn race_mode_drives_faster_with_fewer_slam_corrections() {
+    let manual = drive_pattern(default_app(), 'm');
+    let race = drive_pattern(default_app(), 'r');
+    assert_eq!(race.mode(), Mode::Race);
+    assert!(race.teleop().linear_speed > manual.teleop().linear_speed);
+    assert!(race.teleop().limits().0 > manual.teleop().limits().0);
+    assert!(
+        race.link().twin().unwrap().distance_driven()
+            > 1.5 * manual.link().twin().unwrap().distance_driven()
+    );
+    let (m, r) = (corrections(&manual), corrections(&race));
+    assert!(r * 2 < m, "race corrected {r} times, manual {m}");
+    // Back to manual: manual's speeds and limits return.
+    let mut race = race;
+    race.handle_key(Key::char('m'), KeyKind::Press, race.now());
+    assert_eq!(race.teleop().limits().0, manual.teleop().limits().0);
+    assert_eq!(race.teleop().linear_speed, manual.teleop().linear_speed);
+}
+
+#[test]
+fn race_mode_warns_when_the_pose_uncertainty_grows() {
+    use navdeck::session::{LinkChoice, SessionSpec};
+    let dir = std::env::temp_dir().join(format!("navdeck-race-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("race.toml");
+    std::fs::write(
+        &path,
+        "[race]\ncorrect_every = 100000\nsigma_warning = 0.003\n",
+    )
+    .unwrap();
+    let app = app_with(SessionSpec {
+        world: None,
+        seed: 1,
+        config: Some(path),
+        keymap: None,
+        link: LinkChoice::Sim,
+    });
+    let app = drive_pattern(app, 'r');
+    assert!(
+        app.log_book()
+            .iter()
+            .any(|e| e.text.starts_with("race: position uncertainty")),
+        "no uncertainty warning: sigma {:?}, collisions {}",
+        app.pose_sigma(),
+        app.link().twin().unwrap().collisions()
+    );
 }

@@ -5,6 +5,14 @@ mod common;
 use common::*;
 use navdeck::tui::events::Step;
 
+fn tab() -> Step {
+    let key = navdeck::keymap::Key::new(navdeck::keymap::KeyCode::Tab);
+    Step::Event(navdeck::tui::events::Event::Key(
+        key,
+        navdeck::app::KeyKind::Press,
+    ))
+}
+
 fn snapshot_after(width: u16, height: u16, steps: Vec<Step>) -> String {
     screen(&run_script(default_app(), width, height, steps).terminal)
 }
@@ -65,5 +73,20 @@ fn braille_map_zoomed_in_100x30() {
 fn unbuilt_mode_and_estop_in_the_log_80x24() {
     let mut steps = hold('w', 1.0);
     steps.extend([press('e'), press(' '), Step::Wait(0.5)]);
+    insta::assert_snapshot!(snapshot_after(80, 24, steps));
+}
+
+#[test]
+fn landmark_table_and_ellipses_after_a_drive_120x40() {
+    let mut steps = hold('a', 0.8);
+    steps.extend(hold('w', 2.0));
+    steps.extend([tab(), press('+'), Step::Wait(0.3)]);
+    insta::assert_snapshot!(snapshot_after(120, 40, steps));
+}
+
+#[test]
+fn race_mode_80x24() {
+    let mut steps = vec![press('r')];
+    steps.extend(hold('w', 1.0));
     insta::assert_snapshot!(snapshot_after(80, 24, steps));
 }

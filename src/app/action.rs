@@ -41,13 +41,14 @@ pub enum Action {
     CenterView,
     ToggleBraille,
     ToggleTruth,
+    ToggleLandmarks,
     /// Unbinds a key that a lower layer of the keymap bound.
     Unbound,
 }
 
 impl Action {
     /// Every action, in the order the help overlay lists them.
-    pub const ALL: [Action; 36] = [
+    pub const ALL: [Action; 37] = [
         Action::ModeManual,
         Action::ModeExplore,
         Action::ModeThink,
@@ -83,6 +84,7 @@ impl Action {
         Action::CenterView,
         Action::ToggleBraille,
         Action::ToggleTruth,
+        Action::ToggleLandmarks,
         Action::Unbound,
     ];
 
@@ -124,6 +126,7 @@ impl Action {
             Action::CenterView => "center_view",
             Action::ToggleBraille => "toggle_braille",
             Action::ToggleTruth => "toggle_truth",
+            Action::ToggleLandmarks => "toggle_landmarks",
             Action::Unbound => "none",
         }
     }
@@ -170,7 +173,8 @@ impl Action {
             Action::PanDown => "pan the map down",
             Action::CenterView => "centre the map on the robot",
             Action::ToggleBraille => "braille / ASCII map",
-            Action::ToggleTruth => "show the twin's true pose",
+            Action::ToggleTruth => "show the twin's truth",
+            Action::ToggleLandmarks => "landmark table on/off",
             Action::Unbound => "(unbound)",
         }
     }

@@ -98,6 +98,7 @@ impl App {
                 self.clock.last_update = due;
                 self.measure();
                 self.sample_accuracy();
+                self.check_race_uncertainty();
             }
         }
         self.now = now;
@@ -206,7 +207,7 @@ impl App {
             return Twist::ZERO;
         }
         match self.mode {
-            Mode::Manual => {
+            Mode::Manual | Mode::Race => {
                 let brake = self.brake_margin();
                 self.teleop.twist(t, brake)
             }

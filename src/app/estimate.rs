@@ -1,7 +1,7 @@
 //! The console's estimator: EKF-SLAM fed from the link, and how well it tracks the twin.
 
-use super::App;
 use super::log::Level;
+use super::{App, Mode};
 use crate::geometry::{Pose2, wrap_angle};
 use crate::link::{MarkerSighting, WheelTravel};
 use crate::slam::ekf::Outcome;
@@ -56,7 +56,23 @@ impl App {
     }
 
     pub(super) fn estimate_sightings(&mut self, sightings: &[MarkerSighting]) {
-        for s in sightings {
+        self.camera_frames += 1;
+        let mut used: Vec<MarkerSighting> = sightings.to_vec();
+        if self.mode == Mode::Race {
+            // Seed 001 race mode: reduced SLAM updates, every k-th frame, nearest m.
+            let race = &self.config.race;
+            if !self
+                .camera_frames
+                .is_multiple_of(u64::from(race.correct_every))
+            {
+                return;
+            }
+            if race.nearest > 0 {
+                used.sort_by(|a, b| a.range.total_cmp(&b.range));
+                used.truncate(race.nearest as usize);
+            }
+        }
+        for s in &used {
             match self.ekf.correct(*s) {
                 Outcome::Added => {
                     let category = crate::perception::markers::MarkerCategory::of(s.id);
@@ -69,6 +85,24 @@ impl App {
                 Outcome::Invalid => self.invalid_sightings += 1,
                 _ => {}
             }
+        }
+    }
+
+    /// In race mode, warns once when the position's uncertainty passes the bound.
+    pub(super) fn check_race_uncertainty(&mut self) {
+        let c = self.ekf.pose_covariance();
+        let xy = nalgebra::Matrix2::new(c[(0, 0)], c[(0, 1)], c[(1, 0)], c[(1, 1)]);
+        let (major, _, _) = crate::slam::ellipse::axes(&xy, 1.0);
+        let bound = self.config.race.sigma_warning;
+        if self.mode == Mode::Race && major > bound && !self.race_sigma_warned {
+            self.race_sigma_warned = true;
+            self.log.push(
+                self.now,
+                Level::Warn,
+                format!("race: position uncertainty {major:.3} m is past {bound:.3} m; slow down"),
+            );
+        } else if major <= bound {
+            self.race_sigma_warned = false;
         }
     }
 

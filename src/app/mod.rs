@@ -59,6 +59,10 @@ pub struct App {
     ekf: EkfSlam,
     accuracy: estimate::Accuracy,
     invalid_sightings: u64,
+    /// Camera frames seen, for race mode's every-k-th correction.
+    camera_frames: u64,
+    race_sigma_warned: bool,
+    manual_speeds: (f64, f64),
     log: LogBook,
     view: ViewState,
     /// Terminal size in cells, as last reported.
@@ -89,8 +93,8 @@ impl App {
         let world_grid = link.twin().map(|t| t.world().rasterize(WORLD_RASTER));
         let teleop = Teleop::new(
             &config.teleop,
-            config.robot.max_linear,
-            config.robot.max_angular,
+            config.teleop.max_linear.min(config.robot.max_linear),
+            config.teleop.max_angular.min(config.robot.max_angular),
         );
         let mut app = Self {
             odometry: Odometry::new(start, config.robot.track),
@@ -98,6 +102,9 @@ impl App {
             ekf: EkfSlam::new(start, Matrix3::zeros(), &config.slam, config.robot.track),
             accuracy: estimate::Accuracy::default(),
             invalid_sightings: 0,
+            camera_frames: 0,
+            race_sigma_warned: false,
+            manual_speeds: (0.0, 0.0),
             clock: control::ControlClock::new(now, config.robot.control_period),
             teleop,
             keymap,
@@ -175,7 +182,7 @@ impl App {
     }
 
     fn drive_key(&mut self, action: Action, repeat: bool) {
-        if self.mode != Mode::Manual {
+        if !self.mode.drives_by_keys() {
             if !repeat {
                 self.log(
                     Level::Warn,
@@ -251,6 +258,7 @@ impl App {
                 self.view.zoom = None;
             }
             Action::ToggleBraille => self.view.braille = !self.view.braille,
+            Action::ToggleLandmarks => self.view.landmarks = !self.view.landmarks,
             Action::ToggleTruth => {
                 if self.link.twin().is_some() {
                     self.view.show_truth = !self.view.show_truth;
@@ -280,9 +288,26 @@ impl App {
         }
         if mode != self.mode {
             self.teleop.clear();
+            self.set_speed_limits(mode);
             self.mode = mode;
             self.control_step(self.now);
             self.log(Level::Info, format!("mode {}", mode.label()));
+        }
+    }
+
+    /// Race mode drives up to the robot's limits; manual stays within teleop's.
+    fn set_speed_limits(&mut self, mode: Mode) {
+        let (c, r) = (&self.config, &self.config.robot);
+        if mode == Mode::Race {
+            self.manual_speeds = (self.teleop.linear_speed, self.teleop.angular_speed);
+            let speeds = (c.race.linear_speed, c.race.angular_speed);
+            self.teleop.set_limits(r.max_linear, r.max_angular, speeds);
+        } else if self.mode == Mode::Race {
+            let (lin, ang) = (
+                c.teleop.max_linear.min(r.max_linear),
+                c.teleop.max_angular.min(r.max_angular),
+            );
+            self.teleop.set_limits(lin, ang, self.manual_speeds);
         }
     }
 
@@ -300,6 +325,7 @@ impl App {
         self.teleop.clear();
         self.estop = true;
         if self.mode != Mode::Manual {
+            self.set_speed_limits(Mode::Manual);
             self.mode = Mode::Manual;
         }
         self.control_step(self.now);

@@ -49,8 +49,13 @@ impl Mode {
         }
     }
 
+    /// Whether the keys drive the robot in this mode.
+    pub fn drives_by_keys(self) -> bool {
+        matches!(self, Mode::Manual | Mode::Race)
+    }
+
     /// Whether this build can run the mode; the others log that they are not built yet.
     pub fn is_built(self) -> bool {
-        matches!(self, Mode::Manual)
+        matches!(self, Mode::Manual | Mode::Race)
     }
 }

@@ -132,6 +132,14 @@ impl Teleop {
             .reduce(f64::min)
     }
 
+    /// New speed limits (switching between manual and race), and speeds within them.
+    pub fn set_limits(&mut self, max_linear: f64, max_angular: f64, speeds: (f64, f64)) {
+        self.max_linear = max_linear;
+        self.max_angular = max_angular;
+        self.linear_speed = speeds.0.min(max_linear);
+        self.angular_speed = speeds.1.min(max_angular);
+    }
+
     /// Applies a speed key; returns false when the speeds were already at their limit.
     pub fn adjust(&mut self, action: Action) -> bool {
         let (lin, ang) = match action {

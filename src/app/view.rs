@@ -14,6 +14,8 @@ pub struct ViewState {
     pub braille: bool,
     pub show_truth: bool,
     pub help: bool,
+    /// The landmark table over the map.
+    pub landmarks: bool,
 }
 
 impl Default for ViewState {
@@ -24,6 +26,7 @@ impl Default for ViewState {
             braille: false,
             show_truth: true,
             help: false,
+            landmarks: false,
         }
     }
 }

@@ -1,7 +1,7 @@
 //! Composes one frame from the panels; reads the app, never changes it.
 
 use super::theme::Theme;
-use super::widgets::{help, log, map, status, title};
+use super::widgets::{help, landmarks, log, map, status, title};
 use crate::app::App;
 use crate::app::screen::{Area, MIN_SIZE, layout};
 use ratatui::Frame;
@@ -52,9 +52,33 @@ pub fn draw(frame: &mut Frame, app: &App, theme: Theme) {
         log_rect,
     );
 
+    if app.view().landmarks {
+        draw_landmarks(frame, app, theme, map_rect);
+    }
     if app.view().help {
         draw_help(frame, app, theme, size);
     }
+}
+
+/// The landmark table in the lower right of the map.
+fn draw_landmarks(frame: &mut Frame, app: &App, theme: Theme, map: Rect) {
+    let width = 50.min(map.width);
+    let height = (map.height / 2).max(5).min(map.height);
+    let area = Rect::new(
+        map.x + map.width - width,
+        map.y + map.height - height,
+        width,
+        height,
+    );
+    let rows = usize::from(height.saturating_sub(2));
+    let block = Block::bordered()
+        .title(" Landmarks (tab) ")
+        .border_style(theme.border());
+    frame.render_widget(Clear, area);
+    frame.render_widget(
+        Paragraph::new(landmarks::lines(app, theme, rows)).block(block),
+        area,
+    );
 }
 
 fn map_title(app: &App) -> String {

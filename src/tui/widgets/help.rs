@@ -21,4 +21,4 @@ pub fn entries(app: &App, theme: Theme) -> Vec<Line<'static>> {
 
 /// What the map's glyphs mean.
 pub const LEGEND: &str =
-    "@ robot  o true pose  # wall  * boundary  x obstacle  R/B gate  r/b block";
+    "@ robot  o truth  + 95% ellipse  # wall  * boundary  x obstacle  R/B gate  r/b block";

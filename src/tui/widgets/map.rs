@@ -81,7 +81,10 @@ pub fn render(app: &App, theme: Theme, area: Rect, buf: &mut Buffer) {
             draw_grid_ascii(grid, &vp, theme, buf);
         }
     }
-    draw_world_objects(app, &vp, theme, buf);
+    if app.view().show_truth {
+        draw_world_objects(app, &vp, theme, buf);
+    }
+    super::beliefs::render(app, &vp, theme, buf);
     if app.view().show_truth
         && let Some(truth) = app.true_pose()
     {
@@ -161,7 +164,7 @@ fn draw_world_objects(app: &App, vp: &Viewport, theme: Theme, buf: &mut Buffer) 
         .filter(|m| !block_ids.contains(&m.id))
     {
         let category = MarkerCategory::of(m.id);
-        let mut style = theme.marker(category);
+        let mut style = super::beliefs::truth_style(theme.marker(category));
         if seen.contains(&m.id) {
             style = style.add_modifier(ratatui::style::Modifier::REVERSED);
         }

@@ -1,6 +1,8 @@
 //! The console's panels, each a read-only view of the `App`.
 
+pub mod beliefs;
 pub mod help;
+pub mod landmarks;
 pub mod log;
 pub mod map;
 pub mod status;

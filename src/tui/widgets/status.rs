@@ -83,11 +83,19 @@ pub fn lines(app: &App, theme: Theme) -> Vec<Line<'static>> {
         row(
             theme,
             "SLAM",
-            format!(
-                "{} landmarks {} rejected",
-                app.slam().landmark_count(),
-                app.slam().rejected()
-            ),
+            if app.mode() == crate::app::mode::Mode::Race {
+                format!(
+                    "{} lm, every {} frames",
+                    app.slam().landmark_count(),
+                    app.config().race.correct_every
+                )
+            } else {
+                format!(
+                    "{} lm, {} rejected",
+                    app.slam().landmark_count(),
+                    app.slam().rejected()
+                )
+            },
         ),
         row(
             theme,

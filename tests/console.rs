@@ -244,15 +244,7 @@ fn status_panel_shows_mode_link_pose_and_velocities() {
 fn driving_into_a_wall_is_logged_as_a_collision() {
     // From the start pose facing east, turn right to face the south wall and drive on.
     let mut app = default_app();
-    let mut t = 0.0;
-    for (c, seconds) in [('d', 1.1), ('w', 6.0)] {
-        let end = t + seconds;
-        while t < end {
-            app.handle_key(Key::char(c), KeyKind::Press, t);
-            t += 1.0 / 30.0;
-            app.update(t);
-        }
-    }
+    hold_in_turn(&mut app, &[('d', 1.1), ('w', 6.0)], 0.0);
     assert!(app.link().twin().unwrap().collisions() >= 1);
     assert!(
         app.log_book()
@@ -263,19 +255,26 @@ fn driving_into_a_wall_is_logged_as_a_collision() {
     assert_eq!(true_speed(&app), 0.0);
 }
 
-/// Drives a fixed pattern in `mode` for about 30 s; returns the app afterwards.
+/// Holds each key for its seconds in turn (auto-repeat at 30 Hz) from time `t`;
+/// returns the time reached.
+fn hold_in_turn(app: &mut App, plan: &[(char, f64)], mut t: f64) -> f64 {
+    for &(c, seconds) in plan {
+        let end = t + seconds;
+        while t < end {
+            app.handle_key(Key::char(c), KeyKind::Press, t);
+            t += 1.0 / 30.0;
+            app.update(t);
+        }
+    }
+    t
+}
+
+/// Drives a fixed pattern in `mode` for about 15 s; returns the app afterwards.
 fn drive_pattern(mut app: App, mode_key: char) -> App {
     app.handle_key(Key::char(mode_key), KeyKind::Press, 0.0);
     let mut t = 0.0;
     for _ in 0..6 {
-        for (c, seconds) in [('w', 1.5), ('a', 1.0)] {
-            let end = t + seconds;
-            while t < end {
-                app.handle_key(Key::char(c), KeyKind::Press, t);
-                t += 1.0 / 30.0;
-                app.update(t);
-            }
-        }
+        t = hold_in_turn(&mut app, &[('w', 1.5), ('a', 1.0)], t);
     }
     app
 }

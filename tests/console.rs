@@ -331,3 +331,36 @@ fn race_mode_warns_when_the_pose_uncertainty_grows() {
         app.link().twin().unwrap().collisions()
     );
 }
+
+/// A link whose every poll fails, like a serial device that was unplugged.
+struct DeadLink;
+
+impl navdeck::link::RobotLink for DeadLink {
+    fn label(&self) -> String {
+        "dead".into()
+    }
+    fn send(&mut self, _: &navdeck::link::Command) -> Result<(), navdeck::link::LinkError> {
+        Ok(())
+    }
+    fn poll(&mut self, _: f64) -> Result<navdeck::link::SensorFrame, navdeck::link::LinkError> {
+        Err(navdeck::link::LinkError::Lost("unplugged".into()))
+    }
+    fn stop(&mut self) {}
+}
+
+#[test]
+fn drive_keys_on_a_lost_link_command_nothing_and_time_moves_on() {
+    let mut app = App::new(
+        navdeck::config::Config::default(),
+        navdeck::keymap::Keymap::default_map(),
+        Box::new(DeadLink),
+        0.0,
+    );
+    app.update(0.1);
+    app.handle_key(Key::char('w'), KeyKind::Press, 0.1);
+    assert_eq!(app.commanded().linear, 0.0);
+    app.update(2.0);
+    assert_eq!(app.now(), 2.0);
+    assert_eq!(app.commanded().linear, 0.0);
+    assert!(app.held_keys().is_empty(), "the deadman let the key go");
+}

@@ -1,7 +1,7 @@
 //! The control loop: sense, decide, act at the robot's control period (seed 001: 0.1 s).
 
 use super::log::Level;
-use super::{App, LinkStatus, Mode};
+use super::{App, LinkStatus};
 use crate::geometry::Twist;
 use crate::link::{Command, WheelTravel};
 use crate::slam::odometry::twist_from_wheels;
@@ -79,14 +79,12 @@ impl App {
                 self.clock.next_tick = now;
             }
         }
-        let mut previous = f64::NEG_INFINITY;
         loop {
             let tick = self.clock.next_tick;
             let due = self.teleop_cutoff().map_or(tick, |c| c.min(tick));
-            if due > now || (due <= previous && due < tick) {
+            if due > now {
                 break;
             }
-            previous = due;
             self.control_step(due);
             if due >= tick {
                 self.clock.next_tick = tick + self.clock.period;
@@ -134,10 +132,7 @@ impl App {
                 }
                 if let Some(s) = frame.sightings {
                     self.estimate_sightings(&s);
-                    self.note_sightings(t, s);
-                }
-                if frame.scan.is_some() {
-                    self.scan = frame.scan;
+                    self.note_sightings(t, &s);
                 }
                 self.note_collisions(t);
                 if let Some(g) = frame.gripper {
@@ -203,16 +198,14 @@ impl App {
 
     /// The twist the active mode asks for at `t`; zero whenever control is in doubt.
     fn decide(&mut self, t: f64) -> Twist {
-        if self.estop || self.quit || self.link_status != LinkStatus::Ok {
+        // The deadman always drops expired keys, even while the command is forced to zero,
+        // so its deadline moves on and the loop in `advance_to` always progresses.
+        let keys = self.teleop.twist(t, self.brake_margin());
+        let in_doubt = self.estop || self.quit || self.link_status != LinkStatus::Ok;
+        if in_doubt || !self.mode.drives_by_keys() {
             return Twist::ZERO;
         }
-        match self.mode {
-            Mode::Manual | Mode::Race => {
-                let brake = self.brake_margin();
-                self.teleop.twist(t, brake)
-            }
-            _ => Twist::ZERO,
-        }
+        keys
     }
 
     /// Seconds the robot needs to brake from the current command at its acceleration limits.

@@ -57,7 +57,8 @@ impl App {
 
     pub(super) fn estimate_sightings(&mut self, sightings: &[MarkerSighting]) {
         self.camera_frames += 1;
-        let mut used: Vec<MarkerSighting> = sightings.to_vec();
+        let mut nearest;
+        let mut used = sightings;
         if self.mode == Mode::Race {
             // Seed 001 race mode: reduced SLAM updates, every k-th frame, nearest m.
             let race = &self.config.race;
@@ -68,31 +69,28 @@ impl App {
                 return;
             }
             if race.nearest > 0 {
-                used.sort_by(|a, b| a.range.total_cmp(&b.range));
-                used.truncate(race.nearest as usize);
+                nearest = sightings.to_vec();
+                nearest.sort_by(|a, b| a.range.total_cmp(&b.range));
+                nearest.truncate(race.nearest as usize);
+                used = &nearest;
             }
         }
-        for s in &used {
-            match self.ekf.correct(*s) {
-                Outcome::Added => {
-                    let category = crate::perception::markers::MarkerCategory::of(s.id);
-                    self.log.push(
-                        self.now,
-                        Level::Info,
-                        format!("new landmark {} ({})", s.id, category.label()),
-                    );
-                }
-                Outcome::Invalid => self.invalid_sightings += 1,
-                _ => {}
+        // Gated-out sightings are counted by the filter; non-finite ones are dropped.
+        for s in used {
+            if self.ekf.correct(*s) == Outcome::Added {
+                let category = crate::perception::markers::MarkerCategory::of(s.id);
+                self.log.push(
+                    self.now,
+                    Level::Info,
+                    format!("new landmark {} ({})", s.id, category.label()),
+                );
             }
         }
     }
 
     /// In race mode, warns once when the position's uncertainty passes the bound.
     pub(super) fn check_race_uncertainty(&mut self) {
-        let c = self.ekf.pose_covariance();
-        let xy = nalgebra::Matrix2::new(c[(0, 0)], c[(0, 1)], c[(1, 0)], c[(1, 1)]);
-        let (major, _, _) = crate::slam::ellipse::axes(&xy, 1.0);
+        let (major, _, _) = crate::slam::ellipse::axes(&self.ekf.position_covariance(), 1.0);
         let bound = self.config.race.sigma_warning;
         if self.mode == Mode::Race && major > bound && !self.race_sigma_warned {
             self.race_sigma_warned = true;

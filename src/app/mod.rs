@@ -16,7 +16,7 @@ pub mod view;
 use crate::config::Config;
 use crate::geometry::{Point2, Pose2, Twist};
 use crate::keymap::{Key, Keymap};
-use crate::link::{GripperCommand, GripperState, LaserScan, MarkerSighting, RobotLink};
+use crate::link::{GripperCommand, GripperState, MarkerSighting, RobotLink};
 use crate::map::grid::OccupancyGrid;
 use crate::slam::ekf::EkfSlam;
 use crate::slam::odometry::Odometry;
@@ -58,7 +58,6 @@ pub struct App {
     odometry: Odometry,
     ekf: EkfSlam,
     accuracy: estimate::Accuracy,
-    invalid_sightings: u64,
     /// Camera frames seen, for race mode's every-k-th correction.
     camera_frames: u64,
     race_sigma_warned: bool,
@@ -75,10 +74,8 @@ pub struct App {
     pending_gripper: Option<GripperCommand>,
     estop: bool,
     quit: bool,
-    sightings: Vec<MarkerSighting>,
     /// Marker IDs and when each was last seen: the map marks them "in view" for a while.
     in_view: Vec<(u32, f64)>,
-    scan: Option<LaserScan>,
     link_status: LinkStatus,
     collisions_logged: u32,
     world_grid: Option<OccupancyGrid>,
@@ -101,7 +98,6 @@ impl App {
             // The map frame starts at the robot: its pose is known exactly there.
             ekf: EkfSlam::new(start, Matrix3::zeros(), &config.slam, config.robot.track),
             accuracy: estimate::Accuracy::default(),
-            invalid_sightings: 0,
             camera_frames: 0,
             race_sigma_warned: false,
             manual_speeds: (0.0, 0.0),
@@ -120,9 +116,7 @@ impl App {
             pending_gripper: None,
             estop: false,
             quit: false,
-            sightings: Vec::new(),
             in_view: Vec::new(),
-            scan: None,
             link_status: LinkStatus::Ok,
             collisions_logged: 0,
             world_grid,
@@ -149,7 +143,8 @@ impl App {
     /// Resolves a key through the active mode's keymap and acts on it.
     pub fn handle_key(&mut self, key: Key, kind: KeyKind, now: f64) {
         self.advance_to(now);
-        if kind == KeyKind::Release && !self.teleop.release_events() {
+        if kind == KeyKind::Release {
+            // Only terminals speaking the kitty protocol send releases.
             self.teleop.set_release_events(true);
         }
         let Some(action) = self.keymap.lookup(self.mode, key) else {
@@ -396,9 +391,6 @@ impl App {
     pub fn should_quit(&self) -> bool {
         self.quit
     }
-    pub fn sightings(&self) -> &[MarkerSighting] {
-        &self.sightings
-    }
     /// IDs seen within the last `IN_VIEW_HOLD` seconds, sorted: steadier than one frame,
     /// whose set flickers with every missed detection.
     pub fn in_view(&self) -> Vec<u32> {
@@ -407,19 +399,14 @@ impl App {
         ids
     }
 
-    fn note_sightings(&mut self, t: f64, sightings: Vec<MarkerSighting>) {
-        for s in &sightings {
+    fn note_sightings(&mut self, t: f64, sightings: &[MarkerSighting]) {
+        for s in sightings {
             match self.in_view.iter_mut().find(|(id, _)| *id == s.id) {
                 Some(entry) => entry.1 = t,
                 None => self.in_view.push((s.id, t)),
             }
         }
         self.in_view.retain(|(_, seen)| t - seen <= IN_VIEW_HOLD);
-        self.sightings = sightings;
-    }
-
-    pub fn scan(&self) -> Option<&LaserScan> {
-        self.scan.as_ref()
     }
     pub fn world_grid(&self) -> Option<&OccupancyGrid> {
         self.world_grid.as_ref()

@@ -87,6 +87,11 @@ impl EkfSlam {
         Matrix3::from_fn(|i, j| self.sym(i, j))
     }
 
+    /// The x-y block of the pose covariance.
+    pub fn position_covariance(&self) -> Matrix2<f64> {
+        Matrix2::from_fn(|i, j| self.sym(i, j))
+    }
+
     /// Sigma[i, j] read from the stored lower triangle.
     fn sym(&self, i: usize, j: usize) -> f64 {
         if i >= j {

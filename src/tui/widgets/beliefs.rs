@@ -29,10 +29,15 @@ pub fn render(app: &App, vp: &Viewport, theme: Theme, buf: &mut Buffer) {
                 .set_style(theme.marker(category).add_modifier(Modifier::BOLD));
         }
     }
-    let pose = slam.pose();
-    let cov = slam.pose_covariance();
-    let xy = Matrix2::new(cov[(0, 0)], cov[(0, 1)], cov[(1, 0)], cov[(1, 1)]);
-    draw_ellipse(pose.position(), &xy, vp, braille, theme.robot(), buf);
+    let position = slam.pose().position();
+    draw_ellipse(
+        position,
+        &slam.position_covariance(),
+        vp,
+        braille,
+        theme.robot(),
+        buf,
+    );
 }
 
 /// The 95 % outline of `cov` around `center`, when it is larger than one cell.

@@ -49,7 +49,6 @@ pub struct Session {
     pub config: Config,
     pub keymap: Keymap,
     pub link: Box<dyn RobotLink>,
-    pub world_name: Option<String>,
 }
 
 impl Session {
@@ -62,16 +61,15 @@ impl Session {
             Some(path) => Keymap::load(path)?,
             None => Keymap::default_map(),
         };
-        let (link, world_name): (Box<dyn RobotLink>, _) = match &spec.link {
+        let link: Box<dyn RobotLink> = match &spec.link {
             LinkChoice::Sim => {
                 let world = match &spec.world {
                     Some(path) => World::load(path)
                         .with_context(|| format!("cannot use world {}", path.display()))?,
                     None => World::default_arena(),
                 };
-                let name = world.name.clone();
                 let twin = Twin::new(world, &config, spec.seed);
-                (Box::new(SimLink::new(twin, 0.0)), Some(name))
+                Box::new(SimLink::new(twin, 0.0))
             }
             LinkChoice::Ros2 => bail!("the ROS 2 link is not built yet; use --link sim"),
             LinkChoice::Serial(path) => {
@@ -82,7 +80,6 @@ impl Session {
             config,
             keymap,
             link,
-            world_name,
         })
     }
 

@@ -54,10 +54,6 @@ impl Teleop {
         self.release_events = on;
     }
 
-    pub fn release_events(&self) -> bool {
-        self.release_events
-    }
-
     pub fn limits(&self) -> (f64, f64) {
         (self.max_linear, self.max_angular)
     }

@@ -2,12 +2,14 @@
 
 pub mod app;
 pub mod config;
+pub mod control;
 pub mod geometry;
 pub mod headless;
 pub mod keymap;
 pub mod link;
 pub mod map;
 pub mod perception;
+pub mod plan;
 pub mod session;
 pub mod sim;
 pub mod slam;

@@ -1,3 +1,4 @@
-//! Maps: occupancy grids and, later, their files.
+//! Maps: occupancy grids, the planning costmap, and, later, their files.
 
+pub mod costmap;
 pub mod grid;

@@ -1,0 +1,3 @@
+//! Planning on the costmap: A*, path post-processing and the velocity profile.
+
+pub mod trajectory;

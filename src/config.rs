@@ -3,6 +3,7 @@
 //! A config file names only what it changes; an unknown field or a bad value is refused
 //! with the file, line and field in the message.
 
+use crate::map::config::MapConfig;
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 
@@ -19,7 +20,7 @@ pub enum ConfigError {
     #[error("config {path}: field `{field}` = {value}: {reason}")]
     Invalid {
         path: PathBuf,
-        field: &'static str,
+        field: String,
         value: String,
         reason: &'static str,
     },
@@ -34,6 +35,7 @@ pub struct Config {
     pub slam: SlamConfig,
     pub race: RaceConfig,
     pub sim: SimConfig,
+    pub map: MapConfig,
 }
 
 /// Race mode (seed 001: "High-speed mode (reduced SLAM updates)").
@@ -399,6 +401,17 @@ impl Config {
         if self.sim.lidar.beams == 0 {
             return Err(invalid(path, "sim.lidar.beams", 0.0, "must be at least 1"));
         }
+        let sections = [("map", self.map.validate())];
+        for (section, result) in sections {
+            if let Err((field, value, reason)) = result {
+                return Err(ConfigError::Invalid {
+                    path: path.to_path_buf(),
+                    field: format!("{section}.{field}"),
+                    value: value.to_string(),
+                    reason,
+                });
+            }
+        }
         if self.sim.encoders.ticks_per_rev == 0 {
             return Err(invalid(
                 path,
@@ -411,10 +424,10 @@ impl Config {
     }
 }
 
-fn invalid(path: &Path, field: &'static str, value: f64, reason: &'static str) -> ConfigError {
+fn invalid(path: &Path, field: &str, value: f64, reason: &'static str) -> ConfigError {
     ConfigError::Invalid {
         path: path.to_path_buf(),
-        field,
+        field: field.to_string(),
         value: value.to_string(),
         reason,
     }

@@ -8,6 +8,8 @@ use serde::Serialize;
 
 /// Seconds the runner lets pass after the last key, beyond the deadman, for the robot to settle.
 pub const SETTLE: f64 = 1.0;
+/// Simulated seconds the runner waits for a path to be followed to its end.
+pub const FOLLOW_TIMEOUT: f64 = 600.0;
 
 /// What a headless run ended with.
 #[derive(Clone, Debug, PartialEq, Serialize)]
@@ -34,6 +36,13 @@ pub struct Report {
     /// Mean normalised estimation error squared of the pose (3 degrees of freedom).
     pub mean_nees: Option<f64>,
     pub gripper: Option<String>,
+    /// Path following: the controller, whether the goal was reached, and the RMS
+    /// cross-track error of the estimated pose and (in the twin) of the true pose, metres.
+    pub controller: String,
+    pub arrived: bool,
+    pub path_length: Option<f64>,
+    pub cross_track_rms: Option<f64>,
+    pub true_cross_track_rms: Option<f64>,
     pub quit: bool,
     /// Warnings and errors the session logged, in order.
     pub warnings: Vec<String>,
@@ -42,8 +51,8 @@ pub struct Report {
     pub realtime_factor: Option<f64>,
 }
 
-/// Presses `keys` through the active keymap at `rate` keys per simulated second, lets the
-/// robot come to rest, and reports.
+/// Presses `keys` through the active keymap at `rate` keys per simulated second, waits
+/// (up to `FOLLOW_TIMEOUT`) while the robot follows a path, lets it come to rest, and reports.
 pub fn run(app: &mut App, keys: &[Key], rate: f64) -> Report {
     let gap = 1.0 / rate;
     let start = app.now();
@@ -57,8 +66,13 @@ pub fn run(app: &mut App, keys: &[Key], rate: f64) -> Report {
         t += gap;
     }
     if !app.should_quit() {
-        let end = t + app.config().teleop.deadman_timeout + SETTLE;
         let period = app.config().robot.control_period;
+        let give_up = t + FOLLOW_TIMEOUT;
+        while app.is_busy() && t < give_up {
+            t += period;
+            app.update(t);
+        }
+        let end = t + app.config().teleop.deadman_timeout + SETTLE;
         while t < end {
             t = (t + period).min(end);
             app.update(t);
@@ -87,6 +101,11 @@ pub fn report(app: &App, keys: usize) -> Report {
         heading_rmse_deg: twin.map(|_| app.accuracy().heading_rmse().to_degrees()),
         mean_nees: twin.map(|_| app.accuracy().mean_nees()),
         gripper: app.gripper().map(|g| g.label().to_string()),
+        controller: app.follower().controller().name().to_string(),
+        arrived: app.arrived(),
+        path_length: app.route().map(|r| r.plan.length),
+        cross_track_rms: app.follower().cross_track_rms(),
+        true_cross_track_rms: app.true_cross_track_rms(),
         quit: app.should_quit(),
         warnings: app
             .log_book()
@@ -134,6 +153,17 @@ pub fn human(report: &Report) -> String {
         report.mean_nees,
     ) {
         out += &format!("error vs truth  RMSE {p:.3} m, {h:.2} deg; mean NEES {n:.2}\n");
+    }
+    if let Some(length) = report.path_length {
+        let arrived = if report.arrived { "arrived" } else { "not arrived" };
+        out += &format!("path            {length:.2} m, {arrived}, {} controller\n", report.controller);
+    }
+    if let Some(x) = report.cross_track_rms {
+        out += &format!("cross-track     RMS {:.1} cm", x * 100.0);
+        if let Some(t) = report.true_cross_track_rms {
+            out += &format!(" (true pose {:.1} cm)", t * 100.0);
+        }
+        out += "\n";
     }
     if let (Some(w), Some(f)) = (report.wall_time_s, report.realtime_factor) {
         out += &format!("wall time       {w:.3} s ({f:.0}x real time)\n");

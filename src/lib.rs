@@ -10,6 +10,7 @@ pub mod link;
 pub mod map;
 pub mod perception;
 pub mod plan;
+pub mod plan_report;
 pub mod session;
 pub mod sim;
 pub mod slam;

@@ -2,7 +2,12 @@
 
 use anyhow::{Context, Result, bail};
 use clap::Parser;
+use navdeck::config::Config;
+use navdeck::geometry::Point2;
 use navdeck::headless;
+use navdeck::map::nav2;
+use navdeck::plan_report::{self, Terrain};
+use navdeck::sim::World;
 use navdeck::keymap::parse_key_sequence;
 use navdeck::session::{LinkChoice, Session, SessionSpec};
 use navdeck::tui::events::{TerminalEvents, WallClock};
@@ -60,6 +65,51 @@ struct Cli {
     /// Headless: print the report as one JSON object.
     #[arg(long, requires = "headless")]
     json: bool,
+
+    #[command(subcommand)]
+    command: Option<Subcommand>,
+}
+
+#[derive(Debug, clap::Subcommand)]
+enum Subcommand {
+    /// Plan one path (A*, shortcutting, smoothing, velocity profile) and print it.
+    Plan(PlanArgs),
+}
+
+#[derive(Debug, clap::Args)]
+struct PlanArgs {
+    /// Plan on a twin world file (TOML); default: the built-in arena.
+    #[arg(long, value_name = "FILE", conflicts_with = "map")]
+    world: Option<PathBuf>,
+    /// Plan on a Nav2 map_server map (YAML naming a PGM).
+    #[arg(long, value_name = "FILE")]
+    map: Option<PathBuf>,
+    /// Start, metres in the map frame: X,Y
+    #[arg(long, value_name = "X,Y", value_parser = parse_point, allow_hyphen_values = true)]
+    from: Point2,
+    /// Goal, metres in the map frame: X,Y
+    #[arg(long, value_name = "X,Y", value_parser = parse_point, allow_hyphen_values = true)]
+    to: Point2,
+    /// Planning parameters ([plan] and [map] sections).
+    #[arg(long, value_name = "FILE")]
+    config: Option<PathBuf>,
+    /// Print the path, its length and cost and the planning time as one JSON object.
+    #[arg(long)]
+    json: bool,
+}
+
+fn parse_point(s: &str) -> Result<Point2, String> {
+    let parts: Vec<&str> = s.split(',').map(str::trim).collect();
+    let [x, y] = parts.as_slice() else {
+        return Err(format!("`{s}` is not X,Y"));
+    };
+    let number = |v: &str| {
+        v.parse::<f64>()
+            .ok()
+            .filter(|n| n.is_finite())
+            .ok_or_else(|| format!("`{v}` in `{s}` is not a number of metres"))
+    };
+    Ok(Point2::new(number(x)?, number(y)?))
 }
 
 fn main() -> ExitCode {
@@ -74,6 +124,9 @@ fn main() -> ExitCode {
 }
 
 fn real_main(cli: Cli) -> Result<ExitCode> {
+    if let Some(Subcommand::Plan(args)) = &cli.command {
+        return run_plan(args);
+    }
     let spec = SessionSpec {
         world: cli.world.clone(),
         seed: cli.seed,
@@ -97,6 +150,7 @@ fn run_headless(session: Session, cli: &Cli) -> Result<ExitCode> {
         parse_key_sequence(cli.keys.as_deref().unwrap_or("")).context("cannot read --keys")?;
     let mut app = session.into_app(0.0);
     let started = Instant::now();
+    app.set_stopwatch(Box::new(move || started.elapsed().as_secs_f64()));
     let mut report = headless::run(&mut app, &keys, cli.key_rate);
     let wall = started.elapsed().as_secs_f64();
     report.wall_time_s = Some(wall);
@@ -109,11 +163,45 @@ fn run_headless(session: Session, cli: &Cli) -> Result<ExitCode> {
     Ok(ExitCode::SUCCESS)
 }
 
+fn run_plan(args: &PlanArgs) -> Result<ExitCode> {
+    let config = match &args.config {
+        Some(path) => Config::load(path)?,
+        None => Config::default(),
+    };
+    let terrain = match (&args.map, &args.world) {
+        (Some(map), _) => Terrain::Map(nav2::load(map)?),
+        (None, Some(world)) => Terrain::World(
+            World::load(world).with_context(|| format!("cannot use world {}", world.display()))?,
+        ),
+        (None, None) => Terrain::World(World::default_arena()),
+    };
+    let map = plan_report::survey(&terrain, &config.map);
+    let started = Instant::now();
+    let result = plan_report::plan(&map, args.from, args.to, &config);
+    let took = started.elapsed().as_secs_f64() * 1e3;
+    let mut report = match result {
+        Ok(report) => report,
+        Err(e) => {
+            eprintln!("navdeck plan: no path: {e}");
+            return Ok(ExitCode::from(1));
+        }
+    };
+    report.planning_time_ms = Some(took);
+    if args.json {
+        println!("{}", serde_json::to_string(&report)?);
+    } else {
+        print!("{}", plan_report::human(&report));
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
 fn run_console(session: Session, cli: &Cli) -> Result<ExitCode> {
     let signal = watch_signals().context("cannot watch signals")?;
     let theme = Theme::from_env(std::env::var_os("NO_COLOR"));
     let clock = WallClock::start();
     let mut app = session.into_app(0.0);
+    let epoch = Instant::now();
+    app.set_stopwatch(Box::new(move || epoch.elapsed().as_secs_f64()));
     if cli.braille {
         app.apply(navdeck::app::action::Action::ToggleBraille);
     }

@@ -42,13 +42,22 @@ pub enum Action {
     ToggleBraille,
     ToggleTruth,
     ToggleLandmarks,
+    // Planning and following.
+    CursorLeft,
+    CursorRight,
+    CursorUp,
+    CursorDown,
+    PlanToCursor,
+    CommandLine,
+    ClearRoute,
+    NextController,
     /// Unbinds a key that a lower layer of the keymap bound.
     Unbound,
 }
 
 impl Action {
     /// Every action, in the order the help overlay lists them.
-    pub const ALL: [Action; 37] = [
+    pub const ALL: [Action; 45] = [
         Action::ModeManual,
         Action::ModeExplore,
         Action::ModeThink,
@@ -85,6 +94,14 @@ impl Action {
         Action::ToggleBraille,
         Action::ToggleTruth,
         Action::ToggleLandmarks,
+        Action::CursorLeft,
+        Action::CursorRight,
+        Action::CursorUp,
+        Action::CursorDown,
+        Action::PlanToCursor,
+        Action::CommandLine,
+        Action::ClearRoute,
+        Action::NextController,
         Action::Unbound,
     ];
 
@@ -127,6 +144,14 @@ impl Action {
             Action::ToggleBraille => "toggle_braille",
             Action::ToggleTruth => "toggle_truth",
             Action::ToggleLandmarks => "toggle_landmarks",
+            Action::CursorLeft => "cursor_left",
+            Action::CursorRight => "cursor_right",
+            Action::CursorUp => "cursor_up",
+            Action::CursorDown => "cursor_down",
+            Action::PlanToCursor => "plan_to_cursor",
+            Action::CommandLine => "command_line",
+            Action::ClearRoute => "clear_route",
+            Action::NextController => "next_controller",
             Action::Unbound => "none",
         }
     }
@@ -175,6 +200,14 @@ impl Action {
             Action::ToggleBraille => "braille / ASCII map",
             Action::ToggleTruth => "show the twin's truth",
             Action::ToggleLandmarks => "landmark table on/off",
+            Action::CursorLeft => "goal cursor left",
+            Action::CursorRight => "goal cursor right",
+            Action::CursorUp => "goal cursor up",
+            Action::CursorDown => "goal cursor down",
+            Action::PlanToCursor => "plan a path to the cursor",
+            Action::CommandLine => "command (:goto x y …)",
+            Action::ClearRoute => "forget the planned path",
+            Action::NextController => "next path controller",
             Action::Unbound => "(unbound)",
         }
     }

@@ -1,6 +1,7 @@
 //! The control loop: sense, decide, act at the robot's control period (seed 001: 0.1 s).
 
 use super::log::Level;
+use super::mode::Mode;
 use super::{App, LinkStatus};
 use crate::geometry::Twist;
 use crate::link::{Command, WheelTravel};
@@ -95,6 +96,7 @@ impl App {
                 }
                 self.clock.last_update = due;
                 self.measure();
+                self.map_footprint();
                 self.sample_accuracy();
                 self.check_race_uncertainty();
             }
@@ -133,6 +135,10 @@ impl App {
                 if let Some(s) = frame.sightings {
                     self.estimate_sightings(&s);
                     self.note_sightings(t, &s);
+                    self.map_sightings(&s);
+                }
+                if let Some(scan) = &frame.scan {
+                    self.map_scan(scan);
                 }
                 self.note_collisions(t);
                 if let Some(g) = frame.gripper {
@@ -202,10 +208,14 @@ impl App {
         // so its deadline moves on and the loop in `advance_to` always progresses.
         let keys = self.teleop.twist(t, self.brake_margin());
         let in_doubt = self.estop || self.quit || self.link_status != LinkStatus::Ok;
-        if in_doubt || !self.mode.drives_by_keys() {
+        if in_doubt {
             return Twist::ZERO;
         }
-        keys
+        match self.mode {
+            Mode::PathFollowing => self.follow(t),
+            m if m.drives_by_keys() => keys,
+            _ => Twist::ZERO,
+        }
     }
 
     /// Seconds the robot needs to brake from the current command at its acceleration limits.

@@ -4,9 +4,12 @@
 //! the headless runner and the tests pass simulated time.
 
 pub mod action;
+mod command;
 mod control;
 pub mod estimate;
 pub mod log;
+mod mapping;
+pub mod navigation;
 pub mod mode;
 mod revision;
 pub mod screen;
@@ -15,8 +18,9 @@ pub mod view;
 
 use crate::config::Config;
 use crate::geometry::{Point2, Pose2, Twist};
-use crate::keymap::{Key, Keymap};
+use crate::keymap::{Key, KeyCode, Keymap};
 use crate::link::{GripperCommand, GripperState, MarkerSighting, RobotLink};
+use crate::map::belief::BeliefMap;
 use crate::map::grid::OccupancyGrid;
 use crate::slam::ekf::EkfSlam;
 use crate::slam::odometry::Odometry;
@@ -79,6 +83,15 @@ pub struct App {
     link_status: LinkStatus,
     collisions_logged: u32,
     world_grid: Option<OccupancyGrid>,
+    /// The planning map the robot builds from what it senses.
+    belief: BeliefMap,
+    last_footprint: Option<Point2>,
+    planner: crate::plan::pipeline::Planner,
+    follower: crate::control::follower::Follower,
+    nav: navigation::Navigation,
+    /// A monotonic clock in seconds, installed by the runner, to time planning; the
+    /// console itself never reads a clock.
+    stopwatch: Option<Box<dyn Fn() -> f64 + Send>>,
     revision: u64,
     visible: Option<revision::Visible>,
 }
@@ -88,6 +101,7 @@ impl App {
     pub fn new(config: Config, keymap: Keymap, link: Box<dyn RobotLink>, now: f64) -> Self {
         let start = link.twin().map_or(Pose2::default(), |t| t.pose());
         let world_grid = link.twin().map(|t| t.world().rasterize(WORLD_RASTER));
+        let belief = mapping::belief_map_for(&config, link.as_ref());
         let teleop = Teleop::new(
             &config.teleop,
             config.teleop.max_linear.min(config.robot.max_linear),
@@ -120,10 +134,21 @@ impl App {
             link_status: LinkStatus::Ok,
             collisions_logged: 0,
             world_grid,
+            belief,
+            last_footprint: None,
+            planner: crate::plan::pipeline::Planner::new(),
+            follower: crate::control::follower::Follower::new(
+                config.follow.clone(),
+                config.plan.max_speed.min(config.robot.max_linear),
+                config.robot.max_angular,
+            ),
+            nav: navigation::Navigation::default(),
+            stopwatch: None,
             revision: 0,
             visible: None,
             config,
         };
+        app.map_footprint();
         let label = app.link.label();
         app.log(
             Level::Info,
@@ -147,7 +172,19 @@ impl App {
             // Only terminals speaking the kitty protocol send releases.
             self.teleop.set_release_events(true);
         }
-        let Some(action) = self.keymap.lookup(self.mode, key) else {
+        if self.nav.prompt.is_some() {
+            if kind != KeyKind::Release {
+                self.edit_prompt(key);
+            }
+            return;
+        }
+        let action = self.keymap.lookup(self.mode, key).or_else(|| {
+            // In the autonomous modes the manual drive keys take control back.
+            self.keymap
+                .lookup(Mode::Manual, key)
+                .filter(|a| a.motion().is_some() && !self.mode.drives_by_keys())
+        });
+        let Some(action) = action else {
             if kind == KeyKind::Press && self.view.help {
                 // Any unbound key closes the help overlay.
                 self.view.help = false;
@@ -176,18 +213,41 @@ impl App {
         self.teleop.set_release_events(on);
     }
 
+    /// Keys typed after `:`: enter runs the command, esc (or backspace on empty) cancels.
+    fn edit_prompt(&mut self, key: Key) {
+        let Some(text) = self.nav.prompt.as_mut() else {
+            return;
+        };
+        match key.code {
+            KeyCode::Enter => {
+                let line = self.nav.prompt.take().unwrap_or_default();
+                self.run_command(line.trim());
+            }
+            KeyCode::Esc => self.nav.prompt = None,
+            KeyCode::Backspace => {
+                if text.pop().is_none() {
+                    self.nav.prompt = None;
+                }
+            }
+            KeyCode::Char(c) if !key.ctrl && !key.alt => text.push(c),
+            KeyCode::Char('c') if key.ctrl => self.nav.prompt = None,
+            _ => {}
+        }
+        self.refresh_revision();
+    }
+
     fn drive_key(&mut self, action: Action, repeat: bool) {
         if !self.mode.drives_by_keys() {
-            if !repeat {
-                self.log(
-                    Level::Warn,
-                    format!(
-                        "{} ignored: driving keys work in manual mode (m)",
-                        action.name()
-                    ),
-                );
-            }
-            return;
+            // A drive key in an autonomous mode takes control back at once.
+            self.log(
+                Level::Warn,
+                format!(
+                    "{} key: manual control taken back from {} mode",
+                    action.name(),
+                    self.mode.label().to_lowercase()
+                ),
+            );
+            self.set_mode(Mode::Manual);
         }
         if self.estop {
             self.estop = false;
@@ -269,6 +329,25 @@ impl App {
             | Action::ForwardRight
             | Action::BackwardLeft
             | Action::BackwardRight => self.drive_key(action, false),
+            Action::CursorLeft => self.move_cursor(-1.0, 0.0),
+            Action::CursorRight => self.move_cursor(1.0, 0.0),
+            Action::CursorUp => self.move_cursor(0.0, 1.0),
+            Action::CursorDown => self.move_cursor(0.0, -1.0),
+            Action::PlanToCursor => self.plan_to_cursor(),
+            Action::CommandLine => self.nav.prompt = Some(String::new()),
+            Action::ClearRoute => {
+                self.drop_route();
+                self.control_step(self.now);
+                self.log(Level::Info, "path cleared");
+            }
+            Action::NextController => {
+                let all = crate::control::config::ControllerKind::ALL;
+                let k = all
+                    .iter()
+                    .position(|&k| k == self.follower.controller())
+                    .unwrap_or(0);
+                self.set_controller(all[(k + 1) % all.len()]);
+            }
             Action::Unbound => {}
         }
     }
@@ -281,13 +360,29 @@ impl App {
             );
             return;
         }
-        if mode != self.mode {
-            self.teleop.clear();
-            self.set_speed_limits(mode);
-            self.mode = mode;
-            self.control_step(self.now);
-            self.log(Level::Info, format!("mode {}", mode.label()));
+        if mode == self.mode {
+            return;
         }
+        if mode == Mode::PathFollowing && !self.start_following() {
+            return;
+        }
+        self.teleop.clear();
+        self.set_speed_limits(mode);
+        if self.mode == Mode::PathFollowing {
+            // Leaving path following stops it at once.
+            self.follower.clear_trajectory();
+            self.nav.following = None;
+            self.nav.last_step = None;
+        }
+        self.nav.cursor = (mode == Mode::Thinking).then(|| {
+            self.nav
+                .route
+                .as_ref()
+                .map_or(self.ekf.pose().position(), |r| r.goal)
+        });
+        self.mode = mode;
+        self.control_step(self.now);
+        self.log(Level::Info, format!("mode {}", mode.label()));
     }
 
     /// Race mode drives up to the robot's limits; manual stays within teleop's.
@@ -322,12 +417,21 @@ impl App {
         if self.mode != Mode::Manual {
             self.set_speed_limits(Mode::Manual);
             self.mode = Mode::Manual;
+            self.follower.clear_trajectory();
+            self.nav.following = None;
+            self.nav.last_step = None;
+            self.nav.cursor = None;
         }
         self.control_step(self.now);
         self.log(
             Level::Error,
             "EMERGENCY STOP: robot halted; drive keys release it",
         );
+    }
+
+    /// Installs the clock that times planning (seconds, monotonic).
+    pub fn set_stopwatch(&mut self, stopwatch: Box<dyn Fn() -> f64 + Send>) {
+        self.stopwatch = Some(stopwatch);
     }
 
     /// Commands the robot to stop and logs why; used on quit, signals and lost input.

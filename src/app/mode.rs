@@ -56,6 +56,9 @@ impl Mode {
 
     /// Whether this build can run the mode; the others log that they are not built yet.
     pub fn is_built(self) -> bool {
-        matches!(self, Mode::Manual | Mode::Race)
+        matches!(
+            self,
+            Mode::Manual | Mode::Race | Mode::Thinking | Mode::PathFollowing
+        )
     }
 }

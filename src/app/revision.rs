@@ -4,6 +4,7 @@
 use super::mode::Mode;
 use super::view::ViewState;
 use super::{App, LinkStatus};
+use crate::control::config::ControllerKind;
 use crate::link::GripperState;
 
 /// The rounded values the screen shows; a change means a redraw is due.
@@ -27,6 +28,13 @@ pub(super) struct Visible {
     collisions: u32,
     sightings: Vec<u32>,
     blocks: Vec<(i64, i64)>,
+    map: u64,
+    cursor: Option<(i64, i64)>,
+    prompt: Option<String>,
+    following: Option<(i64, i64, i64)>,
+    route: Option<(i64, String)>,
+    controller: ControllerKind,
+    arrived: bool,
 }
 
 fn centi(v: f64) -> i64 {
@@ -58,6 +66,23 @@ impl App {
             estop: self.estop,
             held: self.held_keys().len(),
             link: self.link_status.clone(),
+            map: self.belief.revision(),
+            cursor: self.nav.cursor.map(|c| (centi(c.x), centi(c.y))),
+            prompt: self.nav.prompt.clone(),
+            following: self.nav.following.map(|f| {
+                (
+                    centi(f.remaining),
+                    (f.eta * 10.0).round() as i64,
+                    (f.cross_track * 1000.0).round() as i64,
+                )
+            }),
+            route: self
+                .nav
+                .route
+                .as_ref()
+                .map(|r| (centi(r.plan.length), r.label.clone())),
+            controller: self.follower.controller(),
+            arrived: self.nav.arrived,
             view: self.view.clone(),
             screen: self.screen,
             collisions: twin.map_or(0, |t| t.collisions()),

@@ -73,6 +73,58 @@ impl Costmap {
     }
 }
 
+/// How a costmap cell looks on screen, least to most severe.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
+pub enum Shade {
+    Unknown,
+    Free,
+    /// Near something: the safety gradient.
+    Near,
+    Inflated,
+    Lethal,
+}
+
+impl Shade {
+    pub fn of(cost: u8) -> Self {
+        match cost {
+            NO_INFORMATION => Shade::Unknown,
+            FREE => Shade::Free,
+            c if c >= LETHAL => Shade::Lethal,
+            c if c >= INFLATED => Shade::Inflated,
+            _ => Shade::Near,
+        }
+    }
+}
+
+impl Costmap {
+    /// Inclusive column range overlapping [x0, x1), if any lies on the map.
+    pub fn columns_in(&self, x0: f64, x1: f64) -> Option<(usize, usize)> {
+        super::grid::index_range(self.origin.x, self.resolution, self.width, x0, x1)
+    }
+
+    /// Inclusive row range overlapping [y0, y1), if any lies on the map.
+    pub fn rows_in(&self, y0: f64, y1: f64) -> Option<(usize, usize)> {
+        super::grid::index_range(self.origin.y, self.resolution, self.height, y0, y1)
+    }
+
+    /// The most severe shade in the inclusive block `cols` x `rows`: one screen cell's look.
+    pub fn worst_in_cells(&self, (c0, c1): (usize, usize), (r0, r1): (usize, usize)) -> Shade {
+        let mut worst = Shade::Unknown;
+        for row in r0..=r1 {
+            for &c in &self.cost[row * self.width + c0..=row * self.width + c1] {
+                let shade = Shade::of(c);
+                if shade > worst {
+                    worst = shade;
+                    if worst == Shade::Lethal {
+                        return worst;
+                    }
+                }
+            }
+        }
+        worst
+    }
+}
+
 /// Whether a plan may never enter a cell of this cost.
 pub fn is_lethal(cost: u8) -> bool {
     (LETHAL..NO_INFORMATION).contains(&cost)

@@ -106,7 +106,7 @@ impl OccupancyGrid {
 }
 
 /// Cells of one axis (origin, cell size, count) overlapping [lo, hi), clamped to the grid.
-fn index_range(
+pub(crate) fn index_range(
     origin: f64,
     resolution: f64,
     count: usize,

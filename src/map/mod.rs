@@ -1,4 +1,11 @@
-//! Maps: occupancy grids, the planning costmap, and, later, their files.
+//! Maps: the planning costmap the robot builds from landmarks and scans, occupancy grids,
+//! and, later, their files.
 
+pub mod belief;
+pub mod config;
 pub mod costmap;
+pub mod evidence;
 pub mod grid;
+pub mod landmark_layer;
+pub mod nav2;
+pub mod stamp;

@@ -33,6 +33,16 @@ pub fn draw(frame: &mut Frame, app: &App, theme: Theme) {
     let inner = map_block.inner(map_rect);
     frame.render_widget(map_block, map_rect);
     map::render(app, theme, inner, frame.buffer_mut());
+    if let Some(text) = app.prompt()
+        && inner.height > 0
+    {
+        let bar = Rect::new(inner.x, inner.y + inner.height - 1, inner.width, 1);
+        frame.render_widget(Clear, bar);
+        frame.render_widget(
+            Paragraph::new(format!(":{text}█  (enter runs, esc cancels)")).style(theme.value()),
+            bar,
+        );
+    }
 
     let status_block = Block::bordered()
         .title(" Status ")

@@ -43,6 +43,22 @@ impl Theme {
     pub fn free(self) -> Style {
         self.fg(Color::DarkGray)
     }
+    /// Seed 001's 0.7 ring around obstacles.
+    pub fn inflated(self) -> Style {
+        self.fg(Color::DarkGray).add_modifier(Modifier::BOLD)
+    }
+    /// The planned path (seed 001's viewer draws it green).
+    pub fn path(self) -> Style {
+        self.fg(Color::LightGreen)
+    }
+    /// The goal cursor of thinking mode.
+    pub fn cursor(self) -> Style {
+        if self.color {
+            self.fg(Color::LightGreen).add_modifier(Modifier::BOLD | Modifier::REVERSED)
+        } else {
+            Style::new().add_modifier(Modifier::BOLD | Modifier::REVERSED)
+        }
+    }
     pub fn robot(self) -> Style {
         self.fg(Color::Cyan).add_modifier(Modifier::BOLD)
     }

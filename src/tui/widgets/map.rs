@@ -2,7 +2,8 @@
 
 use crate::app::App;
 use crate::geometry::{Point2, Pose2};
-use crate::map::grid::{FREE, OCCUPIED, OccupancyGrid};
+use crate::map::costmap::{Costmap, Shade};
+use crate::map::grid::{OCCUPIED, OccupancyGrid};
 use crate::perception::markers::MarkerCategory;
 use crate::tui::theme::{Theme, marker_glyph};
 use ratatui::buffer::Buffer;
@@ -45,7 +46,7 @@ impl Viewport {
     #[allow(clippy::type_complexity)]
     fn grid_spans(
         &self,
-        grid: &OccupancyGrid,
+        grid: &dyn CellRanges,
         per_col: u16,
         per_row: u16,
     ) -> (Vec<Option<(usize, usize)>>, Vec<Option<(usize, usize)>>) {
@@ -67,6 +68,30 @@ impl Viewport {
     }
 }
 
+/// Grids the viewport can cut into screen cells.
+trait CellRanges {
+    fn columns_in(&self, x0: f64, x1: f64) -> Option<(usize, usize)>;
+    fn rows_in(&self, y0: f64, y1: f64) -> Option<(usize, usize)>;
+}
+
+impl CellRanges for OccupancyGrid {
+    fn columns_in(&self, x0: f64, x1: f64) -> Option<(usize, usize)> {
+        OccupancyGrid::columns_in(self, x0, x1)
+    }
+    fn rows_in(&self, y0: f64, y1: f64) -> Option<(usize, usize)> {
+        OccupancyGrid::rows_in(self, y0, y1)
+    }
+}
+
+impl CellRanges for Costmap {
+    fn columns_in(&self, x0: f64, x1: f64) -> Option<(usize, usize)> {
+        Costmap::columns_in(self, x0, x1)
+    }
+    fn rows_in(&self, y0: f64, y1: f64) -> Option<(usize, usize)> {
+        Costmap::rows_in(self, y0, y1)
+    }
+}
+
 /// Draws the map into `area` of `buf`.
 pub fn render(app: &App, theme: Theme, area: Rect, buf: &mut Buffer) {
     if area.width == 0 || area.height == 0 {
@@ -74,16 +99,26 @@ pub fn render(app: &App, theme: Theme, area: Rect, buf: &mut Buffer) {
     }
     let scale = app.view().scale(app.fitted_scale());
     let vp = Viewport::new(area, app.map_center(), scale);
-    if let Some(grid) = app.world_grid() {
-        if app.view().braille {
-            draw_grid_braille(grid, &vp, theme, buf);
-        } else {
+    let costmap = app.belief().costmap();
+    if app.view().braille {
+        if app.view().show_truth
+            && let Some(grid) = app.world_grid()
+        {
+            draw_grid_braille(grid, &vp, theme.truth(), buf);
+        }
+        draw_costmap_braille(costmap, &vp, theme.occupied(), buf);
+    } else {
+        if app.view().show_truth
+            && let Some(grid) = app.world_grid()
+        {
             draw_grid_ascii(grid, &vp, theme, buf);
         }
+        draw_costmap_ascii(costmap, &vp, theme, buf);
     }
     if app.view().show_truth {
         draw_world_objects(app, &vp, theme, buf);
     }
+    super::path::render(app, &vp, theme, buf);
     super::beliefs::render(app, &vp, theme, buf);
     if app.view().show_truth
         && let Some(truth) = app.true_pose()
@@ -93,8 +128,9 @@ pub fn render(app: &App, theme: Theme, area: Rect, buf: &mut Buffer) {
     draw_robot(app.estimated_pose(), '@', &vp, theme.robot(), buf);
 }
 
+/// The twin's true walls, dimmed, under the robot's own map (`g`).
 fn draw_grid_ascii(grid: &OccupancyGrid, vp: &Viewport, theme: Theme, buf: &mut Buffer) {
-    let (occupied, free) = (theme.occupied(), theme.free());
+    let occupied = super::beliefs::truth_style(theme.occupied());
     let (cols, rows) = vp.grid_spans(grid, 1, 1);
     for (r, row_span) in rows.iter().enumerate() {
         let Some(row_span) = *row_span else { continue };
@@ -102,7 +138,6 @@ fn draw_grid_ascii(grid: &OccupancyGrid, vp: &Viewport, theme: Theme, buf: &mut 
             let Some(col_span) = *col_span else { continue };
             let (glyph, style) = match grid.max_in_cells(col_span, row_span) {
                 v if v >= OCCUPIED / 2 => ('#', occupied),
-                v if v >= FREE => ('.', free),
                 _ => continue,
             };
             buf[(vp.area.x + c as u16, vp.area.y + r as u16)]
@@ -114,15 +149,50 @@ fn draw_grid_ascii(grid: &OccupancyGrid, vp: &Viewport, theme: Theme, buf: &mut 
 
 /// Braille: each cell holds 2 x 4 dots, so the map gets twice the columns and four
 /// times the rows of the ASCII view (the technique termviz uses).
-fn draw_grid_braille(grid: &OccupancyGrid, vp: &Viewport, theme: Theme, buf: &mut Buffer) {
-    // Unicode braille: dot (column, row) -> bit, rows top to bottom.
-    const BITS: [[u32; 4]; 2] = [[0x01, 0x02, 0x04, 0x40], [0x08, 0x10, 0x20, 0x80]];
-    let style = theme.occupied();
+fn draw_grid_braille(grid: &OccupancyGrid, vp: &Viewport, style: Style, buf: &mut Buffer) {
     let (cols, rows) = vp.grid_spans(grid, 2, 4);
     let occupied = |c: usize, r: usize| match (cols[c], rows[r]) {
         (Some(cs), Some(rs)) => grid.max_in_cells(cs, rs) >= OCCUPIED / 2,
         _ => false,
     };
+    draw_braille_dots(occupied, vp, style, buf);
+}
+
+/// The robot's map as ASCII: '#' lethal, ':' seed 001's 0.7 ring, '.' known and passable.
+fn draw_costmap_ascii(map: &Costmap, vp: &Viewport, theme: Theme, buf: &mut Buffer) {
+    let (cols, rows) = vp.grid_spans(map, 1, 1);
+    for (r, row_span) in rows.iter().enumerate() {
+        let Some(row_span) = *row_span else { continue };
+        for (c, col_span) in cols.iter().enumerate() {
+            let Some(col_span) = *col_span else { continue };
+            let (glyph, style) = match map.worst_in_cells(col_span, row_span) {
+                Shade::Lethal => ('#', theme.occupied()),
+                Shade::Inflated => (':', theme.inflated()),
+                Shade::Near | Shade::Free => ('.', theme.free()),
+                Shade::Unknown => continue,
+            };
+            buf[(vp.area.x + c as u16, vp.area.y + r as u16)]
+                .set_char(glyph)
+                .set_style(style);
+        }
+    }
+}
+
+/// The robot's map as braille dots: lethal cells only.
+fn draw_costmap_braille(map: &Costmap, vp: &Viewport, style: Style, buf: &mut Buffer) {
+    let (cols, rows) = vp.grid_spans(map, 2, 4);
+    let lethal = |c: usize, r: usize| match (cols[c], rows[r]) {
+        (Some(cs), Some(rs)) => map.worst_in_cells(cs, rs) == Shade::Lethal,
+        _ => false,
+    };
+    draw_braille_dots(lethal, vp, style, buf);
+}
+
+/// Sets the braille dots where `on(sub_column, sub_row)`, over what is already drawn.
+fn draw_braille_dots(on: impl Fn(usize, usize) -> bool, vp: &Viewport, style: Style, buf: &mut Buffer) {
+    // Unicode braille: dot (column, row) -> bit, rows top to bottom.
+    const BITS: [[u32; 4]; 2] = [[0x01, 0x02, 0x04, 0x40], [0x08, 0x10, 0x20, 0x80]];
+    let occupied = on;
     for r in 0..usize::from(vp.area.height) {
         for c in 0..usize::from(vp.area.width) {
             let mut bits = 0;
@@ -133,12 +203,17 @@ fn draw_grid_braille(grid: &OccupancyGrid, vp: &Viewport, theme: Theme, buf: &mu
                     }
                 }
             }
-            if bits != 0
-                && let Some(ch) = char::from_u32(0x2800 + bits)
-            {
-                buf[(vp.area.x + c as u16, vp.area.y + r as u16)]
-                    .set_char(ch)
-                    .set_style(style);
+            if bits == 0 {
+                continue;
+            }
+            let cell = &mut buf[(vp.area.x + c as u16, vp.area.y + r as u16)];
+            // Merge with dots already there (the true walls under the robot's map).
+            let old = cell.symbol().chars().next().map_or(0, u32::from);
+            if (0x2800..=0x28ff).contains(&old) {
+                bits |= old - 0x2800;
+            }
+            if let Some(ch) = char::from_u32(0x2800 + bits) {
+                cell.set_char(ch).set_style(style);
             }
         }
     }

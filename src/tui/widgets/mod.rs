@@ -5,5 +5,6 @@ pub mod help;
 pub mod landmarks;
 pub mod log;
 pub mod map;
+pub mod path;
 pub mod status;
 pub mod title;

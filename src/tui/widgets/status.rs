@@ -36,11 +36,12 @@ pub fn lines(app: &App, theme: Theme) -> Vec<Line<'static>> {
     let (cmd, meas) = (app.commanded(), app.measured());
     let t = app.teleop();
     let (max_v, max_w) = t.limits();
-    let mut rows = vec![
-        row(theme, "Mode", app.mode().label().to_string()),
+    let mut rows = vec![row(theme, "Mode", app.mode().label().to_string())];
+    rows.extend(navigation_rows(app, theme));
+    rows.extend([
         row(theme, "Link", format!("{} {link}", app.link().label())),
         row(theme, "Pose", pose_text(app.estimated_pose())),
-    ];
+    ]);
     let (sx, sy, st) = app.pose_sigma();
     rows.push(row(
         theme,
@@ -123,6 +124,39 @@ pub fn lines(app: &App, theme: Theme) -> Vec<Line<'static>> {
         "Seen",
         dash_if_empty(&seen, format!("{}: {}", seen.len(), seen.join(" "))),
     ));
+    rows
+}
+
+/// The path and its progress, right under the mode: what an autonomous mode is doing.
+fn navigation_rows(app: &App, theme: Theme) -> Vec<Line<'static>> {
+    let mut rows = Vec::new();
+    let controller = app.follower().controller().label();
+    if let Some(f) = app.following() {
+        rows.push(row(
+            theme,
+            "Path",
+            format!("{:.2} m left, ETA {:.1} s", f.remaining, f.eta),
+        ));
+        rows.push(row(
+            theme,
+            "XTE",
+            format!("{:+.1} cm  {controller}", f.cross_track * 100.0),
+        ));
+    } else if let Some(route) = app.route() {
+        let state = if app.arrived() { "arrived at" } else { "to" };
+        rows.push(row(
+            theme,
+            "Path",
+            format!("{:.2} m {state} {}", route.plan.length, route.label),
+        ));
+    }
+    if let Some(c) = app.goal_cursor() {
+        rows.push(row(
+            theme,
+            "Cursor",
+            format!("{:6.2} {:6.2}  {controller}", c.x, c.y),
+        ));
+    }
     rows
 }
 

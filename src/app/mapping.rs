@@ -1,0 +1,57 @@
+//! Feeding the planning map: landmarks from the filter, camera sight lines, lidar scans
+//! and the robot's own footprint, all placed with the filter's pose.
+
+use super::App;
+use crate::config::Config;
+use crate::link::{LaserScan, MarkerSighting, RobotLink};
+use crate::map::belief::BeliefMap;
+
+/// The footprint is marked free again after the robot moved this far, metres.
+const FOOTPRINT_STEP: f64 = 0.02;
+/// Sight lines stop this short of the marker: the marker's own surface is not free.
+const SIGHT_LINE_MARGIN: f64 = 0.1;
+
+/// A map covering the config's extent, or the twin's world if that is larger.
+pub(super) fn belief_map_for(config: &Config, link: &dyn RobotLink) -> BeliefMap {
+    let m = &config.map;
+    let (w, h) = link
+        .twin()
+        .map_or((m.width, m.height), |t| (t.world().width, t.world().height));
+    BeliefMap::new(m, (m.width.max(w), m.height.max(h)))
+}
+
+impl App {
+
+    pub(super) fn map_sightings(&mut self, sightings: &[MarkerSighting]) {
+        let estimates: Vec<_> = self.ekf.landmarks().map(|l| (l.id, l.mean)).collect();
+        self.belief.update_landmarks(estimates.iter().copied());
+        let from = self.ekf.pose().position();
+        for s in sightings {
+            if let Some(&(_, at)) = estimates.iter().find(|(id, _)| *id == s.id) {
+                self.belief.observe_sight_line(from, at, SIGHT_LINE_MARGIN);
+            }
+        }
+    }
+
+    pub(super) fn map_scan(&mut self, scan: &LaserScan) {
+        self.belief.observe_scan(self.ekf.pose(), scan);
+    }
+
+    pub(super) fn map_footprint(&mut self) {
+        let here = self.ekf.pose().position();
+        if self
+            .last_footprint
+            .is_some_and(|p| p.distance(here) < FOOTPRINT_STEP)
+        {
+            return;
+        }
+        self.last_footprint = Some(here);
+        self.belief
+            .observe_footprint(here, self.config.robot.footprint_radius);
+    }
+
+    /// The robot's planning map.
+    pub fn belief(&self) -> &BeliefMap {
+        &self.belief
+    }
+}

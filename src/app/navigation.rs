@@ -1,0 +1,360 @@
+//! Thinking and path-following modes: the goal cursor, planning on the robot's map,
+//! following the planned path, replanning when it is blocked, and arrival.
+
+use super::App;
+use super::command::{self, Command};
+use super::log::Level;
+use super::mode::Mode;
+use crate::control::follower::FollowStatus;
+use crate::geometry::{Point2, Twist};
+use crate::map::costmap::{Costmap, INFLATED, is_lethal};
+use crate::perception::markers::MarkerCategory;
+use crate::plan::pipeline::Plan;
+
+/// At most one replan per this many seconds while a path stays blocked.
+const REPLAN_EVERY: f64 = 1.0;
+/// Seed 001 section 8: the robot approaches a block to 12 cm.
+const BLOCK_APPROACH: f64 = 0.12;
+
+/// A planned path and where it leads.
+#[derive(Clone, Debug)]
+pub struct Route {
+    pub goal: Point2,
+    /// How the user named the goal: "(1.20, -0.50)" or "marker 421".
+    pub label: String,
+    pub plan: Plan,
+}
+
+/// What the following is doing, for the status panel.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FollowView {
+    pub remaining: f64,
+    pub eta: f64,
+    pub cross_track: f64,
+}
+
+/// Navigation state the App keeps.
+#[derive(Debug, Default)]
+pub(super) struct Navigation {
+    pub route: Option<Route>,
+    pub cursor: Option<Point2>,
+    pub prompt: Option<String>,
+    pub following: Option<FollowView>,
+    pub arrived: bool,
+    /// The map revision the route was last checked against, and when it was last replanned.
+    pub checked_revision: u64,
+    pub last_replan: f64,
+    /// The last follower command and when it was computed.
+    pub last_step: Option<(f64, Twist)>,
+    /// Cross-track error of the twin's true pose: sum of squares and count.
+    pub true_squares: f64,
+    pub true_samples: usize,
+}
+
+impl App {
+    /// Plans from the robot's estimated position to `goal`; logs the outcome.
+    pub(super) fn plan_route(&mut self, goal: Point2, label: String) -> bool {
+        let start = self.ekf.pose().position();
+        let map = escape_map(self.belief.costmap(), start, self.config.map.lethal_radius);
+        let began = self.stopwatch.as_ref().map(|w| w());
+        let result = self.planner.plan(&map, start, goal, &self.config.plan);
+        let took = began.zip(self.stopwatch.as_ref().map(|w| w()));
+        match result {
+            Ok(plan) => {
+                let time = took.map_or(String::new(), |(a, b)| {
+                    format!(", planned in {:.1} ms", (b - a) * 1e3)
+                });
+                self.log(
+                    Level::Success,
+                    format!(
+                        "path to {label}: {:.2} m, cost {:.1}, {} waypoints{time}",
+                        plan.length,
+                        plan.cost,
+                        plan.waypoints.len()
+                    ),
+                );
+                if self.mode == Mode::PathFollowing {
+                    self.follower.set_trajectory(plan.trajectory.clone());
+                    self.nav.arrived = false;
+                }
+                self.nav.route = Some(Route { goal, label, plan });
+                self.nav.checked_revision = self.belief.revision();
+                true
+            }
+            Err(e) => {
+                self.log(Level::Error, format!("no path to {label}: {e}"));
+                self.drop_route();
+                false
+            }
+        }
+    }
+
+    /// Forgets the route; the robot stops if it was following it.
+    pub(super) fn drop_route(&mut self) {
+        self.nav.route = None;
+        self.nav.following = None;
+        self.nav.last_step = None;
+        self.follower.clear_trajectory();
+    }
+
+    pub(super) fn goto_marker(&mut self, id: u32) {
+        let Some(landmark) = self.ekf.landmark(id) else {
+            self.log(
+                Level::Error,
+                format!("no path to marker {id}: it is not on the map yet"),
+            );
+            return;
+        };
+        let approach = if matches!(
+            MarkerCategory::of(id),
+            MarkerCategory::RedBlock | MarkerCategory::BlueBlock
+        ) {
+            BLOCK_APPROACH
+        } else {
+            0.0
+        };
+        let from = self.ekf.pose().position();
+        let goal = approach_point(self.belief.costmap(), landmark.mean, from, approach);
+        self.plan_route(goal, format!("marker {id}"));
+    }
+
+    /// Starts following the route, planned afresh from where the robot is now.
+    pub(super) fn start_following(&mut self) -> bool {
+        let Some(route) = &self.nav.route else {
+            self.log(
+                Level::Warn,
+                "no path to follow: plan one in thinking mode (t) or with :goto",
+            );
+            return false;
+        };
+        let (goal, label) = (route.goal, route.label.clone());
+        self.nav.arrived = false;
+        self.nav.true_squares = 0.0;
+        self.nav.true_samples = 0;
+        if !self.plan_route(goal, label.clone()) {
+            return false;
+        }
+        if let Some(route) = &self.nav.route {
+            self.follower.set_trajectory(route.plan.trajectory.clone());
+        }
+        self.log(
+            Level::Info,
+            format!(
+                "following path to {label} with the {} controller",
+                self.follower.controller().label()
+            ),
+        );
+        true
+    }
+
+    /// The follower's command at `t`, replanning first if the map now blocks the path.
+    pub(super) fn follow(&mut self, t: f64) -> Twist {
+        let period = self.config.robot.control_period;
+        let dt = match self.nav.last_step {
+            Some((at, twist)) if t - at < 0.5 * period => return twist,
+            Some((at, _)) => t - at,
+            None => period,
+        };
+        self.replan_if_blocked(t);
+        let step = self.follower.step(self.ekf.pose(), dt);
+        self.nav.last_step = Some((t, step.twist));
+        match step.status {
+            FollowStatus::Following {
+                remaining,
+                eta,
+                cross_track,
+            } => {
+                self.nav.following = Some(FollowView {
+                    remaining,
+                    eta,
+                    cross_track,
+                });
+                self.sample_true_cross_track();
+            }
+            FollowStatus::Arrived => {
+                if !self.nav.arrived {
+                    self.nav.arrived = true;
+                    self.nav.following = None;
+                    let p = self.ekf.pose();
+                    let label = self.nav.route.as_ref().map_or(String::new(), |r| r.label.clone());
+                    self.log(
+                        Level::Success,
+                        format!("Destination arrived: {label} at ({:.2}, {:.2})", p.x, p.y),
+                    );
+                }
+            }
+            FollowStatus::NoTrajectory => self.nav.following = None,
+        }
+        step.twist
+    }
+
+    /// Seed 001 section 7 "Path Recalculation": replan when the map blocks the path ahead.
+    fn replan_if_blocked(&mut self, t: f64) {
+        let revision = self.belief.revision();
+        if revision == self.nav.checked_revision || t - self.nav.last_replan < REPLAN_EVERY {
+            return;
+        }
+        self.nav.checked_revision = revision;
+        let from = self.follower.progress().map_or(0, |p| p.index);
+        let Some(route) = &self.nav.route else { return };
+        let map = self.belief.costmap();
+        let blocked = route.plan.trajectory.points[from.min(route.plan.trajectory.points.len())..]
+            .iter()
+            .find(|p| is_lethal(map.at(p.position)))
+            .map(|p| p.position);
+        if let Some(at) = blocked {
+            self.nav.last_replan = t;
+            let (goal, label) = (route.goal, route.label.clone());
+            self.log(
+                Level::Warn,
+                format!("path blocked at ({:.2}, {:.2}): replanning", at.x, at.y),
+            );
+            if self.plan_route(goal, label) {
+                self.follower.set_trajectory(
+                    self.nav.route.as_ref().map(|r| r.plan.trajectory.clone()).unwrap_or_default(),
+                );
+            }
+        }
+    }
+
+    /// Cross-track error of the twin's true pose against the route, for the report.
+    fn sample_true_cross_track(&mut self) {
+        let (Some(truth), Some(route)) = (self.true_pose(), &self.nav.route) else {
+            return;
+        };
+        let d = distance_to_polyline(&route.plan.trajectory.points, truth.position());
+        self.nav.true_squares += d * d;
+        self.nav.true_samples += 1;
+    }
+
+    pub(super) fn move_cursor(&mut self, dx: f64, dy: f64) {
+        let scale = self.view.scale(self.fitted_scale());
+        let c = self
+            .nav
+            .cursor
+            .unwrap_or_else(|| self.ekf.pose().position());
+        // One screen cell: a row is twice as tall as a column is wide.
+        self.nav.cursor = Some(Point2::new(c.x + dx * scale, c.y + dy * 2.0 * scale));
+    }
+
+    pub(super) fn plan_to_cursor(&mut self) {
+        let goal = self
+            .nav
+            .cursor
+            .unwrap_or_else(|| self.ekf.pose().position());
+        self.plan_route(goal, format!("({:.2}, {:.2})", goal.x, goal.y));
+    }
+
+    /// Runs a command typed after `:`.
+    pub(super) fn run_command(&mut self, line: &str) {
+        match command::parse(line) {
+            Ok(Command::GotoPoint(p)) => {
+                self.nav.cursor = self.nav.cursor.map(|_| p);
+                self.plan_route(p, format!("({:.2}, {:.2})", p.x, p.y));
+            }
+            Ok(Command::GotoMarker(id)) => self.goto_marker(id),
+            Ok(Command::Controller(kind)) => self.set_controller(kind),
+            Ok(Command::Clear) => {
+                self.drop_route();
+                self.log(Level::Info, "path cleared");
+            }
+            Err(e) => self.log(Level::Error, format!(":{line}: {e}")),
+        }
+    }
+
+    pub(super) fn set_controller(&mut self, kind: crate::control::config::ControllerKind) {
+        self.follower.set_controller(kind);
+        self.nav.last_step = None;
+        self.log(Level::Info, format!("path controller: {}", kind.label()));
+    }
+
+    // ----- read-only views -----
+
+    /// The planned path, if any.
+    pub fn route(&self) -> Option<&Route> {
+        self.nav.route.as_ref()
+    }
+    /// Thinking mode's goal cursor.
+    pub fn goal_cursor(&self) -> Option<Point2> {
+        self.nav.cursor
+    }
+    /// The command being typed after `:`.
+    pub fn prompt(&self) -> Option<&str> {
+        self.nav.prompt.as_deref()
+    }
+    /// Progress along the path while following.
+    pub fn following(&self) -> Option<FollowView> {
+        self.nav.following
+    }
+    pub fn arrived(&self) -> bool {
+        self.nav.arrived
+    }
+    pub fn follower(&self) -> &crate::control::follower::Follower {
+        &self.follower
+    }
+    /// RMS cross-track error of the twin's true pose over the last following, metres.
+    pub fn true_cross_track_rms(&self) -> Option<f64> {
+        (self.nav.true_samples > 0)
+            .then(|| (self.nav.true_squares / self.nav.true_samples as f64).sqrt())
+    }
+    /// Whether the robot is busy on its own (following a path).
+    pub fn is_busy(&self) -> bool {
+        self.mode == Mode::PathFollowing && self.follower.trajectory().is_some() && !self.nav.arrived
+    }
+}
+
+/// A copy of the map in which the lethal ring around the robot's own position is made
+/// merely inflated, so a robot standing close to a wall can still plan its way out.
+fn escape_map(map: &Costmap, start: Point2, radius: f64) -> std::borrow::Cow<'_, Costmap> {
+    if !map.cell_of(start).is_some_and(|(x, y)| is_lethal(map.get(x, y))) {
+        return std::borrow::Cow::Borrowed(map);
+    }
+    let mut copy = map.clone();
+    let r = (radius / map.resolution).ceil() as i64;
+    if let Some((cx, cy)) = map.cell_of(start) {
+        for dy in -r..=r {
+            for dx in -r..=r {
+                let (x, y) = (cx as i64 + dx, cy as i64 + dy);
+                if dx * dx + dy * dy > r * r || x < 0 || y < 0 {
+                    continue;
+                }
+                let (x, y) = (x as usize, y as usize);
+                if x < map.width && y < map.height && is_lethal(map.get(x, y)) {
+                    copy.set(x, y, INFLATED + 29);
+                }
+            }
+        }
+    }
+    std::borrow::Cow::Owned(copy)
+}
+
+/// The first point from `marker` towards `robot`, at least `approach` away, that a plan may
+/// enter: where the robot goes to reach a landmark.
+fn approach_point(map: &Costmap, marker: Point2, robot: Point2, approach: f64) -> Point2 {
+    let d = marker.distance(robot);
+    if d < 1e-9 {
+        return marker;
+    }
+    let (ux, uy) = ((robot.x - marker.x) / d, (robot.y - marker.y) / d);
+    let mut s = approach;
+    while s < d {
+        let p = Point2::new(marker.x + ux * s, marker.y + uy * s);
+        if !is_lethal(map.at(p)) {
+            return p;
+        }
+        s += map.resolution;
+    }
+    robot
+}
+
+/// Distance from `p` to the polyline through the trajectory's samples.
+fn distance_to_polyline(points: &[crate::plan::trajectory::TrajectoryPoint], p: Point2) -> f64 {
+    match points {
+        [] => f64::INFINITY,
+        [only] => only.position.distance(p),
+        _ => points
+            .windows(2)
+            .map(|w| crate::geometry::Segment::new(w[0].position, w[1].position).distance_to(p))
+            .fold(f64::INFINITY, f64::min),
+    }
+}

@@ -1,0 +1,239 @@
+//! The robot's planning map: the landmark layer and the sensor layer combined into one
+//! costmap, updated cell by cell as landmarks move and scans arrive — never rebuilt.
+
+use super::config::MapConfig;
+use super::costmap::{Costmap, INFLATED, LETHAL, NO_INFORMATION};
+use super::evidence::{Evidence, line_cells};
+use super::landmark_layer::LandmarkLayer;
+use super::stamp::Stamp;
+use crate::geometry::{Point2, Pose2};
+use crate::link::LaserScan;
+use super::grid::{OCCUPIED, OccupancyGrid};
+
+/// What the robot believes about the space around it, as a costmap for the planner.
+#[derive(Clone, Debug)]
+pub struct BeliefMap {
+    config: MapConfig,
+    costmap: Costmap,
+    landmark_cost: Vec<u8>,
+    landmarks: LandmarkLayer,
+    evidence: Evidence,
+    revision: u64,
+    recomputed: u64,
+    touched: Vec<usize>,
+}
+
+impl BeliefMap {
+    /// An empty map of `extent` metres centred on the origin (seed 001: 4 m x 4 m).
+    pub fn new(config: &MapConfig, extent: (f64, f64)) -> Self {
+        let origin = Point2::new(-extent.0 / 2.0, -extent.1 / 2.0);
+        Self::covering(config, origin, extent)
+    }
+
+    /// An empty map of `extent` metres whose lower-left corner is `origin`.
+    pub fn covering(config: &MapConfig, origin: Point2, extent: (f64, f64)) -> Self {
+        let res = config.resolution;
+        let (w, h) = (
+            (extent.0 / res).round() as usize,
+            (extent.1 / res).round() as usize,
+        );
+        Self {
+            costmap: Costmap::new(w, h, res, origin, NO_INFORMATION),
+            landmark_cost: vec![0; w * h],
+            landmarks: LandmarkLayer::default(),
+            evidence: Evidence::new(
+                w,
+                h,
+                config.lethal_radius / res,
+                config.obstacle_inflation / res,
+            ),
+            revision: 0,
+            recomputed: 0,
+            touched: Vec::new(),
+            config: config.clone(),
+        }
+    }
+
+    pub fn costmap(&self) -> &Costmap {
+        &self.costmap
+    }
+
+    /// Grows whenever any cell's cost changed.
+    pub fn revision(&self) -> u64 {
+        self.revision
+    }
+
+    /// Cells recomputed so far: the work the incremental updates did.
+    pub fn recomputed_cells(&self) -> u64 {
+        self.recomputed
+    }
+
+    pub fn landmark_count(&self) -> usize {
+        self.landmarks.len()
+    }
+
+    /// Takes the filter's landmark means and recomputes the cells around those that moved.
+    pub fn update_landmarks(&mut self, estimates: impl IntoIterator<Item = (u32, Point2)>) {
+        let dirty = self
+            .landmarks
+            .update(estimates, &self.config, self.config.resolution);
+        for stamp in dirty {
+            self.restamp_area(&stamp);
+        }
+    }
+
+    fn restamp_area(&mut self, stamp: &Stamp) {
+        let (x0, y0, x1, y1) = stamp.bounds();
+        let map = &self.costmap;
+        let clamp = |v: f64, n: usize| (v.floor().max(0.0) as usize).min(n.saturating_sub(1));
+        let c0 = clamp((x0 - map.origin.x) / map.resolution, map.width);
+        let c1 = clamp((x1 - map.origin.x) / map.resolution, map.width);
+        let r0 = clamp((y0 - map.origin.y) / map.resolution, map.height);
+        let r1 = clamp((y1 - map.origin.y) / map.resolution, map.height);
+        let candidates: Vec<usize> = self
+            .landmarks
+            .stamps()
+            .iter()
+            .enumerate()
+            .filter(|(_, s)| overlaps(s.bounds(), (x0, y0, x1, y1)))
+            .map(|(i, _)| i)
+            .collect();
+        for cy in r0..=r1 {
+            for cx in c0..=c1 {
+                let p = self.costmap.center_of(cx, cy);
+                let i = self.costmap.index(cx, cy);
+                self.landmark_cost[i] = self.landmarks.cost_at(p, &candidates);
+                self.refresh(i);
+            }
+        }
+    }
+
+    /// Folds a lidar scan taken at `pose` into the sensor layer: the cells a beam crossed
+    /// are more likely free, the cell it ended in more likely occupied.
+    pub fn observe_scan(&mut self, pose: Pose2, scan: &LaserScan) {
+        for (k, &range) in scan.ranges.iter().enumerate() {
+            let range = f64::from(range);
+            if range.is_nan() || range < scan.range_min {
+                continue;
+            }
+            let hit = range <= scan.range_max;
+            let length = range.min(scan.range_max);
+            let angle = pose.theta + scan.angle_min + k as f64 * scan.angle_increment;
+            let end = Point2::new(
+                pose.x + length * angle.cos(),
+                pose.y + length * angle.sin(),
+            );
+            self.observe_ray(pose.position(), end, hit);
+        }
+    }
+
+    /// A camera saw a marker at `to`: the space up to `stop_short` before it is free.
+    pub fn observe_sight_line(&mut self, from: Point2, to: Point2, stop_short: f64) {
+        let d = from.distance(to);
+        if d <= stop_short {
+            return;
+        }
+        let k = (d - stop_short) / d;
+        let end = Point2::new(from.x + k * (to.x - from.x), from.y + k * (to.y - from.y));
+        self.observe_ray(from, end, false);
+    }
+
+    /// The robot stands here, so its footprint is free.
+    pub fn observe_footprint(&mut self, center: Point2, radius: f64) {
+        let Some((cx, cy)) = self.costmap.cell_of(center) else {
+            return;
+        };
+        let r = (radius / self.config.resolution).floor() as i64;
+        for dy in -r..=r {
+            for dx in -r..=r {
+                if dx * dx + dy * dy <= r * r {
+                    self.add_evidence(cx as i64 + dx, cy as i64 + dy, self.config.miss_log_odds);
+                }
+            }
+        }
+        self.flush();
+    }
+
+    /// Takes a whole occupancy grid as certain evidence: its occupied cells become
+    /// obstacles (inflated as lidar hits are), its free cells free, its unknown stays unknown.
+    pub fn absorb_grid(&mut self, grid: &OccupancyGrid) {
+        for cy in 0..self.costmap.height {
+            for cx in 0..self.costmap.width {
+                let value = grid.at(self.costmap.center_of(cx, cy));
+                let delta = if value >= OCCUPIED / 2 {
+                    f32::INFINITY
+                } else if value >= 0 {
+                    f32::NEG_INFINITY
+                } else {
+                    continue;
+                };
+                self.add_evidence(cx as i64, cy as i64, delta);
+            }
+            self.flush();
+        }
+    }
+
+    fn observe_ray(&mut self, from: Point2, to: Point2, hit: bool) {
+        let map = &self.costmap;
+        let cell = |p: Point2| {
+            (
+                ((p.x - map.origin.x) / map.resolution).floor() as i64,
+                ((p.y - map.origin.y) / map.resolution).floor() as i64,
+            )
+        };
+        let ((x0, y0), (x1, y1)) = (cell(from), cell(to));
+        let (miss, hit_odds) = (self.config.miss_log_odds, self.config.hit_log_odds);
+        let mut cells = Vec::new();
+        line_cells(x0, y0, x1, y1, |x, y| cells.push((x, y)));
+        let last = cells.len() - 1;
+        for (n, (x, y)) in cells.into_iter().enumerate() {
+            let delta = if n == last && hit { hit_odds } else { miss };
+            self.add_evidence(x, y, delta);
+        }
+        self.flush();
+    }
+
+    fn add_evidence(&mut self, x: i64, y: i64, delta: f32) {
+        let (w, h) = (self.costmap.width as i64, self.costmap.height as i64);
+        if x < 0 || y < 0 || x >= w || y >= h {
+            return;
+        }
+        self.evidence
+            .add(x as usize, y as usize, delta, &mut self.touched);
+    }
+
+    /// Recomputes the cells whose evidence changed.
+    fn flush(&mut self) {
+        let touched = std::mem::take(&mut self.touched);
+        for &i in &touched {
+            self.refresh(i);
+        }
+        self.touched = touched;
+        self.touched.clear();
+    }
+
+    /// The cell's cost: the worst of both layers; no information if neither knows it.
+    fn refresh(&mut self, i: usize) {
+        self.recomputed += 1;
+        let e = &self.evidence;
+        let sensed = if e.near_lethal[i] > 0 {
+            LETHAL
+        } else if e.near_inflated[i] > 0 {
+            INFLATED
+        } else {
+            0
+        };
+        let mut cost = self.landmark_cost[i].max(sensed);
+        if cost == 0 && !e.known(i) {
+            cost = NO_INFORMATION;
+        }
+        if self.costmap.cost[i] != cost {
+            self.costmap.cost[i] = cost;
+            self.revision += 1;
+        }
+    }
+}
+
+fn overlaps(a: (f64, f64, f64, f64), b: (f64, f64, f64, f64)) -> bool {
+    a.0 <= b.2 && b.0 <= a.2 && a.1 <= b.3 && b.1 <= a.3
+}

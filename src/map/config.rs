@@ -1,0 +1,89 @@
+//! How the planning map is built from landmarks and scans (seed 001 section 4).
+
+use serde::{Deserialize, Serialize};
+
+/// The `[map]` section of the config file.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct MapConfig {
+    /// Cell side, metres (seed 001: 0.01).
+    pub resolution: f64,
+    /// Extent centred on the origin, metres (seed 001: 4 x 4); a larger twin world wins.
+    pub width: f64,
+    pub height: f64,
+    /// Boundary, gate and obstacle markers: radius of the 0.7 region (seed 001: 0.30 m).
+    pub obstacle_inflation: f64,
+    /// Blocks: radius of the 0.7 region (seed 001: 0.25 m).
+    pub block_inflation: f64,
+    /// Around a wall or obstacle marker, the radius no plan may enter: the robot's
+    /// footprint plus the landmark's own uncertainty, metres.
+    pub lethal_radius: f64,
+    /// Around a block, the radius no plan may enter, metres.
+    pub block_lethal_radius: f64,
+    /// Beyond the 0.7 region the cost falls linearly to zero over this distance, metres.
+    pub gradient: f64,
+    /// Boundary markers with consecutive IDs closer than this are joined into a wall
+    /// (seed 001: boundary markers line the arena's perimeter), metres.
+    pub wall_join: f64,
+    /// Log-odds added by a lidar hit and by a beam passing through (Thrun et al.,
+    /// Probabilistic Robotics, table 9.1: l = log(p / (1 - p)), here p 0.7 and 0.4).
+    pub hit_log_odds: f32,
+    pub miss_log_odds: f32,
+}
+
+impl Default for MapConfig {
+    fn default() -> Self {
+        Self {
+            resolution: 0.01,
+            width: 4.0,
+            height: 4.0,
+            obstacle_inflation: 0.30,
+            block_inflation: 0.25,
+            lethal_radius: 0.15,
+            block_lethal_radius: 0.05,
+            gradient: 0.20,
+            wall_join: 0.75,
+            hit_log_odds: 0.85,
+            miss_log_odds: -0.4,
+        }
+    }
+}
+
+impl MapConfig {
+    /// The first field that is out of range: (name in the section, value, reason).
+    pub fn validate(&self) -> Result<(), (&'static str, f64, &'static str)> {
+        let positive = [
+            ("resolution", self.resolution),
+            ("width", self.width),
+            ("height", self.height),
+            ("obstacle_inflation", self.obstacle_inflation),
+            ("block_inflation", self.block_inflation),
+            ("hit_log_odds", f64::from(self.hit_log_odds)),
+        ];
+        for (field, value) in positive {
+            if !(value.is_finite() && value > 0.0) {
+                return Err((field, value, "must be a positive number"));
+            }
+        }
+        let non_negative = [
+            ("lethal_radius", self.lethal_radius),
+            ("block_lethal_radius", self.block_lethal_radius),
+            ("gradient", self.gradient),
+            ("wall_join", self.wall_join),
+        ];
+        for (field, value) in non_negative {
+            if !(value.is_finite() && value >= 0.0) {
+                return Err((field, value, "must be zero or more"));
+            }
+        }
+        let miss = f64::from(self.miss_log_odds);
+        if !(miss.is_finite() && miss < 0.0) {
+            return Err(("miss_log_odds", miss, "must be negative"));
+        }
+        let cells = (self.width / self.resolution) * (self.height / self.resolution);
+        if cells > 16.0e6 {
+            return Err(("resolution", self.resolution, "makes more than 16 million cells"));
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,159 @@
+//! The sensor layer: log-odds occupancy from lidar beams, camera sight lines and the
+//! robot's own footprint (Thrun et al., Probabilistic Robotics, section 9.2), and for
+//! every cell the number of occupied cells within the lethal and inflated radii.
+
+/// A cell becomes occupied at this log-odds (about two hits) and stays so down to
+/// `RELEASE`: the hysteresis keeps a noisy wall edge from flickering.
+const OCCUPY: f32 = 1.2;
+const RELEASE: f32 = 0.0;
+/// Clamping keeps a cell able to change its mind (Probabilistic Robotics, 9.2).
+const MIN_LOG_ODDS: f32 = -2.0;
+const MAX_LOG_ODDS: f32 = 3.5;
+
+/// Per-cell evidence on a `width` x `height` grid.
+#[derive(Clone, Debug)]
+pub struct Evidence {
+    width: usize,
+    height: usize,
+    log_odds: Vec<f32>,
+    occupied: Vec<bool>,
+    /// Occupied cells within the lethal radius of this cell, and within the inflated one.
+    pub near_lethal: Vec<u16>,
+    pub near_inflated: Vec<u16>,
+    /// Disc offsets (dx, dy, within lethal radius) of the inflated radius, computed once.
+    disc: Vec<(i32, i32, bool)>,
+}
+
+impl Evidence {
+    /// `lethal` and `inflated` are radii in cells.
+    pub fn new(width: usize, height: usize, lethal: f64, inflated: f64) -> Self {
+        let reach = inflated.max(lethal).ceil() as i32;
+        let mut disc = Vec::new();
+        for dy in -reach..=reach {
+            for dx in -reach..=reach {
+                let d = f64::from(dx).hypot(f64::from(dy));
+                if d <= inflated.max(lethal) {
+                    disc.push((dx, dy, d <= lethal));
+                }
+            }
+        }
+        let n = width * height;
+        Self {
+            width,
+            height,
+            log_odds: vec![0.0; n],
+            occupied: vec![false; n],
+            near_lethal: vec![0; n],
+            near_inflated: vec![0; n],
+            disc,
+        }
+    }
+
+    /// Whether anything has been observed at cell `i`.
+    pub fn known(&self, i: usize) -> bool {
+        self.log_odds[i] != 0.0
+    }
+
+    pub fn is_occupied(&self, i: usize) -> bool {
+        self.occupied[i]
+    }
+
+    /// Adds `delta` log-odds at cell (cx, cy); cells whose counts changed are pushed to
+    /// `touched` (the cell itself when only its knowledge changed).
+    pub fn add(&mut self, cx: usize, cy: usize, delta: f32, touched: &mut Vec<usize>) {
+        let i = cy * self.width + cx;
+        let before = self.log_odds[i];
+        // Log-odds update, l_t = l_{t-1} + l_obs (Probabilistic Robotics, table 9.1).
+        let after = (before + delta).clamp(MIN_LOG_ODDS, MAX_LOG_ODDS);
+        if after == before {
+            return;
+        }
+        self.log_odds[i] = after;
+        if before == 0.0 {
+            touched.push(i);
+        }
+        let was = self.occupied[i];
+        let now = if was { after > RELEASE } else { after >= OCCUPY };
+        if now != was {
+            self.occupied[i] = now;
+            self.stamp(cx, cy, now, touched);
+        }
+    }
+
+    /// Adds (or removes) one occupied cell's contribution to its neighbours' counts.
+    fn stamp(&mut self, cx: usize, cy: usize, add: bool, touched: &mut Vec<usize>) {
+        for k in 0..self.disc.len() {
+            let (dx, dy, lethal) = self.disc[k];
+            let (x, y) = (cx as i32 + dx, cy as i32 + dy);
+            if x < 0 || y < 0 || x >= self.width as i32 || y >= self.height as i32 {
+                continue;
+            }
+            let j = y as usize * self.width + x as usize;
+            let counts = if lethal {
+                &mut self.near_lethal
+            } else {
+                &mut self.near_inflated
+            };
+            counts[j] = if add {
+                counts[j].saturating_add(1)
+            } else {
+                counts[j].saturating_sub(1)
+            };
+            touched.push(j);
+        }
+    }
+}
+
+/// Cells from (x0, y0) to (x1, y1) inclusive, by Bresenham's line algorithm.
+pub fn line_cells(x0: i64, y0: i64, x1: i64, y1: i64, mut visit: impl FnMut(i64, i64)) {
+    let (dx, dy) = ((x1 - x0).abs(), -(y1 - y0).abs());
+    let (sx, sy) = (if x0 < x1 { 1 } else { -1 }, if y0 < y1 { 1 } else { -1 });
+    let (mut x, mut y, mut err) = (x0, y0, dx + dy);
+    loop {
+        visit(x, y);
+        if x == x1 && y == y1 {
+            return;
+        }
+        let e2 = 2 * err;
+        if e2 >= dy {
+            err += dy;
+            x += sx;
+        }
+        if e2 <= dx {
+            err += dx;
+            y += sy;
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn two_hits_occupy_and_inflate_a_cell_misses_clear_it() {
+        let mut e = Evidence::new(50, 50, 3.0, 6.0);
+        let mut touched = Vec::new();
+        e.add(25, 25, 0.85, &mut touched);
+        assert!(!e.is_occupied(25 * 50 + 25));
+        e.add(25, 25, 0.85, &mut touched);
+        assert!(e.is_occupied(25 * 50 + 25));
+        assert_eq!(e.near_lethal[25 * 50 + 28], 1);
+        assert_eq!(e.near_lethal[25 * 50 + 29], 0);
+        assert_eq!(e.near_inflated[25 * 50 + 30], 1);
+        for _ in 0..5 {
+            e.add(25, 25, -0.4, &mut touched);
+        }
+        assert!(!e.is_occupied(25 * 50 + 25));
+        assert_eq!(e.near_lethal[25 * 50 + 28], 0);
+    }
+
+    #[test]
+    fn bresenham_visits_both_ends_contiguously() {
+        let mut cells = Vec::new();
+        line_cells(0, 0, 5, -3, |x, y| cells.push((x, y)));
+        assert_eq!(cells.first(), Some(&(0, 0)));
+        assert_eq!(cells.last(), Some(&(5, -3)));
+        assert_eq!(cells.len(), 6);
+    }
+}

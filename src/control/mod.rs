@@ -1,1 +1,18 @@
 //! Path-following controllers: they turn a pose and a trajectory into a twist.
+//! The core never reads a clock or touches a terminal: poses and `dt` are passed in.
+
+pub mod config;
+pub mod controller;
+pub mod follower;
+pub mod hybrid;
+pub mod pid;
+pub mod pid_follower;
+pub mod pure_pursuit;
+#[cfg(test)]
+mod test_paths;
+pub mod tracking;
+
+pub use config::{ControllerKind, FollowConfig};
+pub use controller::{Limits, PathController};
+pub use follower::{FollowStatus, FollowStep, Follower};
+pub use tracking::{Progress, ProgressTracker};

@@ -3,7 +3,9 @@
 //! A config file names only what it changes; an unknown field or a bad value is refused
 //! with the file, line and field in the message.
 
+use crate::control::config::FollowConfig;
 use crate::map::config::MapConfig;
+use crate::plan::config::PlanConfig;
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 
@@ -36,6 +38,8 @@ pub struct Config {
     pub race: RaceConfig,
     pub sim: SimConfig,
     pub map: MapConfig,
+    pub plan: PlanConfig,
+    pub follow: FollowConfig,
 }
 
 /// Race mode (seed 001: "High-speed mode (reduced SLAM updates)").
@@ -401,7 +405,11 @@ impl Config {
         if self.sim.lidar.beams == 0 {
             return Err(invalid(path, "sim.lidar.beams", 0.0, "must be at least 1"));
         }
-        let sections = [("map", self.map.validate())];
+        let sections = [
+            ("map", self.map.validate()),
+            ("plan", self.plan.validate()),
+            ("follow", self.follow.validate()),
+        ];
         for (section, result) in sections {
             if let Err((field, value, reason)) = result {
                 return Err(ConfigError::Invalid {

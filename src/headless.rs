@@ -155,8 +155,15 @@ pub fn human(report: &Report) -> String {
         out += &format!("error vs truth  RMSE {p:.3} m, {h:.2} deg; mean NEES {n:.2}\n");
     }
     if let Some(length) = report.path_length {
-        let arrived = if report.arrived { "arrived" } else { "not arrived" };
-        out += &format!("path            {length:.2} m, {arrived}, {} controller\n", report.controller);
+        let arrived = if report.arrived {
+            "arrived"
+        } else {
+            "not arrived"
+        };
+        out += &format!(
+            "path            {length:.2} m, {arrived}, {} controller\n",
+            report.controller
+        );
     }
     if let Some(x) = report.cross_track_rms {
         out += &format!("cross-track     RMS {:.1} cm", x * 100.0);

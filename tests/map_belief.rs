@@ -41,7 +41,10 @@ fn a_moved_landmark_recomputes_only_its_neighbourhood() {
     m.update_landmarks(ids.clone());
     let (work, revision) = (m.recomputed_cells(), m.revision());
     // The filter nudges every landmark by less than a cell: nothing to do.
-    m.update_landmarks(ids.iter().map(|&(id, p)| (id, Point2::new(p.x + 0.003, p.y))));
+    m.update_landmarks(
+        ids.iter()
+            .map(|&(id, p)| (id, Point2::new(p.x + 0.003, p.y))),
+    );
     assert_eq!(m.recomputed_cells(), work);
     assert_eq!(m.revision(), revision);
     // One landmark moves 10 cm: only the discs around its old and new places are redone.

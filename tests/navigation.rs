@@ -3,7 +3,7 @@
 
 mod common;
 
-use common::{app_with, default_app, key, screen, run_script};
+use common::{app_with, default_app, key, run_script, screen};
 use navdeck::app::App;
 use navdeck::app::KeyKind;
 use navdeck::app::mode::Mode;
@@ -76,7 +76,11 @@ fn a_goal_inside_an_obstacle_is_refused_and_the_robot_does_not_move() {
     let mut app = default_app();
     let start = app.true_pose().unwrap();
     let report = play(&mut app, ":goto 1.97 -1.0<enter>p");
-    assert!(logged(&app, "no path to (1.97, -1.00): goal"), "{:?}", report.warnings);
+    assert!(
+        logged(&app, "no path to (1.97, -1.00): goal"),
+        "{:?}",
+        report.warnings
+    );
     assert!(logged(&app, "inside an obstacle"));
     assert!(logged(&app, "no path to follow"));
     assert_ne!(app.mode(), Mode::PathFollowing);
@@ -87,7 +91,10 @@ fn a_goal_inside_an_obstacle_is_refused_and_the_robot_does_not_move() {
 #[test]
 fn an_unknown_marker_or_a_bad_command_is_named_in_the_log() {
     let mut app = default_app();
-    play(&mut app, ":goto marker 999<enter>:fly 1 2<enter>:goto 1 north<enter>");
+    play(
+        &mut app,
+        ":goto marker 999<enter>:fly 1 2<enter>:goto 1 north<enter>",
+    );
     assert!(logged(&app, "marker 999: it is not on the map yet"));
     assert!(logged(&app, "unknown command `fly`"));
     assert!(logged(&app, "`north` is not a number"));
@@ -164,10 +171,7 @@ fn each_controller_reaches_the_goal_without_touching_anything() {
 
 #[test]
 fn the_screen_shows_the_path_goal_and_progress() {
-    let mut steps: Vec<Step> = ":goto 0.9 0.6"
-        .chars()
-        .map(common::press)
-        .collect();
+    let mut steps: Vec<Step> = ":goto 0.9 0.6".chars().map(common::press).collect();
     steps.push(Step::Event(navdeck::tui::events::Event::Key(
         key("enter"),
         KeyKind::Press,
@@ -179,7 +183,10 @@ fn the_screen_shows_the_path_goal_and_progress() {
     let text = screen(&out.terminal);
     assert!(text.contains('•'), "path drawn:\n{text}");
     assert!(text.contains('G'), "goal drawn:\n{text}");
-    assert!(text.contains("m left, ETA"), "progress in the status panel:\n{text}");
+    assert!(
+        text.contains("m left, ETA"),
+        "progress in the status panel:\n{text}"
+    );
     assert!(text.contains("XTE"), "cross-track error:\n{text}");
 }
 

@@ -21,7 +21,6 @@ pub(super) fn belief_map_for(config: &Config, link: &dyn RobotLink) -> BeliefMap
 }
 
 impl App {
-
     pub(super) fn map_sightings(&mut self, sightings: &[MarkerSighting]) {
         let estimates: Vec<_> = self.ekf.landmarks().map(|l| (l.id, l.mean)).collect();
         self.belief.update_landmarks(estimates.iter().copied());

@@ -176,7 +176,11 @@ impl App {
                     self.nav.arrived = true;
                     self.nav.following = None;
                     let p = self.ekf.pose();
-                    let label = self.nav.route.as_ref().map_or(String::new(), |r| r.label.clone());
+                    let label = self
+                        .nav
+                        .route
+                        .as_ref()
+                        .map_or(String::new(), |r| r.label.clone());
                     self.log(
                         Level::Success,
                         format!("Destination arrived: {label} at ({:.2}, {:.2})", p.x, p.y),
@@ -211,7 +215,11 @@ impl App {
             );
             if self.plan_route(goal, label) {
                 self.follower.set_trajectory(
-                    self.nav.route.as_ref().map(|r| r.plan.trajectory.clone()).unwrap_or_default(),
+                    self.nav
+                        .route
+                        .as_ref()
+                        .map(|r| r.plan.trajectory.clone())
+                        .unwrap_or_default(),
                 );
             }
         }
@@ -299,14 +307,19 @@ impl App {
     }
     /// Whether the robot is busy on its own (following a path).
     pub fn is_busy(&self) -> bool {
-        self.mode == Mode::PathFollowing && self.follower.trajectory().is_some() && !self.nav.arrived
+        self.mode == Mode::PathFollowing
+            && self.follower.trajectory().is_some()
+            && !self.nav.arrived
     }
 }
 
 /// A copy of the map in which the lethal ring around the robot's own position is made
 /// merely inflated, so a robot standing close to a wall can still plan its way out.
 fn escape_map(map: &Costmap, start: Point2, radius: f64) -> std::borrow::Cow<'_, Costmap> {
-    if !map.cell_of(start).is_some_and(|(x, y)| is_lethal(map.get(x, y))) {
+    if !map
+        .cell_of(start)
+        .is_some_and(|(x, y)| is_lethal(map.get(x, y)))
+    {
         return std::borrow::Cow::Borrowed(map);
     }
     let mut copy = map.clone();

@@ -4,11 +4,11 @@
 use super::config::MapConfig;
 use super::costmap::{Costmap, INFLATED, LETHAL, NO_INFORMATION};
 use super::evidence::{Evidence, line_cells};
+use super::grid::{OCCUPIED, OccupancyGrid};
 use super::landmark_layer::LandmarkLayer;
 use super::stamp::Stamp;
 use crate::geometry::{Point2, Pose2};
 use crate::link::LaserScan;
-use super::grid::{OCCUPIED, OccupancyGrid};
 
 /// What the robot believes about the space around it, as a costmap for the planner.
 #[derive(Clone, Debug)]
@@ -119,10 +119,7 @@ impl BeliefMap {
             let hit = range <= scan.range_max;
             let length = range.min(scan.range_max);
             let angle = pose.theta + scan.angle_min + k as f64 * scan.angle_increment;
-            let end = Point2::new(
-                pose.x + length * angle.cos(),
-                pose.y + length * angle.sin(),
-            );
+            let end = Point2::new(pose.x + length * angle.cos(), pose.y + length * angle.sin());
             self.observe_ray(pose.position(), end, hit);
         }
     }

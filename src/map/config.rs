@@ -82,7 +82,11 @@ impl MapConfig {
         }
         let cells = (self.width / self.resolution) * (self.height / self.resolution);
         if cells > 16.0e6 {
-            return Err(("resolution", self.resolution, "makes more than 16 million cells"));
+            return Err((
+                "resolution",
+                self.resolution,
+                "makes more than 16 million cells",
+            ));
         }
         Ok(())
     }

@@ -73,7 +73,11 @@ impl Evidence {
             touched.push(i);
         }
         let was = self.occupied[i];
-        let now = if was { after > RELEASE } else { after >= OCCUPY };
+        let now = if was {
+            after > RELEASE
+        } else {
+            after >= OCCUPY
+        };
         if now != was {
             self.occupied[i] = now;
             self.stamp(cx, cy, now, touched);

@@ -76,7 +76,11 @@ pub fn load(path: &Path) -> Result<OccupancyGrid, MapFileError> {
     for (px, py, pixel) in image.enumerate_pixels() {
         let p = f64::from(pixel.0[0]);
         // map_server trinary: occupancy = (255 - p) / 255, or p / 255 when negated.
-        let occupancy = if yaml.negate == 0 { (255.0 - p) / 255.0 } else { p / 255.0 };
+        let occupancy = if yaml.negate == 0 {
+            (255.0 - p) / 255.0
+        } else {
+            p / 255.0
+        };
         let value = if occupancy > yaml.occupied_thresh {
             OCCUPIED
         } else if occupancy < yaml.free_thresh {

@@ -54,7 +54,8 @@ impl Theme {
     /// The goal cursor of thinking mode.
     pub fn cursor(self) -> Style {
         if self.color {
-            self.fg(Color::LightGreen).add_modifier(Modifier::BOLD | Modifier::REVERSED)
+            self.fg(Color::LightGreen)
+                .add_modifier(Modifier::BOLD | Modifier::REVERSED)
         } else {
             Style::new().add_modifier(Modifier::BOLD | Modifier::REVERSED)
         }

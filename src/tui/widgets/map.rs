@@ -189,7 +189,12 @@ fn draw_costmap_braille(map: &Costmap, vp: &Viewport, style: Style, buf: &mut Bu
 }
 
 /// Sets the braille dots where `on(sub_column, sub_row)`, over what is already drawn.
-fn draw_braille_dots(on: impl Fn(usize, usize) -> bool, vp: &Viewport, style: Style, buf: &mut Buffer) {
+fn draw_braille_dots(
+    on: impl Fn(usize, usize) -> bool,
+    vp: &Viewport,
+    style: Style,
+    buf: &mut Buffer,
+) {
     // Unicode braille: dot (column, row) -> bit, rows top to bottom.
     const BITS: [[u32; 4]; 2] = [[0x01, 0x02, 0x04, 0x40], [0x08, 0x10, 0x20, 0x80]];
     let occupied = on;

@@ -69,7 +69,8 @@ impl Costmap {
 
     /// Cost at a world point; no information off the map.
     pub fn at(&self, p: Point2) -> u8 {
-        self.cell_of(p).map_or(NO_INFORMATION, |(cx, cy)| self.get(cx, cy))
+        self.cell_of(p)
+            .map_or(NO_INFORMATION, |(cx, cy)| self.get(cx, cy))
     }
 }
 

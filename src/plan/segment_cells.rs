@@ -104,7 +104,7 @@ mod tests {
 
     #[test]
     fn a_shallow_segment_touches_each_cell_it_crosses() {
-        let c = cells(Point2::new(0.5, 0.5), Point2::new(3.5, 1.5));
+        let c = cells(Point2::new(0.5, 0.5), Point2::new(3.5, 1.7));
         assert_eq!(c, vec![(0, 0), (1, 0), (1, 1), (2, 1), (3, 1)]);
     }
 

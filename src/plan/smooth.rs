@@ -41,10 +41,13 @@ pub fn smooth(points: &[Point2], control_spacing: f64, sample_spacing: f64) -> V
     if points.len() <= 2 {
         return linear(&points, sample_spacing);
     }
+    // A cubic needs four control points: split every segment in two if there are fewer.
+    let min_parts = if points.len() < 4 { 2 } else { 1 };
     let mut control = vec![[points[0].x, points[0].y]];
     for w in points.windows(2) {
-        // At least two parts per segment so every corner has a control point on each side.
-        let parts = ((w[0].distance(w[1]) / control_spacing).ceil() as usize).max(2);
+        // Segments shorter than the spacing stay whole: extra points on the chords of a finely
+        // sampled curve would make the control polygon, and so the curvature, wave.
+        let parts = ((w[0].distance(w[1]) / control_spacing).ceil() as usize).max(min_parts);
         for k in 1..=parts {
             let f = k as f64 / parts as f64;
             control.push([

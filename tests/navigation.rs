@@ -63,11 +63,16 @@ fn goto_then_p_follows_to_destination_arrived() {
 #[test]
 fn goto_marker_approaches_a_landmark_on_the_map() {
     let mut app = default_app();
-    // Marker 3 is on the south wall, ahead of the robot's start and seen at once.
-    let report = play(&mut app, ":goto marker 3<enter>p");
+    // Marker 311 is on the face of box 3 that looks at the robot's start: seen at once.
+    let report = play(&mut app, ":goto marker 311<enter>p");
     assert!(report.arrived, "warnings: {:?}", report.warnings);
+    let marker = app.slam().landmark(311).unwrap().mean;
     let p = report.true_pose.unwrap();
-    assert!(p.y > -1.9, "stayed off the wall: {p:?}");
+    let d = (p.x - marker.x).hypot(p.y - marker.y);
+    assert!(
+        (0.1..0.3).contains(&d),
+        "stopped {d:.2} m from the marker: {p:?}"
+    );
     assert_eq!(report.collisions, Some(0));
 }
 

@@ -90,3 +90,31 @@ fn race_mode_80x24() {
     steps.extend(hold('w', 1.0));
     insta::assert_snapshot!(snapshot_after(80, 24, steps));
 }
+
+fn typed(text: &str) -> Vec<Step> {
+    text.chars().map(press).collect()
+}
+
+fn enter() -> Step {
+    Step::Event(navdeck::tui::events::Event::Key(
+        "enter".parse().unwrap(),
+        navdeck::app::KeyKind::Press,
+    ))
+}
+
+#[test]
+fn thinking_mode_with_a_planned_path_100x30() {
+    let mut steps = vec![Step::Wait(1.0), press('t')];
+    steps.extend(typed("llllllllllllllllllllkkkkkkkk"));
+    steps.push(enter());
+    steps.push(Step::Wait(0.2));
+    insta::assert_snapshot!(snapshot_after(100, 30, steps));
+}
+
+#[test]
+fn following_a_path_100x30() {
+    let mut steps = typed(":goto 1.2 1.2");
+    steps.push(enter());
+    steps.extend([press('p'), Step::Wait(6.0)]);
+    insta::assert_snapshot!(snapshot_after(100, 30, steps));
+}

@@ -86,6 +86,8 @@ pub struct App {
     /// The planning map the robot builds from what it senses.
     belief: BeliefMap,
     last_footprint: Option<Point2>,
+    /// The map revision on screen and when it was drawn.
+    map_shown: (u64, f64),
     planner: crate::plan::pipeline::Planner,
     follower: crate::control::follower::Follower,
     nav: navigation::Navigation,
@@ -136,6 +138,7 @@ impl App {
             world_grid,
             belief,
             last_footprint: None,
+            map_shown: (0, f64::NEG_INFINITY),
             planner: crate::plan::pipeline::Planner::new(),
             follower: crate::control::follower::Follower::new(
                 config.follow.clone(),
@@ -224,11 +227,8 @@ impl App {
                 self.run_command(line.trim());
             }
             KeyCode::Esc => self.nav.prompt = None,
-            KeyCode::Backspace => {
-                if text.pop().is_none() {
-                    self.nav.prompt = None;
-                }
-            }
+            // Backspace deletes a character; on an empty line it closes the prompt, as in vim.
+            KeyCode::Backspace if text.pop().is_none() => self.nav.prompt = None,
             KeyCode::Char(c) if !key.ctrl && !key.alt => text.push(c),
             KeyCode::Char('c') if key.ctrl => self.nav.prompt = None,
             _ => {}

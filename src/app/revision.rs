@@ -42,7 +42,21 @@ fn centi(v: f64) -> i64 {
 }
 
 impl App {
+    /// The map revision the screen should show: the newest as of the current second. A scan
+    /// changes a few cells at a time, mostly finer than a screen cell shows, so the map
+    /// alone redraws only with the clock, once a second.
+    fn shown_map_revision(&mut self) -> u64 {
+        let (shown, at) = self.map_shown;
+        let newest = self.belief.revision();
+        if newest != shown && self.now.floor() > at.floor() {
+            self.map_shown = (newest, self.now);
+            return newest;
+        }
+        shown
+    }
+
     pub(super) fn refresh_revision(&mut self) {
+        let map = self.shown_map_revision();
         let pose = self.estimated_pose();
         let deg = |t: f64| t.to_degrees().round() as i64;
         let twin = self.link.twin();
@@ -66,7 +80,7 @@ impl App {
             estop: self.estop,
             held: self.held_keys().len(),
             link: self.link_status.clone(),
-            map: self.belief.revision(),
+            map,
             cursor: self.nav.cursor.map(|c| (centi(c.x), centi(c.y))),
             prompt: self.nav.prompt.clone(),
             following: self.nav.following.map(|f| {

@@ -12,7 +12,13 @@ const DOTS_PER_COLUMN: f64 = 2.0;
 
 pub fn render(app: &App, vp: &Viewport, theme: Theme, buf: &mut Buffer) {
     if let Some(route) = app.route() {
-        let points: Vec<Point2> = route.plan.trajectory.points.iter().map(|p| p.position).collect();
+        let points: Vec<Point2> = route
+            .plan
+            .trajectory
+            .points
+            .iter()
+            .map(|p| p.position)
+            .collect();
         draw_polyline(&points, vp, theme.path(), buf);
         put(buf, vp, route.goal, 'G', theme.path());
     }

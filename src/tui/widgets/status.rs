@@ -135,7 +135,7 @@ fn navigation_rows(app: &App, theme: Theme) -> Vec<Line<'static>> {
         rows.push(row(
             theme,
             "Path",
-            format!("{:.2} m left, ETA {:.1} s", f.remaining, f.eta),
+            format!("{:.2} m, {:.0} s left", f.remaining, f.eta),
         ));
         rows.push(row(
             theme,

@@ -43,5 +43,45 @@ fn corner_to_corner(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, corner_to_corner);
+/// The costmap navdeck builds of seed 001's arena once it has seen all of it: landmark
+/// rings, walls and boxes from the world; corner to corner round the three boxes.
+fn surveyed_arena(c: &mut Criterion) {
+    let config = navdeck::config::Config::default();
+    let terrain = navdeck::plan_report::Terrain::World(navdeck::sim::World::default_arena());
+    let belief = navdeck::plan_report::survey(&terrain, &config.map);
+    let map = belief.costmap();
+    let options = SearchOptions::default();
+    let start = map
+        .cell_of(navdeck::geometry::Point2::new(-1.6, -1.6))
+        .unwrap();
+    let goal = map
+        .cell_of(navdeck::geometry::Point2::new(1.6, 1.6))
+        .unwrap();
+    let mut astar = AStar::new();
+    let ours = astar.search(map, start, goal, &options).expect("a path");
+    let (_, theirs) = plan_support::pathfinding_astar(map, &options, start, goal).expect("a path");
+    assert_eq!(ours.cost, u64::from(theirs));
+    eprintln!(
+        "arena: {} cells, cost {:.3}, {} cells expanded",
+        ours.cells.len(),
+        ours.cost_cells(),
+        ours.expanded
+    );
+    let mut group = c.benchmark_group("astar_surveyed_arena");
+    group.bench_function("navdeck", |b| {
+        b.iter(|| {
+            astar
+                .search(black_box(map), start, goal, &options)
+                .map(|p| p.cost)
+        })
+    });
+    group.bench_function("pathfinding", |b| {
+        b.iter(|| {
+            plan_support::pathfinding_astar(black_box(map), &options, start, goal).map(|p| p.1)
+        })
+    });
+    group.finish();
+}
+
+criterion_group!(benches, corner_to_corner, surveyed_arena);
 criterion_main!(benches);

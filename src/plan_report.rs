@@ -30,6 +30,8 @@ pub struct PlanReport {
     /// The timed trajectory: x, y, v (m/s), t (s), every `sample_every` samples.
     pub trajectory: Vec<[f64; 4]>,
     pub duration: f64,
+    /// The sharpest turn on the smoothed path, 1/m (seed 004 section A's kappa).
+    pub max_curvature: f64,
     /// Filled in by the caller, which owns the clock.
     pub planning_time_ms: Option<f64>,
 }
@@ -88,6 +90,7 @@ pub fn plan(
         expanded: plan.expanded,
         waypoints: plan.waypoints.clone(),
         duration: plan.trajectory.duration(),
+        max_curvature: points.iter().map(|p| p.curvature.abs()).fold(0.0, f64::max),
         trajectory,
         planning_time_ms: None,
     })
@@ -99,7 +102,10 @@ pub fn human(r: &PlanReport) -> String {
         "path from ({:.2}, {:.2}) to ({:.2}, {:.2}): {:.2} m, cost {:.1}, {} cells expanded\n",
         r.from.x, r.from.y, r.to.x, r.to.y, r.length, r.cost, r.expanded
     );
-    out += &format!("drives in {:.1} s at the profile's speeds\n", r.duration);
+    out += &format!(
+        "drives in {:.1} s at the profile's speeds; sharpest turn {:.2} 1/m\n",
+        r.duration, r.max_curvature
+    );
     if let Some(ms) = r.planning_time_ms {
         out += &format!("planned in {ms:.2} ms\n");
     }

@@ -55,7 +55,8 @@ fn goto_then_p_follows_to_destination_arrived() {
     let p = report.true_pose.unwrap();
     assert!((p.x - 0.9).hypot(p.y - 0.6) < 0.08, "ended at {p:?}");
     assert_eq!(report.collisions, Some(0));
-    assert!(report.cross_track_rms.unwrap() < 0.05);
+    // The hybrid controller (the default) keeps within seed 004's curve error, and better.
+    assert!(report.true_cross_track_rms.unwrap() < 0.03);
     // Stopped at the end.
     assert!(app.commanded().is_zero());
 }

@@ -138,7 +138,7 @@ impl App {
                     self.map_sightings(&s);
                 }
                 if let Some(scan) = &frame.scan {
-                    self.map_scan(scan);
+                    self.map_scan(t, scan);
                 }
                 self.note_collisions(t);
                 if let Some(g) = frame.gripper {

@@ -8,6 +8,11 @@ use crate::map::belief::BeliefMap;
 
 /// The footprint is marked free again after the robot moved this far, metres.
 const FOOTPRINT_STEP: f64 = 0.02;
+/// A scan is folded into the map after the robot moved this far (m), turned this much (rad)
+/// or this long (s) passed since the last one.
+const SCAN_MOVE: f64 = 0.05;
+const SCAN_TURN: f64 = 0.1;
+const SCAN_EVERY: f64 = 2.0;
 /// Sight lines stop this short of the marker: the marker's own surface is not free.
 const SIGHT_LINE_MARGIN: f64 = 0.1;
 
@@ -32,8 +37,20 @@ impl App {
         }
     }
 
-    pub(super) fn map_scan(&mut self, scan: &LaserScan) {
-        self.belief.observe_scan(self.ekf.pose(), scan);
+    /// Folds in a scan when the robot has moved or turned enough since the last one, or a
+    /// while has passed: the same view again and again adds no information, only
+    /// overconfidence (gmapping's linearUpdate / angularUpdate / temporalUpdate).
+    pub(super) fn map_scan(&mut self, t: f64, scan: &LaserScan) {
+        let pose = self.ekf.pose();
+        if let Some((last, at)) = self.last_scan_pose {
+            let moved = last.position().distance(pose.position());
+            let turned = crate::geometry::wrap_angle(pose.theta - last.theta).abs();
+            if moved < SCAN_MOVE && turned < SCAN_TURN && t - at < SCAN_EVERY {
+                return;
+            }
+        }
+        self.last_scan_pose = Some((pose, t));
+        self.belief.observe_scan(pose, scan);
     }
 
     pub(super) fn map_footprint(&mut self) {

@@ -86,7 +86,9 @@ pub struct App {
     /// The planning map the robot builds from what it senses.
     belief: BeliefMap,
     last_footprint: Option<Point2>,
-    /// The map revision on screen and when it was drawn.
+    /// Where and when the last scan was folded into the map.
+    last_scan_pose: Option<(Pose2, f64)>,
+    /// The map revision on screen and the session second it was taken in.
     map_shown: (u64, f64),
     planner: crate::plan::pipeline::Planner,
     follower: crate::control::follower::Follower,
@@ -138,6 +140,7 @@ impl App {
             world_grid,
             belief,
             last_footprint: None,
+            last_scan_pose: None,
             map_shown: (0, f64::NEG_INFINITY),
             planner: crate::plan::pipeline::Planner::new(),
             follower: crate::control::follower::Follower::new(

@@ -46,13 +46,11 @@ impl App {
     /// changes a few cells at a time, mostly finer than a screen cell shows, so the map
     /// alone redraws only with the clock, once a second.
     fn shown_map_revision(&mut self) -> u64 {
-        let (shown, at) = self.map_shown;
-        let newest = self.belief.revision();
-        if newest != shown && self.now.floor() > at.floor() {
-            self.map_shown = (newest, self.now);
-            return newest;
+        let second = self.now.floor();
+        if second > self.map_shown.1 {
+            self.map_shown = (self.belief.revision(), second);
         }
-        shown
+        self.map_shown.0
     }
 
     pub(super) fn refresh_revision(&mut self) {

@@ -6,9 +6,13 @@ use super::costmap::{Costmap, INFLATED, LETHAL, NO_INFORMATION};
 use super::evidence::{Evidence, line_cells};
 use super::grid::{OCCUPIED, OccupancyGrid};
 use super::landmark_layer::LandmarkLayer;
-use super::stamp::Stamp;
 use crate::geometry::{Point2, Pose2};
 use crate::link::LaserScan;
+
+/// A landmark is restamped once its estimate moved this far, metres: the filter nudges
+/// every correlated landmark a little with each correction, and two centimetres are well
+/// inside the lethal radius's margin for landmark uncertainty.
+const LANDMARK_MOVE: f64 = 0.02;
 
 /// What the robot believes about the space around it, as a costmap for the planner.
 #[derive(Clone, Debug)]
@@ -74,36 +78,53 @@ impl BeliefMap {
 
     /// Takes the filter's landmark means and recomputes the cells around those that moved.
     pub fn update_landmarks(&mut self, estimates: impl IntoIterator<Item = (u32, Point2)>) {
-        let dirty = self
-            .landmarks
-            .update(estimates, &self.config, self.config.resolution);
-        for stamp in dirty {
-            self.restamp_area(&stamp);
+        let dirty = self.landmarks.update(
+            estimates,
+            &self.config,
+            LANDMARK_MOVE.max(self.config.resolution),
+        );
+        for rect in merged(dirty.iter().map(|s| self.cell_rect(s.bounds()))) {
+            self.restamp_area(rect);
         }
     }
 
-    fn restamp_area(&mut self, stamp: &Stamp) {
-        let (x0, y0, x1, y1) = stamp.bounds();
+    /// The cells overlapping a world rectangle (x0, y0, x1, y1), clamped to the map.
+    fn cell_rect(&self, (x0, y0, x1, y1): (f64, f64, f64, f64)) -> CellRect {
         let map = &self.costmap;
         let clamp = |v: f64, n: usize| (v.floor().max(0.0) as usize).min(n.saturating_sub(1));
-        let c0 = clamp((x0 - map.origin.x) / map.resolution, map.width);
-        let c1 = clamp((x1 - map.origin.x) / map.resolution, map.width);
-        let r0 = clamp((y0 - map.origin.y) / map.resolution, map.height);
-        let r1 = clamp((y1 - map.origin.y) / map.resolution, map.height);
-        let candidates: Vec<usize> = self
-            .landmarks
-            .stamps()
-            .iter()
-            .enumerate()
-            .filter(|(_, s)| overlaps(s.bounds(), (x0, y0, x1, y1)))
-            .map(|(i, _)| i)
-            .collect();
+        (
+            clamp((x0 - map.origin.x) / map.resolution, map.width),
+            clamp((y0 - map.origin.y) / map.resolution, map.height),
+            clamp((x1 - map.origin.x) / map.resolution, map.width),
+            clamp((y1 - map.origin.y) / map.resolution, map.height),
+        )
+    }
+
+    /// Recomputes the landmark layer over `rect`: cleared, then every stamp reaching into it
+    /// drawn over its own part, keeping the highest cost.
+    fn restamp_area(&mut self, rect: CellRect) {
+        let (c0, r0, c1, r1) = rect;
+        for cy in r0..=r1 {
+            let row = cy * self.costmap.width;
+            self.landmark_cost[row + c0..=row + c1].fill(0);
+        }
+        for stamp in self.landmarks.stamps() {
+            let (sc0, sr0, sc1, sr1) = self.cell_rect(stamp.bounds());
+            let (c0, r0, c1, r1) = (c0.max(sc0), r0.max(sr0), c1.min(sc1), r1.min(sr1));
+            if c0 > c1 || r0 > r1 {
+                continue;
+            }
+            for cy in r0..=r1 {
+                for cx in c0..=c1 {
+                    let cost = stamp.cost_at(self.costmap.center_of(cx, cy));
+                    let i = self.costmap.index(cx, cy);
+                    self.landmark_cost[i] = self.landmark_cost[i].max(cost);
+                }
+            }
+        }
         for cy in r0..=r1 {
             for cx in c0..=c1 {
-                let p = self.costmap.center_of(cx, cy);
-                let i = self.costmap.index(cx, cy);
-                self.landmark_cost[i] = self.landmarks.cost_at(p, &candidates);
-                self.refresh(i);
+                self.refresh(self.costmap.index(cx, cy));
             }
         }
     }
@@ -179,14 +200,20 @@ impl BeliefMap {
             )
         };
         let ((x0, y0), (x1, y1)) = (cell(from), cell(to));
+        let (w, h) = (map.width as i64, map.height as i64);
         let (miss, hit_odds) = (self.config.miss_log_odds, self.config.hit_log_odds);
-        let mut cells = Vec::new();
-        line_cells(x0, y0, x1, y1, |x, y| cells.push((x, y)));
-        let last = cells.len() - 1;
-        for (n, (x, y)) in cells.into_iter().enumerate() {
-            let delta = if n == last && hit { hit_odds } else { miss };
-            self.add_evidence(x, y, delta);
-        }
+        let (evidence, touched) = (&mut self.evidence, &mut self.touched);
+        line_cells(x0, y0, x1, y1, |x, y| {
+            if x < 0 || y < 0 || x >= w || y >= h {
+                return;
+            }
+            let delta = if hit && (x, y) == (x1, y1) {
+                hit_odds
+            } else {
+                miss
+            };
+            evidence.add(x as usize, y as usize, delta, touched);
+        });
         self.flush();
     }
 
@@ -231,6 +258,22 @@ impl BeliefMap {
     }
 }
 
-fn overlaps(a: (f64, f64, f64, f64), b: (f64, f64, f64, f64)) -> bool {
-    a.0 <= b.2 && b.0 <= a.2 && a.1 <= b.3 && b.1 <= a.3
+/// Inclusive cell rectangle (c0, r0, c1, r1).
+type CellRect = (usize, usize, usize, usize);
+
+/// Rectangles with overlapping ones joined into their bounding box, so no cell is
+/// recomputed twice for the old and new place of one landmark.
+fn merged(rects: impl Iterator<Item = CellRect>) -> Vec<CellRect> {
+    let mut out: Vec<CellRect> = Vec::new();
+    for mut r in rects {
+        while let Some(k) = out
+            .iter()
+            .position(|o| o.0 <= r.2 && r.0 <= o.2 && o.1 <= r.3 && r.1 <= o.3)
+        {
+            let o = out.swap_remove(k);
+            r = (o.0.min(r.0), o.1.min(r.1), o.2.max(r.2), o.3.max(r.3));
+        }
+        out.push(r);
+    }
+    out
 }

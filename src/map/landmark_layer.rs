@@ -7,9 +7,6 @@ use crate::geometry::Point2;
 use crate::perception::markers::MarkerCategory;
 use std::collections::BTreeMap;
 
-/// Inclusive cell rectangle: columns c0..=c1, rows r0..=r1.
-pub type CellRect = (usize, usize, usize, usize);
-
 /// Landmark positions as last stamped, their stamps and the resulting costs.
 #[derive(Clone, Debug, Default)]
 pub struct LandmarkLayer {
@@ -65,15 +62,6 @@ impl LandmarkLayer {
         dirty.extend(fresh.iter().filter(|s| !self.stamps.contains(s)).copied());
         self.stamps = fresh;
         dirty
-    }
-
-    /// The highest stamp cost at `p` among `candidates` (indices into `stamps`).
-    pub fn cost_at(&self, p: Point2, candidates: &[usize]) -> u8 {
-        candidates
-            .iter()
-            .map(|&i| self.stamps[i].cost_at(p))
-            .max()
-            .unwrap_or(0)
     }
 }
 

@@ -2,7 +2,7 @@
 //! inflated region at 0.7, a lethal core inside it and a falling gradient outside.
 
 use super::costmap::{INFLATED, LETHAL};
-use crate::geometry::{Point2, Segment};
+use crate::geometry::Point2;
 
 /// The shape a stamp is measured from.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -23,6 +23,22 @@ impl Rings {
     /// How far the stamp reaches.
     pub fn reach(&self) -> f64 {
         self.inflated.max(self.lethal) + self.gradient
+    }
+
+    /// Cost at squared distance `d2` from the shape: a square root only in the gradient band.
+    pub fn cost_at_squared(&self, d2: f64) -> u8 {
+        if d2 <= self.lethal * self.lethal {
+            LETHAL
+        } else if d2 <= self.inflated * self.inflated {
+            INFLATED
+        } else {
+            let reach = self.inflated + self.gradient;
+            if d2 < reach * reach {
+                self.cost_at(d2.sqrt())
+            } else {
+                0
+            }
+        }
     }
 
     /// Cost at distance `d` from the shape.
@@ -49,11 +65,21 @@ pub struct Stamp {
 }
 
 impl Stamp {
-    pub fn distance(&self, p: Point2) -> f64 {
-        match self.shape {
-            Shape::Disc(c) => c.distance(p),
-            Shape::Wall(a, b) => Segment::new(a, b).distance_to(p),
-        }
+    /// Squared distance from `p` to the shape (the segment's projection clamped to its ends).
+    pub fn distance_squared(&self, p: Point2) -> f64 {
+        let (a, b) = match self.shape {
+            Shape::Disc(c) => (c, c),
+            Shape::Wall(a, b) => (a, b),
+        };
+        let (dx, dy) = (b.x - a.x, b.y - a.y);
+        let len2 = dx * dx + dy * dy;
+        let t = if len2 > 0.0 {
+            (((p.x - a.x) * dx + (p.y - a.y) * dy) / len2).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
+        let (ex, ey) = (p.x - a.x - t * dx, p.y - a.y - t * dy);
+        ex * ex + ey * ey
     }
 
     /// The world rectangle (x0, y0, x1, y1) outside which the stamp costs nothing.
@@ -72,7 +98,7 @@ impl Stamp {
     }
 
     pub fn cost_at(&self, p: Point2) -> u8 {
-        self.rings.cost_at(self.distance(p))
+        self.rings.cost_at_squared(self.distance_squared(p))
     }
 }
 

@@ -66,6 +66,8 @@ pub fn run(app: &mut App, keys: &[Key], rate: f64) -> Report {
         t += gap;
     }
     if !app.should_quit() {
+        // The time after the last key is a control tick too.
+        app.update(t);
         let period = app.config().robot.control_period;
         let give_up = t + FOLLOW_TIMEOUT;
         while app.is_busy() && t < give_up {

@@ -9,6 +9,8 @@ use crate::slam::odometry::twist_from_wheels;
 
 /// A stall longer than this is skipped rather than caught up, seconds.
 const MAX_CATCH_UP: f64 = 1.0;
+/// Seconds within which a control step counts as due.
+const TICK_SLACK: f64 = 1e-9;
 /// At most one overrun warning per this many seconds.
 const WARN_EVERY: f64 = 5.0;
 
@@ -83,7 +85,8 @@ impl App {
         loop {
             let tick = self.clock.next_tick;
             let due = self.teleop_cutoff().map_or(tick, |c| c.min(tick));
-            if due > now {
+            // A tick due a rounding error after `now` is due now: sums of 0.1 s drift apart.
+            if due > now + TICK_SLACK {
                 break;
             }
             self.control_step(due);

@@ -15,12 +15,34 @@ use crate::plan::pipeline::Plan;
 const REPLAN_EVERY: f64 = 1.0;
 /// Seed 001 section 8: the robot approaches a block to 12 cm.
 const BLOCK_APPROACH: f64 = 0.12;
+/// Other landmarks: the goal stays this far beyond the edge of their lethal ring, metres.
+const APPROACH_MARGIN: f64 = 0.05;
+
+/// Where the user asked to go.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Target {
+    Point(Point2),
+    /// A landmark: the goal is its approach point, worked out again at every replan
+    /// because the map round the landmark fills in as the robot comes closer.
+    Marker(u32),
+}
+
+impl Target {
+    /// How the log and the status panel name it: "(1.20, -0.50)" or "marker 421".
+    pub fn label(self) -> String {
+        match self {
+            Target::Point(p) => format!("({:.2}, {:.2})", p.x, p.y),
+            Target::Marker(id) => format!("marker {id}"),
+        }
+    }
+}
 
 /// A planned path and where it leads.
 #[derive(Clone, Debug)]
 pub struct Route {
+    pub target: Target,
+    /// The point the path ends at.
     pub goal: Point2,
-    /// How the user named the goal: "(1.20, -0.50)" or "marker 421".
     pub label: String,
     pub plan: Plan,
 }
@@ -52,9 +74,24 @@ pub(super) struct Navigation {
 }
 
 impl App {
-    /// Plans from the robot's estimated position to `goal`; logs the outcome.
-    pub(super) fn plan_route(&mut self, goal: Point2, label: String) -> bool {
+    /// Plans from the robot's estimated position to `target`; logs the outcome.
+    pub(super) fn plan_route(&mut self, target: Target) -> bool {
+        let label = target.label();
         let start = self.ekf.pose().position();
+        let goal = match target {
+            Target::Point(p) => p,
+            Target::Marker(id) => match self.marker_goal(id) {
+                Some(p) => p,
+                None => {
+                    self.log(
+                        Level::Error,
+                        format!("no path to marker {id}: it is not on the map yet"),
+                    );
+                    self.drop_route();
+                    return false;
+                }
+            },
+        };
         let map = escape_map(self.belief.costmap(), start, self.config.map.lethal_radius);
         let began = self.stopwatch.as_ref().map(|w| w());
         let result = self.planner.plan(&map, start, goal, &self.config.plan);
@@ -77,7 +114,12 @@ impl App {
                     self.follower.set_trajectory(plan.trajectory.clone());
                     self.nav.arrived = false;
                 }
-                self.nav.route = Some(Route { goal, label, plan });
+                self.nav.route = Some(Route {
+                    target,
+                    goal,
+                    label,
+                    plan,
+                });
                 self.nav.checked_revision = self.belief.revision();
                 true
             }
@@ -97,25 +139,27 @@ impl App {
         self.follower.clear_trajectory();
     }
 
-    pub(super) fn goto_marker(&mut self, id: u32) {
-        let Some(landmark) = self.ekf.landmark(id) else {
-            self.log(
-                Level::Error,
-                format!("no path to marker {id}: it is not on the map yet"),
-            );
-            return;
-        };
-        let approach = if matches!(
+    /// The approach point of landmark `id` as the map stands: seed 001's 12 cm for a block,
+    /// otherwise just clear of the lethal ring.
+    fn marker_goal(&self, id: u32) -> Option<Point2> {
+        let landmark = self.ekf.landmark(id)?;
+        let block = matches!(
             MarkerCategory::of(id),
             MarkerCategory::RedBlock | MarkerCategory::BlueBlock
-        ) {
-            BLOCK_APPROACH
+        );
+        let (approach, margin) = if block {
+            (BLOCK_APPROACH, 0.0)
         } else {
-            0.0
+            (0.0, APPROACH_MARGIN)
         };
         let from = self.ekf.pose().position();
-        let goal = approach_point(self.belief.costmap(), landmark.mean, from, approach);
-        self.plan_route(goal, format!("marker {id}"));
+        Some(approach_point(
+            self.belief.costmap(),
+            landmark.mean,
+            from,
+            approach,
+            margin,
+        ))
     }
 
     /// Starts following the route, planned afresh from where the robot is now.
@@ -127,11 +171,11 @@ impl App {
             );
             return false;
         };
-        let (goal, label) = (route.goal, route.label.clone());
+        let (target, label) = (route.target, route.label.clone());
         self.nav.arrived = false;
         self.nav.true_squares = 0.0;
         self.nav.true_samples = 0;
-        if !self.plan_route(goal, label.clone()) {
+        if !self.plan_route(target) {
             return false;
         }
         if let Some(route) = &self.nav.route {
@@ -208,12 +252,12 @@ impl App {
             .map(|p| p.position);
         if let Some(at) = blocked {
             self.nav.last_replan = t;
-            let (goal, label) = (route.goal, route.label.clone());
+            let target = route.target;
             self.log(
                 Level::Warn,
                 format!("path blocked at ({:.2}, {:.2}): replanning", at.x, at.y),
             );
-            if self.plan_route(goal, label) {
+            if self.plan_route(target) {
                 self.follower.set_trajectory(
                     self.nav
                         .route
@@ -250,7 +294,7 @@ impl App {
             .nav
             .cursor
             .unwrap_or_else(|| self.ekf.pose().position());
-        self.plan_route(goal, format!("({:.2}, {:.2})", goal.x, goal.y));
+        self.plan_route(Target::Point(goal));
     }
 
     /// Runs a command typed after `:`.
@@ -258,9 +302,11 @@ impl App {
         match command::parse(line) {
             Ok(Command::GotoPoint(p)) => {
                 self.nav.cursor = self.nav.cursor.map(|_| p);
-                self.plan_route(p, format!("({:.2}, {:.2})", p.x, p.y));
+                self.plan_route(Target::Point(p));
             }
-            Ok(Command::GotoMarker(id)) => self.goto_marker(id),
+            Ok(Command::GotoMarker(id)) => {
+                self.plan_route(Target::Marker(id));
+            }
             Ok(Command::Controller(kind)) => self.set_controller(kind),
             Ok(Command::Clear) => {
                 self.drop_route();
@@ -341,19 +387,25 @@ fn escape_map(map: &Costmap, start: Point2, radius: f64) -> std::borrow::Cow<'_,
     std::borrow::Cow::Owned(copy)
 }
 
-/// The first point from `marker` towards `robot`, at least `approach` away, that a plan may
-/// enter: where the robot goes to reach a landmark.
-fn approach_point(map: &Costmap, marker: Point2, robot: Point2, approach: f64) -> Point2 {
+/// Where the robot goes to reach a landmark: on the line from `marker` towards `robot`, the
+/// first point at least `approach` away that a plan may enter, then `margin` further.
+fn approach_point(
+    map: &Costmap,
+    marker: Point2,
+    robot: Point2,
+    approach: f64,
+    margin: f64,
+) -> Point2 {
     let d = marker.distance(robot);
     if d < 1e-9 {
         return marker;
     }
     let (ux, uy) = ((robot.x - marker.x) / d, (robot.y - marker.y) / d);
+    let along = |s: f64| Point2::new(marker.x + ux * s, marker.y + uy * s);
     let mut s = approach;
     while s < d {
-        let p = Point2::new(marker.x + ux * s, marker.y + uy * s);
-        if !is_lethal(map.at(p)) {
-            return p;
+        if !is_lethal(map.at(along(s))) {
+            return along((s + margin).min(d));
         }
         s += map.resolution;
     }

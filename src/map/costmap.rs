@@ -110,21 +110,43 @@ impl Costmap {
 
     /// The most severe shade in the inclusive block `cols` x `rows`: one screen cell's look.
     pub fn worst_in_cells(&self, (c0, c1): (usize, usize), (r0, r1): (usize, usize)) -> Shade {
-        let mut worst = Shade::Unknown;
+        let mut worst = 0u8;
         for row in r0..=r1 {
-            for &c in &self.cost[row * self.width + c0..=row * self.width + c1] {
-                let shade = Shade::of(c);
-                if shade > worst {
-                    worst = shade;
-                    if worst == Shade::Lethal {
-                        return worst;
-                    }
-                }
+            let line = &self.cost[row * self.width + c0..=row * self.width + c1];
+            worst = line
+                .iter()
+                .fold(worst, |w, &c| w.max(SHADE_RANK[c as usize]));
+            if worst == Shade::Lethal as u8 {
+                break;
             }
         }
-        worst
+        SHADES[worst as usize]
     }
 }
+
+/// Shades by rank, and each cost's rank: a table keeps the drawing loop branch-free.
+const SHADES: [Shade; 5] = [
+    Shade::Unknown,
+    Shade::Free,
+    Shade::Near,
+    Shade::Inflated,
+    Shade::Lethal,
+];
+const SHADE_RANK: [u8; 256] = {
+    let mut table = [0u8; 256];
+    let mut c = 0;
+    while c < 256 {
+        table[c] = match c as u8 {
+            NO_INFORMATION => Shade::Unknown as u8,
+            FREE => Shade::Free as u8,
+            v if v >= LETHAL => Shade::Lethal as u8,
+            v if v >= INFLATED => Shade::Inflated as u8,
+            _ => Shade::Near as u8,
+        };
+        c += 1;
+    }
+    table
+};
 
 /// Whether a plan may never enter a cell of this cost.
 pub fn is_lethal(cost: u8) -> bool {

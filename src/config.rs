@@ -482,4 +482,20 @@ mod tests {
             .to_string();
         assert!(err.contains("robot.track") && err.contains("-0.1"), "{err}");
     }
+
+    #[test]
+    fn planning_and_following_sections_are_checked_by_name() {
+        let path = Path::new("nav.toml");
+        let err = |text: &str| Config::parse(text, path).unwrap_err().to_string();
+        let e = err("[plan]\nmax_speed = -0.2\n");
+        assert!(e.contains("plan.max_speed") && e.contains("-0.2"), "{e}");
+        let e = err("[follow.hybrid]\nsmoothing = 1.5\n");
+        assert!(e.contains("follow.hybrid.smoothing") && e.contains("1.5"), "{e}");
+        let e = err("[map]\nresolution = 0\n");
+        assert!(e.contains("map.resolution"), "{e}");
+        let e = err("[follow]\ncontroller = \"lqr\"\n");
+        assert!(e.contains("lqr") && e.contains("line 2"), "{e}");
+        let ok = Config::parse("[follow]\ncontroller = \"pure_pursuit\"\n", path).unwrap();
+        assert_eq!(ok.follow.controller.name(), "pure_pursuit");
+    }
 }

@@ -143,3 +143,116 @@ fn unknown_keys_and_links_are_refused() {
     assert!(!out.status.success());
     assert!(stderr(&out).contains("can0"));
 }
+
+#[test]
+fn plan_prints_path_length_cost_and_time_as_json() {
+    let out = navdeck(&["plan", "--from", "-1,-1.5", "--to", "1.2,1.2", "--json"]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let r: Value = serde_json::from_slice(&out.stdout).unwrap();
+    let length = r["length"].as_f64().unwrap();
+    // Longer than the straight line (3.48 m): it goes round the boxes.
+    assert!(length > 3.48 && length < 4.5, "{length}");
+    assert!(r["cost"].as_f64().unwrap() > length / 0.01);
+    assert!(r["planning_time_ms"].as_f64().unwrap() > 0.0);
+    let waypoints = r["waypoints"].as_array().unwrap();
+    assert_eq!(waypoints.first().unwrap()["x"].as_f64(), Some(-1.0));
+    assert_eq!(waypoints.last().unwrap()["y"].as_f64(), Some(1.2));
+}
+
+#[test]
+fn plan_on_a_nav2_map_goes_round_the_wall() {
+    let out = navdeck(&[
+        "plan",
+        "--map",
+        "tests/maps/room.yaml",
+        "--from",
+        "-1,-0.5",
+        "--to",
+        "1,-0.5",
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let text = String::from_utf8_lossy(&out.stdout);
+    // The wall at x = 0 leaves a gap only above y = 0.4: the path climbs to it.
+    let length: f64 = text
+        .split(": ")
+        .nth(1)
+        .unwrap()
+        .split(' ')
+        .next()
+        .unwrap()
+        .parse()
+        .unwrap();
+    assert!(length > 2.5, "{text}");
+}
+
+#[test]
+fn plan_says_why_there_is_no_path() {
+    let walled = navdeck(&[
+        "plan",
+        "--world",
+        "tests/worlds/walled_garden.toml",
+        "--from",
+        "-1,-1",
+        "--to",
+        "0.9,0.9",
+    ]);
+    assert_eq!(walled.status.code(), Some(1));
+    assert!(
+        stderr(&walled).contains("unreachable"),
+        "{}",
+        stderr(&walled)
+    );
+    let inside = navdeck(&["plan", "--from", "-1,-1.5", "--to", "0.5,0.5"]);
+    assert_eq!(inside.status.code(), Some(1));
+    assert!(
+        stderr(&inside).contains("inside an obstacle"),
+        "{}",
+        stderr(&inside)
+    );
+    let off = navdeck(&["plan", "--from", "-1,-1.5", "--to", "9,0"]);
+    assert!(stderr(&off).contains("off the map"), "{}", stderr(&off));
+    let bad = navdeck(&["plan", "--from", "-1;-1.5", "--to", "0,0"]);
+    assert_eq!(bad.status.code(), Some(2));
+    assert!(
+        stderr(&bad).contains("`-1;-1.5` is not X,Y"),
+        "{}",
+        stderr(&bad)
+    );
+}
+
+#[test]
+fn a_bad_nav2_map_is_refused_naming_the_field() {
+    let yaml = scratch(
+        "bad.yaml",
+        "image: room.pgm\nresolution: -0.05\norigin: [0, 0, 0]\noccupied_thresh: 0.65\nfree_thresh: 0.196\n",
+    );
+    let out = navdeck(&[
+        "plan",
+        "--map",
+        yaml.to_str().unwrap(),
+        "--from",
+        "0,0",
+        "--to",
+        "1,1",
+    ]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(
+        stderr(&out).contains("field `resolution` = -0.05"),
+        "{}",
+        stderr(&out)
+    );
+    let missing = scratch(
+        "missing.yaml",
+        "image: nowhere.pgm\nresolution: 0.05\norigin: [0, 0, 0]\noccupied_thresh: 0.65\nfree_thresh: 0.196\n",
+    );
+    let out = navdeck(&[
+        "plan",
+        "--map",
+        missing.to_str().unwrap(),
+        "--from",
+        "0,0",
+        "--to",
+        "1,1",
+    ]);
+    assert!(stderr(&out).contains("nowhere.pgm"), "{}", stderr(&out));
+}

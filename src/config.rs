@@ -490,7 +490,10 @@ mod tests {
         let e = err("[plan]\nmax_speed = -0.2\n");
         assert!(e.contains("plan.max_speed") && e.contains("-0.2"), "{e}");
         let e = err("[follow.hybrid]\nsmoothing = 1.5\n");
-        assert!(e.contains("follow.hybrid.smoothing") && e.contains("1.5"), "{e}");
+        assert!(
+            e.contains("follow.hybrid.smoothing") && e.contains("1.5"),
+            "{e}"
+        );
         let e = err("[map]\nresolution = 0\n");
         assert!(e.contains("map.resolution"), "{e}");
         let e = err("[follow]\ncontroller = \"lqr\"\n");

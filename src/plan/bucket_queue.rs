@@ -11,18 +11,27 @@ const WORDS: usize = (SPAN / 64) as usize;
 
 /// Min-queue of (key, value) pairs with monotone, bounded-rise keys; among equal keys the
 /// latest pushed comes out first.
+///
+/// Each bucket is a stack threaded through one shared pool of entries, so a push writes
+/// at the pool's end and the bucket heads stay small enough to sit in cache.
 #[derive(Debug)]
 pub struct BucketQueue {
-    buckets: Vec<Vec<u32>>,
+    /// Per bucket, the pool index of its newest entry, or `NONE`.
+    heads: Vec<u32>,
+    /// (value, pool index of the next entry in the same bucket).
+    pool: Vec<(u32, u32)>,
     occupied: Vec<u64>,
     current: u32,
     len: usize,
 }
 
+const NONE: u32 = u32::MAX;
+
 impl Default for BucketQueue {
     fn default() -> Self {
         Self {
-            buckets: vec![Vec::new(); SPAN as usize],
+            heads: vec![NONE; SPAN as usize],
+            pool: Vec::new(),
             occupied: vec![0; WORDS],
             current: 0,
             len: 0,
@@ -34,11 +43,10 @@ impl BucketQueue {
     /// Empties the queue; the next key pushed sets the floor.
     pub fn reset(&mut self, floor: u32) {
         if self.len > 0 {
-            for b in &mut self.buckets {
-                b.clear();
-            }
+            self.heads.fill(NONE);
             self.occupied.fill(0);
         }
+        self.pool.clear();
         self.current = floor;
         self.len = 0;
     }
@@ -55,7 +63,8 @@ impl BucketQueue {
             self.current
         );
         let b = (key & MASK) as usize;
-        self.buckets[b].push(value);
+        self.pool.push((value, self.heads[b]));
+        self.heads[b] = (self.pool.len() - 1) as u32;
         self.occupied[b / 64] |= 1 << (b % 64);
         self.len += 1;
     }
@@ -79,8 +88,9 @@ impl BucketQueue {
         let b = word * 64 + bits.trailing_zeros() as usize;
         let rise = (b as u32).wrapping_sub(from as u32) & MASK;
         self.current += rise;
-        let value = self.buckets[b].pop()?;
-        if self.buckets[b].is_empty() {
+        let (value, next) = self.pool[self.heads[b] as usize];
+        self.heads[b] = next;
+        if next == NONE {
             self.occupied[b / 64] &= !(1 << (b % 64));
         }
         self.len -= 1;

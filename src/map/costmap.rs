@@ -42,20 +42,12 @@ impl Costmap {
 
     /// Cell holding world point `p`, if it lies on the map (seed 001 `world_to_grid`).
     pub fn cell_of(&self, p: Point2) -> Option<(usize, usize)> {
-        let cx = ((p.x - self.origin.x) / self.resolution).floor();
-        let cy = ((p.y - self.origin.y) / self.resolution).floor();
-        if !(cx >= 0.0 && cy >= 0.0 && cx < self.width as f64 && cy < self.height as f64) {
-            return None;
-        }
-        Some((cx as usize, cy as usize))
+        super::grid::cell_of(self.origin, self.resolution, (self.width, self.height), p)
     }
 
     /// World position of a cell's centre.
     pub fn center_of(&self, cx: usize, cy: usize) -> Point2 {
-        Point2::new(
-            self.origin.x + (cx as f64 + 0.5) * self.resolution,
-            self.origin.y + (cy as f64 + 0.5) * self.resolution,
-        )
+        super::grid::center_of(self.origin, self.resolution, cx, cy)
     }
 
     pub fn get(&self, cx: usize, cy: usize) -> u8 {

@@ -31,20 +31,12 @@ impl OccupancyGrid {
 
     /// Cell holding world point `p`, if it lies on the grid (seed 001 `world_to_grid`).
     pub fn cell_of(&self, p: Point2) -> Option<(usize, usize)> {
-        let cx = ((p.x - self.origin.x) / self.resolution).floor();
-        let cy = ((p.y - self.origin.y) / self.resolution).floor();
-        if cx < 0.0 || cy < 0.0 || cx >= self.width as f64 || cy >= self.height as f64 {
-            return None;
-        }
-        Some((cx as usize, cy as usize))
+        cell_of(self.origin, self.resolution, (self.width, self.height), p)
     }
 
     /// World position of a cell's centre.
     pub fn center_of(&self, cx: usize, cy: usize) -> Point2 {
-        Point2::new(
-            self.origin.x + (cx as f64 + 0.5) * self.resolution,
-            self.origin.y + (cy as f64 + 0.5) * self.resolution,
-        )
+        center_of(self.origin, self.resolution, cx, cy)
     }
 
     pub fn get(&self, cx: usize, cy: usize) -> i8 {
@@ -103,6 +95,31 @@ impl OccupancyGrid {
         }
         best
     }
+}
+
+/// The cell of a `size` grid of `resolution` cells from `origin` that holds `p`, if any
+/// (seed 001 `world_to_grid`, with the grid's corner rather than its centre as origin).
+pub(crate) fn cell_of(
+    origin: Point2,
+    resolution: f64,
+    (width, height): (usize, usize),
+    p: Point2,
+) -> Option<(usize, usize)> {
+    let cx = ((p.x - origin.x) / resolution).floor();
+    let cy = ((p.y - origin.y) / resolution).floor();
+    // Written so that NaN lands outside too.
+    if !(cx >= 0.0 && cy >= 0.0 && cx < width as f64 && cy < height as f64) {
+        return None;
+    }
+    Some((cx as usize, cy as usize))
+}
+
+/// World position of the centre of cell (cx, cy).
+pub(crate) fn center_of(origin: Point2, resolution: f64, cx: usize, cy: usize) -> Point2 {
+    Point2::new(
+        origin.x + (cx as f64 + 0.5) * resolution,
+        origin.y + (cy as f64 + 0.5) * resolution,
+    )
 }
 
 /// Cells of one axis (origin, cell size, count) overlapping [lo, hi), clamped to the grid.

@@ -131,18 +131,28 @@ pub fn render(app: &App, theme: Theme, area: Rect, buf: &mut Buffer) {
 /// The twin's true walls, dimmed, under the robot's own map (`g`).
 fn draw_grid_ascii(grid: &OccupancyGrid, vp: &Viewport, theme: Theme, buf: &mut Buffer) {
     let occupied = super::beliefs::truth_style(theme.occupied());
+    draw_ascii(grid, vp, buf, |cols, rows| {
+        (grid.max_in_cells(cols, rows) >= OCCUPIED / 2).then_some(('#', occupied))
+    });
+}
+
+/// One glyph per screen cell, chosen by `look` from the grid cells under it.
+fn draw_ascii(
+    grid: &dyn CellRanges,
+    vp: &Viewport,
+    buf: &mut Buffer,
+    look: impl Fn((usize, usize), (usize, usize)) -> Option<(char, Style)>,
+) {
     let (cols, rows) = vp.grid_spans(grid, 1, 1);
     for (r, row_span) in rows.iter().enumerate() {
         let Some(row_span) = *row_span else { continue };
         for (c, col_span) in cols.iter().enumerate() {
             let Some(col_span) = *col_span else { continue };
-            let (glyph, style) = match grid.max_in_cells(col_span, row_span) {
-                v if v >= OCCUPIED / 2 => ('#', occupied),
-                _ => continue,
-            };
-            buf[(vp.area.x + c as u16, vp.area.y + r as u16)]
-                .set_char(glyph)
-                .set_style(style);
+            if let Some((glyph, style)) = look(col_span, row_span) {
+                buf[(vp.area.x + c as u16, vp.area.y + r as u16)]
+                    .set_char(glyph)
+                    .set_style(style);
+            }
         }
     }
 }
@@ -160,22 +170,14 @@ fn draw_grid_braille(grid: &OccupancyGrid, vp: &Viewport, style: Style, buf: &mu
 
 /// The robot's map as ASCII: '#' lethal, ':' seed 001's 0.7 ring, '.' known and passable.
 fn draw_costmap_ascii(map: &Costmap, vp: &Viewport, theme: Theme, buf: &mut Buffer) {
-    let (cols, rows) = vp.grid_spans(map, 1, 1);
-    for (r, row_span) in rows.iter().enumerate() {
-        let Some(row_span) = *row_span else { continue };
-        for (c, col_span) in cols.iter().enumerate() {
-            let Some(col_span) = *col_span else { continue };
-            let (glyph, style) = match map.worst_in_cells(col_span, row_span) {
-                Shade::Lethal => ('#', theme.occupied()),
-                Shade::Inflated => (':', theme.inflated()),
-                Shade::Near | Shade::Free => ('.', theme.free()),
-                Shade::Unknown => continue,
-            };
-            buf[(vp.area.x + c as u16, vp.area.y + r as u16)]
-                .set_char(glyph)
-                .set_style(style);
+    draw_ascii(map, vp, buf, |cols, rows| {
+        match map.worst_in_cells(cols, rows) {
+            Shade::Lethal => Some(('#', theme.occupied())),
+            Shade::Inflated => Some((':', theme.inflated())),
+            Shade::Near | Shade::Free => Some(('.', theme.free())),
+            Shade::Unknown => None,
         }
-    }
+    });
 }
 
 /// The robot's map as braille dots: lethal cells only.

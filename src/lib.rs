@@ -8,6 +8,7 @@ pub mod headless;
 pub mod keymap;
 pub mod link;
 pub mod map;
+pub mod mission;
 pub mod perception;
 pub mod plan;
 pub mod plan_report;

@@ -1,0 +1,161 @@
+//! Where to explore next: seed 001's furthest-valid-marker rule, or the nearest frontier
+//! between known free space and unknown space (Yamauchi, "A frontier-based approach to
+//! autonomous exploration", CIRA 1997).
+
+use crate::geometry::Point2;
+use crate::map::costmap::{Costmap, INFLATED, NO_INFORMATION};
+use crate::perception::markers::MarkerCategory;
+use std::collections::{BTreeMap, VecDeque};
+
+/// Seed 001 "Marker Selection Heuristic": markers whose nearest neighbour is further than
+/// this are isolated and ignored, metres.
+pub const ISOLATED: f64 = 2.0;
+/// Seed 001: markers closer to the robot than this are ignored, metres.
+pub const TOO_CLOSE: f64 = 0.3;
+
+/// The furthest boundary or obstacle marker from `robot` that is neither isolated, too
+/// close, nor already `visited` (seed 001 `get_furthest_marker`).
+pub fn furthest_marker(
+    landmarks: &BTreeMap<u32, Point2>,
+    robot: Point2,
+    visited: &[u32],
+) -> Option<(u32, Point2)> {
+    let candidates: Vec<(u32, Point2)> = landmarks
+        .iter()
+        .filter(|&(&id, _)| {
+            matches!(
+                MarkerCategory::of(id),
+                MarkerCategory::Boundary | MarkerCategory::Obstacle
+            )
+        })
+        .map(|(&id, &p)| (id, p))
+        .collect();
+    candidates
+        .iter()
+        .filter(|(id, _)| !visited.contains(id))
+        .filter(|(id, p)| {
+            let nearest = candidates
+                .iter()
+                .filter(|(other, _)| other != id)
+                .map(|(_, q)| p.distance(*q))
+                .fold(f64::INFINITY, f64::min);
+            nearest <= ISOLATED
+        })
+        .filter(|(_, p)| p.distance(robot) >= TOO_CLOSE)
+        .max_by(|a, b| a.1.distance(robot).total_cmp(&b.1.distance(robot)))
+        .copied()
+}
+
+/// A connected run of frontier cells.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Frontier {
+    /// The frontier cell nearest the cluster's centroid: a reachable place to go.
+    pub target: Point2,
+    pub cells: usize,
+}
+
+/// Frontier clusters of at least `min_cells` cells: known cells below the 0.7 ring that
+/// touch an unknown cell, grouped 8-connected.
+pub fn frontiers(map: &Costmap, min_cells: usize) -> Vec<Frontier> {
+    let (w, h) = (map.width, map.height);
+    let passable = |c: u8| c < INFLATED;
+    let is_frontier = |x: usize, y: usize| {
+        let c = map.get(x, y);
+        if c == NO_INFORMATION || !passable(c) {
+            return false;
+        }
+        let unknown = |nx: usize, ny: usize| map.get(nx, ny) == NO_INFORMATION;
+        (x > 0 && unknown(x - 1, y))
+            || (x + 1 < w && unknown(x + 1, y))
+            || (y > 0 && unknown(x, y - 1))
+            || (y + 1 < h && unknown(x, y + 1))
+    };
+    let mut seen = vec![false; w * h];
+    let mut out = Vec::new();
+    let mut queue = VecDeque::new();
+    for y in 0..h {
+        for x in 0..w {
+            if seen[y * w + x] || !is_frontier(x, y) {
+                continue;
+            }
+            seen[y * w + x] = true;
+            queue.push_back((x, y));
+            let mut cluster = Vec::new();
+            while let Some((cx, cy)) = queue.pop_front() {
+                cluster.push((cx, cy));
+                for dy in -1i64..=1 {
+                    for dx in -1i64..=1 {
+                        let (nx, ny) = (cx as i64 + dx, cy as i64 + dy);
+                        if nx < 0 || ny < 0 || nx >= w as i64 || ny >= h as i64 {
+                            continue;
+                        }
+                        let (nx, ny) = (nx as usize, ny as usize);
+                        if !seen[ny * w + nx] && is_frontier(nx, ny) {
+                            seen[ny * w + nx] = true;
+                            queue.push_back((nx, ny));
+                        }
+                    }
+                }
+            }
+            if cluster.len() >= min_cells {
+                let n = cluster.len() as f64;
+                let (sx, sy) = cluster.iter().fold((0.0, 0.0), |(sx, sy), &(x, y)| {
+                    (sx + x as f64, sy + y as f64)
+                });
+                let (mx, my) = (sx / n, sy / n);
+                let &(tx, ty) = cluster
+                    .iter()
+                    .min_by(|a, b| {
+                        let da = (a.0 as f64 - mx).hypot(a.1 as f64 - my);
+                        let db = (b.0 as f64 - mx).hypot(b.1 as f64 - my);
+                        da.total_cmp(&db)
+                    })
+                    .expect("a cluster has cells");
+                out.push(Frontier {
+                    target: map.center_of(tx, ty),
+                    cells: cluster.len(),
+                });
+            }
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::map::costmap::{FREE, LETHAL};
+
+    #[test]
+    fn the_furthest_marker_skips_isolated_close_and_visited_ones() {
+        let marks: BTreeMap<u32, Point2> = [
+            (1, Point2::new(0.1, 0.0)),   // too close
+            (2, Point2::new(1.0, 0.0)),   // a valid neighbour of 3
+            (3, Point2::new(2.0, 0.0)),   // the furthest valid one
+            (301, Point2::new(9.0, 9.0)), // isolated
+            (421, Point2::new(3.0, 0.0)), // a block: not a waypoint
+        ]
+        .into_iter()
+        .collect();
+        let robot = Point2::new(0.0, 0.0);
+        assert_eq!(furthest_marker(&marks, robot, &[]).map(|m| m.0), Some(3));
+        assert_eq!(furthest_marker(&marks, robot, &[3]).map(|m| m.0), Some(2));
+    }
+
+    #[test]
+    fn frontiers_lie_between_free_and_unknown_cells() {
+        // 20 x 10 cells: free on the left, unknown on the right, one wall cell.
+        let mut map = Costmap::new(20, 10, 0.1, Point2::new(0.0, 0.0), NO_INFORMATION);
+        for y in 0..10 {
+            for x in 0..8 {
+                map.set(x, y, FREE);
+            }
+        }
+        map.set(7, 0, LETHAL);
+        let found = frontiers(&map, 3);
+        assert_eq!(found.len(), 1, "{found:?}");
+        assert_eq!(found[0].cells, 9, "the lethal cell is no frontier");
+        assert!((found[0].target.x - 0.75).abs() < 1e-9);
+        assert!(frontiers(&map, 10).is_empty(), "too small a cluster");
+    }
+}

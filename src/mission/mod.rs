@@ -2,4 +2,5 @@
 //! each block up and deliver it. Pure state: landmarks and time in, commands out.
 
 pub mod objects;
+pub mod step;
 pub mod targets;

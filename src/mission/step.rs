@@ -1,0 +1,84 @@
+//! What the mission reads each control step and what it asks for: the contract between
+//! the pure state machine and the console that runs it.
+
+use crate::geometry::{Point2, Pose2, Twist};
+use crate::link::{GripperCommand, GripperState};
+use crate::map::costmap::Costmap;
+use std::collections::BTreeMap;
+
+/// How the path the mission asked for is going (the console plans and follows it).
+#[derive(Clone, Debug, PartialEq)]
+pub enum PathStatus {
+    /// No path asked for, or the last one was dropped.
+    Idle,
+    Following { remaining: f64 },
+    Arrived,
+    /// The console could not plan: the reason, as the planner gave it.
+    NoPath(String),
+}
+
+/// Everything the mission may look at in one step.
+#[derive(Clone, Copy, Debug)]
+pub struct Inputs<'a> {
+    /// Session time, seconds.
+    pub t: f64,
+    /// The filter's pose.
+    pub pose: Pose2,
+    /// The filter's landmark means by marker ID.
+    pub landmarks: &'a BTreeMap<u32, Point2>,
+    /// Marker IDs in the newest camera frame (empty when no frame arrived this step).
+    pub seen: &'a [u32],
+    /// Whether a camera frame arrived this step (so an empty `seen` means "nothing in view").
+    pub camera_frame: bool,
+    pub gripper: Option<GripperState>,
+    pub path: &'a PathStatus,
+    pub map: &'a Costmap,
+}
+
+/// How the robot should move this step.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Motion {
+    /// Stand still.
+    Stop,
+    /// Drive this twist directly (scans, final approaches, alignment, backing off).
+    Drive(Twist),
+    /// Plan a path to `goal` and start following it; `label` names it in the log.
+    PlanTo { goal: Point2, label: String },
+    /// Keep following the current path.
+    Follow,
+}
+
+/// How a log line should look.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Tone {
+    Info,
+    Success,
+    Warn,
+    Error,
+}
+
+/// The mission's answer for one step.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Outputs {
+    pub motion: Motion,
+    pub gripper: Option<GripperCommand>,
+    /// Lines for the log, in seed 001's words where it has them.
+    pub log: Vec<(Tone, String)>,
+    /// Marker IDs the filter must not use now: those of the block in the gripper, and of
+    /// delivered blocks (they moved, so their landmarks would mislead it).
+    pub ignore_markers: Vec<u32>,
+    /// The mission gave up and hands the robot to manual control (seed 001 recovery).
+    pub to_manual: bool,
+}
+
+impl Outputs {
+    pub fn new(motion: Motion) -> Self {
+        Self {
+            motion,
+            gripper: None,
+            log: Vec::new(),
+            ignore_markers: Vec::new(),
+            to_manual: false,
+        }
+    }
+}

@@ -85,7 +85,7 @@ impl Objects {
         block_size: f64,
     ) -> Vec<Found> {
         let mut found = Vec::new();
-        for (&id, &p) in landmarks {
+        for &id in landmarks.keys() {
             let category = MarkerCategory::of(id);
             let colour = match category {
                 MarkerCategory::RedBlock | MarkerCategory::RedGate => Colour::Red,

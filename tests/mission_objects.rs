@@ -18,7 +18,10 @@ fn blocks_and_gates_from_a_drive_round_the_arena_match_the_twin() {
     objects.update(&landmarks, app.estimated_pose().position(), 0.05);
     let twin = app.link().twin().unwrap();
     let confirmed: Vec<_> = objects.blocks().filter(|b| b.confirmed).collect();
-    assert!(!confirmed.is_empty(), "the drive saw at least one block whole");
+    assert!(
+        !confirmed.is_empty(),
+        "the drive saw at least one block whole"
+    );
     for block in confirmed {
         let truth = twin
             .blocks()
@@ -26,15 +29,29 @@ fn blocks_and_gates_from_a_drive_round_the_arena_match_the_twin() {
             .find(|t| t.markers == block.markers)
             .unwrap();
         let error = block.position.distance(truth.pose.position());
-        assert!(error < 0.06, "block {:?} off by {error:.3} m", block.markers);
+        assert!(
+            error < 0.06,
+            "block {:?} off by {error:.3} m",
+            block.markers
+        );
     }
     assert!(objects.gates().count() >= 1, "the drive saw a gate");
     for gate in objects.gates() {
         let world = twin.world();
-        let twin_gate = world.gates.iter().find(|g| g.markers == gate.markers).unwrap();
+        let twin_gate = world
+            .gates
+            .iter()
+            .find(|g| g.markers == gate.markers)
+            .unwrap();
         let truth = world.gate_pose(twin_gate).unwrap();
-        assert!(gate.center.distance(truth.position()) < 0.08, "{gate:?} vs {truth:?}");
+        assert!(
+            gate.center.distance(truth.position()) < 0.08,
+            "{gate:?} vs {truth:?}"
+        );
         let facing = truth.theta.sin_cos();
-        assert!(gate.normal.0 * facing.1 + gate.normal.1 * facing.0 > 0.9, "{gate:?}");
+        assert!(
+            gate.normal.0 * facing.1 + gate.normal.1 * facing.0 > 0.9,
+            "{gate:?}"
+        );
     }
 }

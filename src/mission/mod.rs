@@ -1,6 +1,17 @@
 //! The autonomous mission of seed 001 sections 7-8: explore, find blocks and gates, pick
 //! each block up and deliver it. Pure state: landmarks and time in, commands out.
 
+mod choose;
+pub mod config;
+mod delivery;
+mod drive;
+mod leg;
+pub mod machine;
 pub mod objects;
+mod pickup;
 pub mod step;
 pub mod targets;
+mod view;
+
+pub use config::{MissionConfig, TargetRule};
+pub use machine::{Mission, TimelineEntry};

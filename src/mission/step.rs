@@ -11,7 +11,9 @@ use std::collections::BTreeMap;
 pub enum PathStatus {
     /// No path asked for, or the last one was dropped.
     Idle,
-    Following { remaining: f64 },
+    Following {
+        remaining: f64,
+    },
     Arrived,
     /// The console could not plan: the reason, as the planner gave it.
     NoPath(String),

@@ -1,0 +1,179 @@
+//! The `[mission]` parameters: distances, speeds and timeouts of seed 001 sections 7-8 and
+//! "Failure Modes & Recovery".
+
+use serde::{Deserialize, Serialize};
+
+/// Seed 001 "Robot Lost": rotate to scan after this long without any marker in view, s.
+pub const LOST_SCAN_AFTER: f64 = 10.0;
+/// Heading error accepted when turning to face a block or a gate, radians (3 degrees).
+pub const FACE_TOLERANCE: f64 = 3.0 * std::f64::consts::PI / 180.0;
+/// Seed 001 "Block Lost During Approach": markers unseen this long while in view, s.
+pub const BLOCK_LOST_AFTER: f64 = 3.0;
+/// How far ahead the camera is expected to see a block's markers, metres.
+pub const CAMERA_RANGE: f64 = 0.6;
+/// Half the angle in which the camera is expected to see a block's markers, radians.
+pub const CAMERA_HALF_FOV: f64 = 0.5;
+/// Smallest frontier cluster worth exploring, cells.
+pub const FRONTIER_MIN_CELLS: usize = 20;
+/// Targets closer to the robot than this are ignored, metres (seed 001 `TOO_CLOSE`).
+pub const TARGET_TOO_CLOSE: f64 = 0.3;
+/// Seed 001 section 8: backing off after a drop, m/s.
+pub const BACK_OFF_SPEED: f64 = 0.1;
+/// Progress along the path that counts as not stuck, metres.
+pub const STUCK_PROGRESS: f64 = 0.05;
+/// Attempts at one block before it is left alone.
+pub const MAX_BLOCK_ATTEMPTS: u32 = 3;
+/// A demoted block becomes a target again when seen this long after the demotion, s.
+pub const DEMOTED_FOR: f64 = 5.0;
+
+/// Where exploration goes next.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum TargetRule {
+    /// Seed 001 "Marker Selection Heuristic": the furthest valid unvisited marker.
+    Markers,
+    /// The nearest frontier between known and unknown space.
+    #[default]
+    Frontiers,
+}
+
+impl TargetRule {
+    pub fn other(self) -> Self {
+        match self {
+            Self::Markers => Self::Frontiers,
+            Self::Frontiers => Self::Markers,
+        }
+    }
+}
+
+/// Mission parameters.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct MissionConfig {
+    pub target_rule: TargetRule,
+    /// A block's side, metres.
+    pub block_size: f64,
+    /// Turn rate of scans and retry turns, rad/s.
+    pub scan_speed: f64,
+    /// Where the path to a block ends: this far from it, on the robot's side, metres.
+    pub staging_distance: f64,
+    /// Block centre ahead of the robot centre when the gripper closes, metres.
+    pub grip_distance: f64,
+    /// Final approach speed to a block or gate, m/s.
+    pub approach_speed: f64,
+    /// Time the gripper takes to open or close, s (seed 001).
+    pub gripper_wait: f64,
+    /// Where the path to a gate ends: this far in front of it, metres.
+    pub drop_staging: f64,
+    /// Robot centre to gate centre when the gripper opens, metres.
+    pub drop_distance: f64,
+    /// Backing off after a drop at 0.1 m/s, s.
+    pub back_off_time: f64,
+    /// No landmarks this long: hand over to manual, s.
+    pub lost_timeout: f64,
+    /// Failed plans (each followed by a turn) before handing over to manual.
+    pub no_path_retries: u32,
+    /// Turn before retrying a failed plan, degrees.
+    pub retry_turn_deg: f64,
+    /// No progress along a path this long: replan, s.
+    pub stuck_timeout: f64,
+    /// Least time between two plan requests, s.
+    pub replan_cooldown: f64,
+    /// Blocks to deliver; 0 delivers every block found.
+    pub total_blocks: u32,
+}
+
+impl Default for MissionConfig {
+    fn default() -> Self {
+        Self {
+            target_rule: TargetRule::Frontiers,
+            block_size: 0.05,
+            scan_speed: 0.6,
+            staging_distance: 0.30,
+            grip_distance: 0.10,
+            approach_speed: 0.05,
+            gripper_wait: 1.0,
+            drop_staging: 0.40,
+            drop_distance: 0.18,
+            back_off_time: 2.0,
+            lost_timeout: 30.0,
+            no_path_retries: 36,
+            retry_turn_deg: 10.0,
+            stuck_timeout: 30.0,
+            replan_cooldown: 0.5,
+            total_blocks: 4,
+        }
+    }
+}
+
+impl MissionConfig {
+    /// Checks values a parser cannot: (field, value, reason) for the first bad one.
+    pub fn validate(&self) -> Result<(), (&'static str, f64, &'static str)> {
+        let positive = [
+            ("block_size", self.block_size),
+            ("scan_speed", self.scan_speed),
+            ("staging_distance", self.staging_distance),
+            ("grip_distance", self.grip_distance),
+            ("approach_speed", self.approach_speed),
+            ("drop_staging", self.drop_staging),
+            ("drop_distance", self.drop_distance),
+            ("retry_turn_deg", self.retry_turn_deg),
+            ("stuck_timeout", self.stuck_timeout),
+        ];
+        for (field, value) in positive {
+            if !(value.is_finite() && value > 0.0) {
+                return Err((field, value, "must be a positive number"));
+            }
+        }
+        let non_negative = [
+            ("gripper_wait", self.gripper_wait),
+            ("back_off_time", self.back_off_time),
+            ("replan_cooldown", self.replan_cooldown),
+        ];
+        for (field, value) in non_negative {
+            if !(value.is_finite() && value >= 0.0) {
+                return Err((field, value, "must be zero or more"));
+            }
+        }
+        if !(self.lost_timeout.is_finite() && self.lost_timeout > LOST_SCAN_AFTER) {
+            return Err((
+                "lost_timeout",
+                self.lost_timeout,
+                "must be more than the 10 s after which a lost robot scans",
+            ));
+        }
+        if self.grip_distance >= self.staging_distance {
+            return Err((
+                "grip_distance",
+                self.grip_distance,
+                "must be less than staging_distance",
+            ));
+        }
+        if self.drop_distance >= self.drop_staging {
+            return Err((
+                "drop_distance",
+                self.drop_distance,
+                "must be less than drop_staging",
+            ));
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn defaults_are_valid_and_a_bad_value_is_named() {
+        assert_eq!(MissionConfig::default().validate(), Ok(()));
+        let bad = MissionConfig {
+            grip_distance: 0.5,
+            ..MissionConfig::default()
+        };
+        assert_eq!(bad.validate().unwrap_err().0, "grip_distance");
+        let parsed: MissionConfig = toml::from_str("target_rule = \"markers\"").unwrap();
+        assert_eq!(parsed.target_rule, TargetRule::Markers);
+        assert!(toml::from_str::<MissionConfig>("speed = 1.0").is_err());
+    }
+}

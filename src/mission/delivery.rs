@@ -1,0 +1,129 @@
+//! Delivering a held block (seed 001 section 8 "Delivery Sequence"): path to a point in
+//! front of its gate, face the gate, creep in, open, back off.
+
+use super::config::{BACK_OFF_SPEED, MissionConfig};
+use super::drive::{Wait, faces, opened, steer, turn_towards};
+use super::leg::{Ctx, Leg, LegStep};
+use super::objects::{Colour, Gate};
+use super::pickup::name;
+use super::step::{Inputs, Motion, Tone};
+use crate::geometry::{Twist, wrap_angle};
+use crate::link::GripperCommand;
+
+#[derive(Clone, Debug)]
+enum Stage {
+    Travel(Leg),
+    Face,
+    Forward,
+    Open,
+    BackOff,
+}
+
+/// What a delivery step comes to.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) enum DropEvent {
+    Go(Motion, Option<GripperCommand>),
+    Delivered,
+    GiveUp,
+}
+
+/// A delivery under way.
+#[derive(Clone, Debug)]
+pub(crate) struct Delivery {
+    pub block: u32,
+    pub colour: Colour,
+    gate: Gate,
+    stage: Stage,
+    since: f64,
+}
+
+impl Delivery {
+    pub fn new(block: u32, colour: Colour, gate: Gate, config: &MissionConfig, t: f64) -> Self {
+        // Seed 001: drop_location = gate_center + offset * perpendicular.
+        let goal = gate.in_front(config.drop_staging);
+        let label = format!("{} gate", colour.label());
+        Self {
+            block,
+            colour,
+            gate,
+            stage: Stage::Travel(Leg::new(goal, label)),
+            since: t,
+        }
+    }
+
+    pub fn label(&self) -> String {
+        let block = name(self.colour, self.block);
+        let gate = self.colour.label();
+        match &self.stage {
+            Stage::Travel(leg) if leg.retrying().is_some() => {
+                format!("no path: retry deliver {block} to {gate} gate")
+            }
+            Stage::Travel(_) => format!("deliver {block} to {gate} gate"),
+            Stage::Face => format!("face {gate} gate with {block}"),
+            Stage::Forward => format!("drive {block} into {gate} gate"),
+            Stage::Open => format!("drop {block}"),
+            Stage::BackOff => format!("back off from {gate} gate"),
+        }
+    }
+
+    fn enter(&mut self, stage: Stage, t: f64) {
+        self.stage = stage;
+        self.since = t;
+    }
+
+    pub fn step(
+        &mut self,
+        inputs: &Inputs,
+        config: &MissionConfig,
+        ctx: &mut Ctx,
+        log: &mut Vec<(Tone, String)>,
+    ) -> DropEvent {
+        let (t, pose) = (inputs.t, inputs.pose);
+        let waited = t - self.since;
+        let error = wrap_angle(self.gate.facing() - pose.theta);
+        let stop = DropEvent::Go(Motion::Stop, None);
+        match &mut self.stage {
+            Stage::Travel(leg) => match leg.step(inputs, config, ctx, log) {
+                LegStep::Move(motion) => DropEvent::Go(motion, None),
+                LegStep::Arrived => {
+                    self.enter(Stage::Face, t);
+                    stop
+                }
+                LegStep::GiveUp => DropEvent::GiveUp,
+            },
+            Stage::Face => {
+                if faces(error) {
+                    self.enter(Stage::Forward, t);
+                    return stop;
+                }
+                DropEvent::Go(Motion::Drive(turn_towards(error, config)), None)
+            }
+            Stage::Forward => {
+                let distance = pose.position().distance(self.gate.center);
+                let creep = (config.drop_staging - config.drop_distance) / config.approach_speed;
+                if distance <= config.drop_distance || waited >= 2.0 * creep + 2.0 {
+                    self.enter(Stage::Open, t);
+                    return DropEvent::Go(Motion::Stop, Some(GripperCommand::Open));
+                }
+                let twist = Twist::new(config.approach_speed, steer(error));
+                DropEvent::Go(Motion::Drive(twist), None)
+            }
+            Stage::Open => match opened(inputs.gripper, waited, config) {
+                Wait::Waiting => stop,
+                outcome => {
+                    if outcome == Wait::TimedOut {
+                        log.push((Tone::Warn, "Gripper did not report open".into()));
+                    }
+                    self.enter(Stage::BackOff, t);
+                    DropEvent::Go(Motion::Drive(Twist::new(-BACK_OFF_SPEED, 0.0)), None)
+                }
+            },
+            Stage::BackOff => {
+                if waited >= config.back_off_time - 1e-9 {
+                    return DropEvent::Delivered;
+                }
+                DropEvent::Go(Motion::Drive(Twist::new(-BACK_OFF_SPEED, 0.0)), None)
+            }
+        }
+    }
+}

@@ -1,0 +1,177 @@
+//! One planned leg: ask the console for a path once, follow it, and recover when there is
+//! no path or no progress (seed 001 "Failure Modes & Recovery").
+
+use super::config::{MissionConfig, STUCK_PROGRESS};
+use super::drive::Turn;
+use super::step::{Inputs, Motion, PathStatus, Tone};
+use crate::geometry::{Point2, Twist};
+
+/// Counters and the plan-request clock shared by every leg of the mission.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct Ctx {
+    pub replans: u32,
+    pub recoveries: u32,
+    /// When the last `PlanTo` went out.
+    pub last_plan: Option<f64>,
+}
+
+/// What a leg asks for this step.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) enum LegStep {
+    Move(Motion),
+    Arrived,
+    /// Out of retries: hand over to manual.
+    GiveUp,
+}
+
+/// A path to one goal.
+#[derive(Clone, Debug)]
+pub(crate) struct Leg {
+    pub goal: Point2,
+    pub label: String,
+    /// When this leg last asked for its path, if it is waiting for one.
+    asked: Option<f64>,
+    requests: u32,
+    following: bool,
+    /// Least remaining length seen, and when it last shrank by `STUCK_PROGRESS`.
+    best: f64,
+    best_t: f64,
+    failures: u32,
+    turn: Option<Turn>,
+}
+
+impl Leg {
+    pub fn new(goal: Point2, label: String) -> Self {
+        Self {
+            goal,
+            label,
+            asked: None,
+            requests: 0,
+            following: false,
+            best: f64::INFINITY,
+            best_t: 0.0,
+            failures: 0,
+            turn: None,
+        }
+    }
+
+    /// Failed plans so far and whether a retry turn is under way.
+    pub fn retrying(&self) -> Option<u32> {
+        self.turn.as_ref().map(|_| self.failures)
+    }
+
+    pub fn step(
+        &mut self,
+        inputs: &Inputs,
+        config: &MissionConfig,
+        ctx: &mut Ctx,
+        log: &mut Vec<(Tone, String)>,
+    ) -> LegStep {
+        let t = inputs.t;
+        if let Some(turn) = &mut self.turn {
+            if !turn.advance(inputs.pose, t) {
+                return LegStep::Move(Motion::Drive(Twist::new(0.0, config.scan_speed)));
+            }
+            self.turn = None;
+        }
+        let Some(asked) = self.asked else {
+            return self.ask(t, config, ctx, log);
+        };
+        match inputs.path {
+            PathStatus::Following { remaining } => {
+                if !self.following {
+                    self.following = true;
+                    log.push((Tone::Info, "Path found".into()));
+                    log.push((Tone::Info, format!("Following path to {}", self.label)));
+                }
+                if *remaining < self.best - STUCK_PROGRESS {
+                    self.best = *remaining;
+                    self.best_t = t;
+                }
+                // Seed 001 "Stuck": no progress for the timeout: plan again.
+                if t - self.best_t >= config.stuck_timeout {
+                    if cooled(ctx, t, config) {
+                        ctx.recoveries += 1;
+                        log.push((
+                            Tone::Warn,
+                            format!(
+                                "Stuck: no progress for {:.0} s - replanning to {}",
+                                config.stuck_timeout, self.label
+                            ),
+                        ));
+                        return self.ask(t, config, ctx, log);
+                    }
+                    return LegStep::Move(Motion::Stop);
+                }
+                LegStep::Move(Motion::Follow)
+            }
+            PathStatus::Arrived => LegStep::Arrived,
+            PathStatus::NoPath(reason) => {
+                self.failures += 1;
+                self.asked = None;
+                self.following = false;
+                // Seed 001 "No Path Found": turn a little and try again, then give up.
+                if self.failures > config.no_path_retries {
+                    log.push((
+                        Tone::Error,
+                        format!(
+                            "No path to {} after {} retries - switching to manual",
+                            self.label, config.no_path_retries
+                        ),
+                    ));
+                    return LegStep::GiveUp;
+                }
+                ctx.recoveries += 1;
+                log.push((
+                    Tone::Warn,
+                    format!(
+                        "No path to {} ({reason}) - turning {:.0}° and retrying ({}/{})",
+                        self.label, config.retry_turn_deg, self.failures, config.no_path_retries
+                    ),
+                ));
+                let angle = config.retry_turn_deg.to_radians();
+                self.turn = Some(Turn::new(inputs.pose, t, angle, config.scan_speed));
+                LegStep::Move(Motion::Drive(Twist::new(0.0, config.scan_speed)))
+            }
+            // The path was dropped (or not taken up yet): ask again after the cooldown.
+            PathStatus::Idle => {
+                if t - asked >= config.replan_cooldown && cooled(ctx, t, config) {
+                    return self.ask(t, config, ctx, log);
+                }
+                LegStep::Move(Motion::Stop)
+            }
+        }
+    }
+
+    fn ask(
+        &mut self,
+        t: f64,
+        config: &MissionConfig,
+        ctx: &mut Ctx,
+        log: &mut Vec<(Tone, String)>,
+    ) -> LegStep {
+        if !cooled(ctx, t, config) {
+            return LegStep::Move(Motion::Stop);
+        }
+        if self.requests == 0 {
+            log.push((Tone::Info, format!("Thinking path to {}", self.label)));
+        } else {
+            ctx.replans += 1;
+        }
+        self.requests += 1;
+        self.asked = Some(t);
+        ctx.last_plan = Some(t);
+        self.best = f64::INFINITY;
+        self.best_t = t;
+        LegStep::Move(Motion::PlanTo {
+            goal: self.goal,
+            label: self.label.clone(),
+        })
+    }
+}
+
+/// Whether the replan cooldown since the last plan request is over.
+fn cooled(ctx: &Ctx, t: f64, config: &MissionConfig) -> bool {
+    ctx.last_plan
+        .is_none_or(|last| t - last >= config.replan_cooldown - 1e-9)
+}

@@ -1,0 +1,321 @@
+//! The mission state machine (seed 001 sections 7-8): scan, choose, explore, pick up,
+//! deliver, recover. Driven only by `Inputs`; every time it keeps came in through them.
+
+use super::config::{DEMOTED_FOR, LOST_SCAN_AFTER, MissionConfig};
+use super::delivery::{Delivery, DropEvent};
+use super::drive::Turn;
+use super::leg::{Ctx, Leg, LegStep};
+use super::objects::{Colour, Found, Objects};
+use super::pickup::{PickEvent, Pickup, name};
+use super::step::{Inputs, Motion, Outputs, Tone};
+use crate::geometry::{Point2, Twist};
+use crate::link::GripperCommand;
+use std::collections::{BTreeMap, BTreeSet};
+
+/// What exploration is heading for.
+#[derive(Clone, Debug, PartialEq)]
+pub(super) enum Target {
+    Frontier,
+    Marker(u32),
+    /// A block seen by one marker only (odd marker).
+    Potential(u32),
+}
+
+#[derive(Clone, Debug)]
+pub(super) enum Phase {
+    /// Before the first step.
+    Start,
+    Scan {
+        turn: Turn,
+        initial: bool,
+    },
+    Choose,
+    Explore {
+        leg: Leg,
+        target: Target,
+    },
+    /// Seed 001 "Robot Lost": rotating until a marker comes into view.
+    Lost,
+    Pickup(Pickup),
+    Deliver(Delivery),
+    Done,
+    Manual,
+}
+
+/// One block's story: odd marker, found, picked up, delivered (session times).
+pub type TimelineEntry = (u32, f64, Option<f64>, Option<f64>);
+
+/// The autonomous mission.
+#[derive(Clone, Debug)]
+pub struct Mission {
+    pub(super) config: MissionConfig,
+    pub(super) objects: Objects,
+    pub(super) phase: Phase,
+    pub(super) ctx: Ctx,
+    /// Last time a camera frame showed any marker.
+    pub(super) last_marker: f64,
+    pub(super) visited_markers: Vec<u32>,
+    pub(super) visited_goals: Vec<Point2>,
+    pub(super) visited_potential: BTreeSet<u32>,
+    /// Demoted blocks and when; attempts per block.
+    pub(super) demoted: BTreeMap<u32, f64>,
+    pub(super) attempts: BTreeMap<u32, u32>,
+    announced: BTreeSet<Colour>,
+    pub(super) timeline: Vec<TimelineEntry>,
+    held: Option<u32>,
+    /// Markers of delivered blocks: ignored by the filter forever.
+    delivered_markers: Vec<u32>,
+}
+
+pub(super) enum Tick {
+    Out(Motion, Option<GripperCommand>),
+    Again,
+}
+
+impl Mission {
+    pub fn new(config: MissionConfig, t: f64) -> Self {
+        Self {
+            config,
+            objects: Objects::default(),
+            phase: Phase::Start,
+            ctx: Ctx::default(),
+            last_marker: t,
+            visited_markers: Vec::new(),
+            visited_goals: Vec::new(),
+            visited_potential: BTreeSet::new(),
+            demoted: BTreeMap::new(),
+            attempts: BTreeMap::new(),
+            announced: BTreeSet::new(),
+            timeline: Vec::new(),
+            held: None,
+            delivered_markers: Vec::new(),
+        }
+    }
+
+    pub fn step(&mut self, inputs: &Inputs) -> Outputs {
+        let mut log = Vec::new();
+        if inputs.camera_frame && !inputs.seen.is_empty() {
+            self.last_marker = inputs.t;
+        }
+        self.note_found(inputs, &mut log);
+        let mut out = Outputs::new(Motion::Stop);
+        for _ in 0..4 {
+            if let Tick::Out(motion, gripper) = self.tick(inputs, &mut log) {
+                out.motion = motion;
+                out.gripper = gripper;
+                break;
+            }
+        }
+        out.log = log;
+        out.to_manual = matches!(self.phase, Phase::Manual);
+        out.ignore_markers = self.ignored();
+        out
+    }
+
+    fn tick(&mut self, inputs: &Inputs, log: &mut Vec<(Tone, String)>) -> Tick {
+        let t = inputs.t;
+        let scan = Motion::Drive(Twist::new(0.0, self.config.scan_speed));
+        let exploring = matches!(
+            self.phase,
+            Phase::Explore { .. } | Phase::Scan { initial: false, .. }
+        );
+        if exploring && self.deliverable(inputs.pose.position()).is_some() {
+            self.phase = Phase::Choose;
+            return Tick::Again;
+        }
+        // Seed 001 "Robot Lost": no marker for 10 s while exploring: rotate to scan.
+        if exploring && t - self.last_marker >= LOST_SCAN_AFTER {
+            self.ctx.recoveries += 1;
+            log.push((
+                Tone::Warn,
+                format!("No landmarks for {LOST_SCAN_AFTER:.0} s - rotating to scan"),
+            ));
+            self.phase = Phase::Lost;
+        }
+        match &mut self.phase {
+            Phase::Start => {
+                // Seed 001 section 7: a full turn in place first.
+                log.push((Tone::Info, "Initial rotation scan".into()));
+                self.phase = Phase::Scan {
+                    turn: Turn::full(inputs.pose, t, self.config.scan_speed),
+                    initial: true,
+                };
+                Tick::Out(scan, None)
+            }
+            Phase::Scan { turn, .. } => {
+                if turn.advance(inputs.pose, t) {
+                    self.phase = Phase::Choose;
+                    return Tick::Again;
+                }
+                Tick::Out(scan, None)
+            }
+            Phase::Choose => {
+                self.choose(inputs, log);
+                Tick::Again
+            }
+            Phase::Explore { leg, target } => {
+                match leg.step(inputs, &self.config, &mut self.ctx, log) {
+                    LegStep::Move(motion) => Tick::Out(motion, None),
+                    LegStep::Arrived => {
+                        let (goal, target) = (leg.goal, target.clone());
+                        self.arrived(goal, target);
+                        log.push((Tone::Info, "Arrived - scanning".into()));
+                        self.phase = Phase::Scan {
+                            turn: Turn::full(inputs.pose, t, self.config.scan_speed),
+                            initial: false,
+                        };
+                        Tick::Out(scan, None)
+                    }
+                    LegStep::GiveUp => self.manual(),
+                }
+            }
+            Phase::Lost => {
+                if t - self.last_marker < LOST_SCAN_AFTER {
+                    log.push((Tone::Success, "Landmarks back in view".into()));
+                    self.phase = Phase::Choose;
+                    return Tick::Again;
+                }
+                if t - self.last_marker >= self.config.lost_timeout {
+                    log.push((
+                        Tone::Error,
+                        format!(
+                            "Robot lost: no landmarks for {:.0} s - switching to manual",
+                            self.config.lost_timeout
+                        ),
+                    ));
+                    return self.manual();
+                }
+                Tick::Out(scan, None)
+            }
+            Phase::Pickup(pickup) => {
+                let (odd, colour) = (pickup.block, pickup.colour);
+                match pickup.step(inputs, &self.config, &self.objects, &mut self.ctx, log) {
+                    PickEvent::Go(motion, gripper) => Tick::Out(motion, gripper),
+                    PickEvent::Picked => {
+                        log.push((Tone::Success, format!("Picked up {}", name(colour, odd))));
+                        self.held = Some(odd);
+                        self.stamp(odd, t, 2);
+                        let gate = self.objects.gate_for(colour).copied();
+                        self.phase = match gate {
+                            Some(gate) => {
+                                Phase::Deliver(Delivery::new(odd, colour, gate, &self.config, t))
+                            }
+                            None => Phase::Choose,
+                        };
+                        Tick::Again
+                    }
+                    PickEvent::Demote => {
+                        self.objects.demote(odd);
+                        self.ctx.recoveries += 1;
+                        self.demoted.insert(odd, t);
+                        self.phase = Phase::Choose;
+                        Tick::Again
+                    }
+                    PickEvent::GiveUp => self.manual(),
+                }
+            }
+            Phase::Deliver(delivery) => {
+                let (odd, colour) = (delivery.block, delivery.colour);
+                match delivery.step(inputs, &self.config, &mut self.ctx, log) {
+                    DropEvent::Go(motion, gripper) => Tick::Out(motion, gripper),
+                    DropEvent::Delivered => {
+                        self.objects.deliver(odd);
+                        self.held = None;
+                        self.delivered_markers.extend([odd, odd + 1]);
+                        self.stamp(odd, t, 3);
+                        let of = match self.config.total_blocks {
+                            0 => String::new(),
+                            n => format!("/{n}"),
+                        };
+                        log.push((
+                            Tone::Success,
+                            format!(
+                                "Delivered {} ({}{of})",
+                                name(colour, odd),
+                                self.objects.delivered()
+                            ),
+                        ));
+                        self.phase = Phase::Choose;
+                        Tick::Again
+                    }
+                    DropEvent::GiveUp => self.manual(),
+                }
+            }
+            Phase::Done => Tick::Out(Motion::Stop, None),
+            Phase::Manual => Tick::Out(Motion::Stop, None),
+        }
+    }
+
+    pub(super) fn manual(&mut self) -> Tick {
+        self.phase = Phase::Manual;
+        Tick::Out(Motion::Stop, None)
+    }
+
+    /// Updates the objects from the landmarks and tells the log what is new.
+    fn note_found(&mut self, inputs: &Inputs, log: &mut Vec<(Tone, String)>) {
+        let robot = inputs.pose.position();
+        for found in self
+            .objects
+            .update(inputs.landmarks, robot, self.config.block_size)
+        {
+            match found {
+                Found::Block(b) => {
+                    log.push((
+                        Tone::Success,
+                        format!("Found {}", name(b.colour, b.markers[0])),
+                    ));
+                    if !self.timeline.iter().any(|e| e.0 == b.markers[0]) {
+                        self.timeline.push((b.markers[0], inputs.t, None, None));
+                    }
+                }
+                Found::PotentialBlock(b) => log.push((
+                    Tone::Info,
+                    format!("Found potential {}", name(b.colour, b.markers[0])),
+                )),
+                Found::Gate(g) => {
+                    log.push((Tone::Success, format!("Found {} gate", g.colour.label())))
+                }
+            }
+        }
+        // A demoted block is a target again once seen a while after the demotion.
+        let t = inputs.t;
+        self.demoted.retain(|odd, at| {
+            !(t - *at >= DEMOTED_FOR && inputs.seen.iter().any(|m| *m == *odd || *m == odd + 1))
+        });
+        for colour in [Colour::Red, Colour::Blue] {
+            let ready = self.objects.gate_for(colour).is_some()
+                && self
+                    .objects
+                    .blocks()
+                    .any(|b| b.colour == colour && b.confirmed && !b.delivered);
+            if ready && self.announced.insert(colour) {
+                // Seed 001 section 7: both a block and its gate known: stop exploring.
+                log.push((
+                    Tone::Info,
+                    format!(
+                        "Found {} gate and blocks - switching to thinking",
+                        colour.label()
+                    ),
+                ));
+            }
+        }
+    }
+
+    /// Sets a timeline time: 2 picked, 3 delivered.
+    fn stamp(&mut self, odd: u32, t: f64, field: usize) {
+        if let Some(e) = self.timeline.iter_mut().find(|e| e.0 == odd) {
+            match field {
+                2 => e.2 = Some(t),
+                _ => e.3 = Some(t),
+            }
+        }
+    }
+
+    fn ignored(&self) -> Vec<u32> {
+        let mut ids = self.delivered_markers.clone();
+        if let Some(odd) = self.held {
+            ids.extend([odd, odd + 1]);
+        }
+        ids
+    }
+}

@@ -1,0 +1,198 @@
+//! Picking a block up (seed 001 section 8 "Pick-up Sequence"): path to a staging point,
+//! open, face the block, creep up to it, close, and check the gripper holds it.
+
+use super::config::{BLOCK_LOST_AFTER, CAMERA_HALF_FOV, CAMERA_RANGE, MissionConfig};
+use super::drive::{Wait, bearing, faces, opened, steer, towards, turn_towards};
+use super::leg::{Ctx, Leg, LegStep};
+use super::objects::{Block, Colour, Objects};
+use super::step::{Inputs, Motion, Tone};
+use crate::geometry::{Point2, Twist};
+use crate::link::{GripperCommand, GripperState};
+
+/// Where a pick-up is.
+#[derive(Clone, Debug)]
+enum Stage {
+    Travel(Leg),
+    Open,
+    Face,
+    Approach,
+    Close,
+    /// After an empty close: open again before the retry.
+    Reopen,
+    /// Back away a little so the retry approaches straight.
+    BackUp,
+}
+
+/// What a pick-up step comes to.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) enum PickEvent {
+    Go(Motion, Option<GripperCommand>),
+    Picked,
+    /// Missed twice or lost from view: back to a potential block.
+    Demote,
+    GiveUp,
+}
+
+/// A pick-up under way.
+#[derive(Clone, Debug)]
+pub(crate) struct Pickup {
+    pub block: u32,
+    pub colour: Colour,
+    stage: Stage,
+    since: f64,
+    retried: bool,
+    /// When the block's markers were last seen, or last not expected in view.
+    last_seen: f64,
+}
+
+impl Pickup {
+    pub fn new(block: &Block, robot: Point2, config: &MissionConfig, t: f64) -> Self {
+        let goal = towards(block.position, robot, config.staging_distance);
+        let label = name(block.colour, block.markers[0]);
+        Self {
+            block: block.markers[0],
+            colour: block.colour,
+            stage: Stage::Travel(Leg::new(goal, label)),
+            since: t,
+            retried: false,
+            last_seen: t,
+        }
+    }
+
+    pub fn label(&self) -> String {
+        let what = match &self.stage {
+            Stage::Travel(leg) if leg.retrying().is_some() => "no path: retry to",
+            Stage::Travel(_) => "travel to",
+            Stage::Open => "open gripper for",
+            Stage::Face => "face",
+            Stage::Approach => "approach",
+            Stage::Close => "grip",
+            Stage::Reopen => "reopen for",
+            Stage::BackUp => "back up from",
+        };
+        format!("{what} {}", name(self.colour, self.block))
+    }
+
+    fn enter(&mut self, stage: Stage, t: f64) {
+        self.stage = stage;
+        self.since = t;
+        self.last_seen = t;
+    }
+
+    pub fn step(
+        &mut self,
+        inputs: &Inputs,
+        config: &MissionConfig,
+        objects: &Objects,
+        ctx: &mut Ctx,
+        log: &mut Vec<(Tone, String)>,
+    ) -> PickEvent {
+        let Some(block) = objects.blocks().find(|b| b.markers[0] == self.block) else {
+            return PickEvent::Demote;
+        };
+        let (t, pose) = (inputs.t, inputs.pose);
+        let distance = pose.position().distance(block.position);
+        let error = bearing(pose, block.position);
+        let waited = t - self.since;
+        let stop = PickEvent::Go(Motion::Stop, None);
+        if matches!(self.stage, Stage::Face | Stage::Approach) {
+            // Seed 001 "Block Lost During Approach": in view but unseen for 3 s.
+            let in_view = distance <= CAMERA_RANGE && error.abs() < CAMERA_HALF_FOV;
+            let spotted =
+                inputs.camera_frame && block.markers.iter().any(|m| inputs.seen.contains(m));
+            if spotted || !in_view {
+                self.last_seen = t;
+            } else if t - self.last_seen >= BLOCK_LOST_AFTER {
+                log.push((
+                    Tone::Warn,
+                    format!(
+                        "Lost {} during the approach - back to a potential block",
+                        name(self.colour, self.block)
+                    ),
+                ));
+                return PickEvent::Demote;
+            }
+        }
+        match &mut self.stage {
+            Stage::Travel(leg) => match leg.step(inputs, config, ctx, log) {
+                LegStep::Move(motion) => PickEvent::Go(motion, None),
+                LegStep::Arrived => {
+                    self.enter(Stage::Open, t);
+                    PickEvent::Go(Motion::Stop, Some(GripperCommand::Open))
+                }
+                LegStep::GiveUp => PickEvent::GiveUp,
+            },
+            Stage::Open | Stage::Reopen => match opened(inputs.gripper, waited, config) {
+                Wait::Waiting => stop,
+                outcome => {
+                    if outcome == Wait::TimedOut {
+                        log.push((Tone::Warn, "Gripper did not report open".into()));
+                    }
+                    let next = match self.stage {
+                        Stage::Open => Stage::Face,
+                        _ => Stage::BackUp,
+                    };
+                    self.enter(next, t);
+                    stop
+                }
+            },
+            Stage::Face => {
+                if faces(error) {
+                    self.enter(Stage::Approach, t);
+                    return stop;
+                }
+                PickEvent::Go(Motion::Drive(turn_towards(error, config)), None)
+            }
+            Stage::Approach => {
+                let creep =
+                    (config.staging_distance - config.grip_distance) / config.approach_speed;
+                if distance <= config.grip_distance || waited >= 2.0 * creep + 2.0 {
+                    self.enter(Stage::Close, t);
+                    return PickEvent::Go(Motion::Stop, Some(GripperCommand::Close));
+                }
+                let twist = Twist::new(config.approach_speed, steer(error));
+                PickEvent::Go(Motion::Drive(twist), None)
+            }
+            Stage::Close => match inputs.gripper {
+                Some(GripperState::Holding) => PickEvent::Picked,
+                // A gripper that reports nothing: trust seed 001's wait.
+                None if waited >= config.gripper_wait => PickEvent::Picked,
+                Some(GripperState::Closed) => self.missed(t, ctx, log),
+                _ if waited >= config.gripper_wait + 1.0 => self.missed(t, ctx, log),
+                _ => stop,
+            },
+            Stage::BackUp => {
+                if distance >= config.grip_distance + 0.1 || waited >= 4.0 {
+                    self.enter(Stage::Face, t);
+                    return stop;
+                }
+                PickEvent::Go(Motion::Drive(Twist::new(-config.approach_speed, 0.0)), None)
+            }
+        }
+    }
+
+    /// The gripper closed on nothing: reopen and retry once, then give the block up.
+    fn missed(&mut self, t: f64, ctx: &mut Ctx, log: &mut Vec<(Tone, String)>) -> PickEvent {
+        let block = name(self.colour, self.block);
+        if self.retried {
+            log.push((
+                Tone::Error,
+                format!("Gripper missed {block} again - back to a potential block"),
+            ));
+            return PickEvent::Demote;
+        }
+        self.retried = true;
+        ctx.recoveries += 1;
+        log.push((
+            Tone::Warn,
+            format!("Gripper closed on nothing - reopening to retry {block}"),
+        ));
+        self.enter(Stage::Reopen, t);
+        PickEvent::Go(Motion::Stop, Some(GripperCommand::Open))
+    }
+}
+
+/// "red block 421".
+pub(crate) fn name(colour: Colour, odd: u32) -> String {
+    format!("{} block {odd}", colour.label())
+}

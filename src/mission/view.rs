@@ -1,0 +1,71 @@
+//! Read-only views of the mission for the status panel.
+
+use super::machine::{Mission, Phase, Target, TimelineEntry};
+
+impl Mission {
+    /// The sub-state and its target, e.g. "approach red block 421".
+    pub fn state_label(&self) -> String {
+        match &self.phase {
+            Phase::Start => "starting".into(),
+            Phase::Scan { turn, initial } => {
+                let what = if *initial { "initial scan" } else { "scan" };
+                format!("{what} {:.0}%", 100.0 * turn.progress())
+            }
+            Phase::Choose => "thinking".into(),
+            Phase::Explore { leg, target } => {
+                let what = match target {
+                    Target::Potential(_) => "look at",
+                    _ => "explore",
+                };
+                match leg.retrying() {
+                    Some(n) => format!("no path ({n}): retry {what} {}", leg.label),
+                    None => format!("{what} {}", leg.label),
+                }
+            }
+            Phase::Lost => "lost: scanning for landmarks".into(),
+            Phase::Pickup(p) => p.label(),
+            Phase::Deliver(d) => d.label(),
+            Phase::Done => "done".into(),
+            Phase::Manual => "handed to manual".into(),
+        }
+    }
+
+    /// Blocks delivered so far.
+    pub fn delivered(&self) -> usize {
+        self.objects.delivered()
+    }
+
+    /// Blocks confirmed by both markers, delivered ones included.
+    pub fn known_blocks(&self) -> usize {
+        self.objects
+            .blocks()
+            .filter(|b| b.confirmed || b.delivered)
+            .count()
+    }
+
+    /// Plan requests repeated for the same goal (stuck, no path, dropped path).
+    pub fn replans(&self) -> u32 {
+        self.ctx.replans
+    }
+
+    /// Recovery actions started: lost scans, no-path turns, stuck replans, gripper
+    /// retries, demoted blocks.
+    pub fn recoveries(&self) -> u32 {
+        self.ctx.recoveries
+    }
+
+    /// Each confirmed block: odd marker, found, picked up and delivered times.
+    pub fn timeline(&self) -> &[TimelineEntry] {
+        &self.timeline
+    }
+
+    /// The mission finished with every block it had to deliver delivered.
+    pub fn is_done(&self) -> bool {
+        matches!(self.phase, Phase::Done)
+    }
+
+    /// The mission gave the robot to manual control.
+    pub fn is_manual(&self) -> bool {
+        matches!(self.phase, Phase::Manual)
+    }
+}

@@ -6,7 +6,7 @@ use navdeck::geometry::{Point2, Pose2, wrap_angle};
 use navdeck::link::{GripperCommand, GripperState};
 use navdeck::map::costmap::{Costmap, FREE, NO_INFORMATION};
 use navdeck::mission::step::{Inputs, Motion, Outputs, PathStatus};
-use navdeck::mission::{Mission, MissionConfig};
+use navdeck::mission::{Mission, MissionConfig, TargetRule};
 use std::collections::BTreeMap;
 use std::f64::consts::PI;
 
@@ -543,4 +543,57 @@ fn a_stuck_path_is_replanned_after_30_s_and_dropped_paths_respect_the_cooldown()
         times.windows(2).all(|w| w[1] - w[0] >= 0.5 - 1e-9),
         "{times:?}"
     );
+}
+
+#[test]
+fn the_marker_rule_visits_the_furthest_markers_and_either_rule_falls_back_to_the_other() {
+    for rule in [TargetRule::Markers, TargetRule::Frontiers] {
+        let config = MissionConfig {
+            target_rule: rule,
+            ..MissionConfig::default()
+        };
+        // No frontiers in a fully known map: the frontier rule falls back to markers.
+        let mut rig = Rig::new(config, all_free());
+        rig.landmarks.insert(1, Point2::new(1.5, 0.0));
+        rig.landmarks.insert(2, Point2::new(2.0, 0.5));
+        let out = rig.until(200, |out, _| plan_to(out).is_some());
+        let (goal, label) = plan_to(&out).unwrap();
+        assert_eq!(label, "marker 2", "{rule:?}");
+        let stop = Point2::new(2.0, 0.5);
+        assert!(
+            (goal.distance(stop) - 0.3).abs() < 1e-9,
+            "short of the wall"
+        );
+        rig.until(400, |out, _| plan_to(out).is_some());
+        assert_eq!(rig.plans.last().unwrap().2, "marker 1");
+        let out = rig.until(400, |out, _| out.to_manual);
+        assert!(rig.logged("Exploration complete"));
+        assert!(rig.logged("with 0/4 blocks delivered - switching to manual"));
+        assert!(out.to_manual && !rig.mission.is_done());
+    }
+}
+
+#[test]
+fn with_total_blocks_0_every_found_block_is_delivered_then_the_mission_ends() {
+    let mut rig = Rig::new(config(0), all_free());
+    rig.add_block(421, 1.0, 0.0);
+    rig.add_red_gate();
+    rig.until(1500, |_, r| r.mission.is_done());
+    assert_eq!(rig.mission.delivered(), 1);
+    assert!(rig.logged("Delivered red block 421 (1)"), "{:?}", rig.log);
+    assert!(rig.logged("Exploration complete"));
+}
+
+#[test]
+fn a_gripper_without_feedback_is_trusted_after_the_seed_wait() {
+    let mut rig = Rig::new(config(1), all_free());
+    rig.add_block(421, 1.0, 0.0);
+    rig.add_red_gate();
+    rig.until(600, |out, _| out.gripper == Some(GripperCommand::Close));
+    rig.auto = false;
+    rig.gripper = None;
+    let start = rig.t;
+    rig.until(30, |out, _| plan_to(out).is_some());
+    assert!((rig.t - start - 1.0).abs() < 0.15, "{}", rig.t - start);
+    assert!(rig.logged("Picked up red block 421"));
 }

@@ -1,11 +1,11 @@
 //! The mission state machine (seed 001 sections 7-8): scan, choose, explore, pick up,
 //! deliver, recover. Driven only by `Inputs`; every time it keeps came in through them.
 
-use super::config::{DEMOTED_FOR, LOST_SCAN_AFTER, MissionConfig};
+use super::config::{LOST_SCAN_AFTER, MissionConfig};
 use super::delivery::{Delivery, DropEvent};
 use super::drive::Turn;
 use super::leg::{Ctx, Leg, LegStep};
-use super::objects::{Colour, Found, Objects};
+use super::objects::{Colour, Objects};
 use super::pickup::{PickEvent, Pickup, name};
 use super::step::{Inputs, Motion, Outputs, Tone};
 use crate::geometry::{Point2, Twist};
@@ -60,11 +60,11 @@ pub struct Mission {
     /// Demoted blocks and when; attempts per block.
     pub(super) demoted: BTreeMap<u32, f64>,
     pub(super) attempts: BTreeMap<u32, u32>,
-    announced: BTreeSet<Colour>,
+    pub(super) announced: BTreeSet<Colour>,
     pub(super) timeline: Vec<TimelineEntry>,
-    held: Option<u32>,
+    pub(super) held: Option<u32>,
     /// Markers of delivered blocks: ignored by the filter forever.
-    delivered_markers: Vec<u32>,
+    pub(super) delivered_markers: Vec<u32>,
 }
 
 pub(super) enum Tick {
@@ -249,66 +249,6 @@ impl Mission {
     pub(super) fn manual(&mut self) -> Tick {
         self.phase = Phase::Manual;
         Tick::Out(Motion::Stop, None)
-    }
-
-    /// Updates the objects from the landmarks and tells the log what is new.
-    fn note_found(&mut self, inputs: &Inputs, log: &mut Vec<(Tone, String)>) {
-        let robot = inputs.pose.position();
-        for found in self
-            .objects
-            .update(inputs.landmarks, robot, self.config.block_size)
-        {
-            match found {
-                Found::Block(b) => {
-                    log.push((
-                        Tone::Success,
-                        format!("Found {}", name(b.colour, b.markers[0])),
-                    ));
-                    if !self.timeline.iter().any(|e| e.0 == b.markers[0]) {
-                        self.timeline.push((b.markers[0], inputs.t, None, None));
-                    }
-                }
-                Found::PotentialBlock(b) => log.push((
-                    Tone::Info,
-                    format!("Found potential {}", name(b.colour, b.markers[0])),
-                )),
-                Found::Gate(g) => {
-                    log.push((Tone::Success, format!("Found {} gate", g.colour.label())))
-                }
-            }
-        }
-        // A demoted block is a target again once seen a while after the demotion.
-        let t = inputs.t;
-        self.demoted.retain(|odd, at| {
-            !(t - *at >= DEMOTED_FOR && inputs.seen.iter().any(|m| *m == *odd || *m == odd + 1))
-        });
-        for colour in [Colour::Red, Colour::Blue] {
-            let ready = self.objects.gate_for(colour).is_some()
-                && self
-                    .objects
-                    .blocks()
-                    .any(|b| b.colour == colour && b.confirmed && !b.delivered);
-            if ready && self.announced.insert(colour) {
-                // Seed 001 section 7: both a block and its gate known: stop exploring.
-                log.push((
-                    Tone::Info,
-                    format!(
-                        "Found {} gate and blocks - switching to thinking",
-                        colour.label()
-                    ),
-                ));
-            }
-        }
-    }
-
-    /// Sets a timeline time: 2 picked, 3 delivered.
-    fn stamp(&mut self, odd: u32, t: f64, field: usize) {
-        if let Some(e) = self.timeline.iter_mut().find(|e| e.0 == odd) {
-            match field {
-                2 => e.2 = Some(t),
-                _ => e.3 = Some(t),
-            }
-        }
     }
 
     fn ignored(&self) -> Vec<u32> {

@@ -5,6 +5,7 @@ mod choose;
 pub mod config;
 mod delivery;
 mod drive;
+mod found;
 mod leg;
 pub mod machine;
 pub mod objects;

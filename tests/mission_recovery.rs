@@ -1,0 +1,178 @@
+//! The mission's recoveries driven by scripted inputs (seed 001 "Failure Modes &
+//! Recovery"): empty gripper, block lost, robot lost, no path, stuck.
+
+mod mission_rig;
+
+use mission_rig::{DT, Rig, all_free, config, half_known, plan_to};
+use navdeck::geometry::{Point2, wrap_angle};
+use navdeck::link::GripperCommand;
+use navdeck::mission::step::{Motion, PathStatus};
+
+#[test]
+fn an_empty_gripper_reopens_and_retries_once_then_demotes_the_block() {
+    let mut rig = Rig::new(config(4), all_free());
+    rig.add_block(421, 1.0, 0.0);
+    rig.add_red_gate();
+    // The block is really 5 cm to the side of where the map has it: the jaws miss.
+    rig.blocks[0].1 = Point2::new(1.0, 0.05);
+    rig.until(800, |_, r| r.logged("Gripper closed on nothing"));
+    assert!(rig.mission.state_label().starts_with("reopen"));
+    rig.until(300, |_, r| r.logged("back to a potential block"));
+    assert_eq!(
+        rig.commands,
+        [
+            GripperCommand::Open,
+            GripperCommand::Close,
+            GripperCommand::Open,
+            GripperCommand::Close
+        ]
+    );
+    assert!(rig.mission.recoveries() >= 2);
+    assert!(rig.mission.timeline()[0].2.is_none(), "never picked");
+    // Not straight back to the same block: it waits as a potential one.
+    let out = rig.step();
+    assert!(
+        !rig.mission
+            .state_label()
+            .contains("travel to red block 421"),
+        "{}",
+        rig.mission.state_label()
+    );
+    assert!(out.ignore_markers.is_empty());
+}
+
+#[test]
+fn a_block_unseen_in_view_for_3_s_during_the_approach_is_demoted() {
+    let mut rig = Rig::new(config(4), all_free());
+    rig.add_block(421, 1.0, 0.0);
+    rig.add_red_gate();
+    rig.until(600, |_, r| r.mission.state_label() == "face red block 421");
+    rig.seen = vec![1];
+    let start = rig.t;
+    rig.until(100, |_, r| {
+        r.logged("Lost red block 421 during the approach")
+    });
+    let took = rig.t - start;
+    assert!((3.0..3.3).contains(&took), "{took}");
+    assert!(!rig.mission.state_label().contains("approach red block"));
+    assert_eq!(
+        rig.mission.known_blocks(),
+        0,
+        "demoted to a potential block"
+    );
+}
+
+#[test]
+fn a_lost_robot_scans_after_10_s_and_hands_over_after_30_s() {
+    let mut rig = Rig::new(config(4), half_known());
+    rig.auto = false;
+    rig.until(200, |out, _| plan_to(out).is_some());
+    rig.path = PathStatus::Following { remaining: 0.9 };
+    rig.seen.clear();
+    let dark = rig.t;
+    let out = rig.until(200, |out, _| matches!(out.motion, Motion::Drive(_)));
+    assert!(rig.logged("No landmarks for 10 s - rotating to scan"));
+    assert!(rig.t - dark >= 10.0 - 1.0 && rig.t - dark <= 10.2);
+    let Motion::Drive(tw) = out.motion else {
+        unreachable!()
+    };
+    assert!(tw.linear == 0.0 && tw.angular > 0.0);
+    let out = rig.until(300, |out, _| out.to_manual);
+    assert!(rig.logged("Robot lost: no landmarks for 30 s - switching to manual"));
+    assert!((rig.t - dark - 30.0).abs() < 1.5, "{}", rig.t - dark);
+    assert_eq!(out.motion, Motion::Stop);
+    assert!(rig.mission.recoveries() >= 1);
+}
+
+#[test]
+fn a_lost_robot_that_sees_a_marker_again_goes_back_to_choosing() {
+    let mut rig = Rig::new(config(4), half_known());
+    rig.auto = false;
+    rig.until(200, |out, _| plan_to(out).is_some());
+    rig.path = PathStatus::Following { remaining: 0.9 };
+    rig.seen.clear();
+    rig.until(200, |_, r| r.mission.state_label().starts_with("lost"));
+    rig.seen = vec![1];
+    let out = rig.until(20, |out, _| plan_to(out).is_some());
+    assert!(!out.to_manual);
+    assert!(rig.logged("Landmarks back in view"));
+}
+
+#[test]
+fn no_path_turns_10_degrees_and_retries_then_hands_over_after_36() {
+    let mut rig = Rig::new(config(4), half_known());
+    rig.auto = false;
+    rig.until(200, |out, _| plan_to(out).is_some());
+    let first = rig.plans.len();
+    rig.path = PathStatus::NoPath("goal in an obstacle".into());
+    let mut headings = vec![rig.pose.theta];
+    let out = rig.until(2000, |out, r| {
+        out.to_manual || (plan_to(out).is_some() && r.plans.len() == first + 1)
+    });
+    assert!(!out.to_manual);
+    headings.push(rig.pose.theta);
+    assert!(
+        rig.logged("turning 10° and retrying (1/36)"),
+        "{:?}",
+        rig.log
+    );
+    let turned = wrap_angle(headings[1] - headings[0]);
+    assert!(
+        turned >= 10f64.to_radians() - 1e-9 && turned < 16f64.to_radians(),
+        "{turned}"
+    );
+    let out = rig.until(2000, |out, _| out.to_manual);
+    assert_eq!(rig.plans.len() - first, 36, "36 retries");
+    assert!(rig.logged("(36/36)"));
+    assert!(rig.logged("after 36 retries - switching to manual"));
+    assert_eq!(rig.mission.replans(), 36);
+    assert_eq!(out.motion, Motion::Stop);
+    let gaps = rig.plans.windows(2).map(|w| w[1].0 - w[0].0);
+    assert!(gaps.clone().all(|g| g >= 0.5 - 1e-9), "cooldown");
+}
+
+#[test]
+fn a_stuck_path_is_replanned_after_30_s_and_dropped_paths_respect_the_cooldown() {
+    let mut rig = Rig::new(config(4), half_known());
+    rig.auto = false;
+    rig.until(200, |out, _| plan_to(out).is_some());
+    let asked = rig.t - DT;
+    // Creeping: 4 cm in 30 s is no progress.
+    for i in 0..400 {
+        rig.path = PathStatus::Following {
+            remaining: 0.9 - 0.0001 * i as f64,
+        };
+        let out = rig.step();
+        if plan_to(&out).is_some() {
+            break;
+        }
+    }
+    let replanned = rig.plans.last().unwrap().0;
+    assert!(
+        (replanned - asked - 30.0).abs() < 0.15,
+        "{}",
+        replanned - asked
+    );
+    assert!(rig.logged("Stuck: no progress for 30 s"));
+    assert_eq!(rig.mission.replans(), 1);
+    // Progress resets the clock: steady progress never replans.
+    let n = rig.plans.len();
+    for i in 0..400 {
+        rig.path = PathStatus::Following {
+            remaining: 0.9 - 0.002 * i as f64,
+        };
+        rig.step();
+    }
+    assert_eq!(rig.plans.len(), n);
+    // The console drops the path each time: plan requests at most every 0.5 s.
+    rig.path = PathStatus::Idle;
+    for _ in 0..30 {
+        rig.step();
+    }
+    let times: Vec<f64> = rig.plans[n..].iter().map(|p| p.0).collect();
+    assert!(times.len() >= 4, "{times:?}");
+    assert!(
+        times.windows(2).all(|w| w[1] - w[0] >= 0.5 - 1e-9),
+        "{times:?}"
+    );
+}

@@ -1,0 +1,211 @@
+//! A scripted stand-in for the console around the mission: straight-line paths, a gripper
+//! that catches what lies between its jaws, hand-made landmark maps. No twin, no clock.
+
+use navdeck::geometry::{Point2, Pose2, wrap_angle};
+use navdeck::link::{GripperCommand, GripperState};
+use navdeck::map::costmap::{Costmap, FREE, NO_INFORMATION};
+use navdeck::mission::step::{Inputs, Motion, Outputs, PathStatus};
+use navdeck::mission::{Mission, MissionConfig};
+use std::collections::BTreeMap;
+
+pub const DT: f64 = 0.1;
+
+/// A scripted console around the mission.
+pub struct Rig {
+    pub mission: Mission,
+    pub t: f64,
+    pub pose: Pose2,
+    pub landmarks: BTreeMap<u32, Point2>,
+    pub seen: Vec<u32>,
+    pub camera_frame: bool,
+    pub gripper: Option<GripperState>,
+    pub path: PathStatus,
+    pub map: Costmap,
+    /// Follow planned paths in straight lines at 0.2 m/s and run the gripper.
+    pub auto: bool,
+    /// Block centres by odd marker (where they really are), for the gripper.
+    pub blocks: Vec<(u32, Point2)>,
+    pub goal: Option<Point2>,
+    /// Gripper command in progress and when it was given.
+    pub pending: Option<(GripperCommand, f64)>,
+    pub log: Vec<String>,
+    pub commands: Vec<GripperCommand>,
+    pub plans: Vec<(f64, Point2, String)>,
+}
+
+impl Rig {
+    pub fn new(config: MissionConfig, map: Costmap) -> Self {
+        Self {
+            mission: Mission::new(config, 0.0),
+            t: 0.0,
+            pose: Pose2::new(0.0, 0.0, 0.0),
+            landmarks: BTreeMap::new(),
+            seen: vec![1],
+            camera_frame: true,
+            gripper: Some(GripperState::Closed),
+            path: PathStatus::Idle,
+            map,
+            auto: true,
+            blocks: Vec::new(),
+            goal: None,
+            pending: None,
+            log: Vec::new(),
+            commands: Vec::new(),
+            plans: Vec::new(),
+        }
+    }
+
+    /// A 0.05 m block centred at (x, y), turned so both marked faces look towards -x.
+    pub fn add_block(&mut self, odd: u32, x: f64, y: f64) {
+        let k = 0.025 * std::f64::consts::FRAC_1_SQRT_2;
+        self.landmarks.insert(odd, Point2::new(x - k, y + k));
+        self.landmarks.insert(odd + 1, Point2::new(x - k, y - k));
+        self.blocks.push((odd, Point2::new(x, y)));
+        self.seen.extend([odd, odd + 1]);
+    }
+
+    /// The red gate centred at (-1, 1) on a wall along y, facing +x.
+    pub fn add_red_gate(&mut self) {
+        self.landmarks.insert(401, Point2::new(-1.0, 1.15));
+        self.landmarks.insert(402, Point2::new(-1.0, 0.85));
+    }
+
+    pub fn step(&mut self) -> Outputs {
+        let inputs = Inputs {
+            t: self.t,
+            pose: self.pose,
+            landmarks: &self.landmarks,
+            seen: if self.camera_frame { &self.seen } else { &[] },
+            camera_frame: self.camera_frame,
+            gripper: self.gripper,
+            path: &self.path,
+            map: &self.map,
+        };
+        let out = self.mission.step(&inputs);
+        self.log.extend(out.log.iter().map(|(_, l)| l.clone()));
+        if let Some(c) = out.gripper {
+            self.commands.push(c);
+            if self.auto {
+                self.pending = Some((c, self.t));
+                self.gripper = Some(match c {
+                    GripperCommand::Open => GripperState::Opening,
+                    GripperCommand::Close => GripperState::Closing,
+                });
+            }
+        }
+        match &out.motion {
+            Motion::Drive(tw) => {
+                self.pose.theta = wrap_angle(self.pose.theta + tw.angular * DT);
+                self.pose.x += tw.linear * DT * self.pose.theta.cos();
+                self.pose.y += tw.linear * DT * self.pose.theta.sin();
+            }
+            Motion::PlanTo { goal, label } => {
+                self.plans.push((self.t, *goal, label.clone()));
+                if self.auto {
+                    self.goal = Some(*goal);
+                    let remaining = self.pose.position().distance(*goal);
+                    self.path = PathStatus::Following { remaining };
+                }
+            }
+            Motion::Follow if self.auto => self.follow(),
+            _ => {}
+        }
+        if self.auto {
+            self.run_gripper();
+        }
+        self.t += DT;
+        out
+    }
+
+    fn follow(&mut self) {
+        let Some(goal) = self.goal else { return };
+        let d = self.pose.position().distance(goal);
+        if d > 1e-9 {
+            self.pose.theta = (goal.y - self.pose.y).atan2(goal.x - self.pose.x);
+        }
+        let step = d.min(0.2 * DT);
+        self.pose.x += step * self.pose.theta.cos();
+        self.pose.y += step * self.pose.theta.sin();
+        let remaining = d - step;
+        self.path = if remaining < 1e-9 {
+            self.goal = None;
+            PathStatus::Arrived
+        } else {
+            PathStatus::Following { remaining }
+        };
+    }
+
+    /// The twin's jaws: a block 0.06-0.14 m ahead within 0.035 m sideways is caught.
+    fn run_gripper(&mut self) {
+        let Some((command, since)) = self.pending else {
+            return;
+        };
+        if self.t - since < 0.5 {
+            return;
+        }
+        self.pending = None;
+        self.gripper = Some(match command {
+            GripperCommand::Open => GripperState::Open,
+            GripperCommand::Close => {
+                let caught = self.blocks.iter().any(|(_, c)| {
+                    let local = self.pose.inverse_transform_point(*c);
+                    (0.06..=0.14).contains(&local.x) && local.y.abs() <= 0.035
+                });
+                if caught {
+                    GripperState::Holding
+                } else {
+                    GripperState::Closed
+                }
+            }
+        });
+    }
+
+    /// Steps until `done` holds for the outputs; panics after `max` steps.
+    pub fn until(&mut self, max: usize, done: impl Fn(&Outputs, &Rig) -> bool) -> Outputs {
+        for _ in 0..max {
+            let out = self.step();
+            if done(&out, self) {
+                return out;
+            }
+        }
+        panic!(
+            "not reached by t = {:.1}; state {}; log {:#?}",
+            self.t,
+            self.mission.state_label(),
+            self.log
+        );
+    }
+
+    pub fn logged(&self, text: &str) -> bool {
+        self.log.iter().any(|l| l.contains(text))
+    }
+}
+
+pub fn plan_to(out: &Outputs) -> Option<(Point2, &str)> {
+    match &out.motion {
+        Motion::PlanTo { goal, label } => Some((*goal, label.as_str())),
+        _ => None,
+    }
+}
+
+/// 4 m x 2 m: known free on the left half, unknown on the right (one long frontier at x = 0.95).
+pub fn half_known() -> Costmap {
+    let mut map = Costmap::new(40, 20, 0.1, Point2::new(-2.0, -1.0), NO_INFORMATION);
+    for y in 0..20 {
+        for x in 0..30 {
+            map.set(x, y, FREE);
+        }
+    }
+    map
+}
+
+pub fn all_free() -> Costmap {
+    Costmap::new(40, 40, 0.1, Point2::new(-2.0, -2.0), FREE)
+}
+
+pub fn config(total_blocks: u32) -> MissionConfig {
+    MissionConfig {
+        total_blocks,
+        ..MissionConfig::default()
+    }
+}

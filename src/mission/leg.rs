@@ -9,8 +9,8 @@ use crate::geometry::{Point2, Twist};
 /// Counters and the plan-request clock shared by every leg of the mission.
 #[derive(Clone, Debug, Default)]
 pub(crate) struct Ctx {
-    pub replans: u32,
-    pub recoveries: u32,
+    pub replans: usize,
+    pub recoveries: usize,
     /// When the last `PlanTo` went out.
     pub last_plan: Option<f64>,
 }

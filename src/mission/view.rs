@@ -44,13 +44,13 @@ impl Mission {
     }
 
     /// Plan requests repeated for the same goal (stuck, no path, dropped path).
-    pub fn replans(&self) -> u32 {
+    pub fn replans(&self) -> usize {
         self.ctx.replans
     }
 
     /// Recovery actions started: lost scans, no-path turns, stuck replans, gripper
     /// retries, demoted blocks.
-    pub fn recoveries(&self) -> u32 {
+    pub fn recoveries(&self) -> usize {
         self.ctx.recoveries
     }
 

@@ -73,6 +73,7 @@ pub(super) enum Tick {
 }
 
 impl Mission {
+    /// A mission starting at session time `t` (the lost-robot clock starts then).
     pub fn new(config: MissionConfig, t: f64) -> Self {
         Self {
             config,
@@ -92,6 +93,8 @@ impl Mission {
         }
     }
 
+    /// One control step. Once the mission hands over, every later step says `to_manual`
+    /// and stops; once done, it stops.
     pub fn step(&mut self, inputs: &Inputs) -> Outputs {
         let mut log = Vec::new();
         if inputs.camera_frame && !inputs.seen.is_empty() {

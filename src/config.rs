@@ -5,6 +5,7 @@
 
 use crate::control::config::FollowConfig;
 use crate::map::config::MapConfig;
+use crate::mission::config::MissionConfig;
 use crate::plan::config::PlanConfig;
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
@@ -40,6 +41,7 @@ pub struct Config {
     pub map: MapConfig,
     pub plan: PlanConfig,
     pub follow: FollowConfig,
+    pub mission: MissionConfig,
 }
 
 /// Race mode (seed 001: "High-speed mode (reduced SLAM updates)").
@@ -409,6 +411,7 @@ impl Config {
             ("map", self.map.validate()),
             ("plan", self.plan.validate()),
             ("follow", self.follow.validate()),
+            ("mission", self.mission.validate()),
         ];
         for (section, result) in sections {
             if let Err((field, value, reason)) = result {

@@ -9,6 +9,7 @@ pub mod keymap;
 pub mod link;
 pub mod map;
 pub mod mission;
+pub mod mission_runner;
 pub mod perception;
 pub mod plan;
 pub mod plan_report;

@@ -7,6 +7,7 @@ use navdeck::geometry::Point2;
 use navdeck::headless;
 use navdeck::keymap::parse_key_sequence;
 use navdeck::map::nav2;
+use navdeck::mission_runner;
 use navdeck::plan_report::{self, Terrain};
 use navdeck::session::{LinkChoice, Session, SessionSpec};
 use navdeck::sim::World;
@@ -74,6 +75,30 @@ struct Cli {
 enum Subcommand {
     /// Plan one path (A*, shortcutting, smoothing, velocity profile) and print it.
     Plan(PlanArgs),
+    /// Run the whole exploration-and-delivery mission in the twin on simulated time.
+    Mission(MissionArgs),
+}
+
+#[derive(Debug, clap::Args)]
+struct MissionArgs {
+    /// The twin's noise seed.
+    #[arg(long, default_value_t = 1, value_name = "N")]
+    seed: u64,
+    /// Run every seed of a range, e.g. 1..50, on all cores, and print the summary.
+    #[arg(long, value_name = "A..B", conflicts_with = "seed")]
+    sweep: Option<String>,
+    /// World file for the twin; default: the built-in arena.
+    #[arg(long, value_name = "FILE")]
+    world: Option<PathBuf>,
+    /// Parameters (TOML), e.g. [mission] target_rule.
+    #[arg(long, value_name = "FILE")]
+    config: Option<PathBuf>,
+    /// Give up after this many simulated seconds.
+    #[arg(long, default_value_t = 1200.0, value_name = "S")]
+    time_limit: f64,
+    /// Print one JSON object.
+    #[arg(long)]
+    json: bool,
 }
 
 #[derive(Debug, clap::Args)]
@@ -124,8 +149,10 @@ fn main() -> ExitCode {
 }
 
 fn real_main(cli: Cli) -> Result<ExitCode> {
-    if let Some(Subcommand::Plan(args)) = &cli.command {
-        return run_plan(args);
+    match &cli.command {
+        Some(Subcommand::Plan(args)) => return run_plan(args),
+        Some(Subcommand::Mission(args)) => return run_mission(args),
+        None => {}
     }
     let spec = SessionSpec {
         world: cli.world.clone(),
@@ -193,6 +220,83 @@ fn run_plan(args: &PlanArgs) -> Result<ExitCode> {
         print!("{}", plan_report::human(&report));
     }
     Ok(ExitCode::SUCCESS)
+}
+
+fn run_mission(args: &MissionArgs) -> Result<ExitCode> {
+    if !(args.time_limit.is_finite() && args.time_limit > 0.0) {
+        bail!("--time-limit {} must be a positive number of seconds", args.time_limit);
+    }
+    let spec = |seed| SessionSpec {
+        world: args.world.clone(),
+        seed,
+        config: args.config.clone(),
+        keymap: None,
+        link: LinkChoice::Sim,
+    };
+    // Load once up front so a bad file is refused before anything runs.
+    Session::load(&spec(args.seed))?;
+    let one = |seed: u64| -> Result<mission_runner::MissionReport> {
+        let mut app = Session::load(&spec(seed))?.into_app(0.0);
+        let started = Instant::now();
+        let mut report = mission_runner::run(&mut app, seed, args.time_limit);
+        let wall = started.elapsed().as_secs_f64();
+        report.wall_time_s = Some(wall);
+        report.realtime_factor = Some(report.sim_time / wall.max(1e-9));
+        Ok(report)
+    };
+    let Some(range) = &args.sweep else {
+        let report = one(args.seed)?;
+        if args.json {
+            println!("{}", serde_json::to_string(&report)?);
+        } else {
+            print!("{}", mission_runner::human(&report));
+        }
+        return Ok(if report.success() { ExitCode::SUCCESS } else { ExitCode::from(1) });
+    };
+    let seeds = mission_runner::parse_seeds(range).map_err(anyhow::Error::msg)?;
+    let next = std::sync::atomic::AtomicUsize::new(0);
+    let workers = std::thread::available_parallelism().map_or(2, |n| n.get());
+    let results = std::sync::Mutex::new(Vec::new());
+    std::thread::scope(|scope| {
+        for _ in 0..workers {
+            scope.spawn(|| {
+                loop {
+                    let k = next.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+                    let Some(&seed) = seeds.get(k) else { break };
+                    let report = one(seed);
+                    results.lock().expect("no worker panicked").push(report);
+                }
+            });
+        }
+    });
+    let reports = results
+        .into_inner()
+        .expect("no worker panicked")
+        .into_iter()
+        .collect::<Result<Vec<_>>>()?;
+    let summary = mission_runner::summarise(reports);
+    if args.json {
+        println!("{}", serde_json::to_string(&summary)?);
+    } else {
+        println!(
+            "{} of {} runs delivered every block ({:.0} %); median {:.1} s simulated; worst seed {} at {:.1} s; {} collisions",
+            summary.successes,
+            summary.runs,
+            summary.success_rate * 100.0,
+            summary.median_sim_time,
+            summary.worst_seed.map_or("-".into(), |s| s.to_string()),
+            summary.worst_sim_time,
+            summary.collisions
+        );
+        if !summary.failed_seeds.is_empty() {
+            println!("failed seeds: {:?}", summary.failed_seeds);
+        }
+    }
+    Ok(if summary.successes == summary.runs {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::from(1)
+    })
 }
 
 fn run_console(session: Session, cli: &Cli) -> Result<ExitCode> {

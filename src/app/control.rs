@@ -139,6 +139,7 @@ impl App {
                     self.estimate_sightings(&s);
                     self.note_sightings(t, &s);
                     self.map_sightings(&s);
+                    self.note_frame(s.iter().map(|m| m.id).collect());
                 }
                 if let Some(scan) = &frame.scan {
                     self.map_scan(t, scan);
@@ -216,6 +217,7 @@ impl App {
         }
         match self.mode {
             Mode::PathFollowing => self.follow(t),
+            Mode::Exploration => self.explore(t),
             m if m.drives_by_keys() => keys,
             _ => Twist::ZERO,
         }

@@ -7,6 +7,7 @@ pub mod action;
 mod command;
 mod control;
 pub mod estimate;
+mod exploration;
 pub mod log;
 mod mapping;
 pub mod mode;
@@ -93,6 +94,9 @@ pub struct App {
     planner: crate::plan::pipeline::Planner,
     follower: crate::control::follower::Follower,
     nav: navigation::Navigation,
+    exploring: exploration::Exploring,
+    /// Marker IDs the filter must not correct with: blocks the mission moved.
+    ignored_markers: Vec<u32>,
     /// A monotonic clock in seconds, installed by the runner, to time planning; the
     /// console itself never reads a clock.
     stopwatch: Option<Box<dyn Fn() -> f64 + Send>>,
@@ -149,6 +153,8 @@ impl App {
                 config.robot.max_angular,
             ),
             nav: navigation::Navigation::default(),
+            exploring: exploration::Exploring::default(),
+            ignored_markers: Vec::new(),
             stopwatch: None,
             revision: 0,
             visible: None,
@@ -371,11 +377,12 @@ impl App {
         }
         self.teleop.clear();
         self.set_speed_limits(mode);
-        if self.mode == Mode::PathFollowing {
-            // Leaving path following stops it at once.
+        if matches!(self.mode, Mode::PathFollowing | Mode::Exploration) {
+            // Leaving an autonomous mode stops it at once.
             self.follower.clear_trajectory();
             self.nav.following = None;
             self.nav.last_step = None;
+            self.exploring.last_step = None;
         }
         self.nav.cursor = (mode == Mode::Thinking).then(|| {
             self.nav
@@ -384,8 +391,11 @@ impl App {
                 .map_or(self.ekf.pose().position(), |r| r.goal)
         });
         self.mode = mode;
-        self.control_step(self.now);
         self.log(Level::Info, format!("mode {}", mode.label()));
+        if mode == Mode::Exploration {
+            self.start_mission();
+        }
+        self.control_step(self.now);
     }
 
     /// Race mode drives up to the robot's limits; manual stays within teleop's.
@@ -420,6 +430,7 @@ impl App {
         if self.mode != Mode::Manual {
             self.set_speed_limits(Mode::Manual);
             self.mode = Mode::Manual;
+            self.exploring.last_step = None;
             self.follower.clear_trajectory();
             self.nav.following = None;
             self.nav.last_step = None;

@@ -58,7 +58,7 @@ impl Mode {
     pub fn is_built(self) -> bool {
         matches!(
             self,
-            Mode::Manual | Mode::Race | Mode::Thinking | Mode::PathFollowing
+            Mode::Manual | Mode::Race | Mode::Thinking | Mode::PathFollowing | Mode::Exploration
         )
     }
 }

@@ -353,9 +353,11 @@ impl App {
     }
     /// Whether the robot is busy on its own (following a path).
     pub fn is_busy(&self) -> bool {
-        self.mode == Mode::PathFollowing
-            && self.follower.trajectory().is_some()
-            && !self.nav.arrived
+        match self.mode {
+            Mode::PathFollowing => self.follower.trajectory().is_some() && !self.nav.arrived,
+            Mode::Exploration => self.mission().is_some_and(|m| !m.is_done()),
+            _ => false,
+        }
     }
 }
 

@@ -130,6 +130,14 @@ pub fn lines(app: &App, theme: Theme) -> Vec<Line<'static>> {
 /// The path and its progress, right under the mode: what an autonomous mode is doing.
 fn navigation_rows(app: &App, theme: Theme) -> Vec<Line<'static>> {
     let mut rows = Vec::new();
+    if let Some(m) = app.mission() {
+        rows.push(row(theme, "Mission", m.state_label()));
+        rows.push(row(
+            theme,
+            "Blocks",
+            format!("{} delivered of {} found", m.delivered(), m.known_blocks()),
+        ));
+    }
     let controller = app.follower().controller().label();
     if let Some(f) = app.following() {
         rows.push(row(

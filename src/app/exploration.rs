@@ -1,0 +1,133 @@
+//! Exploration mode: the console runs the mission's state machine each control step,
+//! plans and follows the paths it asks for, and works its gripper.
+
+use super::App;
+use super::log::Level;
+use super::mode::Mode;
+use super::navigation::Target;
+use crate::geometry::Twist;
+use crate::mission::machine::Mission;
+use crate::mission::step::{Inputs, Motion, PathStatus, Tone};
+use std::collections::BTreeMap;
+
+/// What exploration mode keeps between steps.
+#[derive(Debug, Default)]
+pub(super) struct Exploring {
+    pub mission: Option<Mission>,
+    /// IDs of the newest camera frame not yet shown to the mission, if one arrived.
+    pub frame: Option<Vec<u32>>,
+    /// The last mission step: when, and the twist it gave.
+    pub last_step: Option<(f64, Twist)>,
+    /// Why the last plan the mission asked for failed.
+    pub no_path: Option<String>,
+}
+
+impl App {
+    /// Starts the mission afresh on entering exploration mode.
+    pub(super) fn start_mission(&mut self) {
+        self.drop_route();
+        self.exploring.mission = Some(Mission::new(self.config.mission.clone(), self.now));
+        self.exploring.last_step = None;
+        self.exploring.no_path = None;
+        self.log(Level::Info, "exploration: the mission starts");
+    }
+
+    /// The camera frame's marker IDs, kept for the mission's next step.
+    pub(super) fn note_frame(&mut self, ids: Vec<u32>) {
+        self.exploring.frame = Some(ids);
+    }
+
+    /// One mission step at `t`; between control ticks the last command stands.
+    pub(super) fn explore(&mut self, t: f64) -> Twist {
+        let period = self.config.robot.control_period;
+        if let Some((at, twist)) = self.exploring.last_step
+            && t - at < 0.5 * period
+        {
+            return twist;
+        }
+        let Some(mut mission) = self.exploring.mission.take() else {
+            return Twist::ZERO;
+        };
+        let landmarks: BTreeMap<_, _> = self.ekf.landmarks().map(|l| (l.id, l.mean)).collect();
+        let frame = self.exploring.frame.take();
+        let path = self.path_status();
+        let outputs = mission.step(&Inputs {
+            t,
+            pose: self.ekf.pose(),
+            landmarks: &landmarks,
+            seen: frame.as_deref().unwrap_or(&[]),
+            camera_frame: frame.is_some(),
+            gripper: self.gripper,
+            path: &path,
+            map: self.belief.costmap(),
+        });
+        self.exploring.mission = Some(mission);
+        for (tone, text) in outputs.log {
+            let level = match tone {
+                Tone::Info => Level::Info,
+                Tone::Success => Level::Success,
+                Tone::Warn => Level::Warn,
+                Tone::Error => Level::Error,
+            };
+            self.log.push(t, level, text);
+        }
+        self.ignored_markers = outputs.ignore_markers;
+        if let Some(cmd) = outputs.gripper {
+            self.pending_gripper = Some(cmd);
+        }
+        if outputs.to_manual {
+            self.log(Level::Warn, "mission handed the robot to manual control");
+            self.set_mode(Mode::Manual);
+            return Twist::ZERO;
+        }
+        let twist = match outputs.motion {
+            Motion::Stop => {
+                self.follower.clear_trajectory();
+                Twist::ZERO
+            }
+            Motion::Drive(twist) => {
+                self.follower.clear_trajectory();
+                twist
+            }
+            Motion::PlanTo { goal, label } => {
+                self.nav.last_step = None;
+                if self.plan_route(Target::Point(goal)) {
+                    self.exploring.no_path = None;
+                    if let Some(route) = self.nav.route.as_mut() {
+                        route.label = label;
+                        self.follower.set_trajectory(route.plan.trajectory.clone());
+                    }
+                    self.nav.arrived = false;
+                    self.follow(t)
+                } else {
+                    self.exploring.no_path = Some(format!("no path to {label}"));
+                    Twist::ZERO
+                }
+            }
+            Motion::Follow => self.follow(t),
+        };
+        self.exploring.last_step = Some((t, twist));
+        twist
+    }
+
+    /// How the path the mission asked for is going.
+    fn path_status(&self) -> PathStatus {
+        if let Some(reason) = &self.exploring.no_path {
+            return PathStatus::NoPath(reason.clone());
+        }
+        if self.follower.trajectory().is_none() {
+            return PathStatus::Idle;
+        }
+        if self.nav.arrived {
+            return PathStatus::Arrived;
+        }
+        PathStatus::Following {
+            remaining: self.nav.following.map_or(f64::INFINITY, |f| f.remaining),
+        }
+    }
+
+    /// The running mission, for the status panel and the mission runner.
+    pub fn mission(&self) -> Option<&Mission> {
+        self.exploring.mission.as_ref()
+    }
+}

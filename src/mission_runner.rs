@@ -1,0 +1,210 @@
+//! `navdeck mission`: the whole exploration-and-delivery mission on simulated time, once
+//! or over many seeds, reported for people or as JSON.
+
+use crate::app::App;
+use crate::app::action::Action;
+use crate::app::mode::Mode;
+use serde::Serialize;
+
+/// A simulated control step of the runner, seconds (seed 001's period).
+const STEP: f64 = 0.1;
+/// A delivered block lies within this of its gate's centre in the twin, metres.
+const AT_GATE: f64 = 0.3;
+
+/// One block's story.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct BlockTimes {
+    pub markers: [u32; 2],
+    pub found: f64,
+    pub picked: Option<f64>,
+    pub delivered: Option<f64>,
+}
+
+/// The outcome of one mission.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct MissionReport {
+    pub world: String,
+    pub seed: u64,
+    /// Blocks the mission delivered, blocks the twin has at their gates, blocks in the world.
+    pub delivered: usize,
+    pub true_delivered: Option<usize>,
+    pub total: usize,
+    /// "delivered all", "time limit" or "handed to manual".
+    pub outcome: String,
+    pub sim_time: f64,
+    pub collisions: Option<u32>,
+    pub replans: usize,
+    pub recoveries: usize,
+    pub position_rmse: Option<f64>,
+    pub heading_rmse_deg: Option<f64>,
+    pub timeline: Vec<BlockTimes>,
+    /// Warnings and errors the session logged, with their session times.
+    pub warnings: Vec<String>,
+    /// Filled in by the caller, which owns the clock.
+    pub wall_time_s: Option<f64>,
+    pub realtime_factor: Option<f64>,
+}
+
+impl MissionReport {
+    pub fn success(&self) -> bool {
+        self.outcome == "delivered all"
+    }
+}
+
+/// Runs exploration mode on `app` from its start until the mission ends or `time_limit`
+/// simulated seconds pass.
+pub fn run(app: &mut App, seed: u64, time_limit: f64) -> MissionReport {
+    let start = app.now();
+    app.apply(Action::ModeExplore);
+    let mut t = start;
+    while t - start < time_limit && app.mode() == Mode::Exploration && app.is_busy() {
+        t += STEP;
+        app.update(t);
+    }
+    report(app, seed)
+}
+
+fn report(app: &App, seed: u64) -> MissionReport {
+    let twin = app.link().twin();
+    let total = twin.map_or(app.config().mission.total_blocks as usize, |t| t.blocks().len());
+    let mission = app.mission();
+    let delivered = mission.map_or(0, |m| m.delivered());
+    let outcome = if mission.is_some_and(|m| m.is_done()) && delivered >= total {
+        "delivered all"
+    } else if app.mode() != Mode::Exploration {
+        "handed to manual"
+    } else {
+        "time limit"
+    };
+    let true_delivered = twin.map(|twin| {
+        let world = twin.world();
+        twin.blocks()
+            .iter()
+            .filter(|b| !b.held)
+            .filter(|b| {
+                world.gates.iter().filter(|g| g.color == b.color).any(|g| {
+                    world
+                        .gate_pose(g)
+                        .is_some_and(|p| p.position().distance(b.pose.position()) < AT_GATE)
+                })
+            })
+            .count()
+    });
+    MissionReport {
+        world: twin.map_or("none".into(), |t| t.world().name.clone()),
+        seed,
+        delivered,
+        true_delivered,
+        total,
+        outcome: outcome.into(),
+        sim_time: app.now(),
+        collisions: twin.map(|t| t.collisions()),
+        replans: mission.map_or(0, |m| m.replans()),
+        recoveries: mission.map_or(0, |m| m.recoveries()),
+        position_rmse: twin.map(|_| app.accuracy().position_rmse()),
+        heading_rmse_deg: twin.map(|_| app.accuracy().heading_rmse().to_degrees()),
+        timeline: mission.map_or(Vec::new(), |m| {
+            m.timeline()
+                .iter()
+                .map(|&(odd, found, picked, delivered)| BlockTimes {
+                    markers: [odd, odd + 1],
+                    found,
+                    picked,
+                    delivered,
+                })
+                .collect()
+        }),
+        warnings: app
+            .log_book()
+            .iter()
+            .filter(|e| e.level >= crate::app::log::Level::Warn)
+            .map(|e| format!("{:.1} s: {}", e.time, e.text))
+            .collect(),
+        wall_time_s: None,
+        realtime_factor: None,
+    }
+}
+
+/// Many missions summed up.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct SweepSummary {
+    pub runs: usize,
+    pub successes: usize,
+    pub success_rate: f64,
+    pub median_sim_time: f64,
+    pub worst_seed: Option<u64>,
+    pub worst_sim_time: f64,
+    pub collisions: u32,
+    pub failed_seeds: Vec<u64>,
+    pub runs_detail: Vec<MissionReport>,
+}
+
+/// Sums up `reports` (one per seed).
+pub fn summarise(mut reports: Vec<MissionReport>) -> SweepSummary {
+    reports.sort_by_key(|r| r.seed);
+    let successes = reports.iter().filter(|r| r.success()).count();
+    let mut times: Vec<f64> = reports.iter().map(|r| r.sim_time).collect();
+    times.sort_by(f64::total_cmp);
+    let median = times.get(times.len() / 2).copied().unwrap_or(0.0);
+    // The worst run: a failure if any (the longest of them), else the slowest.
+    let worst = reports
+        .iter()
+        .max_by(|a, b| (!a.success(), a.sim_time).partial_cmp(&(!b.success(), b.sim_time)).unwrap());
+    SweepSummary {
+        runs: reports.len(),
+        successes,
+        success_rate: successes as f64 / reports.len().max(1) as f64,
+        median_sim_time: median,
+        worst_seed: worst.map(|r| r.seed),
+        worst_sim_time: worst.map_or(0.0, |r| r.sim_time),
+        collisions: reports.iter().filter_map(|r| r.collisions).sum(),
+        failed_seeds: reports.iter().filter(|r| !r.success()).map(|r| r.seed).collect(),
+        runs_detail: reports,
+    }
+}
+
+/// A report as a person reads it.
+pub fn human(r: &MissionReport) -> String {
+    let mut out = format!(
+        "mission on {} seed {}: {} ({} of {} blocks delivered) in {:.1} s simulated\n",
+        r.world, r.seed, r.outcome, r.delivered, r.total, r.sim_time
+    );
+    out += &format!(
+        "collisions {}, replans {}, recoveries {}\n",
+        r.collisions.map_or("-".into(), |c| c.to_string()),
+        r.replans,
+        r.recoveries
+    );
+    for b in &r.timeline {
+        let at = |t: Option<f64>| t.map_or("-".to_string(), |t| format!("{t:.1} s"));
+        out += &format!(
+            "  block {}/{}: found {:.1} s, picked {}, delivered {}\n",
+            b.markers[0],
+            b.markers[1],
+            b.found,
+            at(b.picked),
+            at(b.delivered)
+        );
+    }
+    if let (Some(w), Some(f)) = (r.wall_time_s, r.realtime_factor) {
+        out += &format!("wall time {w:.2} s ({f:.0}x real time)\n");
+    }
+    out
+}
+
+/// Reads a seed range `A..B` (inclusive) or a single seed.
+pub fn parse_seeds(text: &str) -> Result<Vec<u64>, String> {
+    let bad = || format!("`{text}` is not a seed range like 1..50");
+    match text.split_once("..") {
+        Some((a, b)) => {
+            let a: u64 = a.trim().parse().map_err(|_| bad())?;
+            let b: u64 = b.trim().trim_start_matches('=').parse().map_err(|_| bad())?;
+            if a > b {
+                return Err(bad());
+            }
+            Ok((a..=b).collect())
+        }
+        None => text.trim().parse().map(|s| vec![s]).map_err(|_| bad()),
+    }
+}
+

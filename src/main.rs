@@ -224,7 +224,10 @@ fn run_plan(args: &PlanArgs) -> Result<ExitCode> {
 
 fn run_mission(args: &MissionArgs) -> Result<ExitCode> {
     if !(args.time_limit.is_finite() && args.time_limit > 0.0) {
-        bail!("--time-limit {} must be a positive number of seconds", args.time_limit);
+        bail!(
+            "--time-limit {} must be a positive number of seconds",
+            args.time_limit
+        );
     }
     let spec = |seed| SessionSpec {
         world: args.world.clone(),
@@ -251,7 +254,11 @@ fn run_mission(args: &MissionArgs) -> Result<ExitCode> {
         } else {
             print!("{}", mission_runner::human(&report));
         }
-        return Ok(if report.success() { ExitCode::SUCCESS } else { ExitCode::from(1) });
+        return Ok(if report.success() {
+            ExitCode::SUCCESS
+        } else {
+            ExitCode::from(1)
+        });
     };
     let seeds = mission_runner::parse_seeds(range).map_err(anyhow::Error::msg)?;
     let next = std::sync::atomic::AtomicUsize::new(0);

@@ -66,7 +66,9 @@ pub fn run(app: &mut App, seed: u64, time_limit: f64) -> MissionReport {
 
 fn report(app: &App, seed: u64) -> MissionReport {
     let twin = app.link().twin();
-    let total = twin.map_or(app.config().mission.total_blocks as usize, |t| t.blocks().len());
+    let total = twin.map_or(app.config().mission.total_blocks as usize, |t| {
+        t.blocks().len()
+    });
     let mission = app.mission();
     let delivered = mission.map_or(0, |m| m.delivered());
     let outcome = if mission.is_some_and(|m| m.is_done()) && delivered >= total {
@@ -147,9 +149,11 @@ pub fn summarise(mut reports: Vec<MissionReport>) -> SweepSummary {
     times.sort_by(f64::total_cmp);
     let median = times.get(times.len() / 2).copied().unwrap_or(0.0);
     // The worst run: a failure if any (the longest of them), else the slowest.
-    let worst = reports
-        .iter()
-        .max_by(|a, b| (!a.success(), a.sim_time).partial_cmp(&(!b.success(), b.sim_time)).unwrap());
+    let worst = reports.iter().max_by(|a, b| {
+        (!a.success(), a.sim_time)
+            .partial_cmp(&(!b.success(), b.sim_time))
+            .unwrap()
+    });
     SweepSummary {
         runs: reports.len(),
         successes,
@@ -158,7 +162,11 @@ pub fn summarise(mut reports: Vec<MissionReport>) -> SweepSummary {
         worst_seed: worst.map(|r| r.seed),
         worst_sim_time: worst.map_or(0.0, |r| r.sim_time),
         collisions: reports.iter().filter_map(|r| r.collisions).sum(),
-        failed_seeds: reports.iter().filter(|r| !r.success()).map(|r| r.seed).collect(),
+        failed_seeds: reports
+            .iter()
+            .filter(|r| !r.success())
+            .map(|r| r.seed)
+            .collect(),
         runs_detail: reports,
     }
 }
@@ -198,7 +206,11 @@ pub fn parse_seeds(text: &str) -> Result<Vec<u64>, String> {
     match text.split_once("..") {
         Some((a, b)) => {
             let a: u64 = a.trim().parse().map_err(|_| bad())?;
-            let b: u64 = b.trim().trim_start_matches('=').parse().map_err(|_| bad())?;
+            let b: u64 = b
+                .trim()
+                .trim_start_matches('=')
+                .parse()
+                .map_err(|_| bad())?;
             if a > b {
                 return Err(bad());
             }
@@ -207,4 +219,3 @@ pub fn parse_seeds(text: &str) -> Result<Vec<u64>, String> {
         None => text.trim().parse().map(|s| vec![s]).map_err(|_| bad()),
     }
 }
-

@@ -77,7 +77,10 @@ impl App {
         }
         // Gated-out sightings are counted by the filter; non-finite ones are dropped. Markers
         // the mission moved (a block in the gripper or delivered) would mislead it.
-        for s in used.iter().filter(|s| !self.ignored_markers.contains(&s.id)) {
+        for s in used
+            .iter()
+            .filter(|s| !self.ignored_markers.contains(&s.id))
+        {
             if self.ekf.correct(*s) == Outcome::Added {
                 let category = crate::perception::markers::MarkerCategory::of(s.id);
                 self.log.push(

@@ -10,6 +10,9 @@ use crate::mission::machine::Mission;
 use crate::mission::step::{Inputs, Motion, PathStatus, Tone};
 use std::collections::BTreeMap;
 
+/// How far the console may move a mission goal that lies in an obstacle, metres.
+const GOAL_TOLERANCE: f64 = 0.3;
+
 /// What exploration mode keeps between steps.
 #[derive(Debug, Default)]
 pub(super) struct Exploring {
@@ -91,6 +94,13 @@ impl App {
             }
             Motion::PlanTo { goal, label } => {
                 self.nav.last_step = None;
+                // A goal that the map has since filled in moves to the nearest open spot.
+                let goal = super::navigation::nearest_passable(
+                    self.belief.costmap(),
+                    goal,
+                    GOAL_TOLERANCE,
+                )
+                .unwrap_or(goal);
                 if self.plan_route(Target::Point(goal)) {
                     self.exploring.no_path = None;
                     if let Some(route) = self.nav.route.as_mut() {

@@ -414,6 +414,26 @@ fn approach_point(
     robot
 }
 
+/// `p` itself if a plan may end there, else the nearest such point within `reach` metres
+/// (searched ring by ring, 32 directions a ring), like Nav2's goal tolerance.
+pub(super) fn nearest_passable(map: &Costmap, p: Point2, reach: f64) -> Option<Point2> {
+    if !is_lethal(map.at(p)) {
+        return Some(p);
+    }
+    let mut r = map.resolution;
+    while r <= reach {
+        let found = (0..32)
+            .map(|k| f64::from(k) * std::f64::consts::TAU / 32.0)
+            .map(|a| Point2::new(p.x + r * a.cos(), p.y + r * a.sin()))
+            .find(|q| map.cell_of(*q).is_some() && !is_lethal(map.at(*q)));
+        if found.is_some() {
+            return found;
+        }
+        r += map.resolution;
+    }
+    None
+}
+
 /// Distance from `p` to the polyline through the trajectory's samples.
 fn distance_to_polyline(points: &[crate::plan::trajectory::TrajectoryPoint], p: Point2) -> f64 {
     match points {

@@ -25,7 +25,13 @@ impl Mission {
         }
         if let Some(block) = self.deliverable(robot) {
             *self.attempts.entry(block.markers[0]).or_default() += 1;
-            self.phase = Phase::Pickup(Pickup::new(&block, robot, &self.config, inputs.t));
+            self.phase = Phase::Pickup(Pickup::new(
+                &block,
+                robot,
+                inputs.map,
+                &self.config,
+                inputs.t,
+            ));
             return;
         }
         let rule = self.config.target_rule;

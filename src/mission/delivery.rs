@@ -32,20 +32,52 @@ pub(crate) enum DropEvent {
 pub(crate) struct Delivery {
     pub block: u32,
     pub colour: Colour,
+    /// The drop place: the gate moved sideways to this delivery's slot.
     gate: Gate,
+    /// How much further out than `drop_distance` this slot stops, metres.
+    depth: f64,
     stage: Stage,
     since: f64,
 }
 
+/// Drop places side by side across the 0.3 m gate, then a row further out: a block lies
+/// about 0.1 m ahead of the robot's centre, the body is 0.08 m round and a block lands a
+/// few centimetres off its place, so 0.2 m apart keeps the next drop clear of the last.
+const SLOT_OFFSETS: [f64; 2] = [-0.10, 0.10];
+const ROW_DEPTH: f64 = 0.12;
+
+/// The gate shifted along its width to `slot`'s place, and the extra depth of its row.
+fn drop_place(gate: Gate, slot: usize) -> (Gate, f64) {
+    let along = (-gate.normal.1, gate.normal.0);
+    let offset = SLOT_OFFSETS[slot % SLOT_OFFSETS.len()];
+    let depth = ROW_DEPTH * (slot / SLOT_OFFSETS.len()) as f64;
+    let center = crate::geometry::Point2::new(
+        gate.center.x + offset * along.0,
+        gate.center.y + offset * along.1,
+    );
+    (Gate { center, ..gate }, depth)
+}
+
 impl Delivery {
-    pub fn new(block: u32, colour: Colour, gate: Gate, config: &MissionConfig, t: f64) -> Self {
+    /// Delivers into drop place number `slot` of the gate: blocks already there are not
+    /// pushed by the next one.
+    pub fn new(
+        block: u32,
+        colour: Colour,
+        gate: Gate,
+        slot: usize,
+        config: &MissionConfig,
+        t: f64,
+    ) -> Self {
+        let (gate, depth) = drop_place(gate, slot);
         // Seed 001: drop_location = gate_center + offset * perpendicular.
-        let goal = gate.in_front(config.drop_staging);
+        let goal = gate.in_front(config.drop_staging + depth);
         let label = format!("{} gate", colour.label());
         Self {
             block,
             colour,
             gate,
+            depth,
             stage: Stage::Travel(Leg::new(goal, label)),
             since: t,
         }
@@ -101,7 +133,7 @@ impl Delivery {
             Stage::Forward => {
                 let distance = pose.position().distance(self.gate.center);
                 let creep = (config.drop_staging - config.drop_distance) / config.approach_speed;
-                if distance <= config.drop_distance || waited >= 2.0 * creep + 2.0 {
+                if distance <= config.drop_distance + self.depth || waited >= 2.0 * creep + 2.0 {
                     self.enter(Stage::Open, t);
                     return DropEvent::Go(Motion::Stop, Some(GripperCommand::Open));
                 }

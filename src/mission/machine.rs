@@ -199,10 +199,20 @@ impl Mission {
                         self.held = Some(odd);
                         self.stamp(odd, t, 2);
                         let gate = self.objects.gate_for(colour).copied();
+                        let slot = self
+                            .objects
+                            .blocks()
+                            .filter(|b| b.delivered && b.colour == colour)
+                            .count();
                         self.phase = match gate {
-                            Some(gate) => {
-                                Phase::Deliver(Delivery::new(odd, colour, gate, &self.config, t))
-                            }
+                            Some(gate) => Phase::Deliver(Delivery::new(
+                                odd,
+                                colour,
+                                gate,
+                                slot,
+                                &self.config,
+                                t,
+                            )),
                             None => Phase::Choose,
                         };
                         Tick::Again

@@ -8,6 +8,7 @@ use super::objects::{Block, Colour, Objects};
 use super::step::{Inputs, Motion, Tone};
 use crate::geometry::{Point2, Twist};
 use crate::link::{GripperCommand, GripperState};
+use crate::map::costmap::{Costmap, is_lethal};
 
 /// Where a pick-up is.
 #[derive(Clone, Debug)]
@@ -45,9 +46,45 @@ pub(crate) struct Pickup {
     last_seen: f64,
 }
 
+/// Where the path to a block ends: `staging_distance` from it on the robot's side, or, if
+/// that spot or the straight run in from it is blocked (a block by a wall or a box), the
+/// nearest direction round the block, in 30 degree steps, where both are clear.
+fn staging_point(block: Point2, robot: Point2, map: &Costmap, config: &MissionConfig) -> Point2 {
+    let toward = (robot.y - block.y).atan2(robot.x - block.x);
+    let clear = |p: Point2| !is_lethal(map.at(p));
+    // The last few centimetres are the block's own lethal ring: not checked.
+    let inner = config.grip_distance + 0.08;
+    (0..12)
+        .map(|k| {
+            let turn = f64::from((k + 1) / 2) * 30f64.to_radians();
+            toward + if k % 2 == 1 { turn } else { -turn }
+        })
+        .map(|a| (a.cos(), a.sin()))
+        .find(|&(c, s)| {
+            let at = |d: f64| Point2::new(block.x + d * c, block.y + d * s);
+            let steps = ((config.staging_distance - inner) / map.resolution).ceil() as usize;
+            (0..=steps).all(|i| clear(at(inner + i as f64 * map.resolution)))
+        })
+        .map_or_else(
+            || towards(block, robot, config.staging_distance),
+            |(c, s)| {
+                Point2::new(
+                    block.x + config.staging_distance * c,
+                    block.y + config.staging_distance * s,
+                )
+            },
+        )
+}
+
 impl Pickup {
-    pub fn new(block: &Block, robot: Point2, config: &MissionConfig, t: f64) -> Self {
-        let goal = towards(block.position, robot, config.staging_distance);
+    pub fn new(
+        block: &Block,
+        robot: Point2,
+        map: &Costmap,
+        config: &MissionConfig,
+        t: f64,
+    ) -> Self {
+        let goal = staging_point(block.position, robot, map, config);
         let label = name(block.colour, block.markers[0]);
         Self {
             block: block.markers[0],

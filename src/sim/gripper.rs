@@ -101,6 +101,11 @@ impl Gripper {
         self.held = Some((index, Pose2::new(l.x, l.y, block.theta - robot.theta)));
     }
 
+    /// How far ahead of the robot centre the jaws reach, metres.
+    pub fn reach_far(&self) -> f64 {
+        self.reach_far
+    }
+
     pub fn held(&self) -> Option<usize> {
         self.held.map(|(i, _)| i)
     }

@@ -57,6 +57,9 @@ pub struct Twin {
     block_edges: Vec<Segment>,
     block_markers: Vec<Marker>,
     blocks_moved: bool,
+    /// The block the jaws last let go of: it sits between them, so the robot may back
+    /// away from it (or stand still) without touching it.
+    released: Option<usize>,
 }
 
 impl Twin {
@@ -101,6 +104,7 @@ impl Twin {
             block_edges: Vec::new(),
             block_markers: Vec::new(),
             blocks_moved: true,
+            released: None,
         }
     }
 
@@ -142,6 +146,7 @@ impl Twin {
         if let (Some(i), None) = (held, self.gripper.held()) {
             self.blocks[i].held = false;
             self.blocks_moved = true;
+            self.released = Some(i);
         }
     }
 
@@ -241,7 +246,19 @@ impl Twin {
         let wheels = self.encoders.sample(&mut self.rng, [l, r]);
         let next = integrate(self.pose, wheels.ground[0], wheels.ground[1], track);
         self.discs.clear();
-        for b in self.blocks.iter().filter(|b| !b.held) {
+        let reach = self.gripper.reach_far();
+        if let Some(i) = self.released
+            && (!self.gripper.jaws_open()
+                || self.blocks[i].pose.position().distance(self.pose.position())
+                    > reach + self.blocks[i].radius())
+        {
+            // Clear of the jaws, or they shut: the block is an ordinary obstacle again.
+            self.released = None;
+        }
+        for (i, b) in self.blocks.iter().enumerate().filter(|(_, b)| !b.held) {
+            if self.released == Some(i) {
+                continue;
+            }
             // A block may slide into open jaws (seed 001 approaches blocks with the gripper open).
             if self.gripper.jaws_open()
                 && self.gripper.jaw_offset(next, b.pose.position()).is_some()

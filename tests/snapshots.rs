@@ -118,3 +118,9 @@ fn following_a_path_100x30() {
     steps.extend([press('p'), Step::Wait(6.0)]);
     insta::assert_snapshot!(snapshot_after(100, 30, steps));
 }
+
+#[test]
+fn exploration_mission_100x30() {
+    let steps = vec![press('e'), Step::Wait(40.0)];
+    insta::assert_snapshot!(snapshot_after(100, 30, steps));
+}

@@ -23,6 +23,8 @@ pub(super) struct Exploring {
     pub last_step: Option<(f64, Twist)>,
     /// Why the last plan the mission asked for failed.
     pub no_path: Option<String>,
+    /// Session time the mission started.
+    pub started: f64,
 }
 
 impl App {
@@ -32,6 +34,7 @@ impl App {
         self.exploring.mission = Some(Mission::new(self.config.mission.clone(), self.now));
         self.exploring.last_step = None;
         self.exploring.no_path = None;
+        self.exploring.started = self.now;
         self.log(Level::Info, "exploration: the mission starts");
     }
 
@@ -134,6 +137,11 @@ impl App {
         PathStatus::Following {
             remaining: self.nav.following.map_or(f64::INFINITY, |f| f.remaining),
         }
+    }
+
+    /// Seconds since the mission started.
+    pub fn mission_elapsed(&self) -> f64 {
+        self.now - self.exploring.started
     }
 
     /// The running mission, for the status panel and the mission runner.

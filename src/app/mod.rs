@@ -415,6 +415,13 @@ impl App {
     }
 
     fn gripper_command(&mut self, cmd: GripperCommand) {
+        if self.mode == Mode::Exploration && self.mission().is_some_and(|m| m.holds_gripper()) {
+            self.log(
+                Level::Warn,
+                "gripper key ignored: the mission is using the gripper (m takes control)",
+            );
+            return;
+        }
         self.pending_gripper = Some(cmd);
         let verb = match cmd {
             GripperCommand::Open => "opening",

@@ -30,10 +30,13 @@ pub const DEMOTED_FOR: f64 = 5.0;
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum TargetRule {
-    /// Seed 001 "Marker Selection Heuristic": the furthest valid unvisited marker.
-    Markers,
-    /// The nearest frontier between known and unknown space.
+    /// Seed 001 "Marker Selection Heuristic": the furthest valid unvisited marker. The
+    /// default: in the 4 m arena the 360-degree lidar leaves no frontier after the first
+    /// scans, so both rules drive the same missions (`navdeck mission --sweep 1..50` with
+    /// either: 50 of 50 delivered), and this one is the seed's.
     #[default]
+    Markers,
+    /// The nearest frontier between known and unknown space (falls back to markers).
     Frontiers,
 }
 

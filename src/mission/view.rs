@@ -64,6 +64,12 @@ impl Mission {
         matches!(self.phase, Phase::Done)
     }
 
+    /// Whether the mission is working the gripper now (picking up or delivering): the
+    /// gripper keys leave it alone then.
+    pub fn holds_gripper(&self) -> bool {
+        matches!(self.phase, Phase::Pickup(_) | Phase::Deliver(_))
+    }
+
     /// The mission gave the robot to manual control.
     pub fn is_manual(&self) -> bool {
         matches!(self.phase, Phase::Manual)

@@ -249,7 +249,10 @@ impl Twin {
         let reach = self.gripper.reach_far();
         if let Some(i) = self.released
             && (!self.gripper.jaws_open()
-                || self.blocks[i].pose.position().distance(self.pose.position())
+                || self.blocks[i]
+                    .pose
+                    .position()
+                    .distance(self.pose.position())
                     > reach + self.blocks[i].radius())
         {
             // Clear of the jaws, or they shut: the block is an ordinary obstacle again.

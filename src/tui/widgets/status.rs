@@ -22,6 +22,29 @@ fn clock_text(t: f64) -> String {
     format!("{}:{:02}:{:02}", s / 3600, (s / 60) % 60, s % 60)
 }
 
+/// A duration as m:ss.
+fn minutes_text(t: f64) -> String {
+    let s = t.max(0.0).floor() as u64;
+    format!("{}:{:02}", s / 60, s % 60)
+}
+
+/// `text` cut at the last space that keeps the first part within `width` characters.
+fn split_words(text: &str, width: usize) -> (String, String) {
+    if text.chars().count() <= width {
+        return (text.to_string(), String::new());
+    }
+    let cut = text
+        .char_indices()
+        .filter(|&(i, c)| c == ' ' && text[..i].chars().count() <= width)
+        .map(|(i, _)| i)
+        .next_back()
+        .unwrap_or(width.min(text.len()));
+    (
+        text[..cut].to_string(),
+        text[cut..].trim_start().to_string(),
+    )
+}
+
 /// `text`, or a dash when there is nothing to list.
 fn dash_if_empty<T>(items: &[T], text: String) -> String {
     if items.is_empty() { "-".into() } else { text }
@@ -131,11 +154,25 @@ pub fn lines(app: &App, theme: Theme) -> Vec<Line<'static>> {
 fn navigation_rows(app: &App, theme: Theme) -> Vec<Line<'static>> {
     let mut rows = Vec::new();
     if let Some(m) = app.mission() {
-        rows.push(row(theme, "Mission", m.state_label()));
+        // The state and its target can be long: two rows, broken between words.
+        let (first, rest) = split_words(&m.state_label(), 21);
+        rows.push(row(theme, "Mission", first));
+        if !rest.is_empty() {
+            rows.push(row(theme, "", rest));
+        }
+        let total = match app.config().mission.total_blocks {
+            0 => "?".to_string(),
+            n => n.to_string(),
+        };
         rows.push(row(
             theme,
             "Blocks",
-            format!("{} delivered of {} found", m.delivered(), m.known_blocks()),
+            format!(
+                "{}/{total} done {} seen {}",
+                m.delivered(),
+                m.known_blocks(),
+                minutes_text(app.mission_elapsed())
+            ),
         ));
     }
     let controller = app.follower().controller().label();
@@ -171,6 +208,16 @@ fn navigation_rows(app: &App, theme: Theme) -> Vec<Line<'static>> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn long_mission_states_break_between_words() {
+        let (a, b) = split_words("drive blue block 523 into blue gate", 21);
+        assert_eq!(
+            (a.as_str(), b.as_str()),
+            ("drive blue block 523", "into blue gate")
+        );
+        assert_eq!(minutes_text(125.5), "2:05");
+    }
 
     #[test]
     fn clock_reads_hours_minutes_seconds() {

@@ -1,0 +1,115 @@
+//! The mission end to end: exploration mode in the console and `navdeck mission`.
+
+mod common;
+
+use common::{default_app, key};
+use navdeck::app::KeyKind;
+use navdeck::app::mode::Mode;
+use navdeck::mission_runner;
+use serde_json::Value;
+use std::process::Command;
+
+fn navdeck(args: &[&str]) -> std::process::Output {
+    Command::new(env!("CARGO_BIN_EXE_navdeck"))
+        .args(args)
+        .output()
+        .expect("navdeck runs")
+}
+
+#[test]
+fn the_mission_delivers_all_four_blocks_without_touching_anything() {
+    let out = navdeck(&["mission", "--seed", "2", "--json"]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stdout)
+    );
+    let r: Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(r["delivered"], 4);
+    assert_eq!(
+        r["true_delivered"], 4,
+        "the twin has every block at its gate"
+    );
+    assert_eq!(r["collisions"], 0);
+    let timeline = r["timeline"].as_array().unwrap();
+    assert_eq!(timeline.len(), 4);
+    for block in timeline {
+        let (found, picked, delivered) = (
+            block["found"].as_f64().unwrap(),
+            block["picked"].as_f64().unwrap(),
+            block["delivered"].as_f64().unwrap(),
+        );
+        assert!(found <= picked && picked < delivered, "{block}");
+    }
+    for field in [
+        "replans",
+        "recoveries",
+        "position_rmse",
+        "heading_rmse_deg",
+        "wall_time_s",
+    ] {
+        assert!(!r[field].is_null(), "{field}");
+    }
+}
+
+#[test]
+fn a_sweep_sums_up_the_seeds_and_a_time_limit_fails_the_run() {
+    let out = navdeck(&["mission", "--sweep", "3..4", "--json"]);
+    let s: Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(s["runs"], 2);
+    assert!(s["median_sim_time"].as_f64().unwrap() > 0.0);
+    assert_eq!(s["success_rate"], 1.0, "{s}");
+    let short = navdeck(&["mission", "--seed", "1", "--time-limit", "30", "--json"]);
+    assert_eq!(short.status.code(), Some(1), "a mission cut short fails");
+    let r: Value = serde_json::from_slice(&short.stdout).unwrap();
+    assert_eq!(r["outcome"], "time limit");
+    let bad = navdeck(&["mission", "--sweep", "9..3"]);
+    assert_eq!(bad.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&bad.stderr).contains("`9..3`"));
+}
+
+#[test]
+fn seed_ranges_parse() {
+    assert_eq!(mission_runner::parse_seeds("1..3"), Ok(vec![1, 2, 3]));
+    assert_eq!(mission_runner::parse_seeds("7"), Ok(vec![7]));
+    assert!(mission_runner::parse_seeds("a..b").is_err());
+}
+
+#[test]
+fn in_the_console_e_starts_the_mission_and_a_drive_key_takes_over() {
+    let mut app = default_app();
+    app.handle_key(key("e"), KeyKind::Press, 0.0);
+    assert_eq!(app.mode(), Mode::Exploration);
+    for k in 1..=300 {
+        app.update(0.1 * f64::from(k));
+    }
+    let mission = app.mission().expect("a mission runs");
+    assert!(mission.known_blocks() >= 1, "{}", mission.state_label());
+    assert!(
+        app.log_book().iter().any(|e| e.text.starts_with("Found ")),
+        "seed-style log lines"
+    );
+    let moving = app.commanded();
+    assert!(!moving.is_zero() || app.true_pose().is_some());
+    app.handle_key(key("w"), KeyKind::Press, 30.05);
+    assert_eq!(app.mode(), Mode::Manual);
+    assert!(app.commanded().linear > 0.0, "w drives at once");
+}
+
+#[test]
+fn gripper_keys_wait_while_the_mission_uses_the_gripper() {
+    let mut app = default_app();
+    app.handle_key(key("e"), KeyKind::Press, 0.0);
+    let mut t = 0.0;
+    while !app.mission().unwrap().holds_gripper() && t < 120.0 {
+        t += 0.1;
+        app.update(t);
+    }
+    assert!(app.mission().unwrap().holds_gripper(), "a pick-up began");
+    app.handle_key(key("c"), KeyKind::Press, t + 0.01);
+    assert!(
+        app.log_book()
+            .iter()
+            .any(|e| e.text.contains("the mission is using the gripper"))
+    );
+}

@@ -72,7 +72,7 @@ fn braille_map_zoomed_in_100x30() {
 #[test]
 fn unbuilt_mode_and_estop_in_the_log_80x24() {
     let mut steps = hold('w', 1.0);
-    steps.extend([press('e'), press(' '), Step::Wait(0.5)]);
+    steps.extend([press('l'), press(' '), Step::Wait(0.5)]);
     insta::assert_snapshot!(snapshot_after(80, 24, steps));
 }
 

@@ -101,7 +101,7 @@ fn report(app: &App, seed: u64) -> MissionReport {
         outcome: outcome.into(),
         sim_time: app.now(),
         collisions: twin.map(|t| t.collisions()),
-        replans: mission.map_or(0, |m| m.replans()),
+        replans: mission.map_or(0, |m| m.replans()) + app.replans(),
         recoveries: mission.map_or(0, |m| m.recoveries()),
         position_rmse: twin.map(|_| app.accuracy().position_rmse()),
         heading_rmse_deg: twin.map(|_| app.accuracy().heading_rmse().to_degrees()),

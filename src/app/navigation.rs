@@ -11,8 +11,8 @@ use crate::map::costmap::{Costmap, INFLATED, is_lethal};
 use crate::perception::markers::MarkerCategory;
 use crate::plan::pipeline::Plan;
 
-/// At most one replan per this many seconds while a path stays blocked.
-const REPLAN_EVERY: f64 = 1.0;
+/// Seed 001 "Path Recalculation": at most one replan per this many seconds.
+const REPLAN_EVERY: f64 = 0.5;
 /// Seed 001 section 8: the robot approaches a block to 12 cm.
 const BLOCK_APPROACH: f64 = 0.12;
 /// Other landmarks: the goal stays this far beyond the edge of their lethal ring, metres.
@@ -66,6 +66,8 @@ pub(super) struct Navigation {
     /// The map revision the route was last checked against, and when it was last replanned.
     pub checked_revision: u64,
     pub last_replan: f64,
+    /// Paths planned again because the map blocked them.
+    pub replans: usize,
     /// The last follower command and when it was computed.
     pub last_step: Option<(f64, Twist)>,
     /// Cross-track error of the twin's true pose: sum of squares and count.
@@ -236,36 +238,40 @@ impl App {
         step.twist
     }
 
-    /// Seed 001 section 7 "Path Recalculation": replan when the map blocks the path ahead.
+    /// Seed 001 section 7 "Path Recalculation": replan when the map shows the path ahead
+    /// blocked. (The seed also replans for any new obstacle within 1 m or block within
+    /// 0.5 m; here a new landmark matters once its cost rings reach the path.)
     fn replan_if_blocked(&mut self, t: f64) {
-        let revision = self.belief.revision();
-        if revision == self.nav.checked_revision || t - self.nav.last_replan < REPLAN_EVERY {
+        if t - self.nav.last_replan < REPLAN_EVERY {
             return;
         }
-        self.nav.checked_revision = revision;
-        let from = self.follower.progress().map_or(0, |p| p.index);
         let Some(route) = &self.nav.route else { return };
-        let map = self.belief.costmap();
-        let blocked = route.plan.trajectory.points[from.min(route.plan.trajectory.points.len())..]
-            .iter()
-            .find(|p| is_lethal(map.at(p.position)))
-            .map(|p| p.position);
-        if let Some(at) = blocked {
-            self.nav.last_replan = t;
-            let target = route.target;
-            self.log(
-                Level::Warn,
-                format!("path blocked at ({:.2}, {:.2}): replanning", at.x, at.y),
-            );
-            if self.plan_route(target) {
-                self.follower.set_trajectory(
-                    self.nav
-                        .route
-                        .as_ref()
-                        .map(|r| r.plan.trajectory.clone())
-                        .unwrap_or_default(),
-                );
+        let from = self.follower.progress().map_or(0, |p| p.index);
+        let points = &route.plan.trajectory.points;
+        let ahead = &points[from.min(points.len())..];
+        let mut reason: Option<String> = None;
+        let revision = self.belief.revision();
+        if revision != self.nav.checked_revision {
+            self.nav.checked_revision = revision;
+            let map = self.belief.costmap();
+            if let Some(p) = ahead.iter().find(|p| is_lethal(map.at(p.position))) {
+                let at = p.position;
+                reason = Some(format!("path blocked at ({:.2}, {:.2})", at.x, at.y));
             }
+        }
+        let Some(reason) = reason else { return };
+        let target = route.target;
+        self.nav.last_replan = t;
+        self.nav.replans += 1;
+        self.log(Level::Warn, format!("{reason}: replanning"));
+        if self.plan_route(target) {
+            self.follower.set_trajectory(
+                self.nav
+                    .route
+                    .as_ref()
+                    .map(|r| r.plan.trajectory.clone())
+                    .unwrap_or_default(),
+            );
         }
     }
 
@@ -351,6 +357,11 @@ impl App {
         (self.nav.true_samples > 0)
             .then(|| (self.nav.true_squares / self.nav.true_samples as f64).sqrt())
     }
+    /// Paths the console planned again because the map changed under them.
+    pub fn replans(&self) -> usize {
+        self.nav.replans
+    }
+
     /// Whether the robot is busy on its own (following a path).
     pub fn is_busy(&self) -> bool {
         match self.mode {

@@ -98,7 +98,7 @@ fn the_pick_up_sequence_opens_faces_approaches_closes_and_heads_for_the_gate() {
     assert!(out.ignore_markers.is_empty(), "not held yet");
     let ahead = rig.pose.inverse_transform_point(Point2::new(1.0, 0.0));
     assert!(
-        (ahead.x - 0.10).abs() < 0.01 && ahead.y.abs() < 0.01,
+        (ahead.x - 0.115).abs() < 0.01 && ahead.y.abs() < 0.01,
         "{ahead:?}"
     );
     let out = rig.until(50, |out, _| plan_to(out).is_some());

@@ -185,7 +185,7 @@ impl Default for HybridConfig {
 }
 
 /// A refused value: the field's path within `[follow]`, its value and why.
-pub type Invalid = (&'static str, f64, &'static str);
+pub use crate::field_check::Invalid;
 
 impl FollowConfig {
     /// Checks signs and ranges a parser cannot.
@@ -207,11 +207,7 @@ impl FollowConfig {
             ("hybrid.heading_exponent", self.hybrid.heading_exponent),
             ("hybrid.max_accel", self.hybrid.max_accel),
         ];
-        for (field, value) in positive {
-            if !(value.is_finite() && value > 0.0) {
-                return Err((field, value, "must be a positive number"));
-            }
-        }
+        crate::field_check::all_positive(&positive)?;
         let non_negative = [
             ("pid.kp", self.pid.kp),
             ("pid.ki", self.pid.ki),
@@ -221,11 +217,7 @@ impl FollowConfig {
             ("hybrid.ki", self.hybrid.ki),
             ("hybrid.kd", self.hybrid.kd),
         ];
-        for (field, value) in non_negative {
-            if !(value.is_finite() && value >= 0.0) {
-                return Err((field, value, "must be zero or more"));
-            }
-        }
+        crate::field_check::all_non_negative(&non_negative)?;
         let turn = self.pid.stop_turn_deg;
         if !(turn > 0.0 && turn <= 180.0) {
             return Err(("pid.stop_turn_deg", turn, "must lie in (0, 180]"));

@@ -60,22 +60,14 @@ impl MapConfig {
             ("block_inflation", self.block_inflation),
             ("hit_log_odds", f64::from(self.hit_log_odds)),
         ];
-        for (field, value) in positive {
-            if !(value.is_finite() && value > 0.0) {
-                return Err((field, value, "must be a positive number"));
-            }
-        }
+        crate::field_check::all_positive(&positive)?;
         let non_negative = [
             ("lethal_radius", self.lethal_radius),
             ("block_lethal_radius", self.block_lethal_radius),
             ("gradient", self.gradient),
             ("wall_join", self.wall_join),
         ];
-        for (field, value) in non_negative {
-            if !(value.is_finite() && value >= 0.0) {
-                return Err((field, value, "must be zero or more"));
-            }
-        }
+        crate::field_check::all_non_negative(&non_negative)?;
         let miss = f64::from(self.miss_log_odds);
         if !(miss.is_finite() && miss < 0.0) {
             return Err(("miss_log_odds", miss, "must be negative"));

@@ -126,21 +126,13 @@ impl MissionConfig {
             ("retry_turn_deg", self.retry_turn_deg),
             ("stuck_timeout", self.stuck_timeout),
         ];
-        for (field, value) in positive {
-            if !(value.is_finite() && value > 0.0) {
-                return Err((field, value, "must be a positive number"));
-            }
-        }
+        crate::field_check::all_positive(&positive)?;
         let non_negative = [
             ("gripper_wait", self.gripper_wait),
             ("back_off_time", self.back_off_time),
             ("replan_cooldown", self.replan_cooldown),
         ];
-        for (field, value) in non_negative {
-            if !(value.is_finite() && value >= 0.0) {
-                return Err((field, value, "must be zero or more"));
-            }
-        }
+        crate::field_check::all_non_negative(&non_negative)?;
         if !(self.lost_timeout.is_finite() && self.lost_timeout > LOST_SCAN_AFTER) {
             return Err((
                 "lost_timeout",

@@ -56,11 +56,7 @@ impl PlanConfig {
             ("max_accel", self.max_accel),
             ("max_lateral_accel", self.max_lateral_accel),
         ];
-        for (field, value) in positive {
-            if !(value.is_finite() && value > 0.0) {
-                return Err((field, value, "must be a positive number"));
-            }
-        }
+        crate::field_check::all_positive(&positive)?;
         if self.unknown_cost >= LETHAL {
             return Err((
                 "unknown_cost",

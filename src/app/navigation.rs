@@ -13,6 +13,9 @@ use crate::plan::pipeline::Plan;
 
 /// Seed 001 "Path Recalculation": at most one replan per this many seconds.
 const REPLAN_EVERY: f64 = 0.5;
+/// Seed 001: replan when a new obstacle appears within 1 m of the path, a block within 0.5 m.
+const NEW_OBSTACLE_NEAR: f64 = 1.0;
+const NEW_BLOCK_NEAR: f64 = 0.5;
 /// Seed 001 section 8: the robot approaches a block to 12 cm.
 const BLOCK_APPROACH: f64 = 0.12;
 /// Other landmarks: the goal stays this far beyond the edge of their lethal ring, metres.
@@ -66,8 +69,10 @@ pub(super) struct Navigation {
     /// The map revision the route was last checked against, and when it was last replanned.
     pub checked_revision: u64,
     pub last_replan: f64,
-    /// Paths planned again because the map blocked them.
+    /// Paths planned again because the map changed under them, and the landmarks known
+    /// when the path was last checked.
     pub replans: usize,
+    pub landmarks_checked: std::collections::BTreeSet<u32>,
     /// The last follower command and when it was computed.
     pub last_step: Option<(f64, Twist)>,
     /// Cross-track error of the twin's true pose: sum of squares and count.
@@ -123,6 +128,8 @@ impl App {
                     plan,
                 });
                 self.nav.checked_revision = self.belief.revision();
+                // Only landmarks that turn up after this plan count as new near its path.
+                self.nav.landmarks_checked = self.ekf.landmarks().map(|l| l.id).collect();
                 true
             }
             Err(e) => {
@@ -239,8 +246,7 @@ impl App {
     }
 
     /// Seed 001 section 7 "Path Recalculation": replan when the map shows the path ahead
-    /// blocked. (The seed also replans for any new obstacle within 1 m or block within
-    /// 0.5 m; here a new landmark matters once its cost rings reach the path.)
+    /// blocked, or a new obstacle appears within 1 m of it, or a new block within 0.5 m.
     fn replan_if_blocked(&mut self, t: f64) {
         if t - self.nav.last_replan < REPLAN_EVERY {
             return;
@@ -257,6 +263,27 @@ impl App {
             if let Some(p) = ahead.iter().find(|p| is_lethal(map.at(p.position))) {
                 let at = p.position;
                 reason = Some(format!("path blocked at ({:.2}, {:.2})", at.x, at.y));
+            }
+        }
+        for landmark in self.ekf.landmarks() {
+            if !self.nav.landmarks_checked.insert(landmark.id) || reason.is_some() {
+                continue;
+            }
+            let category = MarkerCategory::of(landmark.id);
+            let near = match category {
+                MarkerCategory::Obstacle => NEW_OBSTACLE_NEAR,
+                MarkerCategory::RedBlock | MarkerCategory::BlueBlock => NEW_BLOCK_NEAR,
+                _ => continue,
+            };
+            if ahead
+                .iter()
+                .any(|p| p.position.distance(landmark.mean) < near)
+            {
+                reason = Some(format!(
+                    "new {} {} within {near} m of the path",
+                    category.label(),
+                    landmark.id
+                ));
             }
         }
         let Some(reason) = reason else { return };

@@ -106,7 +106,7 @@ pub fn report(app: &App, keys: usize) -> Report {
         controller: app.follower().controller().name().to_string(),
         arrived: app.arrived(),
         path_length: app.route().map(|r| r.plan.length),
-        cross_track_rms: app.follower().cross_track_rms(),
+        cross_track_rms: app.cross_track_rms(),
         true_cross_track_rms: app.true_cross_track_rms(),
         quit: app.should_quit(),
         warnings: app

@@ -75,9 +75,12 @@ pub(super) struct Navigation {
     pub landmarks_checked: std::collections::BTreeSet<u32>,
     /// The last follower command and when it was computed.
     pub last_step: Option<(f64, Twist)>,
-    /// Cross-track error of the twin's true pose: sum of squares and count.
+    /// Cross-track error of the twin's true pose: sum of squares and count; and of the
+    /// estimated pose (the follower's own), over every path since following started.
     pub true_squares: f64,
     pub true_samples: usize,
+    pub squares: f64,
+    pub samples: usize,
 }
 
 impl App {
@@ -184,6 +187,8 @@ impl App {
         self.nav.arrived = false;
         self.nav.true_squares = 0.0;
         self.nav.true_samples = 0;
+        self.nav.squares = 0.0;
+        self.nav.samples = 0;
         if !self.plan_route(target) {
             return false;
         }
@@ -222,6 +227,8 @@ impl App {
                     eta,
                     cross_track,
                 });
+                self.nav.squares += cross_track * cross_track;
+                self.nav.samples += 1;
                 self.sample_true_cross_track();
             }
             FollowStatus::Arrived => {
@@ -378,6 +385,11 @@ impl App {
     }
     pub fn follower(&self) -> &crate::control::follower::Follower {
         &self.follower
+    }
+    /// RMS cross-track error of the estimated pose since following started, replans
+    /// included, metres.
+    pub fn cross_track_rms(&self) -> Option<f64> {
+        (self.nav.samples > 0).then(|| (self.nav.squares / self.nav.samples as f64).sqrt())
     }
     /// RMS cross-track error of the twin's true pose over the last following, metres.
     pub fn true_cross_track_rms(&self) -> Option<f64> {

@@ -192,8 +192,16 @@ impl Pickup {
             }
             Stage::Close => match inputs.gripper {
                 Some(GripperState::Holding) => PickEvent::Picked,
-                // A gripper that reports nothing: trust seed 001's wait.
-                None if waited >= config.gripper_wait => PickEvent::Picked,
+                // A gripper that reports nothing: after seed 001's wait, the block's markers
+                // still in view mean it was not picked up (seed 001 "Gripper Failure").
+                None if waited >= config.gripper_wait => {
+                    let markers = [self.block, self.block + 1];
+                    if inputs.camera_frame && inputs.seen.iter().any(|id| markers.contains(id)) {
+                        self.missed(t, ctx, log)
+                    } else {
+                        PickEvent::Picked
+                    }
+                }
                 Some(GripperState::Closed) => self.missed(t, ctx, log),
                 _ if waited >= config.gripper_wait + 1.0 => self.missed(t, ctx, log),
                 _ => stop,

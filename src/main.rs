@@ -6,7 +6,7 @@ use navdeck::config::Config;
 use navdeck::geometry::Point2;
 use navdeck::headless;
 use navdeck::keymap::parse_key_sequence;
-use navdeck::map::nav2;
+use navdeck::map::io as map_io;
 use navdeck::mission_runner;
 use navdeck::plan_report::{self, Terrain};
 use navdeck::session::{LinkChoice, Session, SessionSpec};
@@ -196,7 +196,7 @@ fn run_plan(args: &PlanArgs) -> Result<ExitCode> {
         None => Config::default(),
     };
     let terrain = match (&args.map, &args.world) {
-        (Some(map), _) => Terrain::Map(nav2::load(map)?),
+        (Some(map), _) => Terrain::Map(map_io::load(map)?.grid),
         (None, Some(world)) => Terrain::World(
             World::load(world).with_context(|| format!("cannot use world {}", world.display()))?,
         ),

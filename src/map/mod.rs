@@ -6,6 +6,7 @@ pub mod config;
 pub mod costmap;
 pub mod evidence;
 pub mod grid;
+pub mod io;
 pub mod landmark_layer;
-pub mod nav2;
+pub mod pgm;
 pub mod stamp;

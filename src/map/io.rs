@@ -1,0 +1,291 @@
+//! Map files: a Nav2 map_server pair, `NAME.yaml` + `NAME.pgm`, so that a map saved here
+//! opens in RViz and Nav2 and a Nav2 map opens here. navdeck's own extras (landmarks, the
+//! robot's pose) ride in the same YAML under the `navdeck` key, which map_server ignores.
+
+use super::grid::{FREE, OCCUPIED, OccupancyGrid, UNKNOWN};
+use super::pgm::{self, PgmError};
+use crate::geometry::{Point2, Pose2};
+use serde::{Deserialize, Serialize};
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+/// Why a map file could not be read or written; each names the file and what is wrong.
+#[derive(Debug, thiserror::Error)]
+pub enum MapFileError {
+    #[error("cannot read map {path}: {source}")]
+    Read {
+        path: PathBuf,
+        source: std::io::Error,
+    },
+    #[error("cannot write map {path}: {source}")]
+    Write {
+        path: PathBuf,
+        source: std::io::Error,
+    },
+    #[error("map {path}: {message}")]
+    Yaml { path: PathBuf, message: String },
+    #[error("map {path}: field `{field}` = {value}: {reason}")]
+    Field {
+        path: PathBuf,
+        field: &'static str,
+        value: String,
+        reason: &'static str,
+    },
+    #[error("map image {path}: {source}")]
+    Image { path: PathBuf, source: PgmError },
+}
+
+/// A landmark as saved: enough to seed the filter with it later.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SavedLandmark {
+    pub id: u32,
+    pub category: String,
+    pub mean: [f64; 2],
+    /// Row-major 2x2 covariance, m^2.
+    pub covariance: [[f64; 2]; 2],
+    pub sightings: u32,
+}
+
+/// navdeck's part of the YAML.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct Extras {
+    pub version: String,
+    /// When the map was saved, as the saver gave it (the map code reads no clock).
+    pub created: String,
+    /// The robot's pose when the map was saved: x, y, theta (radians).
+    pub pose: Option<[f64; 3]>,
+    pub landmarks: Vec<SavedLandmark>,
+}
+
+/// A map file's content.
+#[derive(Clone, Debug, PartialEq)]
+pub struct MapFile {
+    pub grid: OccupancyGrid,
+    pub extras: Option<Extras>,
+}
+
+/// map_server's YAML. Unknown keys are ignored, as map_server does.
+#[derive(Debug, Serialize, Deserialize)]
+struct MapYaml {
+    image: PathBuf,
+    resolution: f64,
+    /// Pose of the lower-left pixel: x, y, yaw (map_server ignores yaw, and so do we).
+    origin: Vec<f64>,
+    #[serde(default)]
+    negate: i64,
+    occupied_thresh: f64,
+    free_thresh: f64,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    mode: Option<String>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    navdeck: Option<Extras>,
+}
+
+/// Saved trinary pixels (map_server's map_saver): free, occupied, unknown.
+const FREE_PIXEL: u8 = 254;
+const OCCUPIED_PIXEL: u8 = 0;
+const UNKNOWN_PIXEL: u8 = 205;
+
+/// Reads `path` (the YAML) and the image it names.
+pub fn load(path: &Path) -> Result<MapFile, MapFileError> {
+    let text = std::fs::read_to_string(path).map_err(|source| MapFileError::Read {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    let yaml: MapYaml = serde_norway::from_str(&text).map_err(|e| MapFileError::Yaml {
+        path: path.to_path_buf(),
+        message: e.to_string(),
+    })?;
+    let mode = check(&yaml, path)?;
+    // map_server: the image is relative to the YAML's folder unless absolute.
+    let image_path = if yaml.image.is_absolute() {
+        yaml.image.clone()
+    } else {
+        path.parent().unwrap_or(Path::new(".")).join(&yaml.image)
+    };
+    let bytes = std::fs::read(&image_path).map_err(|source| MapFileError::Read {
+        path: image_path.clone(),
+        source,
+    })?;
+    let image = pgm::decode(&bytes).map_err(|source| MapFileError::Image {
+        path: image_path.clone(),
+        source,
+    })?;
+    let origin = Point2::new(yaml.origin[0], yaml.origin[1]);
+    let (w, h) = (image.width, image.height);
+    let mut grid = OccupancyGrid::new(w, h, yaml.resolution, origin, UNKNOWN);
+    let max = f64::from(image.maxval);
+    for (k, &pixel) in image.pixels.iter().enumerate() {
+        let p = f64::from(pixel) / max;
+        // map_server: occupancy = (255 - p) / 255, or p / 255 when negated.
+        let occupancy = if yaml.negate == 0 { 1.0 - p } else { p };
+        let value = match mode {
+            Mode::Raw => i8::try_from(pixel)
+                .ok()
+                .filter(|v| *v <= OCCUPIED)
+                .unwrap_or(UNKNOWN),
+            _ if occupancy > yaml.occupied_thresh => OCCUPIED,
+            _ if occupancy < yaml.free_thresh => FREE,
+            Mode::Trinary => UNKNOWN,
+            // map_server scale: 1..99 between the thresholds.
+            Mode::Scale => {
+                let t = (occupancy - yaml.free_thresh) / (yaml.occupied_thresh - yaml.free_thresh);
+                (1.0 + 98.0 * t).round() as i8
+            }
+        };
+        // Image rows run top to bottom; grid rows bottom to top.
+        grid.set(k % w, h - 1 - k / w, value);
+    }
+    Ok(MapFile {
+        grid,
+        extras: yaml.navdeck,
+    })
+}
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Mode {
+    Trinary,
+    Scale,
+    Raw,
+}
+
+fn check(yaml: &MapYaml, path: &Path) -> Result<Mode, MapFileError> {
+    let field = |field, value: String, reason| MapFileError::Field {
+        path: path.to_path_buf(),
+        field,
+        value,
+        reason,
+    };
+    if !(yaml.resolution.is_finite() && yaml.resolution > 0.0) {
+        return Err(field(
+            "resolution",
+            yaml.resolution.to_string(),
+            "must be a positive number of metres",
+        ));
+    }
+    if yaml.origin.len() != 3 || yaml.origin.iter().any(|v| !v.is_finite()) {
+        return Err(field(
+            "origin",
+            format!("{:?}", yaml.origin),
+            "must be [x, y, yaw], finite numbers",
+        ));
+    }
+    for (name, value) in [
+        ("occupied_thresh", yaml.occupied_thresh),
+        ("free_thresh", yaml.free_thresh),
+    ] {
+        if !(0.0..=1.0).contains(&value) {
+            return Err(field(name, value.to_string(), "must lie in 0..=1"));
+        }
+    }
+    if yaml.free_thresh >= yaml.occupied_thresh {
+        return Err(field(
+            "free_thresh",
+            yaml.free_thresh.to_string(),
+            "must be below occupied_thresh",
+        ));
+    }
+    if !(yaml.negate == 0 || yaml.negate == 1) {
+        return Err(field("negate", yaml.negate.to_string(), "must be 0 or 1"));
+    }
+    match yaml.mode.as_deref() {
+        None | Some("trinary") => Ok(Mode::Trinary),
+        Some("scale") => Ok(Mode::Scale),
+        Some("raw") => Ok(Mode::Raw),
+        Some(other) => Err(field(
+            "mode",
+            other.to_string(),
+            "must be trinary, scale or raw",
+        )),
+    }
+}
+
+/// Writes `map` as `path` (the YAML) and a PGM beside it, in map_server's trinary mode.
+/// Atomic: each file is written to a temporary name, synced and renamed; the previous
+/// version stays as `.bak` until the new one is complete.
+pub fn save(path: &Path, map: &MapFile) -> Result<(), MapFileError> {
+    save_with(path, map, &mut write_synced)
+}
+
+/// `save` with the byte writer passed in, so a test can fail a write half-way.
+pub fn save_with(
+    path: &Path,
+    map: &MapFile,
+    write: &mut dyn FnMut(&Path, &[u8]) -> std::io::Result<()>,
+) -> Result<(), MapFileError> {
+    let image_name = path.with_extension("pgm");
+    let g = &map.grid;
+    let mut pixels = Vec::with_capacity(g.width * g.height);
+    for row in (0..g.height).rev() {
+        for col in 0..g.width {
+            pixels.push(match g.get(col, row) {
+                v if v < 0 => UNKNOWN_PIXEL,
+                v if v >= 65 => OCCUPIED_PIXEL,
+                v if v <= 19 => FREE_PIXEL,
+                _ => UNKNOWN_PIXEL,
+            });
+        }
+    }
+    let yaml = MapYaml {
+        image: PathBuf::from(image_name.file_name().unwrap_or_default()),
+        resolution: g.resolution,
+        origin: vec![g.origin.x, g.origin.y, 0.0],
+        negate: 0,
+        occupied_thresh: 0.65,
+        free_thresh: 0.196,
+        mode: Some("trinary".into()),
+        navdeck: map.extras.clone(),
+    };
+    let text = serde_norway::to_string(&yaml).map_err(|e| MapFileError::Yaml {
+        path: path.to_path_buf(),
+        message: e.to_string(),
+    })?;
+    let files = [
+        (image_name, pgm::encode(g.width, g.height, &pixels)),
+        (path.to_path_buf(), text.into_bytes()),
+    ];
+    // Write both under temporary names first: a failure leaves the old pair untouched.
+    for (target, bytes) in &files {
+        let tmp = with_suffix(target, ".tmp");
+        write(&tmp, bytes).map_err(|source| {
+            let _ = std::fs::remove_file(&tmp);
+            MapFileError::Write {
+                path: target.clone(),
+                source,
+            }
+        })?;
+    }
+    for (target, _) in &files {
+        let err = |source| MapFileError::Write {
+            path: target.clone(),
+            source,
+        };
+        if target.exists() {
+            std::fs::rename(target, with_suffix(target, ".bak")).map_err(err)?;
+        }
+        std::fs::rename(with_suffix(target, ".tmp"), target).map_err(err)?;
+    }
+    Ok(())
+}
+
+fn with_suffix(path: &Path, suffix: &str) -> PathBuf {
+    let mut name = path.as_os_str().to_owned();
+    name.push(suffix);
+    PathBuf::from(name)
+}
+
+/// Writes and syncs a file.
+fn write_synced(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
+    let mut file = std::fs::File::create(path)?;
+    file.write_all(bytes)?;
+    file.sync_all()
+}
+
+impl Extras {
+    /// The robot pose saved with the map.
+    pub fn robot_pose(&self) -> Option<Pose2> {
+        self.pose.map(|[x, y, t]| Pose2::new(x, y, t))
+    }
+}

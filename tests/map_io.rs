@@ -1,0 +1,217 @@
+//! Map files as users meet them: Nav2 maps open, saved maps round-trip, saves are atomic,
+//! and a bad file is refused naming the file, the field and the value.
+
+use navdeck::geometry::Point2;
+use navdeck::map::grid::{FREE, OCCUPIED, OccupancyGrid, UNKNOWN};
+use navdeck::map::io::{self, Extras, MapFile, SavedLandmark};
+use std::path::{Path, PathBuf};
+
+fn scratch(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("navdeck-io-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// A 5 x 4 grid at 5 cm with every kind of cell, and one landmark.
+fn sample() -> MapFile {
+    let mut grid = OccupancyGrid::new(5, 4, 0.05, Point2::new(-0.1, -0.2), FREE);
+    grid.set(0, 0, OCCUPIED);
+    grid.set(4, 3, UNKNOWN);
+    grid.set(2, 1, OCCUPIED);
+    let landmark = SavedLandmark {
+        id: 301,
+        category: "obstacle".into(),
+        mean: [0.123456789012345, -1.0 / 3.0],
+        covariance: [[1.0e-4, 2.5e-6], [2.5e-6, 3.0e-4 / 7.0]],
+        sightings: 42,
+    };
+    MapFile {
+        grid,
+        extras: Some(Extras {
+            version: "0.1.0".into(),
+            created: "2026-11-22T06:00:00Z".into(),
+            pose: Some([0.5, -0.25, 1.0]),
+            landmarks: vec![landmark],
+        }),
+    }
+}
+
+#[test]
+fn the_turtlebot3_nav2_map_opens_and_plans() {
+    let fixture =
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/fixtures/maps/turtlebot3_world.yaml");
+    let map = io::load(&fixture).unwrap_or_else(|e| panic!("{}: {e}", fixture.display()));
+    let g = &map.grid;
+    assert_eq!((g.width, g.height), (384, 384));
+    assert_eq!(g.resolution, 0.05);
+    assert_eq!(g.origin, Point2::new(-10.0, -10.0));
+    // Cells read off the image: a wall, open floor, and unexplored space outside.
+    assert_eq!(g.at(Point2::new(1.275, 0.075)), OCCUPIED);
+    assert_eq!(g.at(Point2::new(2.275, 0.025)), FREE);
+    assert_eq!(g.at(Point2::new(-9.99, -9.99)), UNKNOWN);
+    let counts = |v| g.cells.iter().filter(|&&c| c == v).count();
+    assert_eq!((counts(OCCUPIED), counts(FREE)), (795, 7939));
+    assert!(map.extras.is_none());
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_navdeck"))
+        .args([
+            "plan",
+            "--map",
+            fixture.to_str().unwrap(),
+            "--from",
+            "-2,-0.5",
+            "--to",
+            "2,0.5",
+        ])
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+}
+
+#[test]
+fn save_then_load_gives_the_same_grid_and_landmarks() {
+    let dir = scratch("round");
+    let path = dir.join("lab.yaml");
+    let map = sample();
+    io::save(&path, &map).unwrap();
+    assert!(dir.join("lab.pgm").exists());
+    let back = io::load(&path).unwrap();
+    assert_eq!(back.grid, map.grid);
+    let (a, b) = (map.extras.unwrap(), back.extras.unwrap());
+    assert_eq!(a.landmarks.len(), b.landmarks.len());
+    for (x, y) in a.landmarks.iter().zip(&b.landmarks) {
+        for i in 0..2 {
+            assert!((x.mean[i] - y.mean[i]).abs() < 1e-9);
+            for j in 0..2 {
+                assert!((x.covariance[i][j] - y.covariance[i][j]).abs() < 1e-9);
+            }
+        }
+        assert_eq!((x.id, x.sightings), (y.id, y.sightings));
+    }
+    assert_eq!(a.pose, b.pose);
+    // The YAML is map_server's, with navdeck's part under its own key.
+    let text = std::fs::read_to_string(&path).unwrap();
+    for key in [
+        "image: lab.pgm",
+        "resolution: 0.05",
+        "mode: trinary",
+        "navdeck:",
+    ] {
+        assert!(text.contains(key), "{key} in\n{text}");
+    }
+}
+
+#[test]
+fn a_save_that_fails_half_way_leaves_the_old_map_whole() {
+    let dir = scratch("atomic");
+    let path = dir.join("lab.yaml");
+    io::save(&path, &sample()).unwrap();
+    let before_yaml = std::fs::read(&path).unwrap();
+    let before_pgm = std::fs::read(dir.join("lab.pgm")).unwrap();
+    let mut newer = sample();
+    newer.grid.set(1, 1, OCCUPIED);
+    // The disk fills up half-way through the image.
+    let mut failing = |p: &Path, bytes: &[u8]| -> std::io::Result<()> {
+        std::fs::write(p, &bytes[..bytes.len() / 2])?;
+        Err(std::io::Error::other("no space left on device"))
+    };
+    let err = io::save_with(&path, &newer, &mut failing).unwrap_err();
+    assert!(err.to_string().contains("lab.pgm") && err.to_string().contains("no space"));
+    assert_eq!(std::fs::read(&path).unwrap(), before_yaml);
+    assert_eq!(std::fs::read(dir.join("lab.pgm")).unwrap(), before_pgm);
+    let leftovers: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().into_string().unwrap())
+        .filter(|n| n.ends_with(".tmp"))
+        .collect();
+    assert!(leftovers.is_empty(), "{leftovers:?}");
+    // A save that completes keeps the previous version as .bak.
+    io::save(&path, &newer).unwrap();
+    assert_eq!(
+        std::fs::read(dir.join("lab.yaml.bak")).unwrap(),
+        before_yaml
+    );
+    assert_eq!(io::load(&path).unwrap().grid, newer.grid);
+}
+
+/// Writes a YAML (and a PGM) and returns the load error's text.
+fn refusal(name: &str, yaml: &str, pgm: &[u8]) -> String {
+    let dir = scratch(name);
+    std::fs::write(dir.join("m.pgm"), pgm).unwrap();
+    let path = dir.join("m.yaml");
+    std::fs::write(&path, yaml).unwrap();
+    let err = io::load(&path).unwrap_err().to_string();
+    assert!(
+        err.contains("m.yaml") || err.contains("m.pgm"),
+        "names the file: {err}"
+    );
+    err
+}
+
+const IMAGE: &[u8] = b"P5 2 2 255\n\xfe\x00\xcd\xfe";
+
+fn yaml(body: &str) -> String {
+    format!("image: m.pgm\n{body}")
+}
+
+#[test]
+fn bad_map_files_are_refused_naming_field_and_value() {
+    let ok = "resolution: 0.05\norigin: [0, 0, 0]\noccupied_thresh: 0.65\nfree_thresh: 0.196\n";
+    assert!(
+        refusal(
+            "missing",
+            &yaml("origin: [0, 0, 0]\noccupied_thresh: 0.65\nfree_thresh: 0.2\n"),
+            IMAGE
+        )
+        .contains("resolution")
+    );
+    assert!(refusal("type", &yaml(&ok.replace("0.05", "fine")), IMAGE).contains("resolution"));
+    let e = refusal("negative", &yaml(&ok.replace("0.05", "-0.05")), IMAGE);
+    assert!(e.contains("`resolution` = -0.05"), "{e}");
+    let e = refusal(
+        "nan",
+        &yaml(&ok.replace("[0, 0, 0]", "[.nan, 0, 0]")),
+        IMAGE,
+    );
+    assert!(e.contains("`origin`") && e.contains("NaN"), "{e}");
+    let e = refusal("order", &yaml(&ok.replace("0.196", "0.7")), IMAGE);
+    assert!(e.contains("`free_thresh` = 0.7"), "{e}");
+    let e = refusal("mode", &yaml(&format!("{ok}mode: fancy\n")), IMAGE);
+    assert!(e.contains("`mode` = fancy"), "{e}");
+    let e = refusal("short", &yaml(ok), b"P5 3 3 255\n\x00\x00");
+    assert!(e.contains("truncated") && e.contains("9 values"), "{e}");
+    let e = refusal("maxval", &yaml(ok), b"P5 1 1 99999\n\x00\x00");
+    assert!(e.contains("maxval") && e.contains("99999"), "{e}");
+    let e = refusal("huge", &yaml(ok), b"P5 4000000 4000000 255\n");
+    assert!(e.contains("width") && e.contains("4000000"), "{e}");
+}
+
+#[test]
+fn map_server_modes_negate_plain_pgm_and_absolute_images_are_read() {
+    let dir = scratch("modes");
+    // Pixels 0 (black), 128 (grey), 255 (white), plain P2.
+    std::fs::write(dir.join("g.pgm"), "P2\n3 1\n255\n0 128 255\n").unwrap();
+    let image = dir.join("g.pgm");
+    let read = |mode: &str, negate: u8| {
+        let path = dir.join(format!("{mode}{negate}.yaml"));
+        std::fs::write(
+            &path,
+            format!(
+                "image: {}\nresolution: 0.1\norigin: [0, 0, 0]\nnegate: {negate}\noccupied_thresh: 0.65\nfree_thresh: 0.196\nmode: {mode}\n",
+                image.display()
+            ),
+        )
+        .unwrap();
+        io::load(&path).unwrap().grid.cells
+    };
+    assert_eq!(read("trinary", 0), [OCCUPIED, UNKNOWN, FREE]);
+    assert_eq!(read("trinary", 1), [FREE, UNKNOWN, OCCUPIED]);
+    let scaled = read("scale", 0);
+    assert_eq!((scaled[0], scaled[2]), (OCCUPIED, FREE));
+    assert!((1..100).contains(&scaled[1]), "{scaled:?}");
+    assert_eq!(read("raw", 0), [0, UNKNOWN, UNKNOWN]);
+}

@@ -9,6 +9,7 @@ pub mod headless;
 pub mod keymap;
 pub mod link;
 pub mod map;
+pub mod map_report;
 pub mod mission;
 pub mod mission_runner;
 pub mod perception;

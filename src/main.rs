@@ -7,6 +7,7 @@ use navdeck::geometry::Point2;
 use navdeck::headless;
 use navdeck::keymap::parse_key_sequence;
 use navdeck::map::io as map_io;
+use navdeck::map_report;
 use navdeck::mission_runner;
 use navdeck::plan_report::{self, Terrain};
 use navdeck::session::{LinkChoice, Session, SessionSpec};
@@ -77,6 +78,27 @@ enum Subcommand {
     Plan(PlanArgs),
     /// Run the whole exploration-and-delivery mission in the twin on simulated time.
     Mission(MissionArgs),
+    /// Look at a saved map (Nav2 map_server YAML + PGM).
+    #[command(subcommand)]
+    Map(MapCommand),
+}
+
+#[derive(Debug, clap::Subcommand)]
+enum MapCommand {
+    /// Size, resolution, origin, landmark count and occupancy counts.
+    Info {
+        file: PathBuf,
+        /// Print one JSON object.
+        #[arg(long)]
+        json: bool,
+    },
+    /// Draw the map as text: '#' occupied, '.' free, blank unknown.
+    Show {
+        file: PathBuf,
+        /// Columns of text.
+        #[arg(long, default_value_t = 80, value_name = "N")]
+        width: usize,
+    },
 }
 
 #[derive(Debug, clap::Args)]
@@ -152,6 +174,7 @@ fn real_main(cli: Cli) -> Result<ExitCode> {
     match &cli.command {
         Some(Subcommand::Plan(args)) => return run_plan(args),
         Some(Subcommand::Mission(args)) => return run_mission(args),
+        Some(Subcommand::Map(command)) => return run_map(command),
         None => {}
     }
     let spec = SessionSpec {
@@ -304,6 +327,26 @@ fn run_mission(args: &MissionArgs) -> Result<ExitCode> {
     } else {
         ExitCode::from(1)
     })
+}
+
+fn run_map(command: &MapCommand) -> Result<ExitCode> {
+    match command {
+        MapCommand::Info { file, json } => {
+            let info = map_report::info(&map_io::load(file)?);
+            if *json {
+                println!("{}", serde_json::to_string(&info)?);
+            } else {
+                print!("{}", map_report::human(&info));
+            }
+        }
+        MapCommand::Show { file, width } => {
+            if *width == 0 || *width > 2000 {
+                bail!("--width {width} must lie in 1..=2000");
+            }
+            print!("{}", map_report::show(&map_io::load(file)?.grid, *width));
+        }
+    }
+    Ok(ExitCode::SUCCESS)
 }
 
 fn run_console(session: Session, cli: &Cli) -> Result<ExitCode> {

@@ -256,3 +256,32 @@ fn a_bad_nav2_map_is_refused_naming_the_field() {
     ]);
     assert!(stderr(&out).contains("nowhere.pgm"), "{}", stderr(&out));
 }
+
+#[test]
+fn map_info_and_show_describe_a_saved_map() {
+    let out = navdeck(&["map", "info", "tests/maps/room.yaml", "--json"]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let info: Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(
+        (info["width"].as_u64(), info["height"].as_u64()),
+        (Some(60), Some(40))
+    );
+    assert_eq!(info["unknown"], 0);
+    assert!(info["occupied"].as_u64().unwrap() > 150);
+    let shown = navdeck(&["map", "show", "tests/maps/room.yaml", "--width", "30"]);
+    let text = String::from_utf8_lossy(&shown.stdout);
+    let lines: Vec<&str> = text.lines().collect();
+    assert_eq!(
+        lines.len(),
+        10,
+        "3 m x 2 m at 10 cm a column, 20 cm a row:\n{text}"
+    );
+    assert!(
+        lines[0].chars().all(|c| c == '#'),
+        "the north wall:\n{text}"
+    );
+    assert!(lines[5].contains('.') && lines[5].contains('#'), "{text}");
+    let missing = navdeck(&["map", "info", "tests/maps/nothere.yaml"]);
+    assert_eq!(missing.status.code(), Some(2));
+    assert!(stderr(&missing).contains("cannot read map tests/maps/nothere.yaml"));
+}

@@ -6,10 +6,10 @@ use std::path::PathBuf;
 /// A keymap that cannot be used. Shown before the terminal enters raw mode.
 #[derive(Debug, thiserror::Error)]
 pub enum KeymapError {
-    #[error("cannot read keymap {}: {source}", path.display())]
+    #[error("cannot read keymap {}: {error}", path.display())]
     Read {
         path: PathBuf,
-        source: std::io::Error,
+        error: std::io::Error,
     },
     /// The file is not valid TOML (this includes a key written twice in one table).
     #[error("{}:{line}: {message}", path.display())]

@@ -41,7 +41,7 @@ impl Keymap {
     pub fn load(path: &Path) -> Result<Keymap, KeymapError> {
         let text = std::fs::read_to_string(path).map_err(|source| KeymapError::Read {
             path: path.to_path_buf(),
-            source,
+            error: source,
         })?;
         Keymap::parse_overlay(&text, path)
     }

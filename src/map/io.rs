@@ -12,15 +12,16 @@ use std::path::{Path, PathBuf};
 /// Why a map file could not be read or written; each names the file and what is wrong.
 #[derive(Debug, thiserror::Error)]
 pub enum MapFileError {
-    #[error("cannot read map {path}: {source}")]
+    // The I/O error is part of the message, not a chained source, so it prints once.
+    #[error("cannot read map {path}: {error}")]
     Read {
         path: PathBuf,
-        source: std::io::Error,
+        error: std::io::Error,
     },
-    #[error("cannot write map {path}: {source}")]
+    #[error("cannot write map {path}: {error}")]
     Write {
         path: PathBuf,
-        source: std::io::Error,
+        error: std::io::Error,
     },
     #[error("map {path}: {message}")]
     Yaml { path: PathBuf, message: String },
@@ -31,8 +32,8 @@ pub enum MapFileError {
         value: String,
         reason: &'static str,
     },
-    #[error("map image {path}: {source}")]
-    Image { path: PathBuf, source: PgmError },
+    #[error("map image {path}: {error}")]
+    Image { path: PathBuf, error: PgmError },
 }
 
 /// A landmark as saved: enough to seed the filter with it later.
@@ -92,7 +93,7 @@ const UNKNOWN_PIXEL: u8 = 205;
 pub fn load(path: &Path) -> Result<MapFile, MapFileError> {
     let text = std::fs::read_to_string(path).map_err(|source| MapFileError::Read {
         path: path.to_path_buf(),
-        source,
+        error: source,
     })?;
     let yaml: MapYaml = serde_norway::from_str(&text).map_err(|e| MapFileError::Yaml {
         path: path.to_path_buf(),
@@ -107,11 +108,11 @@ pub fn load(path: &Path) -> Result<MapFile, MapFileError> {
     };
     let bytes = std::fs::read(&image_path).map_err(|source| MapFileError::Read {
         path: image_path.clone(),
-        source,
+        error: source,
     })?;
     let image = pgm::decode(&bytes).map_err(|source| MapFileError::Image {
         path: image_path.clone(),
-        source,
+        error: source,
     })?;
     let origin = Point2::new(yaml.origin[0], yaml.origin[1]);
     let (w, h) = (image.width, image.height);
@@ -253,14 +254,14 @@ pub fn save_with(
             let _ = std::fs::remove_file(&tmp);
             MapFileError::Write {
                 path: target.clone(),
-                source,
+                error: source,
             }
         })?;
     }
     for (target, _) in &files {
         let err = |source| MapFileError::Write {
             path: target.clone(),
-            source,
+            error: source,
         };
         if target.exists() {
             std::fs::rename(target, with_suffix(target, ".bak")).map_err(err)?;

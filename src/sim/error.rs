@@ -6,10 +6,10 @@ use std::path::PathBuf;
 /// A world file that could not be read, parsed or accepted.
 #[derive(Debug, thiserror::Error)]
 pub enum WorldError {
-    #[error("cannot read world {path}: {source}")]
+    #[error("cannot read world {path}: {error}")]
     Read {
         path: PathBuf,
-        source: std::io::Error,
+        error: std::io::Error,
     },
     /// Syntax, type or unknown-field errors; toml's message carries line and column.
     #[error("world {path}: {message}")]

@@ -68,6 +68,11 @@ struct Cli {
     #[arg(long, requires = "headless")]
     json: bool,
 
+    /// Where maps are saved (the save key S, :save NAME, autosave while exploring);
+    /// default `maps` in the console, none in headless runs.
+    #[arg(long, value_name = "DIR")]
+    maps_dir: Option<PathBuf>,
+
     #[command(subcommand)]
     command: Option<Subcommand>,
 }
@@ -201,6 +206,9 @@ fn run_headless(session: Session, cli: &Cli) -> Result<ExitCode> {
     let mut app = session.into_app(0.0);
     let started = Instant::now();
     app.set_stopwatch(Box::new(move || started.elapsed().as_secs_f64()));
+    if let Some(dir) = &cli.maps_dir {
+        app.set_maps_dir(dir.clone());
+    }
     let mut report = headless::run(&mut app, &keys, cli.key_rate);
     let wall = started.elapsed().as_secs_f64();
     report.wall_time_s = Some(wall);
@@ -356,6 +364,14 @@ fn run_console(session: Session, cli: &Cli) -> Result<ExitCode> {
     let mut app = session.into_app(0.0);
     let epoch = Instant::now();
     app.set_stopwatch(Box::new(move || epoch.elapsed().as_secs_f64()));
+    app.set_maps_dir(
+        cli.maps_dir
+            .clone()
+            .unwrap_or_else(|| PathBuf::from("maps")),
+    );
+    app.set_date_source(Box::new(|| {
+        humantime::format_rfc3339_seconds(std::time::SystemTime::now()).to_string()
+    }));
     if cli.braille {
         app.apply(navdeck::app::action::Action::ToggleBraille);
     }

@@ -215,3 +215,44 @@ fn map_server_modes_negate_plain_pgm_and_absolute_images_are_read() {
     assert!((1..100).contains(&scaled[1]), "{scaled:?}");
     assert_eq!(read("raw", 0), [0, UNKNOWN, UNKNOWN]);
 }
+
+#[test]
+fn the_console_saves_its_map_by_key_command_and_autosave() {
+    use navdeck::app::KeyKind;
+    use navdeck::keymap::parse_key_sequence;
+    let dir = scratch("console");
+    let mut app = navdeck::session::Session::load(&navdeck::session::SessionSpec {
+        world: None,
+        seed: 1,
+        config: None,
+        keymap: None,
+        link: navdeck::session::LinkChoice::Sim,
+    })
+    .unwrap()
+    .into_app(0.0);
+    app.set_maps_dir(dir.clone());
+    let keys = parse_key_sequence("wwwwwwwwwwS:save lab-1<enter>:save ../up<enter>").unwrap();
+    navdeck::headless::run(&mut app, &keys, 10.0);
+    for name in ["saved", "lab-1"] {
+        let map = io::load(&dir.join(format!("{name}.yaml"))).unwrap();
+        let extras = map.extras.unwrap();
+        assert!(
+            extras.landmarks.len() >= 5,
+            "{name}: {}",
+            extras.landmarks.len()
+        );
+        assert!(extras.pose.is_some());
+        assert!(map.grid.cells.contains(&OCCUPIED), "the lidar's walls");
+        assert!(map.grid.cells.contains(&FREE));
+    }
+    let said: Vec<String> = app.log_book().iter().map(|e| e.text.clone()).collect();
+    assert!(said.iter().any(|l| l.contains("name `../up`")), "{said:?}");
+    assert!(!dir.join("../up.yaml").exists());
+    // Exploring saves autosave.yaml every 30 s.
+    let t = app.now();
+    app.handle_key("e".parse().unwrap(), KeyKind::Press, t);
+    for k in 1..=320 {
+        app.update(t + 0.1 * f64::from(k));
+    }
+    assert!(io::load(&dir.join("autosave.yaml")).is_ok());
+}

@@ -51,13 +51,14 @@ pub enum Action {
     CommandLine,
     ClearRoute,
     NextController,
+    SaveMap,
     /// Unbinds a key that a lower layer of the keymap bound.
     Unbound,
 }
 
 impl Action {
     /// Every action, in the order the help overlay lists them.
-    pub const ALL: [Action; 45] = [
+    pub const ALL: [Action; 46] = [
         Action::ModeManual,
         Action::ModeExplore,
         Action::ModeThink,
@@ -102,6 +103,7 @@ impl Action {
         Action::CommandLine,
         Action::ClearRoute,
         Action::NextController,
+        Action::SaveMap,
         Action::Unbound,
     ];
 
@@ -152,6 +154,7 @@ impl Action {
             Action::CommandLine => "command_line",
             Action::ClearRoute => "clear_route",
             Action::NextController => "next_controller",
+            Action::SaveMap => "save_map",
             Action::Unbound => "none",
         }
     }
@@ -208,6 +211,7 @@ impl Action {
             Action::CommandLine => "command (:goto x y …)",
             Action::ClearRoute => "forget the planned path",
             Action::NextController => "next path controller",
+            Action::SaveMap => "save the map (maps/saved)",
             Action::Unbound => "(unbound)",
         }
     }

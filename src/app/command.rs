@@ -14,9 +14,12 @@ pub enum Command {
     Controller(ControllerKind),
     /// `clear`: forget the planned path.
     Clear,
+    /// `save NAME`: save the map as NAME.yaml + NAME.pgm in the maps folder.
+    Save(String),
 }
 
-pub const USAGE: &str = "goto X Y | goto marker ID | controller pid|pure_pursuit|hybrid | clear";
+pub const USAGE: &str =
+    "goto X Y | goto marker ID | controller pid|pure_pursuit|hybrid | clear | save NAME";
 
 /// Reads one command line, or says what is wrong with it.
 pub fn parse(line: &str) -> Result<Command, String> {
@@ -42,6 +45,8 @@ pub fn parse(line: &str) -> Result<Command, String> {
             .map(Command::Controller)
             .map_err(|e: crate::control::config::UnknownController| e.to_string()),
         ["clear"] => Ok(Command::Clear),
+        ["save", name] => Ok(Command::Save(name.to_string())),
+        ["save", ..] => Err("save wants one NAME (letters, digits, - and _)".to_string()),
         [] => Err(format!("empty command; try {USAGE}")),
         [other, ..] => Err(format!("unknown command `{other}`; try {USAGE}")),
     }

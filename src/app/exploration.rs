@@ -54,6 +54,7 @@ impl App {
         let Some(mut mission) = self.exploring.mission.take() else {
             return Twist::ZERO;
         };
+        self.autosave(t);
         let landmarks: BTreeMap<_, _> = self.ekf.landmarks().map(|l| (l.id, l.mean)).collect();
         let frame = self.exploring.frame.take();
         let path = self.path_status();

@@ -13,6 +13,7 @@ mod mapping;
 pub mod mode;
 pub mod navigation;
 mod revision;
+mod saving;
 pub mod screen;
 pub mod teleop;
 pub mod view;
@@ -97,6 +98,10 @@ pub struct App {
     exploring: exploration::Exploring,
     /// Marker IDs the filter must not correct with: blocks the mission moved.
     ignored_markers: Vec<u32>,
+    /// Where maps are saved, how they are dated, and when exploration last saved one.
+    maps_dir: Option<std::path::PathBuf>,
+    date_source: Option<Box<dyn Fn() -> String + Send>>,
+    last_autosave: f64,
     /// A monotonic clock in seconds, installed by the runner, to time planning; the
     /// console itself never reads a clock.
     stopwatch: Option<Box<dyn Fn() -> f64 + Send>>,
@@ -155,6 +160,9 @@ impl App {
             nav: navigation::Navigation::default(),
             exploring: exploration::Exploring::default(),
             ignored_markers: Vec::new(),
+            maps_dir: None,
+            date_source: None,
+            last_autosave: now,
             stopwatch: None,
             revision: 0,
             visible: None,
@@ -348,6 +356,9 @@ impl App {
                 self.drop_route();
                 self.control_step(self.now);
                 self.log(Level::Info, "path cleared");
+            }
+            Action::SaveMap => {
+                self.save_map(saving::SAVE_KEY_NAME);
             }
             Action::NextController => {
                 let all = crate::control::config::ControllerKind::ALL;

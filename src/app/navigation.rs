@@ -348,6 +348,9 @@ impl App {
                 self.plan_route(Target::Marker(id));
             }
             Ok(Command::Controller(kind)) => self.set_controller(kind),
+            Ok(Command::Save(name)) => {
+                self.save_map(&name);
+            }
             Ok(Command::Clear) => {
                 self.drop_route();
                 self.log(Level::Info, "path cleared");

@@ -172,6 +172,21 @@ impl BeliefMap {
         self.flush();
     }
 
+    /// What the sensors found, as an occupancy grid for a map file: occupied, known free,
+    /// or unknown (the cost rings are not saved; they are worked out again on load).
+    pub fn occupancy_grid(&self) -> OccupancyGrid {
+        let c = &self.costmap;
+        let mut grid = OccupancyGrid::new(c.width, c.height, c.resolution, c.origin, -1);
+        for (i, cell) in grid.cells.iter_mut().enumerate() {
+            if self.evidence.is_occupied(i) {
+                *cell = OCCUPIED;
+            } else if self.evidence.known(i) {
+                *cell = 0;
+            }
+        }
+        grid
+    }
+
     /// Takes a whole occupancy grid as certain evidence: its occupied cells become
     /// obstacles (inflated as lidar hits are), its free cells free, its unknown stays unknown.
     pub fn absorb_grid(&mut self, grid: &OccupancyGrid) {

@@ -29,6 +29,9 @@ pub struct MapConfig {
     /// Probabilistic Robotics, table 9.1: l = log(p / (1 - p)), here p 0.7 and 0.4).
     pub hit_log_odds: f32,
     pub miss_log_odds: f32,
+    /// Exploration saves the map to `autosave.yaml` in the maps folder this often,
+    /// seconds (seed 001 saves maps during exploration); 0 turns it off.
+    pub autosave_every: f64,
 }
 
 impl Default for MapConfig {
@@ -45,6 +48,7 @@ impl Default for MapConfig {
             wall_join: 0.75,
             hit_log_odds: 0.85,
             miss_log_odds: -0.4,
+            autosave_every: 30.0,
         }
     }
 }
@@ -66,6 +70,7 @@ impl MapConfig {
             ("block_lethal_radius", self.block_lethal_radius),
             ("gradient", self.gradient),
             ("wall_join", self.wall_join),
+            ("autosave_every", self.autosave_every),
         ];
         crate::field_check::all_non_negative(&non_negative)?;
         let miss = f64::from(self.miss_log_odds);

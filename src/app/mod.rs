@@ -8,6 +8,7 @@ mod command;
 mod control;
 pub mod estimate;
 mod exploration;
+pub mod loading;
 pub mod log;
 mod mapping;
 pub mod mode;
@@ -102,6 +103,7 @@ pub struct App {
     maps_dir: Option<std::path::PathBuf>,
     date_source: Option<Box<dyn Fn() -> String + Send>>,
     last_autosave: f64,
+    picker: loading::Picker,
     /// A monotonic clock in seconds, installed by the runner, to time planning; the
     /// console itself never reads a clock.
     stopwatch: Option<Box<dyn Fn() -> f64 + Send>>,
@@ -163,6 +165,7 @@ impl App {
             maps_dir: None,
             date_source: None,
             last_autosave: now,
+            picker: loading::Picker::default(),
             stopwatch: None,
             revision: 0,
             visible: None,
@@ -346,6 +349,9 @@ impl App {
             | Action::ForwardRight
             | Action::BackwardLeft
             | Action::BackwardRight => self.drive_key(action, false),
+            Action::CursorUp if self.mode == Mode::Load => self.pick(-1),
+            Action::CursorDown if self.mode == Mode::Load => self.pick(1),
+            Action::PlanToCursor if self.mode == Mode::Load => self.load_selected(),
             Action::CursorLeft => self.move_cursor(-1.0, 0.0),
             Action::CursorRight => self.move_cursor(1.0, 0.0),
             Action::CursorUp => self.move_cursor(0.0, 1.0),
@@ -405,6 +411,9 @@ impl App {
         self.log(Level::Info, format!("mode {}", mode.label()));
         if mode == Mode::Exploration {
             self.start_mission();
+        }
+        if mode == Mode::Load {
+            self.open_picker();
         }
         self.control_step(self.now);
     }

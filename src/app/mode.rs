@@ -58,7 +58,12 @@ impl Mode {
     pub fn is_built(self) -> bool {
         matches!(
             self,
-            Mode::Manual | Mode::Race | Mode::Thinking | Mode::PathFollowing | Mode::Exploration
+            Mode::Manual
+                | Mode::Race
+                | Mode::Thinking
+                | Mode::PathFollowing
+                | Mode::Exploration
+                | Mode::Load
         )
     }
 }

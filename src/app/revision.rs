@@ -35,6 +35,8 @@ pub(super) struct Visible {
     route: Option<(i64, String)>,
     controller: ControllerKind,
     arrived: bool,
+    picked: usize,
+    maps: usize,
 }
 
 fn centi(v: f64) -> i64 {
@@ -95,6 +97,8 @@ impl App {
                 .map(|r| (centi(r.plan.length), r.label.clone())),
             controller: self.follower.controller(),
             arrived: self.nav.arrived,
+            picked: self.picker.selected,
+            maps: self.picker.entries.len(),
             view: self.view.clone(),
             screen: self.screen,
             collisions: twin.map_or(0, |t| t.collisions()),

@@ -240,6 +240,37 @@ impl EkfSlam {
     }
 
     /// Puts a landmark into the state from its first sighting (inverse observation model).
+    /// Adds a landmark known beforehand (from a saved map) with its own covariance and no
+    /// correlation with the rest: the filter then localises against it. A landmark already
+    /// in the state is left as it is; returns whether it was added.
+    pub fn add_prior(
+        &mut self,
+        id: u32,
+        mean: Point2,
+        covariance: Matrix2<f64>,
+        sightings: u32,
+    ) -> bool {
+        let finite =
+            mean.x.is_finite() && mean.y.is_finite() && covariance.iter().all(|v| v.is_finite());
+        if self.slots.contains_key(&id) || !finite {
+            return false;
+        }
+        let n = self.sigma.ncols();
+        self.mu = self.mu.clone().insert_rows(n, 2, 0.0);
+        self.mu[n] = mean.x;
+        self.mu[n + 1] = mean.y;
+        let mut sigma = std::mem::replace(&mut self.sigma, DMatrix::zeros(0, 0));
+        sigma = sigma.resize(n + 2, n + 2, 0.0);
+        let sym = (covariance + covariance.transpose()) * 0.5;
+        sigma.fixed_view_mut::<2, 2>(n, n).copy_from(&sym);
+        self.sigma = sigma;
+        self.slots.insert(id, self.ids.len());
+        self.ids.push(id);
+        self.sightings.push(sightings.max(1));
+        self.pending.remove(&id);
+        true
+    }
+
     fn add_landmark(&mut self, s: MarkerSighting) {
         let (x, y, th) = (self.mu[0], self.mu[1], self.mu[2]);
         let (sin, cos) = (th + s.bearing).sin_cos();

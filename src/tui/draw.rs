@@ -65,9 +65,60 @@ pub fn draw(frame: &mut Frame, app: &App, theme: Theme) {
     if app.view().landmarks {
         draw_landmarks(frame, app, theme, map_rect);
     }
+    if let Some((entries, selected)) = app.map_picker() {
+        draw_picker(frame, entries, selected, theme, map_rect);
+    }
     if app.view().help {
         draw_help(frame, app, theme, size);
     }
+}
+
+/// Load mode's list of saved maps over the map panel.
+fn draw_picker(
+    frame: &mut Frame,
+    entries: &[crate::app::loading::MapEntry],
+    selected: usize,
+    theme: Theme,
+    map: Rect,
+) {
+    let area = Rect::new(
+        map.x + 2.min(map.width),
+        map.y + 1.min(map.height),
+        map.width.saturating_sub(4),
+        map.height.saturating_sub(2),
+    );
+    let mut lines: Vec<Line> = entries
+        .iter()
+        .enumerate()
+        .map(|(i, e)| {
+            let text = match &e.summary {
+                Ok((w, h, n, created)) => {
+                    format!(
+                        "{:<16} {w:.1} x {h:.1} m  {n:>3} landmarks  {created}",
+                        e.name
+                    )
+                }
+                Err(why) => format!("{:<16} unreadable: {why}", e.name),
+            };
+            let style = if i == selected {
+                theme.mode()
+            } else {
+                theme.value()
+            };
+            Line::styled(text, style)
+        })
+        .collect();
+    if lines.is_empty() {
+        lines.push(Line::styled(
+            "no saved maps here yet (S saves one)",
+            theme.label(),
+        ));
+    }
+    let block = Block::bordered()
+        .title(" Load a map: up/down, enter loads, m leaves ")
+        .border_style(theme.border());
+    frame.render_widget(Clear, area);
+    frame.render_widget(Paragraph::new(lines).block(block), area);
 }
 
 /// The landmark table in the lower right of the map.

@@ -342,3 +342,54 @@ fn load_mode_picks_a_saved_map_and_seeds_the_filter_with_its_landmarks() {
     });
     assert!(far.is_some());
 }
+
+#[test]
+fn mangled_map_files_are_refused_never_crash() {
+    use rand::{Rng, SeedableRng};
+    let yaml = "image: m.pgm\nresolution: 0.05\norigin: [0, 0, 0]\nnegate: 0\noccupied_thresh: 0.65\nfree_thresh: 0.196\nmode: trinary\nnavdeck:\n  version: x\n  landmarks: []\n";
+    let image = b"P5\n# c\n4 3\n255\n\xfe\x00\xcd\xfe\xfe\x00\xcd\xfe\xfe\x00\xcd\xfe".to_vec();
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(6);
+    let mut refused = 0;
+    for _ in 0..3000 {
+        let mut y = yaml.as_bytes().to_vec();
+        let mut p = image.clone();
+        for _ in 0..rng.random_range(1..4) {
+            let target = if rng.random_bool(0.5) { &mut y } else { &mut p };
+            let at = rng.random_range(0..target.len());
+            match rng.random_range(0..4) {
+                0 => target[at] = rng.random(),
+                1 => target.insert(at, rng.random()),
+                2 => {
+                    target.remove(at);
+                }
+                _ => target.truncate(at),
+            }
+            if target.is_empty() {
+                target.push(b'P');
+            }
+        }
+        let text = String::from_utf8_lossy(&y);
+        let result = io::decode(&text, Path::new("m.yaml"), &mut |_| Ok(p.clone()));
+        if let Err(e) = result {
+            refused += 1;
+            // Every refusal names the file: the YAML, or the image it (now) names.
+            let said = e.to_string();
+            assert!(
+                said.contains("m.yaml") || said.starts_with("map image"),
+                "{said}"
+            );
+        }
+    }
+    assert!(refused > 1000, "most mangled files are refused: {refused}");
+}
+
+#[test]
+fn a_tiny_plain_pgm_cannot_make_the_reader_reserve_gigabytes() {
+    let e = io::decode(
+        "image: m.pgm\nresolution: 0.05\norigin: [0, 0, 0]\noccupied_thresh: 0.65\nfree_thresh: 0.196\n",
+        Path::new("m.yaml"),
+        &mut |_| Ok(b"P2 20000 20000 255\n1 2 3".to_vec()),
+    )
+    .unwrap_err();
+    assert!(e.to_string().contains("truncated"), "{e}");
+}

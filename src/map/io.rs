@@ -95,7 +95,23 @@ pub fn load(path: &Path) -> Result<MapFile, MapFileError> {
         path: path.to_path_buf(),
         error: source,
     })?;
-    let yaml: MapYaml = serde_norway::from_str(&text).map_err(|e| MapFileError::Yaml {
+    decode(&text, path, &mut |image_path| {
+        std::fs::read(image_path).map_err(|source| MapFileError::Read {
+            path: image_path.to_path_buf(),
+            error: source,
+        })
+    })
+}
+
+/// Reads a map from its YAML `text` (named `path` in errors), fetching the image it names
+/// through `read_image`: the whole reader without the file system, as the fuzz target
+/// drives it.
+pub fn decode(
+    text: &str,
+    path: &Path,
+    read_image: &mut dyn FnMut(&Path) -> Result<Vec<u8>, MapFileError>,
+) -> Result<MapFile, MapFileError> {
+    let yaml: MapYaml = serde_norway::from_str(text).map_err(|e| MapFileError::Yaml {
         path: path.to_path_buf(),
         message: e.to_string(),
     })?;
@@ -106,10 +122,7 @@ pub fn load(path: &Path) -> Result<MapFile, MapFileError> {
     } else {
         path.parent().unwrap_or(Path::new(".")).join(&yaml.image)
     };
-    let bytes = std::fs::read(&image_path).map_err(|source| MapFileError::Read {
-        path: image_path.clone(),
-        error: source,
-    })?;
+    let bytes = read_image(&image_path)?;
     let image = pgm::decode(&bytes).map_err(|source| MapFileError::Image {
         path: image_path.clone(),
         error: source,

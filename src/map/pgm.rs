@@ -97,7 +97,8 @@ pub fn decode(bytes: &[u8]) -> Result<Pgm, PgmError> {
                 .collect()
         }
     } else {
-        let mut pixels = Vec::with_capacity(needed);
+        // A plain pixel takes at least two bytes: never reserve more than the file holds.
+        let mut pixels = Vec::with_capacity(needed.min(bytes.len() / 2 + 1));
         while pixels.len() < needed {
             let Some(t) = token(bytes, &mut at) else {
                 break;

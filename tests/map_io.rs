@@ -3,7 +3,7 @@
 
 use navdeck::geometry::Point2;
 use navdeck::map::grid::{FREE, OCCUPIED, OccupancyGrid, UNKNOWN};
-use navdeck::map::io::{self, Extras, MapFile, SavedLandmark};
+use navdeck::map::io::{self, Extras, MapFile, SavedBlock, SavedGate, SavedLandmark};
 use std::path::{Path, PathBuf};
 
 fn scratch(name: &str) -> PathBuf {
@@ -33,6 +33,18 @@ fn sample() -> MapFile {
             created: "2026-11-22T06:00:00Z".into(),
             pose: Some([0.5, -0.25, 1.0]),
             landmarks: vec![landmark],
+            blocks: vec![SavedBlock {
+                colour: "red".into(),
+                markers: [421, 422],
+                position: [1.0, -0.2],
+                confirmed: true,
+            }],
+            gates: vec![SavedGate {
+                colour: "blue".into(),
+                markers: [501, 502],
+                center: [-2.0, 0.0],
+                normal: [1.0, 0.0],
+            }],
         }),
     }
 }
@@ -106,6 +118,7 @@ fn save_then_load_gives_the_same_grid_and_landmarks() {
         assert_eq!((x.id, x.sightings), (y.id, y.sightings));
     }
     assert_eq!(a.pose, b.pose);
+    assert_eq!((a.blocks, a.gates), (b.blocks, b.gates));
     // The YAML is map_server's, with navdeck's part under its own key.
     let text = std::fs::read_to_string(&path).unwrap();
     for key in [
@@ -255,6 +268,10 @@ fn the_console_saves_its_map_by_key_command_and_autosave() {
             extras.landmarks.len()
         );
         assert!(extras.pose.is_some());
+        assert!(
+            !extras.blocks.is_empty(),
+            "{name}: the blocks seen on the way"
+        );
         assert!(map.grid.cells.contains(&OCCUPIED), "the lidar's walls");
         assert!(map.grid.cells.contains(&FREE));
     }

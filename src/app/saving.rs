@@ -2,7 +2,8 @@
 
 use super::App;
 use super::log::Level;
-use crate::map::io::{self, Extras, MapFile, SavedLandmark};
+use crate::map::io::{self, Extras, MapFile, SavedBlock, SavedGate, SavedLandmark};
+use crate::mission::objects::Objects;
 use crate::perception::markers::MarkerCategory;
 use std::path::PathBuf;
 
@@ -66,6 +67,7 @@ impl App {
             })
             .collect();
         let count = landmarks.len();
+        let (blocks, gates) = self.blocks_and_gates();
         let map = MapFile {
             grid: self.belief.occupancy_grid(),
             extras: Some(Extras {
@@ -76,6 +78,8 @@ impl App {
                     .map_or_else(|| format!("session time {:.1} s", self.now), |d| d()),
                 pose: Some([pose.x, pose.y, pose.theta]),
                 landmarks,
+                blocks,
+                gates,
             }),
         };
         match io::save(&path, &map) {
@@ -91,6 +95,33 @@ impl App {
                 false
             }
         }
+    }
+
+    /// Blocks and gates as the landmarks show them (seed 001's marker pairs).
+    fn blocks_and_gates(&self) -> (Vec<SavedBlock>, Vec<SavedGate>) {
+        let landmarks = self.ekf.landmarks().map(|l| (l.id, l.mean)).collect();
+        let mut objects = Objects::default();
+        let here = self.ekf.pose().position();
+        objects.update(&landmarks, here, self.config.mission.block_size);
+        let blocks = objects
+            .blocks()
+            .map(|b| SavedBlock {
+                colour: b.colour.label().to_string(),
+                markers: b.markers,
+                position: [b.position.x, b.position.y],
+                confirmed: b.confirmed,
+            })
+            .collect();
+        let gates = objects
+            .gates()
+            .map(|g| SavedGate {
+                colour: g.colour.label().to_string(),
+                markers: g.markers,
+                center: [g.center.x, g.center.y],
+                normal: [g.normal.0, g.normal.1],
+            })
+            .collect();
+        (blocks, gates)
     }
 
     /// While exploring, saves `autosave.yaml` every `[map] autosave_every` seconds; the

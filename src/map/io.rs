@@ -48,6 +48,26 @@ pub struct SavedLandmark {
     pub sightings: u32,
 }
 
+/// A block as saved: colour, its two markers, centre, and whether both markers were seen.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SavedBlock {
+    pub colour: String,
+    pub markers: [u32; 2],
+    pub position: [f64; 2],
+    pub confirmed: bool,
+}
+
+/// A gate as saved: colour, its two markers, centre and the normal into the arena.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SavedGate {
+    pub colour: String,
+    pub markers: [u32; 2],
+    pub center: [f64; 2],
+    pub normal: [f64; 2],
+}
+
 /// navdeck's part of the YAML.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
@@ -58,6 +78,8 @@ pub struct Extras {
     /// The robot's pose when the map was saved: x, y, theta (radians).
     pub pose: Option<[f64; 3]>,
     pub landmarks: Vec<SavedLandmark>,
+    pub blocks: Vec<SavedBlock>,
+    pub gates: Vec<SavedGate>,
 }
 
 /// A map file's content.

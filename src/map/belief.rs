@@ -72,10 +72,6 @@ impl BeliefMap {
         self.recomputed
     }
 
-    pub fn landmark_count(&self) -> usize {
-        self.landmarks.len()
-    }
-
     /// Takes the filter's landmark means and recomputes the cells around those that moved.
     pub fn update_landmarks(&mut self, estimates: impl IntoIterator<Item = (u32, Point2)>) {
         let dirty = self.landmarks.update(

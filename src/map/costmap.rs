@@ -78,7 +78,7 @@ pub enum Shade {
 }
 
 impl Shade {
-    pub fn of(cost: u8) -> Self {
+    pub const fn of(cost: u8) -> Self {
         match cost {
             NO_INFORMATION => Shade::Unknown,
             FREE => Shade::Free,
@@ -128,13 +128,7 @@ const SHADE_RANK: [u8; 256] = {
     let mut table = [0u8; 256];
     let mut c = 0;
     while c < 256 {
-        table[c] = match c as u8 {
-            NO_INFORMATION => Shade::Unknown as u8,
-            FREE => Shade::Free as u8,
-            v if v >= LETHAL => Shade::Lethal as u8,
-            v if v >= INFLATED => Shade::Inflated as u8,
-            _ => Shade::Near as u8,
-        };
+        table[c] = Shade::of(c as u8) as u8;
         c += 1;
     }
     table

@@ -4,7 +4,7 @@
 
 use super::grid::{FREE, OCCUPIED, OccupancyGrid, UNKNOWN};
 use super::pgm::{self, PgmError};
-use crate::geometry::{Point2, Pose2};
+use crate::geometry::Point2;
 use serde::{Deserialize, Serialize};
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -317,11 +317,4 @@ fn write_synced(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
     let mut file = std::fs::File::create(path)?;
     file.write_all(bytes)?;
     file.sync_all()
-}
-
-impl Extras {
-    /// The robot pose saved with the map.
-    pub fn robot_pose(&self) -> Option<Pose2> {
-        self.pose.map(|[x, y, t]| Pose2::new(x, y, t))
-    }
 }

@@ -19,14 +19,6 @@ impl LandmarkLayer {
         &self.stamps
     }
 
-    pub fn len(&self) -> usize {
-        self.positions.len()
-    }
-
-    pub fn is_empty(&self) -> bool {
-        self.positions.is_empty()
-    }
-
     /// Takes the filter's landmark means; returns the stamps that appeared or went away,
     /// whose areas need recomputing. A landmark that moved less than `min_move` is left.
     pub fn update(

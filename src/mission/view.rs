@@ -69,9 +69,4 @@ impl Mission {
     pub fn holds_gripper(&self) -> bool {
         matches!(self.phase, Phase::Pickup(_) | Phase::Deliver(_))
     }
-
-    /// The mission gave the robot to manual control.
-    pub fn is_manual(&self) -> bool {
-        matches!(self.phase, Phase::Manual)
-    }
 }

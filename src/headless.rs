@@ -109,12 +109,7 @@ pub fn report(app: &App, keys: usize) -> Report {
         cross_track_rms: app.cross_track_rms(),
         true_cross_track_rms: app.true_cross_track_rms(),
         quit: app.should_quit(),
-        warnings: app
-            .log_book()
-            .iter()
-            .filter(|e| e.level >= crate::app::log::Level::Warn)
-            .map(|e| e.text.clone())
-            .collect(),
+        warnings: app.log_book().problems().map(|e| e.text.clone()).collect(),
         wall_time_s: None,
         realtime_factor: None,
     }

@@ -118,8 +118,7 @@ fn report(app: &App, seed: u64) -> MissionReport {
         }),
         warnings: app
             .log_book()
-            .iter()
-            .filter(|e| e.level >= crate::app::log::Level::Warn)
+            .problems()
             .map(|e| format!("{:.1} s: {}", e.time, e.text))
             .collect(),
         wall_time_s: None,

@@ -223,6 +223,18 @@ impl App {
         }
     }
 
+    /// For an autonomous mode's step at `t` after its last one (`last`: when, and the twist
+    /// it gave): `Err(twist)` when that step was under half a period ago and its command
+    /// stands (decide also runs on key events between ticks), else `Ok(dt)`.
+    pub(super) fn step_due(&self, last: Option<(f64, Twist)>, t: f64) -> Result<f64, Twist> {
+        let period = self.config.robot.control_period;
+        match last {
+            Some((at, twist)) if t - at < 0.5 * period => Err(twist),
+            Some((at, _)) => Ok(t - at),
+            None => Ok(period),
+        }
+    }
+
     /// Seconds the robot needs to brake from the current command at its acceleration limits.
     pub(super) fn brake_margin(&self) -> f64 {
         let r = &self.config.robot;

@@ -45,10 +45,7 @@ impl App {
 
     /// One mission step at `t`; between control ticks the last command stands.
     pub(super) fn explore(&mut self, t: f64) -> Twist {
-        let period = self.config.robot.control_period;
-        if let Some((at, twist)) = self.exploring.last_step
-            && t - at < 0.5 * period
-        {
+        if let Err(twist) = self.step_due(self.exploring.last_step, t) {
             return twist;
         }
         let Some(mut mission) = self.exploring.mission.take() else {

@@ -80,6 +80,11 @@ impl LogBook {
     pub fn iter(&self) -> impl Iterator<Item = &Entry> {
         self.entries.iter()
     }
+
+    /// Warnings and errors, oldest first: what the run reports list.
+    pub fn problems(&self) -> impl Iterator<Item = &Entry> {
+        self.entries.iter().filter(|e| e.level >= Level::Warn)
+    }
 }
 
 /// Session time as `mm:ss.d`, the log's timestamp.

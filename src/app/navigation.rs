@@ -207,11 +207,9 @@ impl App {
 
     /// The follower's command at `t`, replanning first if the map now blocks the path.
     pub(super) fn follow(&mut self, t: f64) -> Twist {
-        let period = self.config.robot.control_period;
-        let dt = match self.nav.last_step {
-            Some((at, twist)) if t - at < 0.5 * period => return twist,
-            Some((at, _)) => t - at,
-            None => period,
+        let dt = match self.step_due(self.nav.last_step, t) {
+            Ok(dt) => dt,
+            Err(twist) => return twist,
         };
         self.replan_if_blocked(t);
         let step = self.follower.step(self.ekf.pose(), dt);

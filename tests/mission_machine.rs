@@ -215,14 +215,20 @@ fn with_total_blocks_0_every_found_block_is_delivered_then_the_mission_ends() {
     assert!(rig.logged("Exploration complete"));
 }
 
-#[test]
-fn a_gripper_without_feedback_is_trusted_after_the_seed_wait() {
+/// Runs to the moment the gripper closes on block 421, then makes the gripper silent.
+fn closing_with_a_silent_gripper() -> Rig {
     let mut rig = Rig::new(config(1), all_free());
     rig.add_block(421, 1.0, 0.0);
     rig.add_red_gate();
     rig.until(600, |out, _| out.gripper == Some(GripperCommand::Close));
     rig.auto = false;
     rig.gripper = None;
+    rig
+}
+
+#[test]
+fn a_gripper_without_feedback_is_trusted_after_the_seed_wait() {
+    let mut rig = closing_with_a_silent_gripper();
     // The block in the jaws hides its markers from the camera.
     rig.seen.retain(|id| ![421, 422].contains(id));
     let start = rig.t;
@@ -233,12 +239,7 @@ fn a_gripper_without_feedback_is_trusted_after_the_seed_wait() {
 
 #[test]
 fn without_feedback_a_block_still_in_view_is_a_missed_grip() {
-    let mut rig = Rig::new(config(1), all_free());
-    rig.add_block(421, 1.0, 0.0);
-    rig.add_red_gate();
-    rig.until(600, |out, _| out.gripper == Some(GripperCommand::Close));
-    rig.auto = false;
-    rig.gripper = None;
+    let mut rig = closing_with_a_silent_gripper();
     // Seed 001 "Gripper Failure": the block's markers are still seen after the wait.
     rig.until(30, |out, _| out.gripper == Some(GripperCommand::Open));
     assert!(rig.logged("Gripper closed on nothing - reopening to retry red block 421"));

@@ -53,14 +53,8 @@ fn astar_costs_match_dijkstra_on_random_grids() {
             allow_unknown: rng.random_bool(0.5),
             unknown_cost: rng.random_range(0..100),
         };
-        let start = (
-            rng.random_range(0..map.width),
-            rng.random_range(0..map.height),
-        );
-        let goal = (
-            rng.random_range(0..map.width),
-            rng.random_range(0..map.height),
-        );
+        let start = plan_support::random_cell(&mut rng, &map);
+        let goal = plan_support::random_cell(&mut rng, &map);
         let reference = dijkstra(&map, &options, start, goal);
         match astar.search(&map, start, goal, &options) {
             Ok(path) => {

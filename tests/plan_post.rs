@@ -49,14 +49,8 @@ fn shortcuts_avoid_obstacles_and_never_raise_the_worst_cost() {
                 *c = 0;
             }
         }
-        let start = (
-            rng.random_range(0..map.width),
-            rng.random_range(0..map.height),
-        );
-        let goal = (
-            rng.random_range(0..map.width),
-            rng.random_range(0..map.height),
-        );
+        let start = plan_support::random_cell(&mut rng, &map);
+        let goal = plan_support::random_cell(&mut rng, &map);
         let Ok(path) = astar.search(&map, start, goal, &options) else {
             continue;
         };

@@ -50,6 +50,14 @@ pub fn arena() -> Costmap {
 }
 
 /// A small random grid: some lethal cells, some unknown, costs scattered over 0..=99.
+/// A cell anywhere on `map`.
+pub fn random_cell(rng: &mut ChaCha8Rng, map: &Costmap) -> (usize, usize) {
+    (
+        rng.random_range(0..map.width),
+        rng.random_range(0..map.height),
+    )
+}
+
 pub fn random_grid(rng: &mut ChaCha8Rng) -> Costmap {
     let (w, h) = (rng.random_range(2..16), rng.random_range(2..16));
     let mut map = Costmap::new(w, h, 0.1, Point2::new(-0.5, 0.25), 0);

@@ -103,8 +103,8 @@ impl Segment {
         self.a.distance(self.b)
     }
 
-    /// Shortest distance from `p` to this segment (orthogonal projection clamped to the ends).
-    pub fn distance_to(self, p: Point2) -> f64 {
+    /// The point of this segment nearest `p` (orthogonal projection clamped to the ends).
+    pub fn closest_point(self, p: Point2) -> Point2 {
         let (dx, dy) = (self.b.x - self.a.x, self.b.y - self.a.y);
         let len2 = dx * dx + dy * dy;
         let t = if len2 > 0.0 {
@@ -112,7 +112,18 @@ impl Segment {
         } else {
             0.0
         };
-        p.distance(Point2::new(self.a.x + t * dx, self.a.y + t * dy))
+        Point2::new(self.a.x + t * dx, self.a.y + t * dy)
+    }
+
+    /// Shortest distance from `p` to this segment.
+    pub fn distance_to(self, p: Point2) -> f64 {
+        p.distance(self.closest_point(p))
+    }
+
+    /// The squared shortest distance, for comparisons that need no square root.
+    pub fn distance_squared_to(self, p: Point2) -> f64 {
+        let c = self.closest_point(p);
+        (p.x - c.x).powi(2) + (p.y - c.y).powi(2)
     }
 
     /// Distance along the ray `origin + t * (cos a, sin a)` to this segment, if the ray hits it.

@@ -2,7 +2,7 @@
 //! inflated region at 0.7, a lethal core inside it and a falling gradient outside.
 
 use super::costmap::{INFLATED, LETHAL};
-use crate::geometry::Point2;
+use crate::geometry::{Point2, Segment};
 
 /// The shape a stamp is measured from.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -67,19 +67,10 @@ pub struct Stamp {
 impl Stamp {
     /// Squared distance from `p` to the shape (the segment's projection clamped to its ends).
     pub fn distance_squared(&self, p: Point2) -> f64 {
-        let (a, b) = match self.shape {
-            Shape::Disc(c) => (c, c),
-            Shape::Wall(a, b) => (a, b),
-        };
-        let (dx, dy) = (b.x - a.x, b.y - a.y);
-        let len2 = dx * dx + dy * dy;
-        let t = if len2 > 0.0 {
-            (((p.x - a.x) * dx + (p.y - a.y) * dy) / len2).clamp(0.0, 1.0)
-        } else {
-            0.0
-        };
-        let (ex, ey) = (p.x - a.x - t * dx, p.y - a.y - t * dy);
-        ex * ex + ey * ey
+        match self.shape {
+            Shape::Disc(c) => Segment::new(c, c).distance_squared_to(p),
+            Shape::Wall(a, b) => Segment::new(a, b).distance_squared_to(p),
+        }
     }
 
     /// The world rectangle (x0, y0, x1, y1) outside which the stamp costs nothing.

@@ -54,11 +54,34 @@ pub struct Report {
 /// Presses `keys` through the active keymap at `rate` keys per simulated second, waits
 /// (up to `FOLLOW_TIMEOUT`) while the robot follows a path, lets it come to rest, and reports.
 pub fn run(app: &mut App, keys: &[Key], rate: f64) -> Report {
+    run_paced(app, keys, rate, &mut |_| true)
+}
+
+/// As `run`, calling `pace(t)` before the session reaches time `t`: a real robot's link
+/// passes a pacer that waits for the wall clock (the twin's runs need none). The run
+/// ends early, robot stopped, when `pace` returns false (a signal arrived).
+pub fn run_paced(
+    app: &mut App,
+    keys: &[Key],
+    rate: f64,
+    pace: &mut dyn FnMut(f64) -> bool,
+) -> Report {
     let gap = 1.0 / rate;
     let start = app.now();
     let mut t = start;
+    let mut step = |app: &mut App, t: f64| {
+        let go_on = pace(t);
+        if go_on {
+            app.update(t);
+        } else {
+            app.shutdown("headless run interrupted");
+        }
+        go_on
+    };
     for key in keys {
-        app.update(t);
+        if !step(app, t) {
+            return report(app, keys.len());
+        }
         app.handle_key(*key, KeyKind::Press, t);
         if app.should_quit() {
             break;
@@ -67,17 +90,23 @@ pub fn run(app: &mut App, keys: &[Key], rate: f64) -> Report {
     }
     if !app.should_quit() {
         // The time after the last key is a control tick too.
-        app.update(t);
+        if !step(app, t) {
+            return report(app, keys.len());
+        }
         let period = app.config().robot.control_period;
         let give_up = t + FOLLOW_TIMEOUT;
         while app.is_busy() && t < give_up {
             t += period;
-            app.update(t);
+            if !step(app, t) {
+                return report(app, keys.len());
+            }
         }
         let end = t + app.config().teleop.deadman_timeout + SETTLE;
         while t < end {
             t = (t + period).min(end);
-            app.update(t);
+            if !step(app, t) {
+                break;
+            }
         }
     }
     report(app, keys.len())

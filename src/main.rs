@@ -209,7 +209,22 @@ fn run_headless(session: Session, cli: &Cli) -> Result<ExitCode> {
     if let Some(dir) = &cli.maps_dir {
         app.set_maps_dir(dir.clone());
     }
-    let mut report = headless::run(&mut app, &keys, cli.key_rate);
+    let mut report = if app.link().twin().is_some() {
+        headless::run(&mut app, &keys, cli.key_rate)
+    } else {
+        // A real robot moves in real time: keep the session clock on the wall clock, and
+        // stop the robot on SIGINT, SIGTERM or SIGHUP.
+        let signal = watch_signals().context("cannot watch for signals")?;
+        let mut pace = |t: f64| {
+            let ahead = t - started.elapsed().as_secs_f64();
+            if ahead > 0.0 {
+                std::thread::sleep(std::time::Duration::from_secs_f64(ahead));
+            }
+            signal.load(std::sync::atomic::Ordering::SeqCst) == 0
+        };
+        headless::run_paced(&mut app, &keys, cli.key_rate, &mut pace)
+    };
+    app.shutdown("headless run ended");
     let wall = started.elapsed().as_secs_f64();
     report.wall_time_s = Some(wall);
     report.realtime_factor = Some(report.sim_time / wall.max(1e-9));

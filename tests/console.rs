@@ -359,3 +359,80 @@ fn drive_keys_on_a_lost_link_command_nothing_and_time_moves_on() {
     assert_eq!(app.commanded().linear, 0.0);
     assert!(app.held_keys().is_empty(), "the deadman let the key go");
 }
+
+/// A link that answers while `alive` is set and reports a loss otherwise.
+struct FlakyLink {
+    alive: std::sync::Arc<std::sync::atomic::AtomicBool>,
+    sent: std::sync::Arc<std::sync::Mutex<Vec<navdeck::link::Command>>>,
+}
+
+impl navdeck::link::RobotLink for FlakyLink {
+    fn label(&self) -> String {
+        "flaky".into()
+    }
+    fn send(&mut self, command: &navdeck::link::Command) -> Result<(), navdeck::link::LinkError> {
+        self.sent.lock().unwrap().push(*command);
+        Ok(())
+    }
+    fn poll(&mut self, now: f64) -> Result<navdeck::link::SensorFrame, navdeck::link::LinkError> {
+        if self.alive.load(std::sync::atomic::Ordering::SeqCst) {
+            Ok(navdeck::link::SensorFrame {
+                stamp: now,
+                ..Default::default()
+            })
+        } else {
+            Err(navdeck::link::LinkError::Lost(
+                "no odometry for 0.5 s".into(),
+            ))
+        }
+    }
+    fn stop(&mut self) {}
+}
+
+#[test]
+fn after_a_link_loss_the_robot_stays_still_until_a_key_is_pressed() {
+    use navdeck::app::LinkStatus;
+    use std::sync::atomic::Ordering;
+    let alive = std::sync::Arc::new(std::sync::atomic::AtomicBool::new(true));
+    let sent = std::sync::Arc::new(std::sync::Mutex::new(Vec::new()));
+    let mut app = App::new(
+        navdeck::config::Config::default(),
+        navdeck::keymap::Keymap::default_map(),
+        Box::new(FlakyLink {
+            alive: alive.clone(),
+            sent: sent.clone(),
+        }),
+        0.0,
+    );
+    app.handle_key(Key::char('w'), KeyKind::Press, 0.1);
+    app.update(0.2);
+    assert!(app.commanded().linear > 0.0, "driving before the loss");
+
+    alive.store(false, Ordering::SeqCst);
+    app.update(0.3);
+    assert!(matches!(app.link_status(), LinkStatus::Lost(_)));
+    assert_eq!(app.commanded().linear, 0.0);
+    let screen = render(&app);
+    assert!(screen.contains("LINK LOST"), "{screen}");
+
+    // Data flows again: still no motion, and the first key only resumes control.
+    alive.store(true, Ordering::SeqCst);
+    app.update(0.5);
+    assert_eq!(app.link_status(), &LinkStatus::Back);
+    assert!(render(&app).contains("LINK BACK"));
+    app.handle_key(Key::char('w'), KeyKind::Press, 0.6);
+    app.update(0.7);
+    assert_eq!(
+        app.commanded().linear,
+        0.0,
+        "the resuming key does not drive"
+    );
+    assert_eq!(app.link_status(), &LinkStatus::Ok);
+    assert!(app.log_book().iter().any(|e| e.text == "control resumed"));
+    app.handle_key(Key::char('w'), KeyKind::Press, 0.8);
+    app.update(0.9);
+    assert!(
+        app.commanded().linear > 0.0,
+        "driving again after the resume"
+    );
+}

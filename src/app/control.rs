@@ -126,8 +126,12 @@ impl App {
         match self.link.poll(t) {
             Ok(frame) => {
                 if let LinkStatus::Lost(_) = self.link_status {
-                    self.link_status = LinkStatus::Ok;
-                    self.log.push(t, Level::Success, "link back");
+                    self.link_status = LinkStatus::Back;
+                    self.log.push(
+                        t,
+                        Level::Success,
+                        "link back: press any key to resume control",
+                    );
                 }
                 if let Some(wheels) = frame.wheels {
                     self.estimate_motion(wheels);
@@ -153,13 +157,7 @@ impl App {
                     self.gripper = Some(g);
                 }
             }
-            Err(e) => {
-                if self.link_status == LinkStatus::Ok {
-                    self.log.push(t, Level::Error, e.to_string());
-                }
-                self.link_status = LinkStatus::Lost(e.to_string());
-                self.teleop.clear();
-            }
+            Err(e) => self.lose_link(t, e.to_string()),
         }
     }
 
@@ -189,10 +187,18 @@ impl App {
         };
         self.commanded = twist;
         if let Err(e) = self.link.send(&command) {
-            self.link_status = LinkStatus::Lost(e.to_string());
-            self.log
-                .push(t, Level::Error, format!("command not sent: {e}"));
+            self.lose_link(t, format!("command not sent: {e}"));
         }
+    }
+
+    /// Control is lost: drop held keys, command nothing further, say so once.
+    fn lose_link(&mut self, t: f64, reason: String) {
+        if !matches!(self.link_status, LinkStatus::Lost(_)) {
+            self.log.push(t, Level::Error, reason.clone());
+        }
+        self.link_status = LinkStatus::Lost(reason);
+        self.teleop.clear();
+        self.commanded = Twist::ZERO;
     }
 
     /// The measured twist over the last control period: whole periods, so that encoder

@@ -47,6 +47,8 @@ pub enum KeyKind {
 pub enum LinkStatus {
     Ok,
     Lost(String),
+    /// Data flows again, but the robot stays still until the user presses a key.
+    Back,
 }
 
 /// How long a marker stays marked "in view" after its last sighting, seconds.
@@ -191,6 +193,13 @@ impl App {
     /// Resolves a key through the active mode's keymap and acts on it.
     pub fn handle_key(&mut self, key: Key, kind: KeyKind, now: f64) {
         self.advance_to(now);
+        if kind == KeyKind::Press && self.link_status == LinkStatus::Back {
+            // Control resumes only on the user's word after a loss (the key is not acted on).
+            self.link_status = LinkStatus::Ok;
+            self.log(Level::Success, "control resumed");
+            self.refresh_revision();
+            return;
+        }
         if kind == KeyKind::Release {
             // Only terminals speaking the kitty protocol send releases.
             self.teleop.set_release_events(true);

@@ -104,6 +104,17 @@ pub fn screen(terminal: &Terminal<TestBackend>) -> String {
     out
 }
 
+/// The console drawn once on a 100x30 test terminal, as text.
+pub fn render(app: &App) -> String {
+    let mut terminal = Terminal::new(TestBackend::new(100, 30)).unwrap();
+    terminal
+        .draw(|frame| {
+            navdeck::tui::draw::draw(frame, app, navdeck::tui::theme::Theme::from_env(None))
+        })
+        .unwrap();
+    screen(&terminal)
+}
+
 /// A link that records what it was asked, for checking the console's side of the contract.
 #[derive(Clone, Default)]
 pub struct RecordingLink {

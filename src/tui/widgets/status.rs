@@ -55,6 +55,7 @@ pub fn lines(app: &App, theme: Theme) -> Vec<Line<'static>> {
     let link = match app.link_status() {
         LinkStatus::Ok => "ok".to_string(),
         LinkStatus::Lost(_) => "LOST".to_string(),
+        LinkStatus::Back => "back, press a key".to_string(),
     };
     let (cmd, meas) = (app.commanded(), app.measured());
     let t = app.teleop();

@@ -11,9 +11,16 @@ pub fn line(app: &App, theme: Theme) -> Line<'static> {
         Span::raw(" "),
         Span::styled(app.link().label(), theme.value()),
     ];
-    if let LinkStatus::Lost(_) = app.link_status() {
-        spans.push(Span::raw(" "));
-        spans.push(Span::styled(" LINK LOST ", theme.alert()));
+    match app.link_status() {
+        LinkStatus::Lost(_) => {
+            spans.push(Span::raw(" "));
+            spans.push(Span::styled(" LINK LOST ", theme.alert()));
+        }
+        LinkStatus::Back => {
+            spans.push(Span::raw(" "));
+            spans.push(Span::styled(" LINK BACK: press a key ", theme.alert()));
+        }
+        LinkStatus::Ok => {}
     }
     if app.estop() {
         spans.push(Span::raw(" "));

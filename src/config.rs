@@ -42,6 +42,8 @@ pub struct Config {
     pub plan: PlanConfig,
     pub follow: FollowConfig,
     pub mission: MissionConfig,
+    /// `--link ros2`: topics, QoS, message variants.
+    pub ros2: crate::link::ros2::config::Ros2Config,
 }
 
 /// Race mode (seed 001: "High-speed mode (reduced SLAM updates)").
@@ -412,6 +414,7 @@ impl Config {
             ("plan", self.plan.validate()),
             ("follow", self.follow.validate()),
             ("mission", self.mission.validate()),
+            ("ros2", self.ros2.validate()),
         ];
         for (section, result) in sections {
             if let Err((field, value, reason)) = result {

@@ -1,13 +1,15 @@
 //! Running navdeck without a terminal: play keys on simulated time, report the outcome.
 //! The single way scripts and tests run a whole session.
 
-use crate::app::{App, KeyKind};
+use crate::app::{App, KeyKind, LinkStatus};
 use crate::geometry::Pose2;
 use crate::keymap::Key;
 use serde::Serialize;
 
 /// Seconds the runner lets pass after the last key, beyond the deadman, for the robot to settle.
 pub const SETTLE: f64 = 1.0;
+/// Seconds the runner waits for a robot's link to answer before pressing keys.
+pub const LINK_WAIT: f64 = 15.0;
 /// Simulated seconds the runner waits for a path to be followed to its end.
 pub const FOLLOW_TIMEOUT: f64 = 600.0;
 
@@ -78,6 +80,19 @@ pub fn run_paced(
         }
         go_on
     };
+    // A real robot may take a moment to be discovered: keys wait for its first data.
+    let period = app.config().robot.control_period;
+    if app.link().twin().is_none() {
+        if !step(app, t) {
+            return report(app, keys.len());
+        }
+        while app.link_status() != &LinkStatus::Ok && t < start + LINK_WAIT {
+            t += period;
+            if !step(app, t) {
+                return report(app, keys.len());
+            }
+        }
+    }
     for key in keys {
         if !step(app, t) {
             return report(app, keys.len());
@@ -93,7 +108,6 @@ pub fn run_paced(
         if !step(app, t) {
             return report(app, keys.len());
         }
-        let period = app.config().robot.control_period;
         let give_up = t + FOLLOW_TIMEOUT;
         while app.is_busy() && t < give_up {
             t += period;

@@ -32,6 +32,14 @@ struct Cli {
     #[arg(long, default_value = "sim", value_name = "LINK")]
     link: LinkChoice,
 
+    /// ROS 2: namespace of the robot's topics, e.g. /tb3 (over [ros2] namespace).
+    #[arg(long, value_name = "NS")]
+    ns: Option<String>,
+
+    /// ROS 2: DDS domain ID (default: ROS_DOMAIN_ID, else 0).
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u16).range(0..=232))]
+    domain: Option<u16>,
+
     /// World file for the twin (TOML, see maps/); default: the built-in arena.
     #[arg(long, value_name = "FILE")]
     world: Option<PathBuf>,
@@ -187,7 +195,13 @@ fn real_main(cli: Cli) -> Result<ExitCode> {
         seed: cli.seed,
         config: cli.config.clone(),
         keymap: cli.keymap.clone(),
-        link: cli.link.clone(),
+        link: match &cli.link {
+            LinkChoice::Ros2(_) => LinkChoice::Ros2(navdeck::session::Ros2Target {
+                namespace: cli.ns.clone(),
+                domain: cli.domain,
+            }),
+            other => other.clone(),
+        },
     };
     // Everything is loaded and validated before the terminal is touched.
     let session = Session::load(&spec)?;

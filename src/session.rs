@@ -5,6 +5,7 @@ use crate::app::App;
 use crate::config::Config;
 use crate::keymap::Keymap;
 use crate::link::RobotLink;
+use crate::link::ros2::{Ros2Link, Ros2Options, domain_from};
 use crate::link::sim::SimLink;
 use crate::sim::{Twin, World};
 use anyhow::{Context, Result, bail};
@@ -14,8 +15,16 @@ use std::path::PathBuf;
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum LinkChoice {
     Sim,
-    Ros2,
+    Ros2(Ros2Target),
     Serial(String),
+}
+
+/// The command line's say on where the ROS 2 robot is: over the config file, and for the
+/// domain over ROS_DOMAIN_ID.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct Ros2Target {
+    pub namespace: Option<String>,
+    pub domain: Option<u16>,
 }
 
 impl std::str::FromStr for LinkChoice {
@@ -23,7 +32,7 @@ impl std::str::FromStr for LinkChoice {
     fn from_str(s: &str) -> Result<Self, String> {
         match s {
             "sim" => Ok(LinkChoice::Sim),
-            "ros2" => Ok(LinkChoice::Ros2),
+            "ros2" => Ok(LinkChoice::Ros2(Ros2Target::default())),
             _ => match s.strip_prefix("serial:") {
                 Some(path) if !path.is_empty() => Ok(LinkChoice::Serial(path.to_string())),
                 _ => Err(format!(
@@ -71,7 +80,21 @@ impl Session {
                 let twin = Twin::new(world, &config, spec.seed);
                 Box::new(SimLink::new(twin, 0.0))
             }
-            LinkChoice::Ros2 => bail!("the ROS 2 link is not built yet; use --link sim"),
+            LinkChoice::Ros2(target) => {
+                let mut ros2 = config.ros2.clone();
+                if let Some(ns) = &target.namespace {
+                    ros2.namespace = ns.clone();
+                }
+                let domain = domain_from(target.domain, std::env::var("ROS_DOMAIN_ID").ok())
+                    .map_err(anyhow::Error::msg)?;
+                let link = Ros2Link::connect(Ros2Options {
+                    config: ros2,
+                    domain,
+                    track: config.robot.track,
+                })
+                .context("cannot open the ROS 2 link")?;
+                Box::new(link)
+            }
             LinkChoice::Serial(path) => {
                 bail!("the serial link ({path}) is not built yet; use --link sim")
             }

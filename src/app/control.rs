@@ -100,6 +100,7 @@ impl App {
                 self.clock.last_update = due;
                 self.measure();
                 self.map_footprint();
+                self.show_picture(due);
                 self.sample_accuracy();
                 self.check_race_uncertainty();
             }
@@ -126,13 +127,20 @@ impl App {
         match self.link.poll(t) {
             Ok(frame) => {
                 if let LinkStatus::Lost(_) = self.link_status {
-                    self.link_status = LinkStatus::Back;
-                    self.log.push(
-                        t,
-                        Level::Success,
-                        "link back: press any key to resume control",
-                    );
+                    if self.link_was_up {
+                        self.link_status = LinkStatus::Back;
+                        self.log.push(
+                            t,
+                            Level::Success,
+                            "link back: press any key to resume control",
+                        );
+                    } else {
+                        // Control was never established, so there is nothing to resume.
+                        self.link_status = LinkStatus::Ok;
+                        self.log.push(t, Level::Success, "link up");
+                    }
                 }
+                self.link_was_up = true;
                 if let Some(wheels) = frame.wheels {
                     self.estimate_motion(wheels);
                     self.clock.travel.left += wheels.left;
@@ -149,6 +157,14 @@ impl App {
                     self.map_scan(t, scan);
                 }
                 self.note_collisions(t);
+                for notice in frame.notices {
+                    let level = if notice.warning {
+                        Level::Warn
+                    } else {
+                        Level::Info
+                    };
+                    self.log.push(t, level, notice.text);
+                }
                 if let Some(g) = frame.gripper {
                     if self.gripper.is_some() && self.gripper != Some(g) {
                         self.log

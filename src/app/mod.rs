@@ -13,6 +13,7 @@ pub mod log;
 mod mapping;
 pub mod mode;
 pub mod navigation;
+mod picture;
 mod revision;
 mod saving;
 pub mod screen;
@@ -86,6 +87,8 @@ pub struct App {
     /// Marker IDs and when each was last seen: the map marks them "in view" for a while.
     in_view: Vec<(u32, f64)>,
     link_status: LinkStatus,
+    /// Whether the link has ever answered: only a loss after that needs a key to resume.
+    link_was_up: bool,
     collisions_logged: u32,
     world_grid: Option<OccupancyGrid>,
     /// The planning map the robot builds from what it senses.
@@ -111,6 +114,8 @@ pub struct App {
     stopwatch: Option<Box<dyn Fn() -> f64 + Send>>,
     revision: u64,
     visible: Option<revision::Visible>,
+    /// When the full picture last went to the link.
+    picture_at: f64,
 }
 
 impl App {
@@ -149,6 +154,7 @@ impl App {
             quit: false,
             in_view: Vec::new(),
             link_status: LinkStatus::Ok,
+            link_was_up: false,
             collisions_logged: 0,
             world_grid,
             belief,
@@ -171,6 +177,7 @@ impl App {
             stopwatch: None,
             revision: 0,
             visible: None,
+            picture_at: f64::NEG_INFINITY,
             config,
         };
         app.map_footprint();

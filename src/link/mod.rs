@@ -1,9 +1,13 @@
 //! The one trait every robot connection implements (twin, ROS 2, serial, test doubles),
 //! and the data that crosses it.
 
+pub mod ros2;
 pub mod sim;
 
-use crate::geometry::Twist;
+use crate::geometry::{Point2, Pose2, Twist};
+use crate::map::grid::OccupancyGrid;
+use crate::slam::ekf::LandmarkEstimate;
+use nalgebra::Matrix3;
 use serde::{Deserialize, Serialize};
 
 /// What the console asks of the robot for the next control period.
@@ -94,6 +98,43 @@ pub struct SensorFrame {
     /// The newest scan, if one arrived.
     pub scan: Option<LaserScan>,
     pub gripper: Option<GripperState>,
+    /// What the link wants the user to know (a dropped message, a type mismatch).
+    pub notices: Vec<Notice>,
+}
+
+/// A line for the console's log from the link.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Notice {
+    pub warning: bool,
+    pub text: String,
+}
+
+impl Notice {
+    pub fn info(text: impl Into<String>) -> Self {
+        Self {
+            warning: false,
+            text: text.into(),
+        }
+    }
+    pub fn warn(text: impl Into<String>) -> Self {
+        Self {
+            warning: true,
+            text: text.into(),
+        }
+    }
+}
+
+/// What navdeck believes, for a link that shows it to other tools (RViz over ROS 2).
+/// The heavy parts are present only when due.
+#[derive(Clone, Debug, Default)]
+pub struct Picture {
+    /// Session time, seconds.
+    pub stamp: f64,
+    pub pose: Pose2,
+    pub pose_covariance: Matrix3<f64>,
+    pub landmarks: Option<Vec<LandmarkEstimate>>,
+    pub path: Option<Vec<Point2>>,
+    pub map: Option<OccupancyGrid>,
 }
 
 /// Why a link could not do what was asked.
@@ -118,6 +159,13 @@ pub trait RobotLink: Send {
     fn poll(&mut self, now: f64) -> Result<SensorFrame, LinkError>;
     /// Best-effort zero velocity, used on quit, error, panic and signals.
     fn stop(&mut self);
+    /// How often the link wants the full picture (map, landmarks, plan), seconds; `None`
+    /// when it shows nothing (the twin).
+    fn picture_period(&self) -> Option<f64> {
+        None
+    }
+    /// Shows what navdeck believes: the pose every control step, the rest when due.
+    fn show(&mut self, _picture: &Picture) {}
     /// The digital twin behind this link, when there is one (ground truth for display).
     fn twin(&self) -> Option<&crate::sim::Twin> {
         None

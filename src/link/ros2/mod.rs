@@ -1,0 +1,789 @@
+//! `--link ros2`: a TurtleBot3-class robot over ROS 2, spoken natively by the pure-Rust
+//! `ros2-client` (no ROS installation needed on navdeck's machine).
+//!
+//! In: odometry (the watchdog's heartbeat), wheel joints (seed 001's wheel travel, with
+//! odometry deltas as the fallback), laser scans. Out: cmd_vel, the gripper, and for
+//! RViz the map, plan, landmarks, estimated pose and the map -> odom transform.
+
+pub mod cmd_vel;
+pub mod config;
+pub mod inbound;
+pub mod msgs;
+pub mod picture;
+
+use super::{
+    Command, GripperCommand, LinkError, Notice, Picture, RobotLink, SensorFrame, WheelTravel,
+};
+use crate::geometry::Pose2;
+use cmd_vel::CmdVelPolicy;
+use config::{CmdVelType, Distro, Qos, Reliability, Ros2Config};
+use inbound::Refusal;
+use ros2_client::{
+    Context, MessageTypeName, Name, Node, NodeName, NodeOptions, Publisher, QosProfile,
+    Subscription,
+};
+use serde::Serialize;
+use serde::de::DeserializeOwned;
+use std::collections::BTreeMap;
+
+/// Messages taken from one topic in one poll at most: a flood cannot stall the console.
+const MAX_TAKE: usize = 1000;
+
+/// How often discovery is asked which type cmd_vel's subscribers read, seconds: often
+/// until one is found, then now and again.
+const DISCOVERY_SEARCH: f64 = 0.05;
+const DISCOVERY_EVERY: f64 = 1.0;
+
+/// The DDS type name ROS 2 gives a message: `pkg::msg::dds_::Name_`.
+pub fn dds_type(package: &str, name: &str) -> String {
+    MessageTypeName::new(package, name).dds_msg_type()
+}
+
+/// Where and how to reach the robot.
+#[derive(Clone, Debug)]
+pub struct Ros2Options {
+    pub config: Ros2Config,
+    /// DDS domain (ROS_DOMAIN_ID).
+    pub domain: u16,
+    /// The robot's wheel track, metres, for the odometry fallback.
+    pub track: f64,
+}
+
+/// The ROS 2 domain: `--domain`, else ROS_DOMAIN_ID, else 0 (ros2-client reads no
+/// environment itself).
+pub fn domain_from(flag: Option<u16>, env: Option<String>) -> Result<u16, String> {
+    match (flag, env) {
+        (Some(d), _) => Ok(d),
+        (None, Some(text)) if !text.trim().is_empty() => text
+            .trim()
+            .parse::<u16>()
+            .ok()
+            .filter(|d| *d <= 232)
+            .ok_or_else(|| format!("ROS_DOMAIN_ID = {text:?}: expected a number 0..=232")),
+        _ => Ok(0),
+    }
+}
+
+/// The RViz markers in the distribution's layout.
+enum LandmarkPublisher {
+    Humble(Publisher<msgs::MarkerArray<msgs::MarkerHumble>>),
+    Jazzy(Publisher<msgs::MarkerArray<msgs::MarkerJazzy>>),
+}
+
+/// What cmd_vel's subscribers were seen to read.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Peer {
+    Unknown,
+    Twist,
+    Stamped,
+}
+
+pub struct Ros2Link {
+    label: String,
+    config: Ros2Config,
+    track: f64,
+    context: Context,
+    /// Owns the publishers and subscriptions: kept for as long as the link lives.
+    _node: Node,
+    odom: Subscription<msgs::Odometry>,
+    joints: Subscription<msgs::JointState>,
+    scan: Subscription<msgs::LaserScan>,
+    twist: Option<Publisher<msgs::Twist>>,
+    stamped: Option<Publisher<msgs::TwistStamped>>,
+    gripper: Publisher<msgs::Float64>,
+    map: Publisher<msgs::OccupancyGrid>,
+    plan: Publisher<msgs::Path>,
+    landmarks: LandmarkPublisher,
+    pose: Publisher<msgs::PoseWithCovarianceStamped>,
+    tf: Publisher<msgs::TfMessage>,
+    cmd_vel_dds: String,
+    policy: CmdVelPolicy,
+    peer: Peer,
+    warned_no_peer: bool,
+    next_discovery: f64,
+    /// Session time the link was opened, and when odometry last arrived.
+    opened_at: Option<f64>,
+    odom_at: Option<f64>,
+    /// The newest odometry pose and its stamp, for the fallback and the transform.
+    odom_pose: Option<(Pose2, f64)>,
+    joint_angles: Option<((f64, f64), f64)>,
+    travel: WheelTravel,
+    elapsed: f64,
+    dropped: BTreeMap<&'static str, u64>,
+    notices: Vec<Notice>,
+    sent: u64,
+}
+
+fn qos_profile(q: Qos, durable: bool) -> QosProfile {
+    use ros2_client::qos::{Durability, History, WhenFull};
+    let p = QosProfile::publisher_default()
+        .history(History::KeepLast {
+            depth: q.depth as usize,
+        })
+        .durability(if durable {
+            Durability::TransientLocal
+        } else {
+            Durability::Volatile
+        });
+    match q.reliability {
+        Reliability::Reliable => p.reliability_reliable(WhenFull::DEFAULT),
+        Reliability::BestEffort => p.reliability_best_effort(),
+    }
+}
+
+fn fail(what: impl std::fmt::Display, e: impl std::fmt::Debug) -> LinkError {
+    LinkError::Lost(format!("ROS 2: cannot {what}: {e:?}"))
+}
+
+/// A topic name from config, resolved against the namespace when relative (done here:
+/// ros2-client would write the root namespace as a double slash).
+fn topic_name(namespace: &str, field: &str, text: &str) -> Result<Name, LinkError> {
+    let bad = |e: &dyn std::fmt::Debug| {
+        LinkError::Lost(format!(
+            "[ros2] {field} = {text:?} is not a ROS 2 topic name: {e:?}"
+        ))
+    };
+    let absolute = if text.starts_with('/') {
+        text.to_string()
+    } else {
+        format!("{}/{text}", namespace.trim_end_matches('/'))
+    };
+    match absolute[1..].rsplit_once('/') {
+        Some((ns, base)) => Name::new(&format!("/{ns}"), base),
+        None => Name::new("/", &absolute[1..]),
+    }
+    .map_err(|e| bad(&e))
+}
+
+struct Factory<'a> {
+    node: &'a mut Node,
+    config: &'a Ros2Config,
+    namespace: &'a str,
+}
+
+impl Factory<'_> {
+    fn publisher<M: Serialize>(
+        &mut self,
+        field: &str,
+        name: &str,
+        package: &str,
+        kind: &str,
+        qos: QosProfile,
+    ) -> Result<Publisher<M>, LinkError> {
+        let topic = self
+            .node
+            .create_topic(
+                &topic_name(self.namespace, field, name)?,
+                MessageTypeName::new(package, kind),
+                &qos,
+            )
+            .map_err(|e| fail(format!("create topic {name}"), e))?;
+        self.node
+            .create_publisher(&topic, Some(qos))
+            .map_err(|e| fail(format!("publish {name}"), e))
+    }
+
+    fn subscription<M: DeserializeOwned + 'static>(
+        &mut self,
+        field: &str,
+        name: &str,
+        package: &str,
+        kind: &str,
+        qos: QosProfile,
+    ) -> Result<Subscription<M>, LinkError> {
+        let topic = self
+            .node
+            .create_topic(
+                &topic_name(self.namespace, field, name)?,
+                MessageTypeName::new(package, kind),
+                &qos,
+            )
+            .map_err(|e| fail(format!("create topic {name}"), e))?;
+        self.node
+            .create_subscription(&topic, Some(qos))
+            .map_err(|e| fail(format!("subscribe {name}"), e))
+    }
+
+    fn qos(&self) -> QosProfile {
+        qos_profile(self.config.qos, false)
+    }
+}
+
+impl Ros2Link {
+    /// Joins the DDS domain and sets up every topic. Nothing is published until the
+    /// first command.
+    pub fn connect(options: Ros2Options) -> Result<Self, LinkError> {
+        let config = options.config;
+        let mut builder = ros2_client::dds::rustdds::DomainParticipantBuilder::new(options.domain);
+        if !config.interfaces.is_empty() {
+            let mut addresses = Vec::new();
+            for text in &config.interfaces {
+                let ip: std::net::IpAddr = text.parse().map_err(|_| {
+                    LinkError::Lost(format!("[ros2] interfaces: {text:?} is not an IP address"))
+                })?;
+                addresses.push(ip);
+            }
+            builder = builder.with_only_networks(addresses);
+        }
+        let participant = builder
+            .build()
+            .map_err(|e| fail(format!("join DDS domain {}", options.domain), e))?;
+        let context = Context::from_domain_participant(participant)
+            .map_err(|e| fail("start a ROS 2 context", e))?;
+        let namespace = if config.namespace.is_empty() {
+            "/".to_string()
+        } else {
+            config.namespace.clone()
+        };
+        let node_name = NodeName::new(&namespace, "navdeck").map_err(|e| {
+            LinkError::Lost(format!(
+                "[ros2] namespace = {:?} is not a ROS 2 namespace: {e:?}",
+                config.namespace
+            ))
+        })?;
+        let mut node = context
+            .new_node(node_name, NodeOptions::new().enable_rosout(false))
+            .map_err(|e| fail("create the navdeck node", e))?;
+        let c = &config;
+        let mut f = Factory {
+            node: &mut node,
+            config: c,
+            namespace: &namespace,
+        };
+        let qos = f.qos();
+        let latched = qos_profile(c.qos, true);
+        let odom = f.subscription(
+            "odom_topic",
+            &c.odom_topic,
+            "nav_msgs",
+            "Odometry",
+            qos.clone(),
+        )?;
+        let joints = f.subscription(
+            "joint_states_topic",
+            &c.joint_states_topic,
+            "sensor_msgs",
+            "JointState",
+            qos.clone(),
+        )?;
+        let scan = f.subscription(
+            "scan_topic",
+            &c.scan_topic,
+            "sensor_msgs",
+            "LaserScan",
+            qos_profile(c.scan_qos, false),
+        )?;
+        let twist = match c.cmd_vel_type {
+            CmdVelType::TwistStamped => None,
+            _ => Some(f.publisher(
+                "cmd_vel_topic",
+                &c.cmd_vel_topic,
+                "geometry_msgs",
+                "Twist",
+                qos.clone(),
+            )?),
+        };
+        let stamped = match c.cmd_vel_type {
+            CmdVelType::Twist => None,
+            _ => Some(f.publisher(
+                "cmd_vel_topic",
+                &c.cmd_vel_topic,
+                "geometry_msgs",
+                "TwistStamped",
+                qos.clone(),
+            )?),
+        };
+        let gripper = f.publisher(
+            "gripper_topic",
+            &c.gripper_topic,
+            "std_msgs",
+            "Float64",
+            qos.clone(),
+        )?;
+        let map = f.publisher(
+            "map_topic",
+            &c.map_topic,
+            "nav_msgs",
+            "OccupancyGrid",
+            latched.clone(),
+        )?;
+        let plan = f.publisher("plan_topic", &c.plan_topic, "nav_msgs", "Path", qos.clone())?;
+        let landmarks = match c.distro {
+            Distro::Humble => LandmarkPublisher::Humble(f.publisher(
+                "landmarks_topic",
+                &c.landmarks_topic,
+                "visualization_msgs",
+                "MarkerArray",
+                qos.clone(),
+            )?),
+            Distro::Jazzy => LandmarkPublisher::Jazzy(f.publisher(
+                "landmarks_topic",
+                &c.landmarks_topic,
+                "visualization_msgs",
+                "MarkerArray",
+                qos.clone(),
+            )?),
+        };
+        let pose = f.publisher(
+            "pose_topic",
+            &c.pose_topic,
+            "geometry_msgs",
+            "PoseWithCovarianceStamped",
+            qos.clone(),
+        )?;
+        let tf = f.publisher(
+            "tf",
+            "/tf",
+            "tf2_msgs",
+            "TFMessage",
+            qos_profile(
+                Qos {
+                    depth: 100,
+                    ..c.qos
+                },
+                false,
+            ),
+        )?;
+        let cmd_vel_dds = topic_name(&namespace, "cmd_vel_topic", &c.cmd_vel_topic)?.to_dds_name(
+            "rt",
+            &NodeName::new(&namespace, "navdeck").expect("checked above"),
+            "",
+        );
+        let label = format!(
+            "ros2 d{}{}",
+            options.domain,
+            if c.namespace.is_empty() {
+                String::new()
+            } else {
+                format!(" {}", c.namespace)
+            }
+        );
+        Ok(Self {
+            label,
+            track: options.track,
+            context,
+            _node: node,
+            odom,
+            joints,
+            scan,
+            twist,
+            stamped,
+            gripper,
+            map,
+            plan,
+            landmarks,
+            pose,
+            tf,
+            cmd_vel_dds,
+            policy: CmdVelPolicy::default(),
+            peer: Peer::Unknown,
+            warned_no_peer: false,
+            next_discovery: 0.0,
+            opened_at: None,
+            odom_at: None,
+            odom_pose: None,
+            joint_angles: None,
+            travel: WheelTravel::default(),
+            elapsed: 0.0,
+            dropped: BTreeMap::new(),
+            notices: Vec::new(),
+            sent: 0,
+            config,
+        })
+    }
+
+    /// Incoming messages refused so far, by reason.
+    pub fn dropped(&self) -> &BTreeMap<&'static str, u64> {
+        &self.dropped
+    }
+
+    /// cmd_vel messages put on the wire so far.
+    pub fn sent(&self) -> u64 {
+        self.sent
+    }
+
+    fn refuse(&mut self, topic: &str, why: Refusal) {
+        let count = self.dropped.entry(why.label()).or_insert(0);
+        *count += 1;
+        // The first of each kind is worth a line; after that, every hundredth.
+        if *count == 1 || (*count).is_multiple_of(100) {
+            self.notices.push(Notice::warn(format!(
+                "ROS 2: dropped a {topic} message ({}; {count} so far)",
+                why.label()
+            )));
+        }
+    }
+
+    fn take_odometry(&mut self, now: f64) {
+        for _ in 0..MAX_TAKE {
+            let msg = match self.odom.take() {
+                Ok(Some((msg, _))) => msg,
+                Ok(None) => break,
+                Err(e) => {
+                    self.notices
+                        .push(Notice::warn(format!("ROS 2: unreadable odometry: {e:?}")));
+                    continue;
+                }
+            };
+            let pose = match inbound::odom_pose(&msg) {
+                Ok(p) => p,
+                Err(why) => {
+                    self.refuse("odometry", why);
+                    continue;
+                }
+            };
+            let stamp = inbound::stamp_seconds(&msg.header).unwrap_or(now);
+            if self.joint_angles.is_none()
+                && let Some((before, at)) = self.odom_pose
+            {
+                let dt = (stamp - at).max(0.0);
+                match inbound::odom_travel(
+                    before,
+                    pose,
+                    self.track,
+                    dt,
+                    self.config.max_wheel_speed,
+                ) {
+                    Ok(t) => self.add_travel(t, dt),
+                    Err(why) => self.refuse("odometry", why),
+                }
+            }
+            self.odom_pose = Some((pose, stamp));
+            self.odom_at = Some(now);
+        }
+    }
+
+    fn take_joints(&mut self, now: f64) {
+        for _ in 0..MAX_TAKE {
+            let msg = match self.joints.take() {
+                Ok(Some((msg, _))) => msg,
+                Ok(None) => break,
+                Err(e) => {
+                    self.notices.push(Notice::warn(format!(
+                        "ROS 2: unreadable joint states: {e:?}"
+                    )));
+                    continue;
+                }
+            };
+            let angles = match inbound::wheel_angles(
+                &msg,
+                &self.config.left_wheel_joint,
+                &self.config.right_wheel_joint,
+            ) {
+                Ok(a) => a,
+                // Other joints (an arm) share the topic: not an error.
+                Err(Refusal::BadJoints) => continue,
+                Err(why) => {
+                    self.refuse("joint_states", why);
+                    continue;
+                }
+            };
+            let stamp = inbound::stamp_seconds(&msg.header).unwrap_or(now);
+            if let Some((before, at)) = self.joint_angles {
+                let dt = (stamp - at).max(0.0);
+                match inbound::joint_travel(
+                    before,
+                    angles,
+                    self.config.wheel_radius,
+                    dt,
+                    self.config.max_wheel_speed,
+                ) {
+                    Ok(t) => self.add_travel(t, dt),
+                    Err(why) => self.refuse("joint_states", why),
+                }
+            } else {
+                self.notices.push(Notice::info(
+                    "ROS 2: wheel joints found: wheel travel from joint states",
+                ));
+            }
+            self.joint_angles = Some((angles, stamp));
+        }
+    }
+
+    fn add_travel(&mut self, t: WheelTravel, dt: f64) {
+        self.travel.left += t.left;
+        self.travel.right += t.right;
+        self.elapsed += dt;
+    }
+
+    fn take_scan(&mut self) -> Option<crate::link::LaserScan> {
+        let mut newest = None;
+        for _ in 0..MAX_TAKE {
+            match self.scan.take() {
+                Ok(Some((msg, _))) => match inbound::scan(&msg) {
+                    Ok(s) => newest = Some(s),
+                    Err(why) => self.refuse("scan", why),
+                },
+                Ok(None) => break,
+                Err(e) => self
+                    .notices
+                    .push(Notice::warn(format!("ROS 2: unreadable scan: {e:?}"))),
+            }
+        }
+        newest
+    }
+
+    /// Asks discovery which type the robot's cmd_vel subscriber reads, and says so.
+    fn check_peer(&mut self, now: f64) {
+        if now < self.next_discovery {
+            return;
+        }
+        self.next_discovery = now
+            + if self.peer == Peer::Unknown {
+                DISCOVERY_SEARCH
+            } else {
+                DISCOVERY_EVERY
+            };
+        let own = self
+            .twist
+            .as_ref()
+            .map(|p| p.guid().prefix)
+            .or_else(|| self.stamped.as_ref().map(|p| p.guid().prefix));
+        let readers = self.context.domain_participant().discovered_readers();
+        let twist_type = dds_type("geometry_msgs", "Twist");
+        let stamped_type = dds_type("geometry_msgs", "TwistStamped");
+        let mut seen = Peer::Unknown;
+        for r in readers.iter().filter(|r| {
+            r.subscription_topic_data.topic_name == self.cmd_vel_dds
+                && Some(r.reader_proxy.remote_reader_guid.prefix) != own
+        }) {
+            let kind = r.subscription_topic_data.type_name();
+            if *kind == stamped_type {
+                seen = Peer::Stamped;
+            } else if *kind == twist_type && seen == Peer::Unknown {
+                seen = Peer::Twist;
+            }
+        }
+        if seen == self.peer || seen == Peer::Unknown {
+            return;
+        }
+        self.peer = seen;
+        let (found, wrong) = match seen {
+            Peer::Stamped => (
+                "TwistStamped",
+                self.config.cmd_vel_type == CmdVelType::Twist,
+            ),
+            _ => (
+                "Twist",
+                self.config.cmd_vel_type == CmdVelType::TwistStamped,
+            ),
+        };
+        self.notices.push(if wrong {
+            Notice::warn(format!(
+                "ROS 2: the robot's {} subscriber reads {found}, but [ros2] cmd_vel_type = {:?}: it will not move (set cmd_vel_type = \"auto\")",
+                self.config.cmd_vel_topic, self.config.cmd_vel_type
+            ))
+        } else {
+            Notice::info(format!(
+                "ROS 2: the robot reads {found} on {}",
+                self.config.cmd_vel_topic
+            ))
+        });
+    }
+
+    fn publish_twist(&mut self, twist: crate::geometry::Twist) {
+        let body = msgs::Twist::planar(twist.linear, twist.angular);
+        // In auto mode nothing goes out before the subscriber's type is known: some DDS
+        // implementations match readers by topic name alone and would misread the other type.
+        let (plain, stamped) = match (self.config.cmd_vel_type, self.peer) {
+            (CmdVelType::Auto, Peer::Twist) => (true, false),
+            (CmdVelType::Auto, Peer::Stamped) => (false, true),
+            (CmdVelType::Auto, Peer::Unknown) => {
+                if !self.warned_no_peer && twist != crate::geometry::Twist::ZERO {
+                    self.warned_no_peer = true;
+                    self.notices.push(Notice::warn(format!(
+                        "ROS 2: nothing subscribes to {} yet: not moving (set [ros2] cmd_vel_type to publish blind)",
+                        self.config.cmd_vel_topic
+                    )));
+                }
+                (false, false)
+            }
+            _ => (self.twist.is_some(), self.stamped.is_some()),
+        };
+        let mut ok = false;
+        if plain && let Some(p) = &self.twist {
+            ok |= p.publish(body).is_ok();
+        }
+        if stamped && let Some(p) = &self.stamped {
+            let msg = msgs::TwistStamped {
+                header: msgs::Header::new(now_stamp(), "base_link"),
+                twist: body,
+            };
+            ok |= p.publish(msg).is_ok();
+        }
+        if ok {
+            self.sent += 1;
+        }
+    }
+}
+
+/// The wall clock as a ROS time stamp (the edge of the system may read it).
+fn now_stamp() -> msgs::Time {
+    let t = std::time::SystemTime::now()
+        .duration_since(std::time::UNIX_EPOCH)
+        .map(|d| d.as_secs_f64())
+        .unwrap_or(0.0);
+    msgs::Time::from_seconds(t)
+}
+
+impl RobotLink for Ros2Link {
+    fn label(&self) -> String {
+        let dropped: u64 = self.dropped.values().sum();
+        if dropped == 0 {
+            self.label.clone()
+        } else {
+            format!("{} ({dropped} dropped)", self.label)
+        }
+    }
+
+    fn send(&mut self, command: &Command) -> Result<(), LinkError> {
+        if self.policy.should_send(command.twist) {
+            self.publish_twist(command.twist);
+        }
+        if let Some(g) = command.gripper {
+            let data = match g {
+                GripperCommand::Open => self.config.gripper_open,
+                GripperCommand::Close => self.config.gripper_closed,
+            };
+            self.gripper
+                .publish(msgs::Float64 { data })
+                .map_err(|e| fail("command the gripper", e))?;
+        }
+        Ok(())
+    }
+
+    fn poll(&mut self, now: f64) -> Result<SensorFrame, LinkError> {
+        let opened = *self.opened_at.get_or_insert(now);
+        self.take_joints(now);
+        self.take_odometry(now);
+        let scan = self.take_scan();
+        self.check_peer(now);
+        let topic = &self.config.odom_topic;
+        match self.odom_at {
+            None => {
+                return Err(LinkError::Lost(format!(
+                    "waiting for odometry on {topic} ({:.1} s)",
+                    now - opened
+                )));
+            }
+            Some(at) if now - at > self.config.odom_timeout => {
+                return Err(LinkError::Lost(format!(
+                    "no odometry on {topic} for {:.1} s",
+                    now - at
+                )));
+            }
+            Some(_) => {}
+        }
+        let wheels = (self.elapsed > 0.0 || self.travel != WheelTravel::default())
+            .then(|| std::mem::take(&mut self.travel));
+        let elapsed = std::mem::take(&mut self.elapsed);
+        Ok(SensorFrame {
+            stamp: now,
+            elapsed,
+            wheels,
+            sightings: None,
+            scan,
+            gripper: None,
+            notices: std::mem::take(&mut self.notices),
+        })
+    }
+
+    fn stop(&mut self) {
+        for _ in 0..cmd_vel::ZERO_REPEATS {
+            self.publish_twist(crate::geometry::Twist::ZERO);
+        }
+    }
+
+    fn picture_period(&self) -> Option<f64> {
+        Some(1.0 / self.config.picture_rate_hz)
+    }
+
+    fn show(&mut self, picture: &Picture) {
+        let stamp = now_stamp();
+        let frame = self.config.map_frame.clone();
+        let _ = self.pose.publish(picture::pose_with_covariance(
+            picture.pose,
+            &picture.pose_covariance,
+            stamp,
+            &frame,
+        ));
+        if let Some((in_odom, _)) = self.odom_pose {
+            let t = picture::map_to_odom(picture.pose, in_odom);
+            let _ = self.tf.publish(picture::transform(
+                &frame,
+                &self.config.odom_frame,
+                t,
+                stamp,
+            ));
+        }
+        if let Some(path) = &picture.path {
+            let _ = self.plan.publish(picture::path(path, stamp, &frame));
+        }
+        if let Some(grid) = &picture.map {
+            let _ = self.map.publish(picture::grid(grid, stamp, &frame));
+        }
+        if let Some(list) = &picture.landmarks {
+            let markers = picture::landmarks(list, stamp, &frame);
+            let _ = match &self.landmarks {
+                LandmarkPublisher::Humble(p) => p
+                    .publish(msgs::MarkerArray { markers })
+                    .map(|_| ())
+                    .map_err(|_| ()),
+                LandmarkPublisher::Jazzy(p) => p
+                    .publish(msgs::MarkerArray {
+                        markers: markers.into_iter().map(Into::into).collect(),
+                    })
+                    .map_err(|_| ()),
+            };
+        }
+    }
+}
+
+impl Drop for Ros2Link {
+    fn drop(&mut self) {
+        self.stop();
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_domain_comes_from_the_flag_then_the_environment() {
+        assert_eq!(domain_from(Some(7), Some("3".into())), Ok(7));
+        assert_eq!(domain_from(None, Some(" 3 ".into())), Ok(3));
+        assert_eq!(domain_from(None, None), Ok(0));
+        assert_eq!(domain_from(None, Some(String::new())), Ok(0));
+        let err = domain_from(None, Some("lab".into())).unwrap_err();
+        assert!(
+            err.contains("ROS_DOMAIN_ID") && err.contains("lab"),
+            "{err}"
+        );
+    }
+
+    #[test]
+    fn ros_type_names_follow_the_dds_mangling() {
+        assert_eq!(
+            dds_type("geometry_msgs", "Twist"),
+            "geometry_msgs::msg::dds_::Twist_"
+        );
+    }
+
+    #[test]
+    fn bad_topic_names_are_refused_by_field() {
+        let err = topic_name("/", "odom_topic", "odom topic")
+            .unwrap_err()
+            .to_string();
+        assert!(
+            err.contains("odom_topic") && err.contains("odom topic"),
+            "{err}"
+        );
+        let node = NodeName::new("/", "navdeck").unwrap();
+        let dds = |ns, t| topic_name(ns, "t", t).unwrap().to_dds_name("rt", &node, "");
+        assert_eq!(dds("/", "odom"), "rt/odom");
+        assert_eq!(dds("/tb3", "odom"), "rt/tb3/odom");
+        assert_eq!(dds("/tb3", "/odom"), "rt/odom");
+        assert_eq!(dds("/", "gripper/position"), "rt/gripper/position");
+    }
+}

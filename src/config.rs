@@ -4,6 +4,7 @@
 //! with the file, line and field in the message.
 
 use crate::control::config::FollowConfig;
+use crate::link::serial::config::SerialConfig;
 use crate::map::config::MapConfig;
 use crate::mission::config::MissionConfig;
 use crate::plan::config::PlanConfig;
@@ -42,6 +43,7 @@ pub struct Config {
     pub plan: PlanConfig,
     pub follow: FollowConfig,
     pub mission: MissionConfig,
+    pub serial: SerialConfig,
 }
 
 /// Race mode (seed 001: "High-speed mode (reduced SLAM updates)").
@@ -412,6 +414,7 @@ impl Config {
             ("plan", self.plan.validate()),
             ("follow", self.follow.validate()),
             ("mission", self.mission.validate()),
+            ("serial", self.serial.validate()),
         ];
         for (section, result) in sections {
             if let Err((field, value, reason)) = result {

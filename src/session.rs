@@ -5,6 +5,7 @@ use crate::app::App;
 use crate::config::Config;
 use crate::keymap::Keymap;
 use crate::link::RobotLink;
+use crate::link::serial::SerialLink;
 use crate::link::sim::SimLink;
 use crate::sim::{Twin, World};
 use anyhow::{Context, Result, bail};
@@ -72,9 +73,7 @@ impl Session {
                 Box::new(SimLink::new(twin, 0.0))
             }
             LinkChoice::Ros2 => bail!("the ROS 2 link is not built yet; use --link sim"),
-            LinkChoice::Serial(path) => {
-                bail!("the serial link ({path}) is not built yet; use --link sim")
-            }
+            LinkChoice::Serial(spec) => Box::new(SerialLink::open(spec, &config)?),
         };
         Ok(Session {
             config,

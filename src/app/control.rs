@@ -159,6 +159,9 @@ impl App {
             }
             Err(e) => self.lose_link(t, e.to_string()),
         }
+        for note in self.link.take_notes() {
+            self.log.push(t, Level::Warn, note);
+        }
     }
 
     /// The twin counts contacts; each new one is worth a line in the log.

@@ -1,6 +1,7 @@
 //! The one trait every robot connection implements (twin, ROS 2, serial, test doubles),
 //! and the data that crosses it.
 
+pub mod serial;
 pub mod sim;
 
 use crate::geometry::Twist;
@@ -121,5 +122,10 @@ pub trait RobotLink: Send {
     /// The digital twin behind this link, when there is one (ground truth for display).
     fn twin(&self) -> Option<&crate::sim::Twin> {
         None
+    }
+    /// Problems the link noticed and handled since the last call (retries, bad replies…),
+    /// one line each, for the console's log.
+    fn take_notes(&mut self) -> Vec<String> {
+        Vec::new()
     }
 }

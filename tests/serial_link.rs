@@ -413,3 +413,41 @@ fn the_headless_runner_drives_a_serial_robot_and_stops_it() {
     assert_eq!(targets.last(), Some(&(0, 0)));
     assert!(!state.moving);
 }
+
+#[test]
+fn the_readme_serial_config_parses() {
+    let readme = include_str!("../README.md");
+    let start = readme
+        .find("```toml\n[robot]\nwheel_radius")
+        .expect("the serial example")
+        + "```toml\n".len();
+    let len = readme[start..].find("```").unwrap();
+    let config = Config::parse(
+        &readme[start..start + len],
+        std::path::Path::new("README.md"),
+    )
+    .unwrap();
+    assert_eq!(config.serial.counts_per_rev, 1320.0);
+    assert_eq!(config.serial.gripper_servo, Some(0));
+}
+
+#[test]
+fn bad_serial_settings_are_refused_by_name() {
+    let path = std::path::Path::new("robot.toml");
+    for (text, field) in [
+        ("[serial]\ncounts_per_rev = 0\n", "serial.counts_per_rev"),
+        ("[serial]\nrefresh = 3.0\n", "serial.refresh"),
+        (
+            "[serial]\ngripper_open_deg = 200\n",
+            "serial.gripper_open_deg",
+        ),
+        ("[serial]\npoll_hz = -5\n", "serial.poll_hz"),
+    ] {
+        let e = Config::parse(text, path).unwrap_err().to_string();
+        assert!(e.contains(field), "{e}");
+    }
+    let e = Config::parse("[serial]\ngripper_servo = 300\n", path)
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("gripper_servo"), "{e}");
+}

@@ -442,6 +442,8 @@ fn bad_serial_settings_are_refused_by_name() {
             "serial.gripper_open_deg",
         ),
         ("[serial]\npoll_hz = -5\n", "serial.poll_hz"),
+        ("[serial]\npoll_hz = 0.5\n", "serial.poll_hz"),
+        ("[serial]\nreply_timeout = 1e300\n", "serial.reply_timeout"),
     ] {
         let e = Config::parse(text, path).unwrap_err().to_string();
         assert!(e.contains(field), "{e}");

@@ -80,6 +80,20 @@ impl SerialConfig {
             ("gripper_open_deg", self.gripper_open_deg),
             ("gripper_close_deg", self.gripper_close_deg),
         ])?;
+        for (field, seconds) in [
+            ("command_timeout", self.command_timeout),
+            ("reply_timeout", self.reply_timeout),
+            ("boot_wait", self.boot_wait),
+            ("reconnect_every", self.reconnect_every),
+            ("gripper_timeout", self.gripper_timeout),
+        ] {
+            if seconds > 60.0 {
+                return Err((field, seconds, "must be at most 60 s"));
+            }
+        }
+        if self.poll_hz < 1.0 {
+            return Err(("poll_hz", self.poll_hz, "must be at least 1 per second"));
+        }
         // The firmware stops the motors 2 s after the last command: refresh well inside that.
         if self.refresh > 1.5 {
             return Err(("refresh", self.refresh, "must be at most 1.5 s"));

@@ -233,7 +233,8 @@ impl Worker {
                 due = now;
             }
             let first = if due > now {
-                match self.rx.recv_timeout(Duration::from_secs_f64(due - now)) {
+                let wait = Duration::try_from_secs_f64(due - now).unwrap_or(Duration::MAX);
+                match self.rx.recv_timeout(wait) {
                     Ok(m) => Some(m),
                     Err(RecvTimeoutError::Timeout) => None,
                     Err(RecvTimeoutError::Disconnected) => Some(ToWorker::Shutdown),

@@ -4,6 +4,7 @@
 //! with the file, line and field in the message.
 
 use crate::control::config::FollowConfig;
+use crate::link::serial::config::SerialConfig;
 use crate::map::config::MapConfig;
 use crate::mission::config::MissionConfig;
 use crate::plan::config::PlanConfig;
@@ -44,6 +45,7 @@ pub struct Config {
     pub mission: MissionConfig,
     /// `--link ros2`: topics, QoS, message variants.
     pub ros2: crate::link::ros2::config::Ros2Config,
+    pub serial: SerialConfig,
 }
 
 /// Race mode (seed 001: "High-speed mode (reduced SLAM updates)").
@@ -415,6 +417,7 @@ impl Config {
             ("follow", self.follow.validate()),
             ("mission", self.mission.validate()),
             ("ros2", self.ros2.validate()),
+            ("serial", self.serial.validate()),
         ];
         for (section, result) in sections {
             if let Err((field, value, reason)) = result {

@@ -6,9 +6,10 @@ use crate::config::Config;
 use crate::keymap::Keymap;
 use crate::link::RobotLink;
 use crate::link::ros2::{Ros2Link, Ros2Options, domain_from};
+use crate::link::serial::SerialLink;
 use crate::link::sim::SimLink;
 use crate::sim::{Twin, World};
-use anyhow::{Context, Result, bail};
+use anyhow::{Context, Result};
 use std::path::PathBuf;
 
 /// Which robot to drive.
@@ -95,9 +96,7 @@ impl Session {
                 .context("cannot open the ROS 2 link")?;
                 Box::new(link)
             }
-            LinkChoice::Serial(path) => {
-                bail!("the serial link ({path}) is not built yet; use --link sim")
-            }
+            LinkChoice::Serial(spec) => Box::new(SerialLink::open(spec, &config)?),
         };
         Ok(Session {
             config,

@@ -157,14 +157,6 @@ impl App {
                     self.map_scan(t, scan);
                 }
                 self.note_collisions(t);
-                for notice in frame.notices {
-                    let level = if notice.warning {
-                        Level::Warn
-                    } else {
-                        Level::Info
-                    };
-                    self.log.push(t, level, notice.text);
-                }
                 if let Some(g) = frame.gripper {
                     if self.gripper.is_some() && self.gripper != Some(g) {
                         self.log
@@ -174,6 +166,14 @@ impl App {
                 }
             }
             Err(e) => self.lose_link(t, e.to_string()),
+        }
+        for note in self.link.take_notes() {
+            let level = if note.warning {
+                Level::Warn
+            } else {
+                Level::Info
+            };
+            self.log.push(t, level, note.text);
         }
     }
 

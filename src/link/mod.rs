@@ -2,6 +2,7 @@
 //! and the data that crosses it.
 
 pub mod ros2;
+pub mod serial;
 pub mod sim;
 
 use crate::geometry::{Point2, Pose2, Twist};
@@ -98,8 +99,6 @@ pub struct SensorFrame {
     /// The newest scan, if one arrived.
     pub scan: Option<LaserScan>,
     pub gripper: Option<GripperState>,
-    /// What the link wants the user to know (a dropped message, a type mismatch).
-    pub notices: Vec<Notice>,
 }
 
 /// A line for the console's log from the link.
@@ -169,5 +168,10 @@ pub trait RobotLink: Send {
     /// The digital twin behind this link, when there is one (ground truth for display).
     fn twin(&self) -> Option<&crate::sim::Twin> {
         None
+    }
+    /// What the link noticed since the last call (retries, bad replies, dropped messages,
+    /// a type mismatch), one line each, for the console's log.
+    fn take_notes(&mut self) -> Vec<Notice> {
+        Vec::new()
     }
 }

@@ -181,7 +181,6 @@ impl Twin {
             sightings: self.sightings.take(),
             scan: self.scan.take(),
             gripper: Some(self.gripper.state()),
-            notices: Vec::new(),
         }
     }
 

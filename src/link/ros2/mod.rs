@@ -684,8 +684,11 @@ impl RobotLink for Ros2Link {
             sightings: None,
             scan,
             gripper: None,
-            notices: std::mem::take(&mut self.notices),
         })
+    }
+
+    fn take_notes(&mut self) -> Vec<Notice> {
+        std::mem::take(&mut self.notices)
     }
 
     fn stop(&mut self) {

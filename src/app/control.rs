@@ -210,7 +210,13 @@ impl App {
     /// Control is lost: drop held keys, command nothing further, say so once.
     fn lose_link(&mut self, t: f64, reason: String) {
         if !matches!(self.link_status, LinkStatus::Lost(_)) {
-            self.log.push(t, Level::Error, reason.clone());
+            // Before the robot first answers, waiting is expected rather than an error.
+            let level = if self.link_was_up {
+                Level::Error
+            } else {
+                Level::Info
+            };
+            self.log.push(t, level, reason.clone());
         }
         self.link_status = LinkStatus::Lost(reason);
         self.teleop.clear();

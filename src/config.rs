@@ -6,6 +6,7 @@
 use crate::control::config::FollowConfig;
 use crate::map::config::MapConfig;
 use crate::mission::config::MissionConfig;
+use crate::perception::config::VisionConfig;
 use crate::plan::config::PlanConfig;
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
@@ -42,6 +43,7 @@ pub struct Config {
     pub plan: PlanConfig,
     pub follow: FollowConfig,
     pub mission: MissionConfig,
+    pub vision: VisionConfig,
 }
 
 /// Race mode (seed 001: "High-speed mode (reduced SLAM updates)").
@@ -412,6 +414,7 @@ impl Config {
             ("plan", self.plan.validate()),
             ("follow", self.follow.validate()),
             ("mission", self.mission.validate()),
+            ("vision", self.vision.validate()),
         ];
         for (section, result) in sections {
             if let Err((field, value, reason)) = result {

@@ -223,3 +223,33 @@ fn grazing_and_dim_views_never_give_a_wrong_id() {
         false,
     );
 }
+
+#[test]
+fn the_shipped_calibration_is_seed_001s_camera() {
+    use navdeck::perception::{calibration, intrinsics::Intrinsics};
+    let k = calibration::load(std::path::Path::new(calibration::SHIPPED)).unwrap();
+    assert_eq!(k, Intrinsics::default());
+    let e = calibration::load(std::path::Path::new("config/missing.yml")).unwrap_err();
+    assert!(e.to_string().contains("config/missing.yml"), "{e}");
+}
+
+#[test]
+fn the_twin_with_a_rendered_camera_reports_sightings_deterministically() {
+    use navdeck::config::Config;
+    use navdeck::sim::Twin;
+    let run = || {
+        let mut twin = Twin::new(World::default_arena(), &Config::default(), 3);
+        twin.use_rendered_camera(&level(), None).unwrap();
+        twin.set_command(navdeck::geometry::Twist::new(0.0, 0.5));
+        twin.step(1.0);
+        twin.take_frame()
+    };
+    let (a, b) = (run(), run());
+    assert_eq!(a.sightings, b.sightings);
+    let status = a.camera.expect("a camera status");
+    assert!(
+        status.error.is_none() && !status.ids.is_empty(),
+        "{status:?}"
+    );
+    assert_eq!(status.thumbnail.map(|t| t.width), Some(96));
+}

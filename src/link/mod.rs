@@ -94,6 +94,8 @@ pub struct SensorFrame {
     /// The newest scan, if one arrived.
     pub scan: Option<LaserScan>,
     pub gripper: Option<GripperState>,
+    /// How the camera pipeline did on the newest frame (when frames are detected in navdeck).
+    pub camera: Option<crate::perception::frame::CameraStatus>,
 }
 
 /// Why a link could not do what was asked.
@@ -120,6 +122,10 @@ pub trait RobotLink: Send {
     fn stop(&mut self);
     /// The digital twin behind this link, when there is one (ground truth for display).
     fn twin(&self) -> Option<&crate::sim::Twin> {
+        None
+    }
+    /// The digital twin behind this link, to change how it senses (e.g. its rendered camera).
+    fn twin_mut(&mut self) -> Option<&mut crate::sim::Twin> {
         None
     }
 }

@@ -258,7 +258,7 @@ impl Detector {
         }
         let t = |i: i32| tvec.at::<f64>(i).copied();
         let centre = Vector3::new(t(0)?, t(1)?, t(2)?);
-        if !(centre.z > 0.0) {
+        if centre.z.is_nan() || centre.z <= 0.0 {
             return Ok(None);
         }
         // Seed 001 section 2: marker in camera frame -> robot frame, then (r, alpha).

@@ -9,7 +9,7 @@ use serde::{Deserialize, Serialize};
 use std::path::PathBuf;
 
 /// The `[vision]` section of the config file.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct VisionConfig {
     /// OpenCV calibration file (FileStorage YAML with `camera_matrix`,
@@ -21,19 +21,6 @@ pub struct VisionConfig {
     pub markers: MarkerSizes,
     pub detector: DetectorConfig,
     pub render: RenderConfig,
-}
-
-impl Default for VisionConfig {
-    fn default() -> Self {
-        Self {
-            calibration: None,
-            device: None,
-            mount: MountConfig::default(),
-            markers: MarkerSizes::default(),
-            detector: DetectorConfig::default(),
-            render: RenderConfig::default(),
-        }
-    }
 }
 
 /// Where the camera sits on the robot: seed 001 section 2, "Camera to Robot Transform".

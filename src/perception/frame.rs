@@ -145,6 +145,22 @@ impl Thumbnail {
     }
 }
 
+/// What the camera pipeline made of one frame, for the console.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct CameraStatus {
+    /// Every marker ID decoded, ascending.
+    pub ids: Vec<u32>,
+    /// Sightings passed on to the estimator.
+    pub accepted: usize,
+    /// Sightings refused (reprojection error or range).
+    pub rejected: usize,
+    /// Seconds detection took, when a stopwatch was at hand.
+    pub latency: Option<f64>,
+    pub thumbnail: Option<Thumbnail>,
+    /// Why the frame could not be used, if it could not.
+    pub error: Option<String>,
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

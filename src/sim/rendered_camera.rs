@@ -12,9 +12,11 @@
 use super::Marker;
 use super::camera::clear_line;
 use crate::geometry::{Pose2, Segment};
-use crate::perception::aruco::Detector;
-use crate::perception::config::{MarkerSizes, RenderConfig};
-use crate::perception::frame::GrayFrame;
+use crate::link::MarkerSighting;
+use crate::perception::aruco::{Detector, VisionError};
+use crate::perception::config::{MarkerSizes, RenderConfig, VisionConfig};
+use crate::perception::frame::{CameraStatus, GrayFrame};
+use crate::perception::stopwatch::Stopwatch;
 use nalgebra::Vector3;
 use opencv::core::{BORDER_TRANSPARENT, Mat, Point2f, Rect, Scalar, Size};
 use opencv::prelude::*;
@@ -266,5 +268,75 @@ fn add_noise(pixels: &mut [u8], std: f64, rng: &mut ChaCha8Rng) {
             let b = (bits >> (16 * k + 8)) as u8 as usize;
             *p = (i16::from(*p) + table[a + b]).clamp(0, 255) as u8;
         }
+    }
+}
+
+/// The twin's camera with the ArUco detector behind it: frames in, sightings out.
+#[derive(Clone)]
+pub struct RenderedCamera {
+    renderer: Renderer,
+    detector: Detector,
+    stopwatch: Option<std::sync::Arc<dyn Stopwatch>>,
+}
+
+impl std::fmt::Debug for RenderedCamera {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("RenderedCamera")
+            .field("detector", &self.detector)
+            .finish_non_exhaustive()
+    }
+}
+
+/// Thumbnail size handed to the console, pixels.
+const THUMB: (usize, usize) = (96, 54);
+
+impl RenderedCamera {
+    pub fn new(
+        vision: &VisionConfig,
+        stopwatch: Option<std::sync::Arc<dyn Stopwatch>>,
+    ) -> Result<Self, VisionError> {
+        Ok(Self {
+            renderer: Renderer::new(&vision.markers, &vision.render),
+            detector: Detector::from_config(vision)?,
+            stopwatch,
+        })
+    }
+
+    /// Renders the frame seen from `pose`, detects its markers and reports both.
+    pub fn capture<'a>(
+        &mut self,
+        pose: Pose2,
+        markers: impl IntoIterator<Item = &'a Marker>,
+        occluders: &[&[Segment]],
+        rng: &mut ChaCha8Rng,
+    ) -> (Vec<MarkerSighting>, CameraStatus) {
+        let frame = match self
+            .renderer
+            .render(&self.detector, pose, markers, occluders, rng)
+        {
+            Ok(f) => f,
+            Err(e) => return (Vec::new(), failed(e.to_string())),
+        };
+        match self.detector.detect(&frame, self.stopwatch.as_deref()) {
+            Ok(d) => (
+                d.marker_sightings(),
+                CameraStatus {
+                    accepted: d.sightings.len(),
+                    rejected: d.rejected,
+                    ids: d.ids,
+                    latency: d.latency,
+                    thumbnail: Some(frame.thumbnail(THUMB.0, THUMB.1)),
+                    error: None,
+                },
+            ),
+            Err(e) => (Vec::new(), failed(e.to_string())),
+        }
+    }
+}
+
+fn failed(error: String) -> CameraStatus {
+    CameraStatus {
+        error: Some(error),
+        ..CameraStatus::default()
     }
 }

@@ -7,6 +7,7 @@ use crate::control::config::FollowConfig;
 use crate::link::serial::config::SerialConfig;
 use crate::map::config::MapConfig;
 use crate::mission::config::MissionConfig;
+use crate::perception::config::VisionConfig;
 use crate::plan::config::PlanConfig;
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
@@ -46,6 +47,7 @@ pub struct Config {
     /// `--link ros2`: topics, QoS, message variants.
     pub ros2: crate::link::ros2::config::Ros2Config,
     pub serial: SerialConfig,
+    pub vision: VisionConfig,
 }
 
 /// Race mode (seed 001: "High-speed mode (reduced SLAM updates)").
@@ -418,6 +420,7 @@ impl Config {
             ("mission", self.mission.validate()),
             ("ros2", self.ros2.validate()),
             ("serial", self.serial.validate()),
+            ("vision", self.vision.validate()),
         ];
         for (section, result) in sections {
             if let Err((field, value, reason)) = result {

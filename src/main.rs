@@ -56,6 +56,11 @@ struct Cli {
     #[arg(long, value_name = "FILE")]
     keymap: Option<PathBuf>,
 
+    /// The twin sees through a rendered camera and OpenCV's ArUco detector instead of its
+    /// ideal marker sensor (needs a build with `--features vision`).
+    #[arg(long)]
+    sim_camera: bool,
+
     /// Start with the braille map instead of ASCII.
     #[arg(long)]
     braille: bool,
@@ -134,6 +139,9 @@ struct MissionArgs {
     /// Print one JSON object.
     #[arg(long)]
     json: bool,
+    /// The twin sees through a rendered camera and the ArUco detector (feature `vision`).
+    #[arg(long)]
+    sim_camera: bool,
 }
 
 #[derive(Debug, clap::Args)]
@@ -156,6 +164,21 @@ struct PlanArgs {
     /// Print the path, its length and cost and the planning time as one JSON object.
     #[arg(long)]
     json: bool,
+}
+
+/// Seconds since start from the machine's monotonic clock: latency figures at the edge.
+struct WallStopwatch(Instant);
+
+impl WallStopwatch {
+    fn start() -> Self {
+        Self(Instant::now())
+    }
+}
+
+impl navdeck::perception::stopwatch::Stopwatch for WallStopwatch {
+    fn seconds(&self) -> f64 {
+        self.0.elapsed().as_secs_f64()
+    }
 }
 
 fn parse_point(s: &str) -> Result<Point2, String> {
@@ -204,7 +227,10 @@ fn real_main(cli: Cli) -> Result<ExitCode> {
         },
     };
     // Everything is loaded and validated before the terminal is touched.
-    let session = Session::load(&spec)?;
+    let mut session = Session::load(&spec)?;
+    if cli.sim_camera {
+        session.use_sim_camera(Some(std::sync::Arc::new(WallStopwatch::start())))?;
+    }
     if cli.headless {
         return run_headless(session, &cli);
     }
@@ -296,10 +322,17 @@ fn run_mission(args: &MissionArgs) -> Result<ExitCode> {
         keymap: None,
         link: LinkChoice::Sim,
     };
+    let load = |seed: u64| -> Result<Session> {
+        let mut session = Session::load(&spec(seed))?;
+        if args.sim_camera {
+            session.use_sim_camera(None)?;
+        }
+        Ok(session)
+    };
     // Load once up front so a bad file is refused before anything runs.
-    Session::load(&spec(args.seed))?;
+    load(args.seed)?;
     let one = |seed: u64| -> Result<mission_runner::MissionReport> {
-        let mut app = Session::load(&spec(seed))?.into_app(0.0);
+        let mut app = load(seed)?.into_app(0.0);
         let started = Instant::now();
         let mut report = mission_runner::run(&mut app, seed, args.time_limit);
         let wall = started.elapsed().as_secs_f64();

@@ -9,7 +9,7 @@ use crate::link::ros2::{Ros2Link, Ros2Options, domain_from};
 use crate::link::serial::SerialLink;
 use crate::link::sim::SimLink;
 use crate::sim::{Twin, World};
-use anyhow::{Context, Result};
+use anyhow::{Context, Result, bail};
 use std::path::PathBuf;
 
 /// Which robot to drive.
@@ -103,6 +103,33 @@ impl Session {
             keymap,
             link,
         })
+    }
+
+    /// Makes the twin see through a rendered camera and the ArUco detector instead of
+    /// its ideal marker sensor (`--sim-camera`). Refused with a clear message when navdeck
+    /// was built without the `vision` feature or the link has no twin.
+    pub fn use_sim_camera(
+        &mut self,
+        stopwatch: Option<std::sync::Arc<dyn crate::perception::stopwatch::Stopwatch>>,
+    ) -> Result<()> {
+        #[cfg(feature = "vision")]
+        {
+            let vision = self.config.vision.clone();
+            let Some(twin) = self.link.twin_mut() else {
+                bail!("--sim-camera needs the twin (--link sim)");
+            };
+            twin.use_rendered_camera(&vision, stopwatch)
+                .context("cannot start the rendered camera")?;
+            Ok(())
+        }
+        #[cfg(not(feature = "vision"))]
+        {
+            let _ = stopwatch;
+            bail!(
+                "--sim-camera needs navdeck built with the `vision` feature \
+                 (cargo build --features vision; needs OpenCV: libopencv-dev libopencv-contrib-dev clang libclang-dev)"
+            )
+        }
     }
 
     /// The console on this session, starting at session time `now`.

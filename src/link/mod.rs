@@ -99,6 +99,8 @@ pub struct SensorFrame {
     /// The newest scan, if one arrived.
     pub scan: Option<LaserScan>,
     pub gripper: Option<GripperState>,
+    /// How the camera pipeline did on the newest frame (when frames are detected in navdeck).
+    pub camera: Option<crate::perception::frame::CameraStatus>,
 }
 
 /// A line for the console's log from the link.
@@ -173,5 +175,9 @@ pub trait RobotLink: Send {
     /// a type mismatch), one line each, for the console's log.
     fn take_notes(&mut self) -> Vec<Notice> {
         Vec::new()
+    }
+    /// The digital twin behind this link, to change how it senses (e.g. its rendered camera).
+    fn twin_mut(&mut self) -> Option<&mut crate::sim::Twin> {
+        None
     }
 }

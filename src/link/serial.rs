@@ -182,6 +182,7 @@ impl RobotLink for SerialLink {
             sightings: None,
             scan: None,
             gripper: self.gripper,
+            camera: None,
         };
         Ok(frame)
     }

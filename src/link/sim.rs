@@ -44,4 +44,8 @@ impl RobotLink for SimLink {
     fn twin(&self) -> Option<&Twin> {
         Some(&self.twin)
     }
+
+    fn twin_mut(&mut self) -> Option<&mut Twin> {
+        Some(&mut self.twin)
+    }
 }

@@ -1,3 +1,13 @@
-//! What the robot perceives: marker ID conventions now, camera detection later.
+//! What the robot perceives: marker ID conventions, camera frames, the camera's mount and
+//! intrinsics, and (feature `vision`) ArUco detection with OpenCV.
 
+#[cfg(feature = "vision")]
+pub mod aruco;
+#[cfg(feature = "vision")]
+pub mod calibration;
+pub mod config;
+pub mod frame;
+pub mod intrinsics;
 pub mod markers;
+pub mod mount;
+pub mod stopwatch;

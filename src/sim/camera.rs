@@ -17,6 +17,24 @@ use rand_distr::StandardNormal;
 /// stuck on does not hide them, metres.
 const SURFACE_OFFSET: f64 = 1e-3;
 
+/// True when no occluder crosses the line from `eye` to just in front of marker `m`.
+pub fn clear_line(eye: Point2, m: &Marker, occluders: &[&[Segment]]) -> bool {
+    let (ns, nc) = m.normal.sin_cos();
+    let target = Point2::new(
+        m.position.x + nc * SURFACE_OFFSET,
+        m.position.y + ns * SURFACE_OFFSET,
+    );
+    let (lo_x, hi_x) = (eye.x.min(target.x), eye.x.max(target.x));
+    let (lo_y, hi_y) = (eye.y.min(target.y), eye.y.max(target.y));
+    !occluders.iter().flat_map(|set| set.iter()).any(|seg| {
+        let off_box = seg.a.x.max(seg.b.x) < lo_x
+            || seg.a.x.min(seg.b.x) > hi_x
+            || seg.a.y.max(seg.b.y) < lo_y
+            || seg.a.y.min(seg.b.y) > hi_y;
+        !off_box && segments_cross(eye, target, seg.a, seg.b)
+    })
+}
+
 #[derive(Clone, Debug)]
 pub struct Camera {
     cos_half_fov: f64,
@@ -63,21 +81,8 @@ impl Camera {
         if -(nc * dx + ns * dy) < range * self.cos_max_view {
             return None;
         }
-        let eye = pose.position();
-        let target = Point2::new(
-            m.position.x + nc * SURFACE_OFFSET,
-            m.position.y + ns * SURFACE_OFFSET,
-        );
-        let (lo_x, hi_x) = (eye.x.min(target.x), eye.x.max(target.x));
-        let (lo_y, hi_y) = (eye.y.min(target.y), eye.y.max(target.y));
-        for seg in occluders.iter().flat_map(|set| set.iter()) {
-            let off_box = seg.a.x.max(seg.b.x) < lo_x
-                || seg.a.x.min(seg.b.x) > hi_x
-                || seg.a.y.max(seg.b.y) < lo_y
-                || seg.a.y.min(seg.b.y) > hi_y;
-            if !off_box && segments_cross(eye, target, seg.a, seg.b) {
-                return None;
-            }
+        if !clear_line(pose.position(), m, occluders) {
+            return None;
         }
         Some((range, fy.atan2(fx)))
     }

@@ -21,12 +21,15 @@ mod error;
 mod gripper;
 mod lidar;
 mod raster;
+#[cfg(feature = "vision")]
+pub mod rendered_camera;
 mod shapes;
 mod twin;
 mod world;
 mod world_file;
 
 pub use blocks::BlockState;
+pub use camera::clear_line as line_of_sight;
 pub use error::WorldError;
 pub use twin::Twin;
 pub use world::{Block, BlockColor, Gate, Marker, Obstacle, World};

@@ -49,6 +49,10 @@ pub struct Twin {
     collisions: u32,
     distance: f64,
     sightings: Option<Vec<MarkerSighting>>,
+    camera_status: Option<crate::perception::frame::CameraStatus>,
+    /// The rendered camera and ArUco detector replacing the ideal marker sensor.
+    #[cfg(feature = "vision")]
+    rendered: Option<Box<super::rendered_camera::RenderedCamera>>,
     scan: Option<LaserScan>,
     /// `ticks` at the previous `take_frame`.
     taken_at: u64,
@@ -98,6 +102,9 @@ impl Twin {
             collisions: 0,
             distance: 0.0,
             sightings: None,
+            camera_status: None,
+            #[cfg(feature = "vision")]
+            rendered: None,
             scan: None,
             taken_at: 0,
             discs: Vec::new(),
@@ -181,7 +188,22 @@ impl Twin {
             sightings: self.sightings.take(),
             scan: self.scan.take(),
             gripper: Some(self.gripper.state()),
+            camera: self.camera_status.take(),
         }
+    }
+
+    /// Replaces the ideal marker sensor by a rendered camera read with the ArUco
+    /// detector (feature `vision`); with a stopwatch, detection latency is reported.
+    #[cfg(feature = "vision")]
+    pub fn use_rendered_camera(
+        &mut self,
+        vision: &crate::perception::config::VisionConfig,
+        stopwatch: Option<Arc<dyn crate::perception::stopwatch::Stopwatch>>,
+    ) -> Result<(), crate::perception::aruco::VisionError> {
+        self.rendered = Some(Box::new(super::rendered_camera::RenderedCamera::new(
+            vision, stopwatch,
+        )?));
+        Ok(())
     }
 
     pub fn blocks(&self) -> &[BlockState] {
@@ -340,6 +362,13 @@ impl Twin {
         self.refresh_blocks();
         let occluders: [&[Segment]; 2] = [&self.world.walls, &self.block_edges];
         let markers = self.world.markers.iter().chain(&self.block_markers);
+        #[cfg(feature = "vision")]
+        if let Some(camera) = self.rendered.as_mut() {
+            let (sightings, status) = camera.capture(self.pose, markers, &occluders, &mut self.rng);
+            self.sightings = Some(sightings);
+            self.camera_status = Some(status);
+            return;
+        }
         self.sightings = Some(
             self.camera
                 .observe(self.pose, markers, &occluders, &mut self.rng),

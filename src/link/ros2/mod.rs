@@ -684,6 +684,7 @@ impl RobotLink for Ros2Link {
             sightings: None,
             scan,
             gripper: None,
+            camera: None,
         })
     }
 

@@ -1,0 +1,274 @@
+//! ArUco markers found with OpenCV (seed 001 sections 1-2): detection in the original
+//! dictionary, pose of each marker by solvePnP (IPPE_SQUARE), camera -> robot transform,
+//! and seed 001's (range, bearing) measurement for the EKF.
+//!
+//! `Detector` is built once from the config and then called on any thread (it is `Send`
+//! and `Clone`); camera sources hand it `GrayFrame`s.
+
+use super::calibration;
+use super::config::{CornerRefinement, VisionConfig};
+use super::frame::GrayFrame;
+use super::intrinsics::Intrinsics;
+use super::mount::{Mount, range_bearing};
+use super::stopwatch::Stopwatch;
+use crate::link::MarkerSighting;
+use nalgebra::Vector3;
+use opencv::core::{Mat, Point2f, Point3f, Ptr, Vector};
+use opencv::prelude::*;
+use opencv::{aruco, calib3d};
+
+/// Why detection could not run.
+#[derive(Debug, thiserror::Error)]
+pub enum VisionError {
+    #[error("OpenCV: {0}")]
+    OpenCv(#[from] opencv::Error),
+    #[error("frame is {got_w}x{got_h} but the calibration is for {want_w}x{want_h}")]
+    FrameSize {
+        got_w: usize,
+        got_h: usize,
+        want_w: u32,
+        want_h: u32,
+    },
+    #[error(transparent)]
+    Calibration(#[from] super::intrinsics::CalibrationError),
+}
+
+/// One marker found in a frame, with the quality of its pose.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ArucoSighting {
+    pub id: u32,
+    /// Planar range from the robot centre, metres.
+    pub range: f64,
+    /// Bearing from the robot's heading, radians, CCW positive.
+    pub bearing: f64,
+    /// RMS distance between the detected corners and the pose's reprojection, pixels.
+    pub reprojection_px: f64,
+    /// Detected corners, clockwise from the marker's top-left, pixels.
+    pub corners: [[f32; 2]; 4],
+}
+
+impl ArucoSighting {
+    pub fn sighting(&self) -> MarkerSighting {
+        MarkerSighting {
+            id: self.id,
+            range: self.range,
+            bearing: self.bearing,
+        }
+    }
+}
+
+/// What one frame showed.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Detection {
+    /// Markers with a trustworthy pose, for the EKF.
+    pub sightings: Vec<ArucoSighting>,
+    /// Markers decoded but refused: reprojection error over the limit, or out of range.
+    pub rejected: usize,
+    /// Every ID decoded in the frame, accepted or not, ascending.
+    pub ids: Vec<u32>,
+    /// Seconds detection and pose took, when a stopwatch was given.
+    pub latency: Option<f64>,
+}
+
+impl Detection {
+    /// The sightings as the link reports them.
+    pub fn marker_sightings(&self) -> Vec<MarkerSighting> {
+        self.sightings.iter().map(ArucoSighting::sighting).collect()
+    }
+}
+
+/// The ArUco detector and pose solver of one camera.
+pub struct Detector {
+    config: VisionConfig,
+    intrinsics: Intrinsics,
+    mount: Mount,
+    dictionary: Ptr<aruco::Dictionary>,
+    parameters: Ptr<aruco::DetectorParameters>,
+    camera_matrix: Mat,
+    distortion: Mat,
+}
+
+impl std::fmt::Debug for Detector {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Detector")
+            .field("intrinsics", &self.intrinsics)
+            .field("mount", &self.mount)
+            .finish_non_exhaustive()
+    }
+}
+
+impl Clone for Detector {
+    /// A fresh detector from the same settings (OpenCV objects are not shared).
+    fn clone(&self) -> Self {
+        Self::with_intrinsics(&self.config, self.intrinsics.clone())
+            .expect("settings that built a detector build it again")
+    }
+}
+
+impl Detector {
+    /// A detector for the configured camera: calibration file or seed 001's intrinsics.
+    pub fn from_config(config: &VisionConfig) -> Result<Self, VisionError> {
+        let intrinsics = calibration::load_or_default(config.calibration.as_deref())?;
+        Self::with_intrinsics(config, intrinsics)
+    }
+
+    pub fn with_intrinsics(
+        config: &VisionConfig,
+        intrinsics: Intrinsics,
+    ) -> Result<Self, VisionError> {
+        let dictionary = aruco::get_predefined_dictionary(
+            aruco::PREDEFINED_DICTIONARY_NAME::DICT_ARUCO_ORIGINAL,
+        )?;
+        let mut parameters = aruco::DetectorParameters::create()?;
+        let d = &config.detector;
+        parameters.set_adaptive_thresh_win_size_min(d.adaptive_thresh_win_size_min);
+        parameters.set_adaptive_thresh_win_size_max(d.adaptive_thresh_win_size_max);
+        parameters.set_adaptive_thresh_win_size_step(d.adaptive_thresh_win_size_step);
+        parameters.set_min_marker_perimeter_rate(d.min_marker_perimeter_rate);
+        parameters.set_corner_refinement_win_size(d.corner_refinement_win_size);
+        parameters.set_corner_refinement_method(match d.corner_refinement {
+            CornerRefinement::None => aruco::CORNER_REFINE_NONE,
+            CornerRefinement::Subpix => aruco::CORNER_REFINE_SUBPIX,
+            CornerRefinement::Contour => aruco::CORNER_REFINE_CONTOUR,
+        });
+        Ok(Self {
+            config: config.clone(),
+            mount: Mount::new(&config.mount),
+            camera_matrix: calibration::camera_matrix(&intrinsics)?,
+            distortion: calibration::distortion(&intrinsics)?,
+            intrinsics,
+            dictionary,
+            parameters,
+        })
+    }
+
+    pub fn intrinsics(&self) -> &Intrinsics {
+        &self.intrinsics
+    }
+
+    pub fn mount(&self) -> &Mount {
+        &self.mount
+    }
+
+    pub fn config(&self) -> &VisionConfig {
+        &self.config
+    }
+
+    /// The dictionary markers are drawn from and looked up in.
+    pub fn dictionary(&self) -> &Ptr<aruco::Dictionary> {
+        &self.dictionary
+    }
+
+    /// Finds the markers in `frame` and measures each one's range and bearing from the
+    /// robot. With a stopwatch, the time taken is reported as `latency`.
+    pub fn detect(
+        &self,
+        frame: &GrayFrame,
+        stopwatch: Option<&dyn Stopwatch>,
+    ) -> Result<Detection, VisionError> {
+        let started = stopwatch.map(|s| s.seconds());
+        if frame.width != self.intrinsics.width as usize
+            || frame.height != self.intrinsics.height as usize
+            || frame.data.len() != frame.width * frame.height
+        {
+            return Err(VisionError::FrameSize {
+                got_w: frame.width,
+                got_h: frame.height,
+                want_w: self.intrinsics.width,
+                want_h: self.intrinsics.height,
+            });
+        }
+        let image =
+            Mat::new_rows_cols_with_data(frame.height as i32, frame.width as i32, &frame.data)?;
+        let mut corners: Vector<Vector<Point2f>> = Vector::new();
+        let mut ids: Vector<i32> = Vector::new();
+        let mut refused: Vector<Vector<Point2f>> = Vector::new();
+        aruco::detect_markers(
+            &image,
+            &self.dictionary,
+            &mut corners,
+            &mut ids,
+            &self.parameters,
+            &mut refused,
+        )?;
+        let mut out = Detection::default();
+        for (quad, id) in corners.iter().zip(ids.iter()) {
+            let id = id as u32;
+            out.ids.push(id);
+            match self.measure(id, &quad)? {
+                Some(s)
+                    if s.reprojection_px <= self.config.detector.max_reprojection_error_px
+                        && s.range <= self.config.detector.max_range =>
+                {
+                    out.sightings.push(s)
+                }
+                _ => out.rejected += 1,
+            }
+        }
+        out.ids.sort_unstable();
+        out.sightings.sort_by_key(|s| s.id);
+        out.latency = stopwatch.zip(started).map(|(s, t0)| s.seconds() - t0);
+        Ok(out)
+    }
+
+    /// Pose of one marker from its four corners; `None` when solvePnP finds none.
+    fn measure(
+        &self,
+        id: u32,
+        quad: &Vector<Point2f>,
+    ) -> Result<Option<ArucoSighting>, VisionError> {
+        let half = (self.config.markers.side(id) / 2.0) as f32;
+        // IPPE_SQUARE's required object points: corners clockwise from top-left, z = 0
+        // (OpenCV docs, SolvePnPMethod SOLVEPNP_IPPE_SQUARE).
+        let object: Vector<Point3f> = Vector::from_iter([
+            Point3f::new(-half, half, 0.0),
+            Point3f::new(half, half, 0.0),
+            Point3f::new(half, -half, 0.0),
+            Point3f::new(-half, -half, 0.0),
+        ]);
+        let mut rvec = Mat::default();
+        let mut tvec = Mat::default();
+        let solved = calib3d::solve_pnp(
+            &object,
+            quad,
+            &self.camera_matrix,
+            &self.distortion,
+            &mut rvec,
+            &mut tvec,
+            false,
+            calib3d::SOLVEPNP_IPPE_SQUARE,
+        )?;
+        if !solved {
+            return Ok(None);
+        }
+        let mut projected: Vector<Point2f> = Vector::new();
+        calib3d::project_points_def(
+            &object,
+            &rvec,
+            &tvec,
+            &self.camera_matrix,
+            &self.distortion,
+            &mut projected,
+        )?;
+        let mut corners = [[0f32; 2]; 4];
+        let mut sum2 = 0.0;
+        for (k, (seen, model)) in quad.iter().zip(projected.iter()).enumerate() {
+            corners[k] = [seen.x, seen.y];
+            sum2 += f64::from((seen.x - model.x).powi(2) + (seen.y - model.y).powi(2));
+        }
+        let t = |i: i32| tvec.at::<f64>(i).copied();
+        let centre = Vector3::new(t(0)?, t(1)?, t(2)?);
+        if centre.z.is_nan() || centre.z <= 0.0 {
+            return Ok(None);
+        }
+        // Seed 001 section 2: marker in camera frame -> robot frame, then (r, alpha).
+        let (range, bearing) = range_bearing(self.mount.to_robot(centre));
+        Ok(Some(ArucoSighting {
+            id,
+            range,
+            bearing,
+            reprojection_px: (sum2 / 4.0).sqrt(),
+            corners,
+        }))
+    }
+}

@@ -1,0 +1,282 @@
+//! The `[vision]` section: how the camera is mounted, how big the markers are, how the
+//! ArUco detector is tuned and how the twin renders its camera (feature `vision`).
+//!
+//! The section is parsed and checked in every build, so one config file serves a build
+//! with and without the feature.
+
+use crate::perception::markers::MarkerCategory;
+use serde::{Deserialize, Serialize};
+use std::path::PathBuf;
+
+/// The `[vision]` section of the config file.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct VisionConfig {
+    /// OpenCV calibration file (FileStorage YAML with `camera_matrix`,
+    /// `distortion_coefficients`, `image_width`, `image_height`); none: seed 001's camera.
+    pub calibration: Option<PathBuf>,
+    /// A V4L2 device (e.g. `/dev/video0`) to read frames from instead of the link's camera.
+    pub device: Option<String>,
+    pub mount: MountConfig,
+    pub markers: MarkerSizes,
+    pub detector: DetectorConfig,
+    pub render: RenderConfig,
+}
+
+/// Where the camera sits on the robot: seed 001 section 2, "Camera to Robot Transform".
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct MountConfig {
+    /// Rotation of the camera frame (OpenCV: x right, y down, z ahead) into the robot
+    /// frame as extrinsic x, y, z angles, degrees: R = Rz(z) Ry(y) Rx(x) (seed 001: -124, 0, -90).
+    pub rotation_deg: [f64; 3],
+    /// Camera centre in the robot frame, metres (seed 001: 0.03, 0, 0.28).
+    pub translation: [f64; 3],
+}
+
+impl Default for MountConfig {
+    fn default() -> Self {
+        Self {
+            rotation_deg: [-124.0, 0.0, -90.0],
+            translation: [0.03, 0.0, 0.28],
+        }
+    }
+}
+
+/// Printed side of the black square of each category's markers, and the height of their
+/// centres above the floor (used by the twin's rendered camera), metres.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct MarkerSizes {
+    pub boundary_side: f64,
+    pub obstacle_side: f64,
+    pub gate_side: f64,
+    pub block_side: f64,
+    /// Centre height of wall, obstacle and gate markers.
+    pub wall_height: f64,
+    /// Centre height of block markers.
+    pub block_height: f64,
+}
+
+impl Default for MarkerSizes {
+    fn default() -> Self {
+        Self {
+            boundary_side: 0.10,
+            obstacle_side: 0.10,
+            gate_side: 0.10,
+            block_side: 0.04,
+            wall_height: 0.10,
+            block_height: 0.025,
+        }
+    }
+}
+
+impl MarkerSizes {
+    /// Side of the black square for a marker ID, metres (by seed 001's ID ranges).
+    pub fn side(&self, id: u32) -> f64 {
+        match MarkerCategory::of(id) {
+            MarkerCategory::Boundary | MarkerCategory::Unknown => self.boundary_side,
+            MarkerCategory::Obstacle => self.obstacle_side,
+            MarkerCategory::RedGate | MarkerCategory::BlueGate => self.gate_side,
+            MarkerCategory::RedBlock | MarkerCategory::BlueBlock => self.block_side,
+        }
+    }
+
+    /// Height of a marker's centre above the floor, metres.
+    pub fn height(&self, id: u32) -> f64 {
+        match MarkerCategory::of(id) {
+            MarkerCategory::RedBlock | MarkerCategory::BlueBlock => self.block_height,
+            _ => self.wall_height,
+        }
+    }
+}
+
+/// How a corner found by the detector is refined (OpenCV's `CornerRefineMethod`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum CornerRefinement {
+    None,
+    Subpix,
+    Contour,
+}
+
+/// ArUco detector parameters (OpenCV's `DetectorParameters`) and the sighting filter.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct DetectorConfig {
+    /// Adaptive threshold windows: from `min` to `max` pixels in steps of `step` (odd sizes).
+    pub adaptive_thresh_win_size_min: i32,
+    pub adaptive_thresh_win_size_max: i32,
+    pub adaptive_thresh_win_size_step: i32,
+    /// Smallest marker perimeter as a fraction of the image's larger side.
+    pub min_marker_perimeter_rate: f64,
+    pub corner_refinement: CornerRefinement,
+    /// Half-size of the sub-pixel refinement window, pixels (small keeps far corners sharp).
+    pub corner_refinement_win_size: i32,
+    /// A sighting whose RMS reprojection error exceeds this is rejected, pixels.
+    pub max_reprojection_error_px: f64,
+    /// Sightings further than this are dropped, metres.
+    pub max_range: f64,
+}
+
+impl Default for DetectorConfig {
+    fn default() -> Self {
+        Self {
+            adaptive_thresh_win_size_min: 7,
+            adaptive_thresh_win_size_max: 17,
+            adaptive_thresh_win_size_step: 10,
+            min_marker_perimeter_rate: 0.03,
+            corner_refinement: CornerRefinement::Subpix,
+            corner_refinement_win_size: 2,
+            max_reprojection_error_px: 1.5,
+            max_range: 4.0,
+        }
+    }
+}
+
+/// The twin's rendered camera: lighting and noise of the synthetic frames.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct RenderConfig {
+    /// Grey level of the background (walls, floor), 0-255.
+    pub background: f64,
+    /// Grey levels of a marker's black and white cells under full light, 0-255.
+    pub black: f64,
+    pub white: f64,
+    /// Light falling on the scene, as a factor on every grey level (1: as configured).
+    pub brightness: f64,
+    /// Standard deviation of the per-pixel noise, grey levels.
+    pub noise_std: f64,
+}
+
+impl Default for RenderConfig {
+    fn default() -> Self {
+        Self {
+            background: 140.0,
+            black: 25.0,
+            white: 230.0,
+            brightness: 1.0,
+            noise_std: 3.0,
+        }
+    }
+}
+
+impl VisionConfig {
+    /// The first field that is out of range: (name in the section, value, reason).
+    pub fn validate(&self) -> Result<(), (&'static str, f64, &'static str)> {
+        let m = &self.markers;
+        let d = &self.detector;
+        let r = &self.render;
+        let positive = [
+            ("markers.boundary_side", m.boundary_side),
+            ("markers.obstacle_side", m.obstacle_side),
+            ("markers.gate_side", m.gate_side),
+            ("markers.block_side", m.block_side),
+            (
+                "detector.min_marker_perimeter_rate",
+                d.min_marker_perimeter_rate,
+            ),
+            (
+                "detector.max_reprojection_error_px",
+                d.max_reprojection_error_px,
+            ),
+            ("detector.max_range", d.max_range),
+            ("render.brightness", r.brightness),
+        ];
+        crate::field_check::all_positive(&positive)?;
+        let non_negative = [
+            ("markers.wall_height", m.wall_height),
+            ("markers.block_height", m.block_height),
+            ("render.noise_std", r.noise_std),
+        ];
+        crate::field_check::all_non_negative(&non_negative)?;
+        let finite = [
+            ("mount.rotation_deg[0]", self.mount.rotation_deg[0]),
+            ("mount.rotation_deg[1]", self.mount.rotation_deg[1]),
+            ("mount.rotation_deg[2]", self.mount.rotation_deg[2]),
+            ("mount.translation[0]", self.mount.translation[0]),
+            ("mount.translation[1]", self.mount.translation[1]),
+            ("mount.translation[2]", self.mount.translation[2]),
+        ];
+        if let Some((field, value)) = finite.into_iter().find(|(_, v)| !v.is_finite()) {
+            return Err((field, value, "must be a finite number"));
+        }
+        let grey = [
+            ("render.background", r.background),
+            ("render.black", r.black),
+            ("render.white", r.white),
+        ];
+        if let Some((field, value)) = grey.into_iter().find(|(_, v)| !(0.0..=255.0).contains(v)) {
+            return Err((field, value, "must lie in 0..=255"));
+        }
+        if r.white <= r.black {
+            return Err(("render.white", r.white, "must be above render.black"));
+        }
+        let windows = [
+            (
+                "detector.adaptive_thresh_win_size_min",
+                d.adaptive_thresh_win_size_min,
+            ),
+            (
+                "detector.adaptive_thresh_win_size_max",
+                d.adaptive_thresh_win_size_max,
+            ),
+        ];
+        if let Some((field, value)) = windows.into_iter().find(|(_, v)| *v < 3) {
+            return Err((field, f64::from(value), "must be at least 3 pixels"));
+        }
+        if d.adaptive_thresh_win_size_max < d.adaptive_thresh_win_size_min {
+            return Err((
+                "detector.adaptive_thresh_win_size_max",
+                f64::from(d.adaptive_thresh_win_size_max),
+                "must not be below adaptive_thresh_win_size_min",
+            ));
+        }
+        if d.corner_refinement_win_size < 1 {
+            return Err((
+                "detector.corner_refinement_win_size",
+                f64::from(d.corner_refinement_win_size),
+                "must be at least 1",
+            ));
+        }
+        if d.adaptive_thresh_win_size_step < 1 {
+            return Err((
+                "detector.adaptive_thresh_win_size_step",
+                f64::from(d.adaptive_thresh_win_size_step),
+                "must be at least 1",
+            ));
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn defaults_are_valid_and_carry_seed_001_mount() {
+        let v = VisionConfig::default();
+        assert_eq!(v.validate(), Ok(()));
+        assert_eq!(v.mount.rotation_deg, [-124.0, 0.0, -90.0]);
+        assert_eq!(v.mount.translation, [0.03, 0.0, 0.28]);
+        assert_eq!(v.markers.side(421), 0.04);
+        assert_eq!(v.markers.side(7), 0.10);
+    }
+
+    #[test]
+    fn bad_values_name_their_field() {
+        let mut v = VisionConfig::default();
+        v.render.white = 10.0;
+        assert_eq!(v.validate().unwrap_err().0, "render.white");
+        let mut v = VisionConfig::default();
+        v.markers.block_side = 0.0;
+        assert_eq!(v.validate().unwrap_err().0, "markers.block_side");
+        let mut v = VisionConfig::default();
+        v.detector.adaptive_thresh_win_size_max = 5;
+        assert_eq!(
+            v.validate().unwrap_err().0,
+            "detector.adaptive_thresh_win_size_max"
+        );
+    }
+}

@@ -1,0 +1,195 @@
+//! A grey camera frame, as every camera source hands it to the detector, and the small
+//! thumbnail the console draws of it.
+
+use serde::Serialize;
+
+/// An 8-bit grey image, rows top to bottom, `width * height` bytes.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct GrayFrame {
+    pub width: usize,
+    pub height: usize,
+    pub data: Vec<u8>,
+}
+
+/// Why raw image bytes could not become a frame.
+#[derive(Debug, thiserror::Error, PartialEq, Eq)]
+pub enum FrameError {
+    #[error("image encoding `{0}` is not supported: expected mono8, rgb8 or bgr8")]
+    Encoding(String),
+    #[error("image {width}x{height} {encoding} with step {step} needs {needed} bytes, got {got}")]
+    Size {
+        width: usize,
+        height: usize,
+        encoding: String,
+        step: usize,
+        needed: usize,
+        got: usize,
+    },
+}
+
+impl GrayFrame {
+    /// A frame of one grey level.
+    pub fn filled(width: usize, height: usize, level: u8) -> Self {
+        Self {
+            width,
+            height,
+            data: vec![level; width * height],
+        }
+    }
+
+    /// From sensor_msgs/Image fields: `encoding` mono8, rgb8 or bgr8, `step` bytes per row.
+    pub fn from_raw(
+        width: usize,
+        height: usize,
+        encoding: &str,
+        step: usize,
+        bytes: &[u8],
+    ) -> Result<Self, FrameError> {
+        let channels = match encoding {
+            "mono8" => 1,
+            "rgb8" | "bgr8" => 3,
+            other => return Err(FrameError::Encoding(other.to_string())),
+        };
+        let needed = if height == 0 {
+            0
+        } else {
+            step * (height - 1) + width * channels
+        };
+        if step < width * channels || bytes.len() < needed {
+            return Err(FrameError::Size {
+                width,
+                height,
+                encoding: encoding.to_string(),
+                step,
+                needed,
+                got: bytes.len(),
+            });
+        }
+        let (r, b) = if encoding == "rgb8" { (0, 2) } else { (2, 0) };
+        let mut data = Vec::with_capacity(width * height);
+        for row in bytes.chunks(step).take(height) {
+            let row = &row[..width * channels];
+            if channels == 1 {
+                data.extend_from_slice(row);
+            } else {
+                // ITU-R BT.601 luma, as OpenCV's cvtColor: Y = 0.299 R + 0.587 G + 0.114 B.
+                data.extend(row.chunks_exact(3).map(|p| {
+                    let y = 299 * u32::from(p[r]) + 587 * u32::from(p[1]) + 114 * u32::from(p[b]);
+                    ((y + 500) / 1000) as u8
+                }));
+            }
+        }
+        Ok(Self {
+            width,
+            height,
+            data,
+        })
+    }
+
+    /// Grey level at (x, y); 0 outside the frame.
+    pub fn at(&self, x: usize, y: usize) -> u8 {
+        if x < self.width && y < self.height {
+            self.data[y * self.width + x]
+        } else {
+            0
+        }
+    }
+
+    /// The frame shrunk to `width` x `height` by averaging boxes of pixels.
+    pub fn thumbnail(&self, width: usize, height: usize) -> Thumbnail {
+        let (w, h) = (width.max(1), height.max(1));
+        let mut pixels = Vec::with_capacity(w * h);
+        for ty in 0..h {
+            let (y0, y1) = (
+                ty * self.height / h,
+                ((ty + 1) * self.height / h).max(ty * self.height / h + 1),
+            );
+            for tx in 0..w {
+                let (x0, x1) = (
+                    tx * self.width / w,
+                    ((tx + 1) * self.width / w).max(tx * self.width / w + 1),
+                );
+                let (mut sum, mut n) = (0u32, 0u32);
+                for y in y0..y1.min(self.height) {
+                    for x in x0..x1.min(self.width) {
+                        sum += u32::from(self.data[y * self.width + x]);
+                        n += 1;
+                    }
+                }
+                pixels.push(sum.checked_div(n).unwrap_or(0) as u8);
+            }
+        }
+        Thumbnail {
+            width: w,
+            height: h,
+            pixels,
+        }
+    }
+}
+
+/// A small grey picture of the newest frame for the console.
+#[derive(Clone, Debug, Default, PartialEq, Eq, Serialize)]
+pub struct Thumbnail {
+    pub width: usize,
+    pub height: usize,
+    pub pixels: Vec<u8>,
+}
+
+impl Thumbnail {
+    pub fn at(&self, x: usize, y: usize) -> u8 {
+        if x < self.width && y < self.height {
+            self.pixels[y * self.width + x]
+        } else {
+            0
+        }
+    }
+}
+
+/// What the camera pipeline made of one frame, for the console.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct CameraStatus {
+    /// Every marker ID decoded, ascending.
+    pub ids: Vec<u32>,
+    /// Sightings passed on to the estimator.
+    pub accepted: usize,
+    /// Sightings refused (reprojection error or range).
+    pub rejected: usize,
+    /// Seconds detection took, when a stopwatch was at hand.
+    pub latency: Option<f64>,
+    pub thumbnail: Option<Thumbnail>,
+    /// Why the frame could not be used, if it could not.
+    pub error: Option<String>,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn colour_bytes_become_grey_with_bt601_weights() {
+        // One row of two pixels, padded to a step of 8 bytes.
+        let rgb = [255, 0, 0, 0, 0, 255, 9, 9];
+        let f = GrayFrame::from_raw(2, 1, "rgb8", 8, &rgb).unwrap();
+        assert_eq!(f.data, vec![76, 29]);
+        let f = GrayFrame::from_raw(2, 1, "bgr8", 8, &rgb).unwrap();
+        assert_eq!(f.data, vec![29, 76]);
+        let f = GrayFrame::from_raw(2, 2, "mono8", 3, &[1, 2, 0, 3, 4]).unwrap();
+        assert_eq!(f.data, vec![1, 2, 3, 4]);
+    }
+
+    #[test]
+    fn short_buffers_and_unknown_encodings_are_named() {
+        let e = GrayFrame::from_raw(4, 2, "mono8", 4, &[0; 7]).unwrap_err();
+        assert!(e.to_string().contains("needs 8 bytes, got 7"), "{e}");
+        let e = GrayFrame::from_raw(1, 1, "yuv422", 2, &[0; 2]).unwrap_err();
+        assert!(e.to_string().contains("yuv422"), "{e}");
+    }
+
+    #[test]
+    fn thumbnail_averages_boxes() {
+        let mut f = GrayFrame::filled(4, 2, 0);
+        f.data[0..2].copy_from_slice(&[200, 100]);
+        let t = f.thumbnail(2, 1);
+        assert_eq!(t.pixels, vec![75, 0]);
+    }
+}

@@ -19,3 +19,19 @@ fn readme_gives_the_two_set_up_commands() {
     assert!(README.contains("cargo run --release"));
     assert!(README.contains("./scripts/test"));
 }
+
+#[test]
+fn every_readme_config_example_parses() {
+    let mut rest = README;
+    let mut count = 0;
+    while let Some(start) = rest.find("```toml\n") {
+        let body = &rest[start + "```toml\n".len()..];
+        let len = body.find("```").unwrap();
+        if let Err(e) = Config::parse(&body[..len], Path::new("README.md")) {
+            panic!("README toml example {count} does not parse: {e}");
+        }
+        count += 1;
+        rest = &body[len..];
+    }
+    assert!(count >= 3, "{count} examples");
+}

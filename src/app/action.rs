@@ -42,6 +42,7 @@ pub enum Action {
     ToggleBraille,
     ToggleTruth,
     ToggleLandmarks,
+    ToggleCamera,
     // Planning and following.
     CursorLeft,
     CursorRight,
@@ -58,7 +59,7 @@ pub enum Action {
 
 impl Action {
     /// Every action, in the order the help overlay lists them.
-    pub const ALL: [Action; 46] = [
+    pub const ALL: [Action; 47] = [
         Action::ModeManual,
         Action::ModeExplore,
         Action::ModeThink,
@@ -95,6 +96,7 @@ impl Action {
         Action::ToggleBraille,
         Action::ToggleTruth,
         Action::ToggleLandmarks,
+        Action::ToggleCamera,
         Action::CursorLeft,
         Action::CursorRight,
         Action::CursorUp,
@@ -146,6 +148,7 @@ impl Action {
             Action::ToggleBraille => "toggle_braille",
             Action::ToggleTruth => "toggle_truth",
             Action::ToggleLandmarks => "toggle_landmarks",
+            Action::ToggleCamera => "toggle_camera",
             Action::CursorLeft => "cursor_left",
             Action::CursorRight => "cursor_right",
             Action::CursorUp => "cursor_up",
@@ -203,6 +206,7 @@ impl Action {
             Action::ToggleBraille => "braille / ASCII map",
             Action::ToggleTruth => "show the twin's truth",
             Action::ToggleLandmarks => "landmark table on/off",
+            Action::ToggleCamera => "camera panel, braille, off",
             Action::CursorLeft => "goal cursor left",
             Action::CursorRight => "goal cursor right",
             Action::CursorUp => "goal cursor up",

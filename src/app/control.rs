@@ -153,6 +153,9 @@ impl App {
                     self.map_sightings(&s);
                     self.note_frame(s.iter().map(|m| m.id).collect());
                 }
+                if let Some(status) = frame.camera {
+                    self.note_camera(t, status);
+                }
                 if let Some(scan) = &frame.scan {
                     self.map_scan(t, scan);
                 }

@@ -4,6 +4,7 @@
 //! the headless runner and the tests pass simulated time.
 
 pub mod action;
+mod camera_feed;
 mod command;
 mod control;
 pub mod estimate;
@@ -116,6 +117,7 @@ pub struct App {
     visible: Option<revision::Visible>,
     /// When the full picture last went to the link.
     picture_at: f64,
+    camera: camera_feed::CameraFeed,
 }
 
 impl App {
@@ -178,6 +180,7 @@ impl App {
             revision: 0,
             visible: None,
             picture_at: f64::NEG_INFINITY,
+            camera: camera_feed::CameraFeed::default(),
             config,
         };
         app.map_footprint();
@@ -350,6 +353,7 @@ impl App {
             }
             Action::ToggleBraille => self.view.braille = !self.view.braille,
             Action::ToggleLandmarks => self.view.landmarks = !self.view.landmarks,
+            Action::ToggleCamera => self.view.camera = self.view.camera.next(),
             Action::ToggleTruth => {
                 if self.link.twin().is_some() {
                     self.view.show_truth = !self.view.show_truth;

@@ -37,6 +37,8 @@ pub(super) struct Visible {
     arrived: bool,
     picked: usize,
     maps: usize,
+    /// Camera frames, while the camera panel shows them.
+    camera: Option<u64>,
 }
 
 fn centi(v: f64) -> i64 {
@@ -109,6 +111,8 @@ impl App {
                     .map(|b| (centi(b.pose.x), centi(b.pose.y)))
                     .collect()
             }),
+            camera: (self.view.camera != super::view::CameraPanel::Off)
+                .then_some(self.camera.frames),
         };
         if self.visible.as_ref() != Some(&visible) {
             self.visible = Some(visible);

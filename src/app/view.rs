@@ -16,6 +16,28 @@ pub struct ViewState {
     pub help: bool,
     /// The landmark table over the map.
     pub landmarks: bool,
+    /// The camera panel over the map, and how its thumbnail is drawn.
+    pub camera: CameraPanel,
+}
+
+/// The camera panel: hidden, or shown with its thumbnail in half blocks or braille.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum CameraPanel {
+    #[default]
+    Off,
+    HalfBlock,
+    Braille,
+}
+
+impl CameraPanel {
+    /// The next style the toggle key gives.
+    pub fn next(self) -> Self {
+        match self {
+            Self::Off => Self::HalfBlock,
+            Self::HalfBlock => Self::Braille,
+            Self::Braille => Self::Off,
+        }
+    }
 }
 
 impl Default for ViewState {
@@ -27,6 +49,7 @@ impl Default for ViewState {
             show_truth: true,
             help: false,
             landmarks: false,
+            camera: CameraPanel::Off,
         }
     }
 }

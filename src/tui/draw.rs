@@ -1,7 +1,7 @@
 //! Composes one frame from the panels; reads the app, never changes it.
 
 use super::theme::Theme;
-use super::widgets::{help, landmarks, log, map, status, title};
+use super::widgets::{camera, help, landmarks, log, map, status, title};
 use crate::app::App;
 use crate::app::screen::{Area, MIN_SIZE, layout};
 use ratatui::Frame;
@@ -64,6 +64,9 @@ pub fn draw(frame: &mut Frame, app: &App, theme: Theme) {
 
     if app.view().landmarks {
         draw_landmarks(frame, app, theme, map_rect);
+    }
+    if app.view().camera != crate::app::view::CameraPanel::Off {
+        draw_camera(frame, app, theme, map_rect);
     }
     if let Some((entries, selected)) = app.map_picker() {
         draw_picker(frame, entries, selected, theme, map_rect);
@@ -140,6 +143,40 @@ fn draw_landmarks(frame: &mut Frame, app: &App, theme: Theme, map: Rect) {
         Paragraph::new(landmarks::lines(app, theme, rows)).block(block),
         area,
     );
+}
+
+/// The camera panel in the map's top-left corner: 32 columns of thumbnail (16:9).
+fn draw_camera(frame: &mut Frame, app: &App, theme: Theme, map: Rect) {
+    let width = 34.min(map.width);
+    let thumb_rows = 9;
+    let height = (camera::TEXT_ROWS + thumb_rows + 2).min(map.height);
+    let area = Rect::new(map.x, map.y, width, height);
+    let block = Block::bordered()
+        .title(" Camera (v) ")
+        .border_style(theme.border());
+    let inner = block.inner(area);
+    frame.render_widget(Clear, area);
+    frame.render_widget(Paragraph::new(camera::lines(app, theme)).block(block), area);
+    let thumb_area = Rect::new(
+        inner.x,
+        inner.y + camera::TEXT_ROWS.min(inner.height),
+        inner.width,
+        inner.height.saturating_sub(camera::TEXT_ROWS),
+    );
+    if let Some(thumb) = app
+        .camera()
+        .status
+        .as_ref()
+        .and_then(|s| s.thumbnail.as_ref())
+    {
+        camera::thumbnail(
+            thumb,
+            app.view().camera,
+            theme,
+            thumb_area,
+            frame.buffer_mut(),
+        );
+    }
 }
 
 fn map_title(app: &App) -> String {

@@ -1,6 +1,7 @@
 //! The console's panels, each a read-only view of the `App`.
 
 pub mod beliefs;
+pub mod camera;
 pub mod help;
 pub mod landmarks;
 pub mod log;

@@ -61,6 +61,12 @@ struct Cli {
     #[arg(long)]
     sim_camera: bool,
 
+    /// A camera beside the robot's link, read with OpenCV's ArUco detector on its own
+    /// threads (feature `vision`): a V4L2 device (/dev/video0 or 0) or `ros2:TOPIC`
+    /// (sensor_msgs/Image).
+    #[arg(long, value_name = "SOURCE", conflicts_with = "sim_camera")]
+    camera: Option<String>,
+
     /// Start with the braille map instead of ASCII.
     #[arg(long)]
     braille: bool,
@@ -230,6 +236,9 @@ fn real_main(cli: Cli) -> Result<ExitCode> {
     let mut session = Session::load(&spec)?;
     if cli.sim_camera {
         session.use_sim_camera(Some(std::sync::Arc::new(WallStopwatch::start())))?;
+    }
+    if let Some(source) = &cli.camera {
+        session = session.with_camera(source, std::sync::Arc::new(WallStopwatch::start()))?;
     }
     if cli.headless {
         return run_headless(session, &cli);

@@ -59,6 +59,8 @@ pub struct Session {
     pub config: Config,
     pub keymap: Keymap,
     pub link: Box<dyn RobotLink>,
+    /// The DDS domain of a ROS 2 link, for a ROS 2 camera beside it.
+    pub ros2_domain: Option<u16>,
 }
 
 impl Session {
@@ -71,6 +73,7 @@ impl Session {
             Some(path) => Keymap::load(path)?,
             None => Keymap::default_map(),
         };
+        let mut ros2_domain = None;
         let link: Box<dyn RobotLink> = match &spec.link {
             LinkChoice::Sim => {
                 let world = match &spec.world {
@@ -88,6 +91,7 @@ impl Session {
                 }
                 let domain = domain_from(target.domain, std::env::var("ROS_DOMAIN_ID").ok())
                     .map_err(anyhow::Error::msg)?;
+                ros2_domain = Some(domain);
                 let link = Ros2Link::connect(Ros2Options {
                     config: ros2,
                     domain,
@@ -102,6 +106,7 @@ impl Session {
             config,
             keymap,
             link,
+            ros2_domain,
         })
     }
 
@@ -127,6 +132,61 @@ impl Session {
             let _ = stopwatch;
             bail!(
                 "--sim-camera needs navdeck built with the `vision` feature \
+                 (cargo build --features vision; needs OpenCV: libopencv-dev libopencv-contrib-dev clang libclang-dev)"
+            )
+        }
+    }
+
+    /// Adds a camera beside the link (`--camera`): a V4L2 device, or `ros2:TOPIC` for a
+    /// sensor_msgs/Image topic, detected on the pipeline's own threads.
+    pub fn with_camera(
+        self,
+        source: &str,
+        stopwatch: std::sync::Arc<dyn crate::perception::stopwatch::Stopwatch>,
+    ) -> Result<Session> {
+        #[cfg(feature = "vision")]
+        {
+            use crate::perception::pipeline::{CameraPipeline, FrameSource, V4l2Source};
+            let detector = crate::perception::aruco::Detector::from_config(&self.config.vision)
+                .context("cannot set up the ArUco detector")?;
+            let frames: Box<dyn FrameSource> = match source.strip_prefix("ros2:") {
+                Some(topic) => {
+                    let domain = match self.ros2_domain {
+                        Some(d) => d,
+                        None => domain_from(None, std::env::var("ROS_DOMAIN_ID").ok())
+                            .map_err(anyhow::Error::msg)?,
+                    };
+                    Box::new(
+                        crate::link::ros2::image::Ros2ImageSource::connect(
+                            &self.config.ros2,
+                            domain,
+                            topic,
+                        )
+                        .with_context(|| format!("cannot subscribe to camera topic {topic}"))?,
+                    )
+                }
+                None => {
+                    let k = detector.intrinsics();
+                    Box::new(
+                        V4l2Source::open(source, k.width, k.height).map_err(anyhow::Error::msg)?,
+                    )
+                }
+            };
+            let pipeline = CameraPipeline::start(frames, detector, Some(stopwatch));
+            Ok(Session {
+                link: Box::new(crate::link::camera::WithCamera::new(
+                    self.link,
+                    pipeline,
+                    source.to_string(),
+                )),
+                ..self
+            })
+        }
+        #[cfg(not(feature = "vision"))]
+        {
+            let _ = (stopwatch, self);
+            bail!(
+                "--camera {source} needs navdeck built with the `vision` feature \
                  (cargo build --features vision; needs OpenCV: libopencv-dev libopencv-contrib-dev clang libclang-dev)"
             )
         }

@@ -72,7 +72,10 @@ fn v_cycles_the_camera_panel_through_half_blocks_braille_and_off() {
     assert!(screen.contains("Camera (v)"), "{screen}");
     assert!(screen.contains("10.0 Hz  detect 7.4 ms"), "{screen}");
     assert!(screen.contains("IDs 3 12 421 (1 refused)"), "{screen}");
-    assert!(screen.matches('▀').count() >= 32 * 9, "a 32x9 half-block thumbnail");
+    assert!(
+        screen.matches('▀').count() >= 32 * 9,
+        "a 32x9 half-block thumbnail"
+    );
 
     app.handle_key(Key::char('v'), KeyKind::Press, t);
     let screen = render(&app);

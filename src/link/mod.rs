@@ -1,6 +1,8 @@
 //! The one trait every robot connection implements (twin, ROS 2, serial, test doubles),
 //! and the data that crosses it.
 
+#[cfg(feature = "vision")]
+pub mod camera;
 pub mod ros2;
 pub mod serial;
 pub mod sim;

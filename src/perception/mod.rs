@@ -10,4 +10,6 @@ pub mod frame;
 pub mod intrinsics;
 pub mod markers;
 pub mod mount;
+#[cfg(feature = "vision")]
+pub mod pipeline;
 pub mod stopwatch;

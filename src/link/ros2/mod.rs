@@ -7,6 +7,8 @@
 
 pub mod cmd_vel;
 pub mod config;
+#[cfg(feature = "vision")]
+pub mod image;
 pub mod inbound;
 pub mod msgs;
 pub mod picture;
@@ -209,41 +211,52 @@ impl Factory<'_> {
     }
 }
 
+/// Joins the DDS domain on the configured interfaces and makes a node `name` in the
+/// configured namespace: (context, namespace, node).
+fn join(
+    config: &Ros2Config,
+    domain: u16,
+    name: &str,
+) -> Result<(Context, String, Node), LinkError> {
+    let mut builder = ros2_client::dds::rustdds::DomainParticipantBuilder::new(domain);
+    if !config.interfaces.is_empty() {
+        let mut addresses = Vec::new();
+        for text in &config.interfaces {
+            let ip: std::net::IpAddr = text.parse().map_err(|_| {
+                LinkError::Lost(format!("[ros2] interfaces: {text:?} is not an IP address"))
+            })?;
+            addresses.push(ip);
+        }
+        builder = builder.with_only_networks(addresses);
+    }
+    let participant = builder
+        .build()
+        .map_err(|e| fail(format!("join DDS domain {domain}"), e))?;
+    let context = Context::from_domain_participant(participant)
+        .map_err(|e| fail("start a ROS 2 context", e))?;
+    let namespace = if config.namespace.is_empty() {
+        "/".to_string()
+    } else {
+        config.namespace.clone()
+    };
+    let node_name = NodeName::new(&namespace, name).map_err(|e| {
+        LinkError::Lost(format!(
+            "[ros2] namespace = {:?} is not a ROS 2 namespace: {e:?}",
+            config.namespace
+        ))
+    })?;
+    let node = context
+        .new_node(node_name, NodeOptions::new().enable_rosout(false))
+        .map_err(|e| fail(format!("create the {name} node"), e))?;
+    Ok((context, namespace, node))
+}
+
 impl Ros2Link {
     /// Joins the DDS domain and sets up every topic. Nothing is published until the
     /// first command.
     pub fn connect(options: Ros2Options) -> Result<Self, LinkError> {
         let config = options.config;
-        let mut builder = ros2_client::dds::rustdds::DomainParticipantBuilder::new(options.domain);
-        if !config.interfaces.is_empty() {
-            let mut addresses = Vec::new();
-            for text in &config.interfaces {
-                let ip: std::net::IpAddr = text.parse().map_err(|_| {
-                    LinkError::Lost(format!("[ros2] interfaces: {text:?} is not an IP address"))
-                })?;
-                addresses.push(ip);
-            }
-            builder = builder.with_only_networks(addresses);
-        }
-        let participant = builder
-            .build()
-            .map_err(|e| fail(format!("join DDS domain {}", options.domain), e))?;
-        let context = Context::from_domain_participant(participant)
-            .map_err(|e| fail("start a ROS 2 context", e))?;
-        let namespace = if config.namespace.is_empty() {
-            "/".to_string()
-        } else {
-            config.namespace.clone()
-        };
-        let node_name = NodeName::new(&namespace, "navdeck").map_err(|e| {
-            LinkError::Lost(format!(
-                "[ros2] namespace = {:?} is not a ROS 2 namespace: {e:?}",
-                config.namespace
-            ))
-        })?;
-        let mut node = context
-            .new_node(node_name, NodeOptions::new().enable_rosout(false))
-            .map_err(|e| fail("create the navdeck node", e))?;
+        let (context, namespace, mut node) = join(&config, options.domain, "navdeck")?;
         let c = &config;
         let mut f = Factory {
             node: &mut node,

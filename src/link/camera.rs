@@ -1,0 +1,68 @@
+//! A camera beside any link (`--camera`): the robot's link drives and senses as before,
+//! and the camera pipeline's newest detection rides along in each frame.
+
+use super::{Command, LinkError, Notice, Picture, RobotLink, SensorFrame};
+use crate::perception::pipeline::CameraPipeline;
+
+pub struct WithCamera {
+    inner: Box<dyn RobotLink>,
+    pipeline: CameraPipeline,
+    source: String,
+}
+
+impl WithCamera {
+    pub fn new(inner: Box<dyn RobotLink>, pipeline: CameraPipeline, source: String) -> Self {
+        Self {
+            inner,
+            pipeline,
+            source,
+        }
+    }
+
+    pub fn pipeline(&self) -> &CameraPipeline {
+        &self.pipeline
+    }
+}
+
+impl RobotLink for WithCamera {
+    fn label(&self) -> String {
+        format!("{} + camera {}", self.inner.label(), self.source)
+    }
+
+    fn send(&mut self, command: &Command) -> Result<(), LinkError> {
+        self.inner.send(command)
+    }
+
+    fn poll(&mut self, now: f64) -> Result<SensorFrame, LinkError> {
+        let mut frame = self.inner.poll(now)?;
+        if let Some((sightings, status)) = self.pipeline.take_latest() {
+            frame.sightings = Some(sightings);
+            frame.camera = Some(status);
+        }
+        Ok(frame)
+    }
+
+    fn stop(&mut self) {
+        self.inner.stop();
+    }
+
+    fn picture_period(&self) -> Option<f64> {
+        self.inner.picture_period()
+    }
+
+    fn show(&mut self, picture: &Picture) {
+        self.inner.show(picture);
+    }
+
+    fn twin(&self) -> Option<&crate::sim::Twin> {
+        self.inner.twin()
+    }
+
+    fn take_notes(&mut self) -> Vec<Notice> {
+        self.inner.take_notes()
+    }
+
+    fn twin_mut(&mut self) -> Option<&mut crate::sim::Twin> {
+        self.inner.twin_mut()
+    }
+}

@@ -7,7 +7,7 @@
 
 use super::calibration;
 use super::config::{CornerRefinement, VisionConfig};
-use super::frame::GrayFrame;
+use super::frame::{CameraStatus, GrayFrame};
 use super::intrinsics::Intrinsics;
 use super::mount::{Mount, range_bearing};
 use super::stopwatch::Stopwatch;
@@ -76,6 +76,9 @@ impl Detection {
         self.sightings.iter().map(ArucoSighting::sighting).collect()
     }
 }
+
+/// Thumbnail size handed to the console, pixels.
+pub const THUMBNAIL: (usize, usize) = (96, 54);
 
 /// The ArUco detector and pose solver of one camera.
 pub struct Detector {
@@ -157,6 +160,29 @@ impl Detector {
     /// The dictionary markers are drawn from and looked up in.
     pub fn dictionary(&self) -> &Ptr<aruco::Dictionary> {
         &self.dictionary
+    }
+
+    /// Reads `frame` for the console: the sightings for the estimator, and the status
+    /// (IDs, counts, latency, thumbnail) for the camera panel.
+    pub fn read(
+        &self,
+        frame: &GrayFrame,
+        stopwatch: Option<&dyn Stopwatch>,
+    ) -> (Vec<MarkerSighting>, CameraStatus) {
+        match self.detect(frame, stopwatch) {
+            Ok(d) => (
+                d.marker_sightings(),
+                CameraStatus {
+                    accepted: d.sightings.len(),
+                    rejected: d.rejected,
+                    ids: d.ids,
+                    latency: d.latency,
+                    thumbnail: Some(frame.thumbnail(THUMBNAIL.0, THUMBNAIL.1)),
+                    error: None,
+                },
+            ),
+            Err(e) => (Vec::new(), CameraStatus::failed(e.to_string())),
+        }
     }
 
     /// Finds the markers in `frame` and measures each one's range and bearing from the

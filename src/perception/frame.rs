@@ -161,6 +161,16 @@ pub struct CameraStatus {
     pub error: Option<String>,
 }
 
+impl CameraStatus {
+    /// A frame that could not be used, and why.
+    pub fn failed(error: impl Into<String>) -> Self {
+        Self {
+            error: Some(error.into()),
+            ..Self::default()
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

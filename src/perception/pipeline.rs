@@ -12,8 +12,6 @@ use std::sync::{Arc, Condvar, Mutex};
 use std::thread::JoinHandle;
 use std::time::Duration;
 
-/// Thumbnail size handed to the console, pixels.
-const THUMB: (usize, usize) = (96, 54);
 /// How long the detection thread waits for a frame before looking at the stop flag.
 const WAIT: Duration = Duration::from_millis(100);
 
@@ -104,7 +102,7 @@ impl CameraPipeline {
                         }
                         Ok(None) => {}
                         Err(e) => {
-                            results.put((Vec::new(), failed(e)));
+                            results.put((Vec::new(), CameraStatus::failed(e)));
                             // A camera that fails is asked again, not hammered.
                             std::thread::sleep(Duration::from_millis(500));
                         }
@@ -120,20 +118,7 @@ impl CameraPipeline {
                     let Some(frame) = frames.take_waiting(WAIT) else {
                         continue;
                     };
-                    let result = match detector.detect(&frame, stopwatch.as_deref()) {
-                        Ok(d) => (
-                            d.marker_sightings(),
-                            CameraStatus {
-                                accepted: d.sightings.len(),
-                                rejected: d.rejected,
-                                ids: d.ids,
-                                latency: d.latency,
-                                thumbnail: Some(frame.thumbnail(THUMB.0, THUMB.1)),
-                                error: None,
-                            },
-                        ),
-                        Err(e) => (Vec::new(), failed(e.to_string())),
-                    };
+                    let result = detector.read(&frame, stopwatch.as_deref());
                     counts.detected.fetch_add(1, Ordering::SeqCst);
                     results.put(result);
                 }
@@ -163,13 +148,6 @@ impl Drop for CameraPipeline {
         for t in self.threads.drain(..) {
             let _ = t.join();
         }
-    }
-}
-
-fn failed(error: String) -> CameraStatus {
-    CameraStatus {
-        error: Some(error),
-        ..CameraStatus::default()
     }
 }
 

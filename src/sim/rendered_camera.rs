@@ -287,9 +287,6 @@ impl std::fmt::Debug for RenderedCamera {
     }
 }
 
-/// Thumbnail size handed to the console, pixels.
-const THUMB: (usize, usize) = (96, 54);
-
 impl RenderedCamera {
     pub fn new(
         vision: &VisionConfig,
@@ -315,28 +312,8 @@ impl RenderedCamera {
             .render(&self.detector, pose, markers, occluders, rng)
         {
             Ok(f) => f,
-            Err(e) => return (Vec::new(), failed(e.to_string())),
+            Err(e) => return (Vec::new(), CameraStatus::failed(e.to_string())),
         };
-        match self.detector.detect(&frame, self.stopwatch.as_deref()) {
-            Ok(d) => (
-                d.marker_sightings(),
-                CameraStatus {
-                    accepted: d.sightings.len(),
-                    rejected: d.rejected,
-                    ids: d.ids,
-                    latency: d.latency,
-                    thumbnail: Some(frame.thumbnail(THUMB.0, THUMB.1)),
-                    error: None,
-                },
-            ),
-            Err(e) => (Vec::new(), failed(e.to_string())),
-        }
-    }
-}
-
-fn failed(error: String) -> CameraStatus {
-    CameraStatus {
-        error: Some(error),
-        ..CameraStatus::default()
+        self.detector.read(&frame, self.stopwatch.as_deref())
     }
 }

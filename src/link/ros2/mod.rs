@@ -164,6 +164,23 @@ struct Factory<'a> {
 }
 
 impl Factory<'_> {
+    fn topic(
+        &mut self,
+        field: &str,
+        name: &str,
+        package: &str,
+        kind: &str,
+        qos: &QosProfile,
+    ) -> Result<ros2_client::dds::rustdds::Topic, LinkError> {
+        self.node
+            .create_topic(
+                &topic_name(self.namespace, field, name)?,
+                MessageTypeName::new(package, kind),
+                qos,
+            )
+            .map_err(|e| fail(format!("create topic {name}"), e))
+    }
+
     fn publisher<M: Serialize>(
         &mut self,
         field: &str,
@@ -172,14 +189,7 @@ impl Factory<'_> {
         kind: &str,
         qos: QosProfile,
     ) -> Result<Publisher<M>, LinkError> {
-        let topic = self
-            .node
-            .create_topic(
-                &topic_name(self.namespace, field, name)?,
-                MessageTypeName::new(package, kind),
-                &qos,
-            )
-            .map_err(|e| fail(format!("create topic {name}"), e))?;
+        let topic = self.topic(field, name, package, kind, &qos)?;
         self.node
             .create_publisher(&topic, Some(qos))
             .map_err(|e| fail(format!("publish {name}"), e))
@@ -193,14 +203,7 @@ impl Factory<'_> {
         kind: &str,
         qos: QosProfile,
     ) -> Result<Subscription<M>, LinkError> {
-        let topic = self
-            .node
-            .create_topic(
-                &topic_name(self.namespace, field, name)?,
-                MessageTypeName::new(package, kind),
-                &qos,
-            )
-            .map_err(|e| fail(format!("create topic {name}"), e))?;
+        let topic = self.topic(field, name, package, kind, &qos)?;
         self.node
             .create_subscription(&topic, Some(qos))
             .map_err(|e| fail(format!("subscribe {name}"), e))

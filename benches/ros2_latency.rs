@@ -21,7 +21,10 @@ use std::sync::mpsc::{Receiver, RecvTimeoutError, channel};
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
+/// Presses measured by `cargo bench`; `cargo test` (no `--bench` argument) runs a
+/// three-press smoke test of the same path.
 const PRESSES: usize = 30;
+const SMOKE_PRESSES: usize = 3;
 const DOMAIN: u16 = 77;
 
 /// Keys from another thread, each stamped when it was handed over.
@@ -42,6 +45,11 @@ fn percentile(sorted: &[f64], p: f64) -> f64 {
 }
 
 fn main() {
+    let presses = if std::env::args().any(|a| a == "--bench") {
+        PRESSES
+    } else {
+        SMOKE_PRESSES
+    };
     let robot = ros2_support::FakeRobot::start(ros2_support::FakeOptions::new(DOMAIN));
     let mut config = Config::default();
     config.ros2.interfaces = vec!["127.0.0.1".into()];
@@ -64,7 +72,7 @@ fn main() {
     let pressed = Arc::new(Mutex::new(Vec::new()));
     let stamps = pressed.clone();
     let feeder = std::thread::spawn(move || {
-        for _ in 0..PRESSES {
+        for _ in 0..presses {
             // Long enough for the deadman to stop the robot and the zeros to go out.
             std::thread::sleep(Duration::from_millis(1200));
             stamps.lock().unwrap().push(Instant::now());
@@ -99,8 +107,9 @@ fn main() {
         })
         .collect();
     latencies.sort_by(f64::total_cmp);
+    assert_eq!(latencies.len(), presses, "every press reached the robot");
     println!(
-        "key press to cmd_vel received: {} of {PRESSES} presses, median {:.2} ms, p95 {:.2} ms, max {:.2} ms ({} frames drawn)",
+        "key press to cmd_vel received: {} of {presses} presses, median {:.2} ms, p95 {:.2} ms, max {:.2} ms ({} frames drawn)",
         latencies.len(),
         percentile(&latencies, 0.5),
         percentile(&latencies, 0.95),

@@ -253,3 +253,27 @@ fn the_twin_with_a_rendered_camera_reports_sightings_deterministically() {
     );
     assert_eq!(status.thumbnail.map(|t| t.width), Some(96));
 }
+
+/// The IDs the detector reads from `pose` in the arena with the camera of `cfg.mount`.
+fn ids_seen(cfg: &VisionConfig, pose: Pose2) -> Vec<u32> {
+    let world = World::default_arena();
+    let det = Detector::from_config(cfg).unwrap();
+    let mut renderer = Renderer::new(&cfg.markers, &cfg.render);
+    let mut rng = ChaCha8Rng::seed_from_u64(4);
+    let frame = renderer
+        .render(&det, pose, &world.markers, &[&world.walls], &mut rng)
+        .unwrap();
+    det.detect(&frame, None).unwrap().ids
+}
+
+#[test]
+fn the_twin_camera_maps_a_gate_from_1_8_m_where_the_seed_mount_cannot() {
+    // Facing the red gate (markers 401, 402 on the east wall at y 0.85 and 1.15) from 1.8 m.
+    let pose = Pose2::new(0.2, 1.0, 0.0);
+    let mut twin = VisionConfig::default();
+    twin.mount = twin.render.mount.clone();
+    let ids = ids_seen(&twin, pose);
+    assert!(ids.contains(&401) && ids.contains(&402), "{ids:?}");
+    // Seed 001's mount looks 34 degrees down from 0.28 m: the wall is above its view.
+    assert_eq!(ids_seen(&VisionConfig::default(), pose), Vec::<u32>::new());
+}

@@ -59,6 +59,11 @@ impl Camera {
         }
     }
 
+    /// The furthest a marker is seen from, metres.
+    pub fn max_range(&self) -> f64 {
+        self.max_range
+    }
+
     /// True range and bearing of `m` from `pose` if the camera can see it past `occluders`.
     pub fn visible(&self, pose: Pose2, m: &Marker, occluders: &[&[Segment]]) -> Option<(f64, f64)> {
         let (dx, dy) = (m.position.x - pose.x, m.position.y - pose.y);

@@ -1,9 +1,9 @@
 //! The twin's rendered camera (feature `vision`): the grey frame a pinhole camera with the
-//! configured intrinsics and mount sees of the arena's markers, which the ArUco detector
+//! configured intrinsics and mount (`[vision.render].mount`) sees of the arena's markers, which the ArUco detector
 //! then reads like a real frame.
 //!
 //! Each marker's picture comes from OpenCV's `aruco::drawMarker` with a white quiet zone
-//! of one cell, and is warped into the frame by the homography of its four corners,
+//! of two cells, and is warped into the frame by the homography of its four corners,
 //! far markers first. A marker is drawn when the line from the robot to it is clear of
 //! walls, obstacles and blocks (the ideal sensor's test); lighting scales every grey level
 //! and noise comes from the twin's seeded generator, so frames are deterministic.
@@ -288,13 +288,19 @@ impl std::fmt::Debug for RenderedCamera {
 }
 
 impl RenderedCamera {
+    /// The camera of `vision.render.mount` (not the real robot's `vision.mount`), whose
+    /// sightings end at `max_range` metres or the detector's own limit if nearer.
     pub fn new(
         vision: &VisionConfig,
+        max_range: f64,
         stopwatch: Option<std::sync::Arc<dyn Stopwatch>>,
     ) -> Result<Self, VisionError> {
+        let mut twin = vision.clone();
+        twin.mount = vision.render.mount.clone();
+        twin.detector.max_range = twin.detector.max_range.min(max_range);
         Ok(Self {
             renderer: Renderer::new(&vision.markers, &vision.render),
-            detector: Detector::from_config(vision)?,
+            detector: Detector::from_config(&twin)?,
             stopwatch,
         })
     }

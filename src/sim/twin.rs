@@ -193,7 +193,8 @@ impl Twin {
     }
 
     /// Replaces the ideal marker sensor by a rendered camera read with the ArUco
-    /// detector (feature `vision`); with a stopwatch, detection latency is reported.
+    /// detector (feature `vision`), which sees no further than the ideal sensor did; with
+    /// a stopwatch, detection latency is reported.
     #[cfg(feature = "vision")]
     pub fn use_rendered_camera(
         &mut self,
@@ -201,7 +202,9 @@ impl Twin {
         stopwatch: Option<Arc<dyn crate::perception::stopwatch::Stopwatch>>,
     ) -> Result<(), crate::perception::aruco::VisionError> {
         self.rendered = Some(Box::new(super::rendered_camera::RenderedCamera::new(
-            vision, stopwatch,
+            vision,
+            self.camera.max_range(),
+            stopwatch,
         )?));
         Ok(())
     }

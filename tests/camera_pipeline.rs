@@ -4,6 +4,7 @@
 #![cfg(feature = "vision")]
 
 mod common;
+mod vision_support;
 
 use navdeck::geometry::{Point2, Pose2};
 use navdeck::link::RobotLink;
@@ -19,14 +20,7 @@ use navdeck::sim::rendered_camera::Renderer;
 use rand::SeedableRng;
 use std::sync::atomic::Ordering;
 use std::time::{Duration, Instant};
-
-/// A level camera 10 cm up, so a wall marker 1 m ahead fills a good part of the frame.
-fn level() -> VisionConfig {
-    let mut v = VisionConfig::default();
-    v.mount.rotation_deg = [-90.0, 0.0, -90.0];
-    v.mount.translation = [0.03, 0.0, 0.10];
-    v
-}
+use vision_support::level;
 
 /// The frame of a wall marker `id` 1 m straight ahead.
 fn frame_with(cfg: &VisionConfig, detector: &Detector, id: u32) -> GrayFrame {

@@ -3,6 +3,8 @@
 //! is ever reported under a wrong ID.
 #![cfg(feature = "vision")]
 
+mod vision_support;
+
 use nalgebra::Vector3;
 use navdeck::geometry::Pose2;
 use navdeck::perception::aruco::Detector;
@@ -11,14 +13,7 @@ use navdeck::sim::rendered_camera::Renderer;
 use navdeck::sim::{Marker, World};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
-
-/// A camera looking level ahead (x -90 degrees), so markers up to 4 m away are in frame.
-fn level() -> VisionConfig {
-    let mut v = VisionConfig::default();
-    v.mount.rotation_deg = [-90.0, 0.0, -90.0];
-    v.mount.translation = [0.03, 0.0, 0.10];
-    v
-}
+use vision_support::{ArenaScene, level};
 
 /// Markers smaller than this in the image are not required to be found: 3.4 pixels per
 /// cell of the 7-cell marker.
@@ -78,22 +73,12 @@ struct Outcome {
 /// `max_view_deg`: markers turned further from face-on need not be found; `accuracy`:
 /// whether range and bearing are held to the bounds (IDs always are).
 fn check(cfg: &VisionConfig, poses: &[Pose2], max_view_deg: f64, accuracy: bool) -> Outcome {
-    let world = World::default_arena();
+    let scene = ArenaScene::new();
     let det = Detector::from_config(cfg).unwrap();
     let mut renderer = Renderer::new(&cfg.markers, &cfg.render);
     let mut rng = ChaCha8Rng::seed_from_u64(9);
-    let blocks: Vec<Marker> = world
-        .blocks
-        .iter()
-        .flat_map(|b| navdeck::sim::BlockState::from_block(b).current_markers())
-        .collect();
-    let edges: Vec<_> = world
-        .blocks
-        .iter()
-        .flat_map(|b| navdeck::sim::BlockState::from_block(b).edges())
-        .collect();
-    let all: Vec<&Marker> = world.markers.iter().chain(&blocks).collect();
-    let occluders: [&[navdeck::geometry::Segment]; 2] = [&world.walls, &edges];
+    let all = scene.markers();
+    let occluders = scene.occluders();
     let mut out = Outcome {
         must: 0,
         found: 0,

@@ -3,15 +3,17 @@
 //! category.
 #![cfg(feature = "vision")]
 
+mod vision_support;
+
 use navdeck::geometry::Pose2;
 use navdeck::perception::aruco::Detector;
 use navdeck::perception::config::VisionConfig;
 use navdeck::perception::markers::MarkerCategory;
 use navdeck::sim::rendered_camera::Renderer;
-use navdeck::sim::{Marker, World};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use std::collections::BTreeMap;
+use vision_support::{ArenaScene, level};
 
 #[derive(Default, Debug)]
 struct Stats {
@@ -31,22 +33,12 @@ struct Stats {
 }
 
 fn survey(cfg: &VisionConfig, label: &str) {
-    let world = World::default_arena();
+    let scene = ArenaScene::new();
     let det = Detector::from_config(cfg).unwrap();
     let mut renderer = Renderer::new(&cfg.markers, &cfg.render);
     let mut rng = ChaCha8Rng::seed_from_u64(5);
-    let blocks: Vec<Marker> = world
-        .blocks
-        .iter()
-        .flat_map(|b| navdeck::sim::BlockState::from_block(b).current_markers())
-        .collect();
-    let edges: Vec<_> = world
-        .blocks
-        .iter()
-        .flat_map(|b| navdeck::sim::BlockState::from_block(b).edges())
-        .collect();
-    let all: Vec<&Marker> = world.markers.iter().chain(&blocks).collect();
-    let occluders: [&[navdeck::geometry::Segment]; 2] = [&world.walls, &edges];
+    let all = scene.markers();
+    let occluders = scene.occluders();
     let mut stats: BTreeMap<&str, Stats> = BTreeMap::new();
     let mut poses = Vec::new();
     for i in 0..14 {
@@ -167,8 +159,5 @@ fn survey_twin_mount() {
 #[test]
 #[ignore]
 fn survey_level_mount() {
-    let mut v = VisionConfig::default();
-    v.mount.rotation_deg = [-90.0, 0.0, -90.0];
-    v.mount.translation = [0.03, 0.0, 0.10];
-    survey(&v, "level mount at 0.10 m");
+    survey(&level(), "level mount at 0.10 m");
 }

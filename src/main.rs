@@ -9,6 +9,7 @@ use navdeck::keymap::parse_key_sequence;
 use navdeck::map::io as map_io;
 use navdeck::map_report;
 use navdeck::mission_runner;
+use navdeck::perception::stopwatch::Stopwatch;
 use navdeck::plan_report::{self, Terrain};
 use navdeck::session::{LinkChoice, Session, SessionSpec};
 use navdeck::sim::World;
@@ -181,7 +182,7 @@ impl WallStopwatch {
     }
 }
 
-impl navdeck::perception::stopwatch::Stopwatch for WallStopwatch {
+impl Stopwatch for WallStopwatch {
     fn seconds(&self) -> f64 {
         self.0.elapsed().as_secs_f64()
     }
@@ -234,19 +235,25 @@ fn real_main(cli: Cli) -> Result<ExitCode> {
     };
     // Everything is loaded and validated before the terminal is touched.
     let mut session = Session::load(&spec)?;
+    // One monotonic clock times planning and camera detection alike.
+    let stopwatch: std::sync::Arc<dyn Stopwatch> = std::sync::Arc::new(WallStopwatch::start());
     if cli.sim_camera {
-        session.use_sim_camera(Some(std::sync::Arc::new(WallStopwatch::start())))?;
+        session.use_sim_camera(Some(stopwatch.clone()))?;
     }
     if let Some(source) = &cli.camera {
-        session = session.with_camera(source, std::sync::Arc::new(WallStopwatch::start()))?;
+        session = session.with_camera(source, stopwatch.clone())?;
     }
     if cli.headless {
-        return run_headless(session, &cli);
+        return run_headless(session, &cli, stopwatch);
     }
-    run_console(session, &cli)
+    run_console(session, &cli, stopwatch)
 }
 
-fn run_headless(session: Session, cli: &Cli) -> Result<ExitCode> {
+fn run_headless(
+    session: Session,
+    cli: &Cli,
+    stopwatch: std::sync::Arc<dyn Stopwatch>,
+) -> Result<ExitCode> {
     if !(cli.key_rate.is_finite() && cli.key_rate > 0.0) {
         bail!("--key-rate {} must be a positive number", cli.key_rate);
     }
@@ -254,7 +261,7 @@ fn run_headless(session: Session, cli: &Cli) -> Result<ExitCode> {
         parse_key_sequence(cli.keys.as_deref().unwrap_or("")).context("cannot read --keys")?;
     let mut app = session.into_app(0.0);
     let started = Instant::now();
-    app.set_stopwatch(Box::new(move || started.elapsed().as_secs_f64()));
+    app.set_stopwatch(stopwatch);
     if let Some(dir) = &cli.maps_dir {
         app.set_maps_dir(dir.clone());
     }
@@ -428,13 +435,16 @@ fn run_map(command: &MapCommand) -> Result<ExitCode> {
     Ok(ExitCode::SUCCESS)
 }
 
-fn run_console(session: Session, cli: &Cli) -> Result<ExitCode> {
+fn run_console(
+    session: Session,
+    cli: &Cli,
+    stopwatch: std::sync::Arc<dyn Stopwatch>,
+) -> Result<ExitCode> {
     let signal = watch_signals().context("cannot watch signals")?;
     let theme = Theme::from_env(std::env::var_os("NO_COLOR"));
     let clock = WallClock::start();
     let mut app = session.into_app(0.0);
-    let epoch = Instant::now();
-    app.set_stopwatch(Box::new(move || epoch.elapsed().as_secs_f64()));
+    app.set_stopwatch(stopwatch);
     app.set_maps_dir(
         cli.maps_dir
             .clone()

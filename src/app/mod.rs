@@ -112,7 +112,7 @@ pub struct App {
     picker: loading::Picker,
     /// A monotonic clock in seconds, installed by the runner, to time planning; the
     /// console itself never reads a clock.
-    stopwatch: Option<Box<dyn Fn() -> f64 + Send>>,
+    stopwatch: Option<std::sync::Arc<dyn crate::perception::stopwatch::Stopwatch>>,
     revision: u64,
     visible: Option<revision::Visible>,
     /// When the full picture last went to the link.
@@ -491,7 +491,10 @@ impl App {
     }
 
     /// Installs the clock that times planning (seconds, monotonic).
-    pub fn set_stopwatch(&mut self, stopwatch: Box<dyn Fn() -> f64 + Send>) {
+    pub fn set_stopwatch(
+        &mut self,
+        stopwatch: std::sync::Arc<dyn crate::perception::stopwatch::Stopwatch>,
+    ) {
         self.stopwatch = Some(stopwatch);
     }
 

@@ -59,7 +59,8 @@ impl Camera {
         }
     }
 
-    /// The furthest a marker is seen from, metres.
+    /// The furthest a marker is seen from, metres (the rendered camera keeps to it).
+    #[cfg(feature = "vision")]
     pub fn max_range(&self) -> f64 {
         self.max_range
     }

@@ -12,6 +12,11 @@ use crate::sim::{Twin, World};
 use anyhow::{Context, Result, bail};
 use std::path::PathBuf;
 
+/// Why a camera option is refused by a build without OpenCV, and what to do.
+#[cfg(not(feature = "vision"))]
+const NEEDS_VISION: &str = "needs navdeck built with the `vision` feature \
+     (cargo build --features vision; needs OpenCV: libopencv-dev libopencv-contrib-dev clang libclang-dev)";
+
 /// Which robot to drive.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum LinkChoice {
@@ -65,7 +70,7 @@ pub struct Session {
 
 impl Session {
     pub fn load(spec: &SessionSpec) -> Result<Session> {
-        let config = match &spec.config {
+        let mut config = match &spec.config {
             Some(path) => Config::load(path)?,
             None => Config::default(),
         };
@@ -85,15 +90,15 @@ impl Session {
                 Box::new(SimLink::new(twin, 0.0))
             }
             LinkChoice::Ros2(target) => {
-                let mut ros2 = config.ros2.clone();
+                // The command line's namespace holds for everything on ROS 2 (a camera too).
                 if let Some(ns) = &target.namespace {
-                    ros2.namespace = ns.clone();
+                    config.ros2.namespace = ns.clone();
                 }
                 let domain = domain_from(target.domain, std::env::var("ROS_DOMAIN_ID").ok())
                     .map_err(anyhow::Error::msg)?;
                 ros2_domain = Some(domain);
                 let link = Ros2Link::connect(Ros2Options {
-                    config: ros2,
+                    config: config.ros2.clone(),
                     domain,
                     track: config.robot.track,
                 })
@@ -130,10 +135,7 @@ impl Session {
         #[cfg(not(feature = "vision"))]
         {
             let _ = stopwatch;
-            bail!(
-                "--sim-camera needs navdeck built with the `vision` feature \
-                 (cargo build --features vision; needs OpenCV: libopencv-dev libopencv-contrib-dev clang libclang-dev)"
-            )
+            bail!("--sim-camera {NEEDS_VISION}")
         }
     }
 
@@ -185,10 +187,7 @@ impl Session {
         #[cfg(not(feature = "vision"))]
         {
             let _ = (stopwatch, self);
-            bail!(
-                "--camera {source} needs navdeck built with the `vision` feature \
-                 (cargo build --features vision; needs OpenCV: libopencv-dev libopencv-contrib-dev clang libclang-dev)"
-            )
+            bail!("--camera {source} {NEEDS_VISION}")
         }
     }
 

@@ -115,8 +115,9 @@ pub struct App {
     stopwatch: Option<std::sync::Arc<dyn crate::perception::stopwatch::Stopwatch>>,
     revision: u64,
     visible: Option<revision::Visible>,
-    /// When the full picture last went to the link.
+    /// When the full picture last went to the link, and the map revision it carried.
     picture_at: f64,
+    picture_map: Option<u64>,
     camera: camera_feed::CameraFeed,
 }
 
@@ -180,6 +181,7 @@ impl App {
             revision: 0,
             visible: None,
             picture_at: f64::NEG_INFINITY,
+            picture_map: None,
             camera: camera_feed::CameraFeed::default(),
             config,
         };

@@ -31,8 +31,14 @@ impl App {
                     })
                     .unwrap_or_default()
             }),
-            map: full.then(|| self.belief.occupancy_grid()),
+            // The map goes out only when it changed: its topic is transient local, so a
+            // display that joins later still gets the last one.
+            map: (full && self.picture_map != Some(self.belief.revision()))
+                .then(|| self.belief.occupancy_grid()),
         };
+        if picture.map.is_some() {
+            self.picture_map = Some(self.belief.revision());
+        }
         self.link.show(&picture);
     }
 }

@@ -2,7 +2,7 @@
 //! source for the camera pipeline, on a DDS participant of its own.
 
 use super::config::Ros2Config;
-use super::{Factory, join, msgs, qos_profile};
+use super::{Factory, join, msgs, qos_profile, take_all};
 use crate::link::LinkError;
 use crate::perception::frame::GrayFrame;
 use crate::perception::pipeline::FrameSource;
@@ -46,9 +46,12 @@ impl FrameSource for Ros2ImageSource {
     fn grab(&mut self) -> Result<Option<GrayFrame>, String> {
         let give_up = Instant::now() + GRAB_WAIT;
         loop {
-            let mut newest = None;
-            while let Ok(Some((image, _))) = self.images.take() {
-                newest = Some(image);
+            let mut notes = Vec::new();
+            let newest = take_all(&self.images, "image", &mut notes).pop();
+            if newest.is_none()
+                && let Some(e) = notes.pop()
+            {
+                return Err(e.text);
             }
             if let Some(m) = newest {
                 return GrayFrame::from_raw(

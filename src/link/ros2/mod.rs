@@ -116,6 +116,24 @@ pub struct Ros2Link {
     sent: u64,
 }
 
+/// Everything waiting on `sub` (at most MAX_TAKE), oldest first; unreadable samples are
+/// noted under `topic` and skipped.
+fn take_all<M: DeserializeOwned + 'static>(
+    sub: &Subscription<M>,
+    topic: &str,
+    notices: &mut Vec<Notice>,
+) -> Vec<M> {
+    let mut out = Vec::new();
+    for _ in 0..MAX_TAKE {
+        match sub.take() {
+            Ok(Some((msg, _))) => out.push(msg),
+            Ok(None) => break,
+            Err(e) => notices.push(Notice::warn(format!("ROS 2: unreadable {topic}: {e:?}"))),
+        }
+    }
+    out
+}
+
 fn qos_profile(q: Qos, durable: bool) -> QosProfile {
     use ros2_client::qos::{Durability, History, WhenFull};
     let p = QosProfile::publisher_default()
@@ -431,16 +449,7 @@ impl Ros2Link {
     }
 
     fn take_odometry(&mut self, now: f64) {
-        for _ in 0..MAX_TAKE {
-            let msg = match self.odom.take() {
-                Ok(Some((msg, _))) => msg,
-                Ok(None) => break,
-                Err(e) => {
-                    self.notices
-                        .push(Notice::warn(format!("ROS 2: unreadable odometry: {e:?}")));
-                    continue;
-                }
-            };
+        for msg in take_all(&self.odom, "odometry", &mut self.notices) {
             let pose = match inbound::odom_pose(&msg) {
                 Ok(p) => p,
                 Err(why) => {
@@ -470,17 +479,7 @@ impl Ros2Link {
     }
 
     fn take_joints(&mut self, now: f64) {
-        for _ in 0..MAX_TAKE {
-            let msg = match self.joints.take() {
-                Ok(Some((msg, _))) => msg,
-                Ok(None) => break,
-                Err(e) => {
-                    self.notices.push(Notice::warn(format!(
-                        "ROS 2: unreadable joint states: {e:?}"
-                    )));
-                    continue;
-                }
-            };
+        for msg in take_all(&self.joints, "joint states", &mut self.notices) {
             let angles = match inbound::wheel_angles(
                 &msg,
                 &self.config.left_wheel_joint,
@@ -524,16 +523,10 @@ impl Ros2Link {
 
     fn take_scan(&mut self) -> Option<crate::link::LaserScan> {
         let mut newest = None;
-        for _ in 0..MAX_TAKE {
-            match self.scan.take() {
-                Ok(Some((msg, _))) => match inbound::scan(&msg) {
-                    Ok(s) => newest = Some(s),
-                    Err(why) => self.refuse("scan", why),
-                },
-                Ok(None) => break,
-                Err(e) => self
-                    .notices
-                    .push(Notice::warn(format!("ROS 2: unreadable scan: {e:?}"))),
+        for msg in take_all(&self.scan, "scan", &mut self.notices) {
+            match inbound::scan(&msg) {
+                Ok(s) => newest = Some(s),
+                Err(why) => self.refuse("scan", why),
             }
         }
         newest

@@ -57,6 +57,7 @@ fn main() {
         config: config.ros2.clone(),
         domain: DOMAIN,
         track: config.robot.track,
+        max_wheel_speed: config.robot.max_wheel_speed(),
     })
     .expect("ROS 2 link");
     let clock = WallClock::start();

@@ -145,6 +145,14 @@ impl Default for RobotConfig {
     }
 }
 
+impl RobotConfig {
+    /// The fastest a wheel is ever asked to turn, v + w b / 2, with half again for
+    /// overshoot, m/s: wheel travel beyond this between two readings is a bad reading.
+    pub fn max_wheel_speed(&self) -> f64 {
+        1.5 * (self.max_linear + self.max_angular * self.track / 2.0)
+    }
+}
+
 /// Keyboard driving (teleop_twist_keyboard habits plus a deadman).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]

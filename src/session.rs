@@ -101,6 +101,7 @@ impl Session {
                     config: config.ros2.clone(),
                     domain,
                     track: config.robot.track,
+                    max_wheel_speed: config.robot.max_wheel_speed(),
                 })
                 .context("cannot open the ROS 2 link")?;
                 Box::new(link)

@@ -33,6 +33,7 @@ impl Console {
             config: config.ros2.clone(),
             domain,
             track: config.robot.track,
+            max_wheel_speed: config.robot.max_wheel_speed(),
         })
         .expect("ROS 2 link");
         let app = App::new(config, Keymap::default_map(), Box::new(link), 0.0);

@@ -66,7 +66,7 @@ pub struct SerialLink {
     travel: WheelTravel,
     elapsed: f64,
     gripper: Option<GripperState>,
-    notes: Vec<String>,
+    notes: Vec<Notice>,
 }
 
 impl SerialLink {
@@ -84,9 +84,7 @@ impl SerialLink {
                 counts_per_rev: config.serial.counts_per_rev,
                 pid_rate_hz: config.serial.pid_rate_hz,
             },
-            // The fastest a wheel is ever asked to turn (v + w b / 2), with half again for
-            // overshoot: anything beyond is not travel.
-            max_wheel_speed: 1.5 * (robot.max_linear + robot.max_angular * robot.track / 2.0),
+            max_wheel_speed: robot.max_wheel_speed(),
         };
         let counters = Arc::new(Counters::default());
         let transport =
@@ -136,10 +134,10 @@ impl SerialLink {
                 FromWorker::Gripper(g) => self.gripper = Some(g),
                 FromWorker::Connected => {
                     self.lost = None;
-                    self.notes.push("serial: reconnected".into());
+                    self.notes.push(Notice::warn("serial: reconnected"));
                 }
                 FromWorker::Lost(reason) => self.lost = Some(reason),
-                FromWorker::Note(note) => self.notes.push(note),
+                FromWorker::Note(note) => self.notes.push(Notice::warn(note)),
             }
         }
     }
@@ -196,9 +194,6 @@ impl RobotLink for SerialLink {
     fn take_notes(&mut self) -> Vec<Notice> {
         self.drain();
         std::mem::take(&mut self.notes)
-            .into_iter()
-            .map(Notice::warn)
-            .collect()
     }
 }
 

@@ -80,8 +80,6 @@ pub struct Ros2Config {
     pub wheel_radius: f64,
     /// Without odometry for this long the link is lost, seconds.
     pub odom_timeout: f64,
-    /// A wheel moving faster than this between two messages is a bad message, m/s.
-    pub max_wheel_speed: f64,
     pub distro: Distro,
     pub qos: Qos,
     pub scan_qos: Qos,
@@ -113,7 +111,6 @@ impl Default for Ros2Config {
             right_wheel_joint: "wheel_right_joint".into(),
             wheel_radius: 0.033,
             odom_timeout: 0.5,
-            max_wheel_speed: 2.0,
             distro: Distro::Jazzy,
             qos: Qos::default(),
             scan_qos: Qos::SENSOR_DATA,
@@ -128,7 +125,6 @@ impl Ros2Config {
         all_positive(&[
             ("wheel_radius", self.wheel_radius),
             ("odom_timeout", self.odom_timeout),
-            ("max_wheel_speed", self.max_wheel_speed),
             ("picture_rate_hz", self.picture_rate_hz),
             ("qos.depth", f64::from(self.qos.depth)),
             ("scan_qos.depth", f64::from(self.scan_qos.depth)),

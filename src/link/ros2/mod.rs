@@ -49,6 +49,9 @@ pub struct Ros2Options {
     pub domain: u16,
     /// The robot's wheel track, metres, for the odometry fallback.
     pub track: f64,
+    /// Wheel travel faster than this between two messages is refused, m/s
+    /// (`RobotConfig::max_wheel_speed`).
+    pub max_wheel_speed: f64,
 }
 
 /// The ROS 2 domain: `--domain`, else ROS_DOMAIN_ID, else 0 (ros2-client reads no
@@ -84,6 +87,7 @@ pub struct Ros2Link {
     label: String,
     config: Ros2Config,
     track: f64,
+    max_wheel_speed: f64,
     context: Context,
     /// Owns the publishers and subscriptions: kept for as long as the link lives.
     _node: Node,
@@ -395,6 +399,7 @@ impl Ros2Link {
         Ok(Self {
             label,
             track: options.track,
+            max_wheel_speed: options.max_wheel_speed,
             context,
             _node: node,
             odom,
@@ -462,13 +467,7 @@ impl Ros2Link {
                 && let Some((before, at)) = self.odom_pose
             {
                 let dt = (stamp - at).max(0.0);
-                match inbound::odom_travel(
-                    before,
-                    pose,
-                    self.track,
-                    dt,
-                    self.config.max_wheel_speed,
-                ) {
+                match inbound::odom_travel(before, pose, self.track, dt, self.max_wheel_speed) {
                     Ok(t) => self.add_travel(t, dt),
                     Err(why) => self.refuse("odometry", why),
                 }
@@ -501,7 +500,7 @@ impl Ros2Link {
                     angles,
                     self.config.wheel_radius,
                     dt,
-                    self.config.max_wheel_speed,
+                    self.max_wheel_speed,
                 ) {
                     Ok(t) => self.add_travel(t, dt),
                     Err(why) => self.refuse("joint_states", why),

@@ -60,12 +60,7 @@ impl Console {
             assert!(
                 now < give_up,
                 "gave up waiting for {what}; log:\n{}",
-                self.app
-                    .log_book()
-                    .iter()
-                    .map(|e| e.text.clone())
-                    .collect::<Vec<_>>()
-                    .join("\n")
+                log_text(&self.app)
             );
             std::thread::sleep(Duration::from_millis(5));
         }
@@ -89,14 +84,35 @@ impl Console {
         }
     }
 
+    /// Runs the console until the robot's first data brings the link up.
+    fn until_up(&mut self) {
+        self.until("the link to come up", |a| {
+            a.link_status() == &LinkStatus::Ok
+        });
+    }
+
     fn press(&mut self, c: char) {
         let now = self.now();
         self.app.handle_key(Key::char(c), KeyKind::Press, now);
     }
 
     fn logged(&self, text: &str) -> bool {
-        self.app.log_book().iter().any(|e| e.text.contains(text))
+        logged(&self.app, text)
     }
+}
+
+/// The console's log, a line each, for failure messages.
+fn log_text(app: &App) -> String {
+    app.log_book()
+        .iter()
+        .map(|e| e.text.as_str())
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
+/// Whether the console's log has a line containing `text`.
+fn logged(app: &App, text: &str) -> bool {
+    app.log_book().iter().any(|e| e.text.contains(text))
 }
 
 #[test]
@@ -151,9 +167,7 @@ fn without_joint_states_the_odometry_deltas_drive_the_estimate() {
         ..FakeOptions::new(62)
     });
     let mut c = Console::open(62, |_| {});
-    c.until("the link to come up", |a| {
-        a.link_status() == &LinkStatus::Ok
-    });
+    c.until_up();
     c.run_for(1.0, Some('d'));
     c.run_for(1.0, None);
     let (x, y, th) = robot.seen().pose;
@@ -172,13 +186,9 @@ fn a_jazzy_robot_gets_twist_stamped_and_a_wrong_setting_is_called_out() {
         ..FakeOptions::new(63)
     });
     let mut c = Console::open(63, |_| {});
-    c.until("the link to come up", |a| {
-        a.link_status() == &LinkStatus::Ok
-    });
+    c.until_up();
     c.until("discovery of the subscriber", |a| {
-        a.log_book()
-            .iter()
-            .any(|e| e.text.contains("reads TwistStamped"))
+        logged(a, "reads TwistStamped")
     });
     c.run_for(0.6, Some('w'));
     assert!(
@@ -188,20 +198,14 @@ fn a_jazzy_robot_gets_twist_stamped_and_a_wrong_setting_is_called_out() {
     drop(c);
 
     let mut wrong = Console::open(63, |cfg| cfg.ros2.cmd_vel_type = CmdVelType::Twist);
-    wrong.until("the mismatch warning", |a| {
-        a.log_book()
-            .iter()
-            .any(|e| e.text.contains("it will not move"))
-    });
+    wrong.until("the mismatch warning", |a| logged(a, "it will not move"));
 }
 
 #[test]
 fn odometry_silence_stops_the_robot_until_data_and_a_key_return() {
     let robot = FakeRobot::start(FakeOptions::new(64));
     let mut c = Console::open(64, |_| {});
-    c.until("the link to come up", |a| {
-        a.link_status() == &LinkStatus::Ok
-    });
+    c.until_up();
     c.run_for(0.5, Some('w'));
     robot
         .odom_paused
@@ -242,15 +246,13 @@ fn odometry_silence_stops_the_robot_until_data_and_a_key_return() {
 
 #[test]
 fn bad_odometry_is_dropped_and_counted_not_estimated() {
-    let _robot = FakeRobot::start(FakeOptions {
+    let robot = FakeRobot::start(FakeOptions {
         bad_odom_every: Some(5),
         joints: false,
         ..FakeOptions::new(65)
     });
     let mut c = Console::open(65, |_| {});
-    c.until("the link to come up", |a| {
-        a.link_status() == &LinkStatus::Ok
-    });
+    c.until_up();
     c.run_for(1.0, Some('w'));
     assert!(
         c.app.link().label().contains("dropped"),
@@ -261,19 +263,9 @@ fn bad_odometry_is_dropped_and_counted_not_estimated() {
     let est = c.app.estimated_pose();
     assert!(
         est.x.is_finite() && est.x > 0.05,
-        "{est:?} robot {:?} cmds {:?} log {:?}",
-        _robot.seen().pose,
-        _robot
-            .seen()
-            .cmd_vel
-            .iter()
-            .map(|m| m.1)
-            .collect::<Vec<_>>(),
-        c.app
-            .log_book()
-            .iter()
-            .map(|e| e.text.clone())
-            .collect::<Vec<_>>()
+        "{est:?}; robot at {:?}; log:\n{}",
+        robot.seen().pose,
+        log_text(&c.app)
     );
 }
 
@@ -281,9 +273,7 @@ fn bad_odometry_is_dropped_and_counted_not_estimated() {
 fn rviz_gets_the_map_pose_transform_landmarks_and_plan() {
     let robot = FakeRobot::start(FakeOptions::new(66));
     let mut c = Console::open(66, |_| {});
-    c.until("the link to come up", |a| {
-        a.link_status() == &LinkStatus::Ok
-    });
+    c.until_up();
     for key in ":goto 0.5 0".chars() {
         c.press(key);
     }
@@ -319,9 +309,7 @@ fn rviz_gets_the_map_pose_transform_landmarks_and_plan() {
 fn gripper_keys_publish_the_configured_positions_and_quit_stops_the_robot() {
     let robot = FakeRobot::start(FakeOptions::new(67));
     let mut c = Console::open(67, |_| {});
-    c.until("the link to come up", |a| {
-        a.link_status() == &LinkStatus::Ok
-    });
+    c.until_up();
     c.press('o');
     c.run_for(0.3, None);
     // In manual mode c stops (as in seed 001); elsewhere it closes the gripper.
@@ -341,11 +329,7 @@ fn gripper_keys_publish_the_configured_positions_and_quit_stops_the_robot() {
     assert_eq!(
         seen.gripper,
         vec![open, closed],
-        "{:?}",
-        c.app
-            .log_book()
-            .iter()
-            .map(|e| e.text.clone())
-            .collect::<Vec<_>>()
+        "log:\n{}",
+        log_text(&c.app)
     );
 }

@@ -31,6 +31,15 @@ fn until(what: &str, mut done: impl FnMut() -> bool) {
     }
 }
 
+/// Waits (bounded) until the link has noted a line containing `text`.
+fn until_note(link: &mut SerialLink, text: &str) {
+    let mut notes = Vec::new();
+    until(&format!("a note containing {text:?}"), || {
+        notes.extend(link.take_notes());
+        notes.iter().any(|n| n.text.contains(text))
+    });
+}
+
 fn forward(v: f64) -> Command {
     Command {
         twist: Twist::new(v, 0.0),
@@ -176,13 +185,7 @@ fn a_quiet_console_stops_the_robot() {
     // firmware's 2 s auto-stop, which would count).
     emu.wait_for("the stop", |s| !s.moving);
     assert_eq!(emu.state().auto_stops, 0);
-    let mut notes = Vec::new();
-    until("a note", || {
-        notes.extend(link.take_notes());
-        notes
-            .iter()
-            .any(|n| n.text.contains("no command from the console"))
-    });
+    until_note(&mut link, "no command from the console");
 }
 
 #[test]
@@ -195,11 +198,7 @@ fn garbage_on_the_wire_is_counted_and_driving_goes_on() {
     until("more readings", || link.stats().readings >= readings + 5);
     let travel = drive(&mut link, &emu, forward(0.1), 0.02);
     assert!(travel.right > 0.0);
-    let mut notes = Vec::new();
-    until("a note naming the garbage", || {
-        notes.extend(link.take_notes());
-        notes.iter().any(|n| n.text.contains("garbage line"))
-    });
+    until_note(&mut link, "garbage line");
 }
 
 #[test]
@@ -240,11 +239,7 @@ fn an_encoder_jump_is_rejected_not_driven() {
     let frame = link.poll(1.0).unwrap();
     let left = frame.wheels.map_or(0.0, |w| w.left);
     assert!(left.abs() < 1e-9, "a standing robot travelled {left} m");
-    let mut notes = Vec::new();
-    until("a note", || {
-        notes.extend(link.take_notes());
-        notes.iter().any(|n| n.text.contains("encoder jump"))
-    });
+    until_note(&mut link, "encoder jump");
 }
 
 #[test]
@@ -297,11 +292,7 @@ fn a_firmware_without_servos_is_named_and_driving_goes_on() {
         gripper: Some(GripperCommand::Close),
     };
     link.send(&close).unwrap();
-    let mut notes = Vec::new();
-    until("the refusal named", || {
-        notes.extend(link.take_notes());
-        notes.iter().any(|n| n.text.contains("USE_SERVOS"))
-    });
+    until_note(&mut link, "USE_SERVOS");
     assert!(link.stats().refused >= 1);
     let travel = drive(&mut link, &emu, forward(0.1), 0.02);
     assert!(travel.left > 0.0);

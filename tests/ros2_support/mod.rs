@@ -149,38 +149,39 @@ fn run(
         )
         .unwrap();
     let reliable = qos(false, false);
+    // `path` is a topic's full name, e.g. "/gripper/position".
     let topic =
-        |node: &mut ros2_client::Node, name: &str, pkg: &str, kind: &str, q: &QosProfile| {
+        |node: &mut ros2_client::Node, path: &str, pkg: &str, kind: &str, q: &QosProfile| {
             node.create_topic(
-                &Name::new("/", name).unwrap(),
+                &Name::parse(path).unwrap(),
                 MessageTypeName::new(pkg, kind),
                 q,
             )
             .unwrap()
         };
-    let t = topic(&mut node, "odom", "nav_msgs", "Odometry", &reliable);
+    let t = topic(&mut node, "/odom", "nav_msgs", "Odometry", &reliable);
     let odom_pub = node.create_publisher::<msgs::Odometry>(&t, None).unwrap();
     let t = topic(
         &mut node,
-        "joint_states",
+        "/joint_states",
         "sensor_msgs",
         "JointState",
         &reliable,
     );
     let joints_pub = node.create_publisher::<msgs::JointState>(&t, None).unwrap();
     let sensor = qos(false, true);
-    let t = topic(&mut node, "scan", "sensor_msgs", "LaserScan", &sensor);
+    let t = topic(&mut node, "/scan", "sensor_msgs", "LaserScan", &sensor);
     let scan_pub = node
         .create_publisher::<msgs::LaserScan>(&t, Some(sensor.clone()))
         .unwrap();
     let twist_sub = (!options.stamped).then(|| {
-        let t = topic(&mut node, "cmd_vel", "geometry_msgs", "Twist", &reliable);
+        let t = topic(&mut node, "/cmd_vel", "geometry_msgs", "Twist", &reliable);
         node.create_subscription::<msgs::Twist>(&t, None).unwrap()
     });
     let stamped_sub = options.stamped.then(|| {
         let t = topic(
             &mut node,
-            "cmd_vel",
+            "/cmd_vel",
             "geometry_msgs",
             "TwistStamped",
             &reliable,
@@ -188,40 +189,40 @@ fn run(
         node.create_subscription::<msgs::TwistStamped>(&t, None)
             .unwrap()
     });
-    let gt = node
-        .create_topic(
-            &Name::new("/gripper", "position").unwrap(),
-            MessageTypeName::new("std_msgs", "Float64"),
-            &reliable,
-        )
-        .unwrap();
+    let gt = topic(
+        &mut node,
+        "/gripper/position",
+        "std_msgs",
+        "Float64",
+        &reliable,
+    );
     let gripper_sub = node
         .create_subscription::<msgs::Float64>(&gt, None)
         .unwrap();
     let durable = qos(true, false);
-    let t = topic(&mut node, "map", "nav_msgs", "OccupancyGrid", &durable);
+    let t = topic(&mut node, "/map", "nav_msgs", "OccupancyGrid", &durable);
     let map_sub = node
         .create_subscription::<msgs::OccupancyGrid>(&t, Some(durable.clone()))
         .unwrap();
-    let t = topic(&mut node, "plan", "nav_msgs", "Path", &reliable);
+    let t = topic(&mut node, "/plan", "nav_msgs", "Path", &reliable);
     let plan_sub = node.create_subscription::<msgs::Path>(&t, None).unwrap();
-    let pt = node
-        .create_topic(
-            &Name::new("/navdeck", "pose").unwrap(),
-            MessageTypeName::new("geometry_msgs", "PoseWithCovarianceStamped"),
-            &reliable,
-        )
-        .unwrap();
+    let pt = topic(
+        &mut node,
+        "/navdeck/pose",
+        "geometry_msgs",
+        "PoseWithCovarianceStamped",
+        &reliable,
+    );
     let pose_sub = node
         .create_subscription::<msgs::PoseWithCovarianceStamped>(&pt, None)
         .unwrap();
-    let t = topic(&mut node, "tf", "tf2_msgs", "TFMessage", &reliable);
+    let t = topic(&mut node, "/tf", "tf2_msgs", "TFMessage", &reliable);
     let tf_sub = node
         .create_subscription::<msgs::TfMessage>(&t, None)
         .unwrap();
     let t = topic(
         &mut node,
-        "landmarks",
+        "/landmarks",
         "visualization_msgs",
         "MarkerArray",
         &reliable,

@@ -18,10 +18,6 @@ impl WithCamera {
             source,
         }
     }
-
-    pub fn pipeline(&self) -> &CameraPipeline {
-        &self.pipeline
-    }
 }
 
 impl RobotLink for WithCamera {

@@ -117,7 +117,6 @@ pub struct Ros2Link {
     elapsed: f64,
     dropped: BTreeMap<&'static str, u64>,
     notices: Vec<Notice>,
-    sent: u64,
 }
 
 /// Everything waiting on `sub` (at most MAX_TAKE), oldest first; unreadable samples are
@@ -426,19 +425,8 @@ impl Ros2Link {
             elapsed: 0.0,
             dropped: BTreeMap::new(),
             notices: Vec::new(),
-            sent: 0,
             config,
         })
-    }
-
-    /// Incoming messages refused so far, by reason.
-    pub fn dropped(&self) -> &BTreeMap<&'static str, u64> {
-        &self.dropped
-    }
-
-    /// cmd_vel messages put on the wire so far.
-    pub fn sent(&self) -> u64 {
-        self.sent
     }
 
     fn refuse(&mut self, topic: &str, why: Refusal) {
@@ -608,19 +596,16 @@ impl Ros2Link {
             }
             _ => (self.twist.is_some(), self.stamped.is_some()),
         };
-        let mut ok = false;
+        // Best effort: moving, the next control step sends again; a stop goes out three times.
         if plain && let Some(p) = &self.twist {
-            ok |= p.publish(body).is_ok();
+            let _ = p.publish(body);
         }
         if stamped && let Some(p) = &self.stamped {
             let msg = msgs::TwistStamped {
                 header: msgs::Header::new(now_stamp(), "base_link"),
                 twist: body,
             };
-            ok |= p.publish(msg).is_ok();
-        }
-        if ok {
-            self.sent += 1;
+            let _ = p.publish(msg);
         }
     }
 }

@@ -66,6 +66,8 @@ pub struct Session {
     pub link: Box<dyn RobotLink>,
     /// The DDS domain of a ROS 2 link, for a ROS 2 camera beside it.
     pub ros2_domain: Option<u16>,
+    /// Whether the config file set `[mission] blind_distance` (else it follows the camera).
+    blind_from_user: bool,
 }
 
 impl Session {
@@ -108,12 +110,42 @@ impl Session {
             }
             LinkChoice::Serial(spec) => Box::new(SerialLink::open(spec, &config)?),
         };
-        Ok(Session {
+        let blind_from_user = config.mission.blind_distance.is_some();
+        let mut session = Session {
             config,
             keymap,
             link,
             ros2_domain,
-        })
+            blind_from_user,
+        };
+        // The twin's ideal sensor sees a block until the marker on its face is at the
+        // sensor's least range.
+        let ideal = session.config.sim.camera.min_range + session.config.mission.block_size / 2.0;
+        session.set_blind_distance(ideal);
+        Ok(session)
+    }
+
+    /// Sets how near a block can come before it leaves the camera's view, unless the
+    /// config file said.
+    fn set_blind_distance(&mut self, distance: f64) {
+        if !self.blind_from_user {
+            self.config.mission.blind_distance = Some(distance);
+        }
+    }
+
+    /// The blind distance of a camera on `mount` with the configured intrinsics.
+    #[cfg(feature = "vision")]
+    fn camera_blind_distance(
+        &self,
+        mount: &crate::perception::config::MountConfig,
+        k: &crate::perception::intrinsics::Intrinsics,
+    ) -> f64 {
+        crate::perception::mount::block_blind_distance(
+            mount,
+            k,
+            &self.config.vision.markers,
+            self.config.mission.block_size,
+        )
     }
 
     /// Makes the twin see through a rendered camera and the ArUco detector instead of
@@ -131,6 +163,9 @@ impl Session {
             };
             twin.use_rendered_camera(&vision, stopwatch)
                 .context("cannot start the rendered camera")?;
+            let k = crate::perception::calibration::load_or_default(vision.calibration.as_deref())?;
+            let blind = self.camera_blind_distance(&vision.render.mount, &k);
+            self.set_blind_distance(blind);
             Ok(())
         }
         #[cfg(not(feature = "vision"))]
@@ -143,7 +178,7 @@ impl Session {
     /// Adds a camera beside the link (`--camera`): a V4L2 device, or `ros2:TOPIC` for a
     /// sensor_msgs/Image topic, detected on the pipeline's own threads.
     pub fn with_camera(
-        self,
+        #[cfg_attr(not(feature = "vision"), allow(unused_mut))] mut self,
         source: &str,
         stopwatch: std::sync::Arc<dyn crate::perception::stopwatch::Stopwatch>,
     ) -> Result<Session> {
@@ -175,6 +210,9 @@ impl Session {
                     )
                 }
             };
+            let blind =
+                self.camera_blind_distance(&self.config.vision.mount, detector.intrinsics());
+            self.set_blind_distance(blind);
             let pipeline = CameraPipeline::start(frames, detector, Some(stopwatch));
             Ok(Session {
                 link: Box::new(crate::link::camera::WithCamera::new(

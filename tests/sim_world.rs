@@ -67,7 +67,7 @@ fn default_arena_is_seed_001s_arena() {
     assert_eq!(w.walls.len(), 4 + 4 * w.obstacles.len());
     let gate = w.gate_pose(&w.gates[0]).unwrap();
     let [a, b] = w.gates[0].markers.map(|id| w.marker(id).unwrap().position);
-    assert!((a.distance(b) - 0.3).abs() < 1e-9 && gate.x.abs() == 2.0);
+    assert!((a.distance(b) - 0.2).abs() < 1e-9 && gate.x.abs() == 2.0);
 }
 
 #[test]

@@ -67,6 +67,11 @@ pub struct MissionConfig {
     pub grip_distance: f64,
     /// Final approach speed to a block or gate, m/s.
     pub approach_speed: f64,
+    /// A block nearer than this (robot centre to block centre, metres) is below or beside
+    /// the camera's view, so its markers are not expected in view: the last of the approach
+    /// drives on the filter's estimate. Unset: worked out from the camera in use (the
+    /// twin's ideal sensor, its rendered camera or `[vision]`'s mount and intrinsics).
+    pub blind_distance: Option<f64>,
     /// Time the gripper takes to open or close, s (seed 001).
     pub gripper_wait: f64,
     /// Where the path to a gate ends: this far in front of it, metres.
@@ -98,6 +103,7 @@ impl Default for MissionConfig {
             staging_distance: 0.30,
             grip_distance: 0.115,
             approach_speed: 0.05,
+            blind_distance: None,
             gripper_wait: 1.0,
             drop_staging: 0.40,
             drop_distance: 0.18,
@@ -127,6 +133,9 @@ impl MissionConfig {
             ("stuck_timeout", self.stuck_timeout),
         ];
         crate::field_check::all_positive(&positive)?;
+        if let Some(blind) = self.blind_distance {
+            crate::field_check::all_non_negative(&[("blind_distance", blind)])?;
+        }
         let non_negative = [
             ("gripper_wait", self.gripper_wait),
             ("back_off_time", self.back_off_time),

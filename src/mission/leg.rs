@@ -1,10 +1,14 @@
 //! One planned leg: ask the console for a path once, follow it, and recover when there is
 //! no path or no progress (seed 001 "Failure Modes & Recovery").
 
-use super::config::{MissionConfig, STUCK_PROGRESS};
+use super::config::{BACK_OFF_SPEED, MissionConfig, STUCK_PROGRESS};
 use super::drive::Turn;
 use super::step::{Inputs, Motion, PathStatus, Tone};
 use crate::geometry::{Point2, Twist};
+use crate::map::costmap::is_lethal;
+
+/// How far behind the robot the map must be clear for it to back up, metres.
+const BACK_OFF_STEP: f64 = 0.05;
 
 /// Counters and the plan-request clock shared by every leg of the mission.
 #[derive(Clone, Debug, Default)]
@@ -38,6 +42,8 @@ pub(crate) struct Leg {
     best_t: f64,
     failures: u32,
     turn: Option<Turn>,
+    /// When a back-up out of a stuck spot began, while it lasts.
+    backing: Option<f64>,
 }
 
 impl Leg {
@@ -52,6 +58,7 @@ impl Leg {
             best_t: 0.0,
             failures: 0,
             turn: None,
+            backing: None,
         }
     }
 
@@ -74,6 +81,13 @@ impl Leg {
             }
             self.turn = None;
         }
+        if let Some(since) = self.backing {
+            if t - since < config.back_off_time && clear_behind(inputs) {
+                return LegStep::Move(Motion::Drive(Twist::new(-BACK_OFF_SPEED, 0.0)));
+            }
+            self.backing = None;
+            return self.ask(t, config, ctx, log);
+        }
         let Some(asked) = self.asked else {
             return self.ask(t, config, ctx, log);
         };
@@ -88,18 +102,22 @@ impl Leg {
                     self.best = *remaining;
                     self.best_t = t;
                 }
-                // Seed 001 "Stuck": no progress for the timeout: plan again.
+                // Seed 001 "Stuck": no progress for the timeout: back up (Nav2's BackUp
+                // recovery; the robot may be pressed against what it cannot see), then
+                // plan again.
                 if t - self.best_t >= config.stuck_timeout {
                     if cooled(ctx, t, config) {
                         ctx.recoveries += 1;
                         log.push((
                             Tone::Warn,
                             format!(
-                                "Stuck: no progress for {:.0} s - replanning to {}",
+                                "Stuck: no progress for {:.0} s - backing up and replanning to {}",
                                 config.stuck_timeout, self.label
                             ),
                         ));
-                        return self.ask(t, config, ctx, log);
+                        self.backing = Some(t);
+                        self.following = false;
+                        return LegStep::Move(Motion::Drive(Twist::new(-BACK_OFF_SPEED, 0.0)));
                     }
                     return LegStep::Move(Motion::Stop);
                 }
@@ -168,6 +186,16 @@ impl Leg {
             label: self.label.clone(),
         })
     }
+}
+
+/// Whether the robot can back up: the planning map is not lethal a back-off step behind it.
+fn clear_behind(inputs: &Inputs) -> bool {
+    let pose = inputs.pose;
+    let behind = Point2::new(
+        pose.x - BACK_OFF_STEP * pose.theta.cos(),
+        pose.y - BACK_OFF_STEP * pose.theta.sin(),
+    );
+    !is_lethal(inputs.map.at(behind))
 }
 
 /// Whether the replan cooldown since the last plan request is over.

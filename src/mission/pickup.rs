@@ -133,8 +133,11 @@ impl Pickup {
         let waited = t - self.since;
         let stop = PickEvent::Go(Motion::Stop, None);
         if matches!(self.stage, Stage::Face | Stage::Approach) {
-            // Seed 001 "Block Lost During Approach": in view but unseen for 3 s.
-            let in_view = distance <= CAMERA_RANGE && error.abs() < CAMERA_HALF_FOV;
+            // Seed 001 "Block Lost During Approach": in view but unseen for 3 s. Nearer than
+            // the camera's blind distance the block is under its view, not lost.
+            let blind = config.blind_distance.unwrap_or(0.0);
+            let in_view =
+                (blind..=CAMERA_RANGE).contains(&distance) && error.abs() < CAMERA_HALF_FOV;
             let spotted =
                 inputs.camera_frame && block.markers.iter().any(|m| inputs.seen.contains(m));
             if spotted || !in_view {

@@ -7,6 +7,7 @@
 
 use super::calibration;
 use super::config::{CornerRefinement, VisionConfig};
+use super::edge_fit::Refined;
 use super::frame::{CameraStatus, GrayFrame};
 use super::intrinsics::Intrinsics;
 use super::mount::{Mount, range_bearing};
@@ -131,9 +132,14 @@ impl Detector {
         parameters.set_corner_refinement_win_size(d.corner_refinement_win_size);
         parameters.set_corner_refinement_method(match d.corner_refinement {
             CornerRefinement::None => aruco::CORNER_REFINE_NONE,
-            CornerRefinement::Subpix => aruco::CORNER_REFINE_SUBPIX,
+            // Edge lines start from cornerSubPix's corners.
+            CornerRefinement::Subpix | CornerRefinement::Edges => aruco::CORNER_REFINE_SUBPIX,
             CornerRefinement::Contour => aruco::CORNER_REFINE_CONTOUR,
         });
+        parameters.set_perspective_remove_pixel_per_cell(d.perspective_remove_pixel_per_cell);
+        parameters.set_perspective_remove_ignored_margin_per_cell(
+            d.perspective_remove_ignored_margin_per_cell,
+        );
         Ok(Self {
             config: config.clone(),
             mount: Mount::new(&config.mount),
@@ -218,13 +224,33 @@ impl Detector {
             &mut refused,
         )?;
         let mut out = Detection::default();
-        for (quad, id) in corners.iter().zip(ids.iter()) {
+        for (mut quad, id) in corners.iter().zip(ids.iter()) {
             let id = id as u32;
+            if self.config.detector.corner_refinement == CornerRefinement::Edges {
+                let start: [[f32; 2]; 4] = std::array::from_fn(|k| {
+                    let p = quad.get(k).unwrap_or_default();
+                    [p.x, p.y]
+                });
+                match super::edge_fit::refine(frame, start) {
+                    Refined::Corners(refined) => {
+                        quad = refined.iter().map(|&[x, y]| Point2f::new(x, y)).collect();
+                    }
+                    // Part of the marker is hidden: its square, and so its pose, is wrong.
+                    Refined::Hidden => {
+                        out.ids.push(id);
+                        out.rejected += 1;
+                        continue;
+                    }
+                    Refined::Unmeasured => {}
+                }
+            }
             out.ids.push(id);
+            let limits = &self.config.detector;
             match self.measure(id, &quad)? {
                 Some(s)
-                    if s.reprojection_px <= self.config.detector.max_reprojection_error_px
-                        && s.range <= self.config.detector.max_range =>
+                    if s.reprojection_px <= limits.max_reprojection_error_px
+                        && s.range <= limits.max_range
+                        && shortest_side(&s.corners) >= limits.min_side_px =>
                 {
                     out.sightings.push(s)
                 }
@@ -297,4 +323,14 @@ impl Detector {
             corners,
         }))
     }
+}
+
+/// The shortest side of a marker's quad in the image, pixels.
+fn shortest_side(corners: &[[f32; 2]; 4]) -> f64 {
+    (0..4)
+        .map(|k| {
+            let (a, b) = (corners[k], corners[(k + 1) % 4]);
+            f64::from(a[0] - b[0]).hypot(f64::from(a[1] - b[1]))
+        })
+        .fold(f64::INFINITY, f64::min)
 }

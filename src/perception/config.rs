@@ -119,6 +119,9 @@ pub enum CornerRefinement {
     None,
     Subpix,
     Contour,
+    /// cornerSubPix, then each corner moved onto the crossing of straight lines fitted to
+    /// the square's edges (`perception::edge_fit`): unbiased on small markers.
+    Edges,
 }
 
 /// ArUco detector parameters (OpenCV's `DetectorParameters`) and the sighting filter.
@@ -134,6 +137,16 @@ pub struct DetectorConfig {
     pub corner_refinement: CornerRefinement,
     /// Half-size of the sub-pixel refinement window, pixels (small keeps far corners sharp).
     pub corner_refinement_win_size: i32,
+    /// Pixels per cell of the unwarped marker the bits are read from.
+    pub perspective_remove_pixel_per_cell: i32,
+    /// Fraction of each cell's width left out on every side when its bit is read: 0.3
+    /// reads the middle 40 %, clear of the blur from its neighbours, so markers of 2-3 px
+    /// per cell are still read (OpenCV's default, 0.13, lost some of 16 px).
+    pub perspective_remove_ignored_margin_per_cell: f64,
+    /// A marker whose black square has a side shorter than this in the image is decoded
+    /// but its sighting rejected, pixels: under 2 px per cell its corners, and so its
+    /// range, are no longer trustworthy (a 9 px block marker read 3 % short).
+    pub min_side_px: f64,
     /// A sighting whose RMS reprojection error exceeds this is rejected, pixels.
     pub max_reprojection_error_px: f64,
     /// Sightings further than this are dropped, metres.
@@ -147,8 +160,11 @@ impl Default for DetectorConfig {
             adaptive_thresh_win_size_max: 17,
             adaptive_thresh_win_size_step: 10,
             min_marker_perimeter_rate: 0.03,
-            corner_refinement: CornerRefinement::Subpix,
+            corner_refinement: CornerRefinement::Edges,
             corner_refinement_win_size: 2,
+            perspective_remove_pixel_per_cell: 8,
+            perspective_remove_ignored_margin_per_cell: 0.3,
+            min_side_px: 12.0,
             max_reprojection_error_px: 1.5,
             max_range: 4.0,
         }
@@ -214,6 +230,7 @@ impl VisionConfig {
             ("markers.wall_height", m.wall_height),
             ("markers.block_height", m.block_height),
             ("render.noise_std", r.noise_std),
+            ("detector.min_side_px", d.min_side_px),
         ];
         crate::field_check::all_non_negative(&non_negative)?;
         let finite = [
@@ -269,6 +286,21 @@ impl VisionConfig {
                 "detector.corner_refinement_win_size",
                 f64::from(d.corner_refinement_win_size),
                 "must be at least 1",
+            ));
+        }
+        if d.perspective_remove_pixel_per_cell < 1 {
+            return Err((
+                "detector.perspective_remove_pixel_per_cell",
+                f64::from(d.perspective_remove_pixel_per_cell),
+                "must be at least 1",
+            ));
+        }
+        let margin = d.perspective_remove_ignored_margin_per_cell;
+        if !(0.0..0.5).contains(&margin) {
+            return Err((
+                "detector.perspective_remove_ignored_margin_per_cell",
+                margin,
+                "must be from 0 to under 0.5 (of a cell, on each side)",
             ));
         }
         if d.adaptive_thresh_win_size_step < 1 {

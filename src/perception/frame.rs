@@ -37,6 +37,22 @@ impl GrayFrame {
         }
     }
 
+    /// The grey level at (`x`, `y`), pixel centres at whole numbers, interpolated
+    /// bilinearly between the four nearest pixels; `None` outside the frame.
+    pub fn sample(&self, x: f64, y: f64) -> Option<f64> {
+        let (x0, y0) = (x.floor(), y.floor());
+        if x0 < 0.0 || y0 < 0.0 || x0 + 1.0 >= self.width as f64 || y0 + 1.0 >= self.height as f64 {
+            return None;
+        }
+        let (fx, fy) = (x - x0, y - y0);
+        let at = |dx: usize, dy: usize| {
+            f64::from(self.data[(y0 as usize + dy) * self.width + x0 as usize + dx])
+        };
+        let top = at(0, 0) * (1.0 - fx) + at(1, 0) * fx;
+        let bottom = at(0, 1) * (1.0 - fx) + at(1, 1) * fx;
+        Some(top * (1.0 - fy) + bottom * fy)
+    }
+
     /// From sensor_msgs/Image fields: `encoding` mono8, rgb8 or bgr8, `step` bytes per row.
     pub fn from_raw(
         width: usize,

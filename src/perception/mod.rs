@@ -6,6 +6,8 @@ pub mod aruco;
 #[cfg(feature = "vision")]
 pub mod calibration;
 pub mod config;
+#[cfg(feature = "vision")]
+pub mod edge_fit;
 pub mod frame;
 pub mod intrinsics;
 pub mod markers;

@@ -33,6 +33,8 @@ const MARKER_CELLS: f64 = 7.0;
 const QUIET_CELLS: i32 = 2;
 /// Cells across the drawn picture: the marker plus the quiet zone on each side.
 const SHEET_CELLS: f64 = MARKER_CELLS + 2.0 * QUIET_CELLS as f64;
+/// Most fine pixels drawn for one marker when supersampling.
+const FINE_PIXELS: f64 = 2.0e6;
 /// Points closer than this in front of the camera are not drawn, metres.
 const NEAR: f64 = 0.02;
 
@@ -162,7 +164,9 @@ impl Renderer {
         })
     }
 
-    /// Warps the sheet of `p` into its bounding box in `frame`.
+    /// Warps the sheet of `p` into its bounding box in `frame`, supersampled: the box is
+    /// drawn at `scale` times the resolution and area-averaged back down, so each pixel
+    /// holds the mean of the scene over its area, as a camera's sensor does.
     fn paste(&mut self, detector: &Detector, p: &Placed, frame: &mut Mat) -> opencv::Result<()> {
         let (fw, fh) = (frame.cols(), frame.rows());
         let (min_x, max_x) = span(p.corners.iter().map(|c| c.x));
@@ -171,10 +175,13 @@ impl Renderer {
         let y0 = (min_y.floor() as i32).clamp(0, fh - 1);
         let x1 = (max_x.ceil() as i32 + 1).clamp(x0 + 1, fw);
         let y1 = (max_y.ceil() as i32 + 1).clamp(y0 + 1, fh);
+        let size = Size::new(x1 - x0, y1 - y0);
+        let scale = supersampling(size);
+        let fine = Size::new(size.width * scale, size.height * scale);
         let full = self.sheet(detector, p.id)?;
-        // Shrink the picture to about its size in the image first (area averaging), so the
-        // warp does not alias the cell edges of a far marker.
-        let across = (max_x - min_x).max(max_y - min_y).ceil() as i32 + 2;
+        // Shrink the picture to about its size in the fine image first (area averaging),
+        // so the warp does not alias the cell edges of a far marker.
+        let across = ((max_x - min_x).max(max_y - min_y).ceil() as i32 + 2) * scale;
         let mut small = Mat::default();
         let sheet = if across < full.cols() {
             imgproc::resize(
@@ -198,22 +205,33 @@ impl Renderer {
             Point2f::new(hi, hi),
             Point2f::new(lo, hi),
         ];
-        let dst = p
-            .corners
-            .map(|c| Point2f::new(c.x - x0 as f32, c.y - y0 as f32));
+        // A frame pixel centre c is fine pixel centre scale (c + 0.5) - 0.5.
+        let k = scale as f32;
+        let dst = p.corners.map(|c| {
+            Point2f::new(
+                k * (c.x - x0 as f32 + 0.5) - 0.5,
+                k * (c.y - y0 as f32 + 0.5) - 0.5,
+            )
+        });
         // The homography taking the sheet's corners to the image (Hartley & Zisserman 4.1).
         let homography = imgproc::get_perspective_transform_slice_def(&src, &dst)?;
-        let mut roi = frame.roi_mut(Rect::new(x0, y0, x1 - x0, y1 - y0))?;
-        let size = Size::new(x1 - x0, y1 - y0);
+        let mut roi = frame.roi_mut(Rect::new(x0, y0, size.width, size.height))?;
+        // What is already drawn there, at the fine resolution (each pixel repeated, so
+        // averaging it back down gives it back unchanged).
+        let mut canvas = Mat::default();
+        imgproc::resize(&roi, &mut canvas, fine, 0.0, 0.0, imgproc::INTER_NEAREST)?;
         imgproc::warp_perspective(
             sheet,
-            &mut roi,
+            &mut canvas,
             &homography,
-            size,
+            fine,
             imgproc::INTER_LINEAR,
             BORDER_TRANSPARENT,
             Scalar::default(),
         )?;
+        let mut averaged = Mat::default();
+        imgproc::resize(&canvas, &mut averaged, size, 0.0, 0.0, imgproc::INTER_AREA)?;
+        averaged.copy_to(&mut roi)?;
         Ok(())
     }
 
@@ -243,6 +261,13 @@ impl Renderer {
         }
         Ok(&self.sheets[&id])
     }
+}
+
+/// Fine pixels per frame pixel along each axis for a box of `size`: 4, or fewer for a box
+/// so large that 4 would draw over `FINE_PIXELS`.
+fn supersampling(size: Size) -> i32 {
+    let area = f64::from(size.width) * f64::from(size.height);
+    ((FINE_PIXELS / area).sqrt().floor() as i32).clamp(1, 4)
 }
 
 fn span(values: impl Iterator<Item = f32>) -> (f32, f32) {

@@ -57,34 +57,9 @@ pub fn run(app: &mut App, seed: u64, time_limit: f64) -> MissionReport {
     let start = app.now();
     app.apply(Action::ModeExplore);
     let mut t = start;
-    let mut trace_seen = 0u64;
     while t - start < time_limit && app.mode() == Mode::Exploration && app.is_busy() {
         t += STEP;
         app.update(t);
-        if std::env::var_os("NAVDECK_TRACE").is_some() {
-            while trace_seen < app.log_book().written() {
-                let n = (app.log_book().written() - trace_seen) as usize;
-                for e in app.log_book().tail(n).take(1) {
-                    let tp = app.true_pose().unwrap();
-                    let ep = app.estimated_pose();
-                    eprintln!(
-                        "{:.1} [{:?}] {} | true ({:.2},{:.2},{:.0}) est ({:.2},{:.2},{:.0}) v {:.2} w {:.2}",
-                        e.time,
-                        e.level,
-                        e.text,
-                        tp.x,
-                        tp.y,
-                        tp.theta.to_degrees(),
-                        ep.x,
-                        ep.y,
-                        ep.theta.to_degrees(),
-                        app.commanded().linear,
-                        app.commanded().angular
-                    );
-                }
-                trace_seen += 1;
-            }
-        }
     }
     report(app, seed)
 }

@@ -50,9 +50,13 @@ fn a_block_below_the_camera_is_approached_on_its_estimate_not_lost() {
     let mut rig = Rig::new(cfg, all_free());
     rig.add_block(421, 1.0, 0.0);
     rig.add_red_gate();
-    rig.until(600, |_, r| r.mission.state_label() == "approach red block 421");
+    rig.until(600, |_, r| {
+        r.mission.state_label() == "approach red block 421"
+    });
     rig.seen = vec![1];
-    rig.until(400, |_, r| r.commands.last() == Some(&GripperCommand::Close));
+    rig.until(400, |_, r| {
+        r.commands.last() == Some(&GripperCommand::Close)
+    });
     assert!(!rig.logged("during the approach"), "{:?}", rig.log);
     rig.until(100, |_, r| r.logged("Picked up red block 421"));
 }

@@ -162,7 +162,7 @@ impl Default for DetectorConfig {
             min_marker_perimeter_rate: 0.03,
             corner_refinement: CornerRefinement::Edges,
             corner_refinement_win_size: 2,
-            perspective_remove_pixel_per_cell: 8,
+            perspective_remove_pixel_per_cell: 4,
             perspective_remove_ignored_margin_per_cell: 0.3,
             min_side_px: 12.0,
             max_reprojection_error_px: 1.5,

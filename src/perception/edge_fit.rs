@@ -15,13 +15,16 @@ use super::frame::GrayFrame;
 
 /// Cells across an ArUco original marker's black square.
 const CELLS: f64 = 7.0;
-/// Steps along an edge and across it, pixels.
+/// Least step along an edge and the step across it, pixels.
 const ALONG_STEP: f64 = 0.5;
-const ACROSS_STEP: f64 = 0.25;
+const ACROSS_STEP: f64 = 0.5;
 /// Least light-dark difference, grey levels, for an edge to be measured.
 const MIN_CONTRAST: f64 = 12.0;
 /// Least points on an edge for a line to be fitted.
 const MIN_POINTS: usize = 4;
+/// Most points measured on one edge: more add time, not accuracy (the line through 48
+/// points with 0.2 px of scatter each is placed to 0.03 px).
+const MAX_POINTS: f64 = 48.0;
 
 type Xy = [f64; 2];
 
@@ -129,7 +132,8 @@ impl Levels {
 }
 
 /// Points along edge `i` (corner `i` to corner `i + 1`) with the outward normal there,
-/// leaving out a cell at each end where the neighbouring edge's blur reaches.
+/// leaving out a cell at each end where the neighbouring edge's blur reaches: every half
+/// pixel, or `MAX_POINTS` evenly spread on a long edge.
 fn edge_samples(quad: &[Xy; 4], i: usize) -> impl Iterator<Item = (Xy, Xy)> {
     let (a, b) = (quad[i], quad[(i + 1) % 4]);
     let len = dist(a, b);
@@ -137,9 +141,11 @@ fn edge_samples(quad: &[Xy; 4], i: usize) -> impl Iterator<Item = (Xy, Xy)> {
     // Corners run clockwise on screen (y down), so the outward normal is u turned left.
     let n = [u[1], -u[0]];
     let first = (len / CELLS).max(1.5);
-    let count = ((len - 2.0 * first) / ALONG_STEP).floor().max(-1.0) as i64 + 1;
+    let span = len - 2.0 * first;
+    let step = ALONG_STEP.max(span / MAX_POINTS);
+    let count = (span / step).floor().max(-1.0) as i64 + 1;
     (0..count).map(move |k| {
-        let t = first + k as f64 * ALONG_STEP;
+        let t = first + k as f64 * step;
         ([a[0] + t * u[0], a[1] + t * u[1]], n)
     })
 }

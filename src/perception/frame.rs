@@ -39,17 +39,21 @@ impl GrayFrame {
 
     /// The grey level at (`x`, `y`), pixel centres at whole numbers, interpolated
     /// bilinearly between the four nearest pixels; `None` outside the frame.
+    #[inline]
     pub fn sample(&self, x: f64, y: f64) -> Option<f64> {
-        let (x0, y0) = (x.floor(), y.floor());
-        if x0 < 0.0 || y0 < 0.0 || x0 + 1.0 >= self.width as f64 || y0 + 1.0 >= self.height as f64 {
+        // Both non-negative below, so truncation is the floor (and needs no libm call).
+        if !(x >= 0.0 && y >= 0.0) {
             return None;
         }
-        let (fx, fy) = (x - x0, y - y0);
-        let at = |dx: usize, dy: usize| {
-            f64::from(self.data[(y0 as usize + dy) * self.width + x0 as usize + dx])
-        };
-        let top = at(0, 0) * (1.0 - fx) + at(1, 0) * fx;
-        let bottom = at(0, 1) * (1.0 - fx) + at(1, 1) * fx;
+        let (col, row) = (x as usize, y as usize);
+        if col + 1 >= self.width || row + 1 >= self.height {
+            return None;
+        }
+        let (fx, fy) = (x - col as f64, y - row as f64);
+        let i = row * self.width + col;
+        let at = |k: usize| f64::from(self.data[k]);
+        let top = at(i) * (1.0 - fx) + at(i + 1) * fx;
+        let bottom = at(i + self.width) * (1.0 - fx) + at(i + self.width + 1) * fx;
         Some(top * (1.0 - fy) + bottom * fy)
     }
 

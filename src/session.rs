@@ -250,4 +250,38 @@ mod tests {
         assert!("serial:".parse::<LinkChoice>().is_err());
         assert!("can".parse::<LinkChoice>().unwrap_err().contains("can"));
     }
+
+    fn twin_session(config: Option<PathBuf>) -> Session {
+        Session::load(&SessionSpec {
+            world: None,
+            seed: 1,
+            config,
+            keymap: None,
+            link: LinkChoice::Sim,
+        })
+        .unwrap()
+    }
+
+    #[test]
+    fn the_blind_distance_follows_the_camera_unless_the_config_sets_it() {
+        let blind = |s: &Session| s.config.mission.blind_distance.unwrap();
+        // The ideal sensor: its 0.10 m least range plus half a 0.05 m block.
+        let mut ideal = twin_session(None);
+        assert!((blind(&ideal) - 0.125).abs() < 1e-9);
+        if cfg!(feature = "vision") {
+            // The rendered camera loses a block marker 0.232 m ahead.
+            ideal.use_sim_camera(None).unwrap();
+            assert!((blind(&ideal) - 0.232).abs() < 0.002, "{}", blind(&ideal));
+        }
+        let dir = std::env::temp_dir().join(format!("navdeck-blind-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let file = dir.join("blind.toml");
+        std::fs::write(&file, "[mission]\nblind_distance = 0.3\n").unwrap();
+        let mut set = twin_session(Some(file));
+        if cfg!(feature = "vision") {
+            set.use_sim_camera(None).unwrap();
+        }
+        assert_eq!(set.config.mission.blind_distance, Some(0.3));
+        std::fs::remove_dir_all(dir).unwrap();
+    }
 }

@@ -158,6 +158,14 @@ fn survey_twin_mount() {
 
 #[test]
 #[ignore]
+fn survey_twin_mount_to_4_m() {
+    let mut v = VisionConfig::default();
+    v.mount = v.render.mount.clone();
+    survey(&v, "twin mount, 4 m");
+}
+
+#[test]
+#[ignore]
 fn survey_level_mount() {
     survey(&level(), "level mount at 0.10 m");
 }

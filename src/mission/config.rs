@@ -78,7 +78,7 @@ pub struct MissionConfig {
     pub drop_staging: f64,
     /// Robot centre to gate centre when the gripper opens, metres.
     pub drop_distance: f64,
-    /// Backing off after a drop at 0.1 m/s, s.
+    /// Backing off at 0.1 m/s after a drop, and out of a spot where the robot is stuck, s.
     pub back_off_time: f64,
     /// No landmarks this long: hand over to manual, s.
     pub lost_timeout: f64,

@@ -5,6 +5,7 @@
 //! `Detector` is built once from the config and then called on any thread (it is `Send`
 //! and `Clone`); camera sources hand it `GrayFrame`s.
 
+use super::bit_check::{self, CELLS};
 use super::calibration;
 use super::config::{CornerRefinement, VisionConfig};
 use super::edge_fit::Refined;
@@ -16,7 +17,7 @@ use crate::link::MarkerSighting;
 use nalgebra::Vector3;
 use opencv::core::{Mat, Point2f, Point3f, Ptr, Vector};
 use opencv::prelude::*;
-use opencv::{aruco, calib3d};
+use opencv::{aruco, calib3d, imgproc};
 
 /// Why detection could not run.
 #[derive(Debug, thiserror::Error)]
@@ -244,6 +245,11 @@ impl Detector {
                     Refined::Unmeasured => {}
                 }
             }
+            if self.config.detector.check_cells && !self.cells_match(frame, id, &quad)? {
+                // Not clearly this ID's pattern: a misread is likelier than a marker.
+                out.rejected += 1;
+                continue;
+            }
             out.ids.push(id);
             let limits = &self.config.detector;
             match self.measure(id, &quad)? {
@@ -261,6 +267,33 @@ impl Detector {
         out.sightings.sort_by_key(|s| s.id);
         out.latency = stopwatch.zip(started).map(|(s, t0)| s.seconds() - t0);
         Ok(out)
+    }
+
+    /// Whether the cells under `quad` are clearly the pattern of marker `id`.
+    fn cells_match(
+        &self,
+        frame: &GrayFrame,
+        id: u32,
+        quad: &Vector<Point2f>,
+    ) -> Result<bool, VisionError> {
+        let unit = [
+            Point2f::new(0.0, 0.0),
+            Point2f::new(1.0, 0.0),
+            Point2f::new(1.0, 1.0),
+            Point2f::new(0.0, 1.0),
+        ];
+        let corners: [Point2f; 4] = std::array::from_fn(|k| quad.get(k).unwrap_or_default());
+        let h = imgproc::get_perspective_transform_slice_def(&unit, &corners)?;
+        let mut homography = [[0.0; 3]; 3];
+        for (r, row) in homography.iter_mut().enumerate() {
+            for (c, value) in row.iter_mut().enumerate() {
+                *value = *h.at_2d::<f64>(r as i32, c as i32)?;
+            }
+        }
+        let mut drawn = Mat::default();
+        aruco::draw_marker(&self.dictionary, id as i32, CELLS as i32, &mut drawn, 1)?;
+        let expected: Vec<bool> = drawn.data_bytes()?.iter().map(|&g| g > 127).collect();
+        Ok(bit_check::cells_match(frame, &homography, &expected))
     }
 
     /// Pose of one marker from its four corners; `None` when solvePnP finds none.

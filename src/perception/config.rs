@@ -143,6 +143,10 @@ pub struct DetectorConfig {
     /// reads the middle 40 %, clear of the blur from its neighbours, so markers of 2-3 px
     /// per cell are still read (OpenCV's default, 0.13, lost some of 16 px).
     pub perspective_remove_ignored_margin_per_cell: f64,
+    /// Read every cell of a decoded marker again and refuse it unless each is clearly
+    /// the colour its ID says (`perception::bit_check`): the original dictionary corrects
+    /// no errors, so one misread cell is another valid ID.
+    pub check_cells: bool,
     /// A marker whose black square has a side shorter than this in the image is decoded
     /// but its sighting rejected, pixels: under 2 px per cell its corners, and so its
     /// range, are no longer trustworthy (a 9 px block marker read 3 % short).
@@ -164,6 +168,7 @@ impl Default for DetectorConfig {
             corner_refinement_win_size: 2,
             perspective_remove_pixel_per_cell: 4,
             perspective_remove_ignored_margin_per_cell: 0.3,
+            check_cells: true,
             min_side_px: 12.0,
             max_reprojection_error_px: 1.5,
             max_range: 4.0,

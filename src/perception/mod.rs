@@ -4,6 +4,8 @@
 #[cfg(feature = "vision")]
 pub mod aruco;
 #[cfg(feature = "vision")]
+pub mod bit_check;
+#[cfg(feature = "vision")]
 pub mod calibration;
 pub mod config;
 #[cfg(feature = "vision")]

@@ -293,13 +293,7 @@ mod tests {
             let k = 0.4 / dx.hypot(dy);
             [(p[0] + k * dx) as f32, (p[1] + k * dy) as f32]
         });
-        let Refined::Corners(found) = refine(&frame, start) else {
-            panic!("not refined")
-        };
-        for (f, t) in found.iter().zip(truth) {
-            let error = dist([f64::from(f[0]), f64::from(f[1])], t);
-            assert!(error < 0.05, "corner {f:?} vs {t:?}: {error:.3} px");
-        }
+        assert_refined_to(&frame, start, truth, 0.05);
     }
 
     #[test]
@@ -311,13 +305,18 @@ mod tests {
             [10.25, 30.25],
         ];
         let frame = square(42, 42, truth);
-        let Refined::Corners(found) = refine(&frame, truth.map(|[x, y]| [x as f32, y as f32]))
-        else {
+        let start = truth.map(|[x, y]| [x as f32, y as f32]);
+        assert_refined_to(&frame, start, truth, 0.02);
+    }
+
+    /// Refining `start` in `frame` puts every corner within `tolerance` px of `truth`.
+    fn assert_refined_to(frame: &GrayFrame, start: [[f32; 2]; 4], truth: [Xy; 4], tolerance: f64) {
+        let Refined::Corners(found) = refine(frame, start) else {
             panic!("not refined")
         };
         for (f, t) in found.iter().zip(truth) {
             let error = dist([f64::from(f[0]), f64::from(f[1])], t);
-            assert!(error < 0.02, "corner {f:?} vs {t:?}: {error:.3} px");
+            assert!(error < tolerance, "corner {f:?} vs {t:?}: {error:.3} px");
         }
     }
 

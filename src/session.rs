@@ -133,21 +133,6 @@ impl Session {
         }
     }
 
-    /// The blind distance of a camera on `mount` with the configured intrinsics.
-    #[cfg(feature = "vision")]
-    fn camera_blind_distance(
-        &self,
-        mount: &crate::perception::config::MountConfig,
-        k: &crate::perception::intrinsics::Intrinsics,
-    ) -> f64 {
-        crate::perception::mount::block_blind_distance(
-            mount,
-            k,
-            &self.config.vision.markers,
-            self.config.mission.block_size,
-        )
-    }
-
     /// Makes the twin see through a rendered camera and the ArUco detector instead of
     /// its ideal marker sensor (`--sim-camera`). Refused with a clear message when navdeck
     /// was built without the `vision` feature or the link has no twin.
@@ -157,14 +142,13 @@ impl Session {
     ) -> Result<()> {
         #[cfg(feature = "vision")]
         {
-            let vision = self.config.vision.clone();
             let Some(twin) = self.link.twin_mut() else {
                 bail!("--sim-camera needs the twin (--link sim)");
             };
-            twin.use_rendered_camera(&vision, stopwatch)
+            let detector = twin
+                .use_rendered_camera(&self.config.vision, stopwatch)
                 .context("cannot start the rendered camera")?;
-            let k = crate::perception::calibration::load_or_default(vision.calibration.as_deref())?;
-            let blind = self.camera_blind_distance(&vision.render.mount, &k);
+            let blind = camera_blind_distance(detector, &self.config);
             self.set_blind_distance(blind);
             Ok(())
         }
@@ -210,8 +194,7 @@ impl Session {
                     )
                 }
             };
-            let blind =
-                self.camera_blind_distance(&self.config.vision.mount, detector.intrinsics());
+            let blind = camera_blind_distance(&detector, &self.config);
             self.set_blind_distance(blind);
             let pipeline = CameraPipeline::start(frames, detector, Some(stopwatch));
             Ok(Session {
@@ -234,6 +217,18 @@ impl Session {
     pub fn into_app(self, now: f64) -> App {
         App::new(self.config, self.keymap, self.link, now)
     }
+}
+
+/// How near a block can come before it leaves the view of `detector`'s camera (its
+/// mount and intrinsics), for `config`'s block and marker sizes.
+#[cfg(feature = "vision")]
+fn camera_blind_distance(detector: &crate::perception::aruco::Detector, config: &Config) -> f64 {
+    crate::perception::mount::block_blind_distance(
+        detector.mount(),
+        detector.intrinsics(),
+        &config.vision.markers,
+        config.mission.block_size,
+    )
 }
 
 #[cfg(test)]

@@ -59,18 +59,18 @@ impl Mount {
 }
 
 /// How near a block can come (robot centre to block centre, metres) before its marker
-/// leaves the bottom of the image of a camera on `mount`: the marker's lower edge
+/// leaves the bottom of the image of a camera `k` on `mount`: the marker's lower edge
 /// (`markers.block_height - block_side / 2`) must be in view, and the marker is on the
 /// block's face, half a block (`block_size / 2`) nearer than its centre. Infinite for a
 /// camera that never sees a block marker on the centre line.
 pub fn block_blind_distance(
-    mount: &MountConfig,
+    mount: &Mount,
     k: &Intrinsics,
     markers: &super::config::MarkerSizes,
     block_size: f64,
 ) -> f64 {
     let lower_edge = markers.block_height - markers.block_side / 2.0;
-    Mount::new(mount)
+    mount
         .nearest_in_view(k, lower_edge)
         .map_or(f64::INFINITY, |face| face + block_size / 2.0)
 }
@@ -132,10 +132,10 @@ mod tests {
         let k = Intrinsics::default();
         // The marker's lower edge 5 mm up comes into view 0.005 / tan(39.4 deg) = 6 mm
         // inside the floor's 0.212 m, and the block's centre is 25 mm behind its face.
-        let twin = block_blind_distance(&MountConfig::twin(), &k, &markers, 0.05);
+        let twin = block_blind_distance(&Mount::new(&MountConfig::twin()), &k, &markers, 0.05);
         assert!((twin - 0.232).abs() < 0.002, "{twin}");
         // Seed 001's: 0.005 / tan(53.4 deg) = 4 mm inside its 0.238 m.
-        let seed = block_blind_distance(&MountConfig::default(), &k, &markers, 0.05);
+        let seed = block_blind_distance(&Mount::new(&MountConfig::default()), &k, &markers, 0.05);
         assert!((seed - 0.260).abs() < 0.002, "{seed}");
     }
 

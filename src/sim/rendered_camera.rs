@@ -330,6 +330,11 @@ impl RenderedCamera {
         })
     }
 
+    /// The detector reading this camera's frames, with its mount and intrinsics.
+    pub fn detector(&self) -> &Detector {
+        &self.detector
+    }
+
     /// Renders the frame seen from `pose`, detects its markers and reports both.
     pub fn capture<'a>(
         &mut self,

@@ -194,19 +194,21 @@ impl Twin {
 
     /// Replaces the ideal marker sensor by a rendered camera read with the ArUco
     /// detector (feature `vision`), which sees no further than the ideal sensor did; with
-    /// a stopwatch, detection latency is reported.
+    /// a stopwatch, detection latency is reported. Returns the camera's detector.
     #[cfg(feature = "vision")]
     pub fn use_rendered_camera(
         &mut self,
         vision: &crate::perception::config::VisionConfig,
         stopwatch: Option<Arc<dyn crate::perception::stopwatch::Stopwatch>>,
-    ) -> Result<(), crate::perception::aruco::VisionError> {
-        self.rendered = Some(Box::new(super::rendered_camera::RenderedCamera::new(
-            vision,
-            self.camera.max_range(),
-            stopwatch,
-        )?));
-        Ok(())
+    ) -> Result<&crate::perception::aruco::Detector, crate::perception::aruco::VisionError> {
+        let camera = self
+            .rendered
+            .insert(Box::new(super::rendered_camera::RenderedCamera::new(
+                vision,
+                self.camera.max_range(),
+                stopwatch,
+            )?));
+        Ok(camera.detector())
     }
 
     pub fn blocks(&self) -> &[BlockState] {

@@ -9,11 +9,8 @@ use nalgebra::Vector3;
 use navdeck::geometry::Pose2;
 use navdeck::perception::aruco::Detector;
 use navdeck::perception::config::VisionConfig;
-use navdeck::sim::rendered_camera::Renderer;
 use navdeck::sim::{Marker, World};
-use rand::SeedableRng;
-use rand_chacha::ChaCha8Rng;
-use vision_support::{ArenaScene, level};
+use vision_support::{ArenaCamera, ArenaScene, level};
 
 /// Markers smaller than this in the image are not required to be found: the detector
 /// refuses their sightings (`[vision.detector] min_side_px`, 1.7 pixels per cell). A
@@ -119,9 +116,7 @@ struct Outcome {
 /// whether range and bearing are held to the bounds (IDs always are).
 fn check(cfg: &VisionConfig, poses: &[Pose2], max_view_deg: f64, accuracy: bool) -> Outcome {
     let scene = ArenaScene::new();
-    let det = Detector::from_config(cfg).unwrap();
-    let mut renderer = Renderer::new(&cfg.markers, &cfg.render);
-    let mut rng = ChaCha8Rng::seed_from_u64(9);
+    let mut camera = ArenaCamera::new(cfg, 9);
     let all = scene.markers();
     let occluders = scene.occluders();
     let mut out = Outcome {
@@ -132,9 +127,8 @@ fn check(cfg: &VisionConfig, poses: &[Pose2], max_view_deg: f64, accuracy: bool)
         rejected: 0,
     };
     for &pose in poses {
-        let frame = renderer
-            .render(&det, pose, all.iter().copied(), &occluders, &mut rng)
-            .unwrap();
+        let frame = camera.frame(pose, all.iter().copied(), &occluders);
+        let det = &camera.det;
         let d = det.detect(&frame, None).unwrap();
         out.rejected += d.rejected;
         for m in &all {
@@ -144,7 +138,7 @@ fn check(cfg: &VisionConfig, poses: &[Pose2], max_view_deg: f64, accuracy: bool)
                 .acos()
                 .to_degrees();
             let clear = navdeck::sim::line_of_sight(pose.position(), m, &occluders);
-            let side_px = fully_in_view(&det, cfg, pose, m, &all);
+            let side_px = fully_in_view(det, cfg, pose, m, &all);
             let must = clear
                 && range <= 4.0
                 && facing <= max_view_deg
@@ -285,13 +279,9 @@ fn the_twin_with_a_rendered_camera_reports_sightings_deterministically() {
 /// The IDs the detector reads from `pose` in the arena with the camera of `cfg.mount`.
 fn ids_seen(cfg: &VisionConfig, pose: Pose2) -> Vec<u32> {
     let world = World::default_arena();
-    let det = Detector::from_config(cfg).unwrap();
-    let mut renderer = Renderer::new(&cfg.markers, &cfg.render);
-    let mut rng = ChaCha8Rng::seed_from_u64(4);
-    let frame = renderer
-        .render(&det, pose, &world.markers, &[&world.walls], &mut rng)
-        .unwrap();
-    det.detect(&frame, None).unwrap().ids
+    let mut camera = ArenaCamera::new(cfg, 4);
+    let frame = camera.frame(pose, &world.markers, &[&world.walls]);
+    camera.det.detect(&frame, None).unwrap().ids
 }
 
 #[test]
@@ -312,32 +302,22 @@ fn a_partly_hidden_marker_is_refused_or_read_right() {
     // left side (as a person or a box in front of it would).
     let cfg = level();
     let scene = ArenaScene::new();
-    let det = Detector::from_config(&cfg).unwrap();
-    let mut renderer = Renderer::new(&cfg.markers, &cfg.render);
-    let mut rng = ChaCha8Rng::seed_from_u64(5);
+    let mut camera = ArenaCamera::new(&cfg, 5);
     let pose = Pose2::new(0.8, -0.5, 0.2);
     let all = scene.markers();
     let target = all.iter().find(|m| m.id == 13).unwrap();
-    let (quad, _) = image_quad(&det, &cfg, pose, target, 1.0).unwrap();
+    let (quad, _) = image_quad(&camera.det, &cfg, pose, target, 1.0).unwrap();
     let (x0, y0, x1, y1) = bounds(&quad);
     let mut outcomes = Vec::new();
     for hidden in [0.0, 0.1, 0.2, 0.35, 0.5, 0.75] {
-        let mut frame = renderer
-            .render(
-                &det,
-                pose,
-                all.iter().copied(),
-                &scene.occluders(),
-                &mut rng,
-            )
-            .unwrap();
+        let mut frame = camera.frame(pose, all.iter().copied(), &scene.occluders());
         let cover = x0 + hidden * (x1 - x0);
         for y in (y0 - 3.0) as usize..(y1 + 3.0) as usize {
             for x in (x0 - 3.0) as usize..cover.max(0.0) as usize {
                 frame.data[y * frame.width + x] = cfg.render.background as u8;
             }
         }
-        let d = det.detect(&frame, None).unwrap();
+        let d = camera.det.detect(&frame, None).unwrap();
         for id in &d.ids {
             assert!(all.iter().any(|m| m.id == *id), "phantom id {id}");
         }

@@ -6,14 +6,10 @@
 mod vision_support;
 
 use navdeck::geometry::Pose2;
-use navdeck::perception::aruco::Detector;
 use navdeck::perception::config::VisionConfig;
 use navdeck::perception::markers::MarkerCategory;
-use navdeck::sim::rendered_camera::Renderer;
-use rand::SeedableRng;
-use rand_chacha::ChaCha8Rng;
 use std::collections::BTreeMap;
-use vision_support::{ArenaScene, level};
+use vision_support::{ArenaCamera, ArenaScene, level};
 
 #[derive(Default, Debug)]
 struct Stats {
@@ -34,9 +30,7 @@ struct Stats {
 
 fn survey(cfg: &VisionConfig, label: &str) {
     let scene = ArenaScene::new();
-    let det = Detector::from_config(cfg).unwrap();
-    let mut renderer = Renderer::new(&cfg.markers, &cfg.render);
-    let mut rng = ChaCha8Rng::seed_from_u64(5);
+    let mut camera = ArenaCamera::new(cfg, 5);
     let all = scene.markers();
     let occluders = scene.occluders();
     let mut stats: BTreeMap<&str, Stats> = BTreeMap::new();
@@ -54,10 +48,8 @@ fn survey(cfg: &VisionConfig, label: &str) {
         }
     }
     for &pose in &poses {
-        let frame = renderer
-            .render(&det, pose, all.iter().copied(), &occluders, &mut rng)
-            .unwrap();
-        let d = det.detect(&frame, None).unwrap();
+        let frame = camera.frame(pose, all.iter().copied(), &occluders);
+        let d = camera.det.detect(&frame, None).unwrap();
         for m in &all {
             let cat = MarkerCategory::of(m.id).label();
             let st = stats.entry(cat).or_insert(Stats {

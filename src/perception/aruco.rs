@@ -8,7 +8,7 @@
 use super::bit_check::{self, CELLS};
 use super::calibration;
 use super::config::{CornerRefinement, VisionConfig};
-use super::edge_fit::Refined;
+use super::edge_fit::{Refined, shortest_side};
 use super::frame::{CameraStatus, GrayFrame};
 use super::intrinsics::Intrinsics;
 use super::mount::{Mount, range_bearing};
@@ -356,14 +356,4 @@ impl Detector {
             corners,
         }))
     }
-}
-
-/// The shortest side of a marker's quad in the image, pixels.
-fn shortest_side(corners: &[[f32; 2]; 4]) -> f64 {
-    (0..4)
-        .map(|k| {
-            let (a, b) = (corners[k], corners[(k + 1) % 4]);
-            f64::from(a[0] - b[0]).hypot(f64::from(a[1] - b[1]))
-        })
-        .fold(f64::INFINITY, f64::min)
 }

@@ -4,6 +4,7 @@
 //! round it, is read again at its middle through the homography of the refined corners,
 //! and the marker is kept only when each cell is clearly the colour its ID says.
 
+use super::edge_fit::median;
 use super::frame::GrayFrame;
 
 /// Cells across the black square, border included.
@@ -47,8 +48,9 @@ pub fn cells_match(frame: &GrayFrame, homography: &[[f64; 3]; 3], expected: &[bo
     if margin.len() < 2 * CELLS {
         return false;
     }
-    margin.sort_by(f64::total_cmp);
-    let light = margin[margin.len() / 2];
+    let Some(light) = median(&mut margin) else {
+        return false;
+    };
     let mut border: Vec<f64> = (0..CELLS * CELLS)
         .filter(|k| {
             let (c, r) = (k % CELLS, k / CELLS);
@@ -56,8 +58,9 @@ pub fn cells_match(frame: &GrayFrame, homography: &[[f64; 3]; 3], expected: &[bo
         })
         .map(|k| cells[k])
         .collect();
-    border.sort_by(f64::total_cmp);
-    let dark = border[border.len() / 2];
+    let Some(dark) = median(&mut border) else {
+        return false;
+    };
     let contrast = light - dark;
     if contrast <= 0.0 {
         return false;

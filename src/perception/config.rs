@@ -286,19 +286,22 @@ impl VisionConfig {
                 "must not be below adaptive_thresh_win_size_min",
             ));
         }
-        if d.corner_refinement_win_size < 1 {
-            return Err((
+        let counts = [
+            (
                 "detector.corner_refinement_win_size",
-                f64::from(d.corner_refinement_win_size),
-                "must be at least 1",
-            ));
-        }
-        if d.perspective_remove_pixel_per_cell < 1 {
-            return Err((
+                d.corner_refinement_win_size,
+            ),
+            (
                 "detector.perspective_remove_pixel_per_cell",
-                f64::from(d.perspective_remove_pixel_per_cell),
-                "must be at least 1",
-            ));
+                d.perspective_remove_pixel_per_cell,
+            ),
+            (
+                "detector.adaptive_thresh_win_size_step",
+                d.adaptive_thresh_win_size_step,
+            ),
+        ];
+        if let Some((field, value)) = counts.into_iter().find(|(_, v)| *v < 1) {
+            return Err((field, f64::from(value), "must be at least 1"));
         }
         let margin = d.perspective_remove_ignored_margin_per_cell;
         if !(0.0..0.5).contains(&margin) {
@@ -306,13 +309,6 @@ impl VisionConfig {
                 "detector.perspective_remove_ignored_margin_per_cell",
                 margin,
                 "must be from 0 to under 0.5 (of a cell, on each side)",
-            ));
-        }
-        if d.adaptive_thresh_win_size_step < 1 {
-            return Err((
-                "detector.adaptive_thresh_win_size_step",
-                f64::from(d.adaptive_thresh_win_size_step),
-                "must be at least 1",
             ));
         }
         Ok(())

@@ -45,10 +45,7 @@ pub enum Refined {
 /// Refines the corners of one marker of `frame` (see [`Refined`]).
 pub fn refine(frame: &GrayFrame, corners: [[f32; 2]; 4]) -> Refined {
     let start: [Xy; 4] = corners.map(|[x, y]| [f64::from(x), f64::from(y)]);
-    let shortest = (0..4)
-        .map(|i| dist(start[i], start[(i + 1) % 4]))
-        .fold(f64::INFINITY, f64::min);
-    let cell = shortest / CELLS;
+    let cell = shortest_side(&corners) / CELLS;
     if cell < 1.5 {
         return Refined::Unmeasured;
     }
@@ -232,11 +229,20 @@ impl Line {
     }
 }
 
+/// The shortest side of a marker's quad in the image, pixels.
+pub fn shortest_side(corners: &[[f32; 2]; 4]) -> f64 {
+    let at = |k: usize| [f64::from(corners[k][0]), f64::from(corners[k][1])];
+    (0..4)
+        .map(|k| dist(at(k), at((k + 1) % 4)))
+        .fold(f64::INFINITY, f64::min)
+}
+
 fn dist(a: Xy, b: Xy) -> f64 {
     (a[0] - b[0]).hypot(a[1] - b[1])
 }
 
-fn median(values: &mut [f64]) -> Option<f64> {
+/// The middle value (the upper one of an even count), sorting `values`; `None` if empty.
+pub(super) fn median(values: &mut [f64]) -> Option<f64> {
     if values.is_empty() {
         return None;
     }

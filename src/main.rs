@@ -13,10 +13,13 @@ use navdeck::perception::stopwatch::Stopwatch;
 use navdeck::plan_report::{self, Terrain};
 use navdeck::session::{LinkChoice, Session, SessionSpec};
 use navdeck::sim::World;
-use navdeck::tui::events::{TerminalEvents, WallClock};
-use navdeck::tui::run::{Exit, RunStats, run, signal_name};
-use navdeck::tui::terminal::{TerminalGuard, watch_signals};
+use navdeck::tui::events::WallClock;
+use navdeck::tui::input::TtyEvents;
+use navdeck::tui::run::{Exit, RunError, RunStats, run};
+use navdeck::tui::signals::{Signals, signal_name};
+use navdeck::tui::terminal::TerminalGuard;
 use navdeck::tui::theme::Theme;
+use std::io::Write;
 use std::path::PathBuf;
 use std::process::ExitCode;
 use std::time::Instant;
@@ -270,13 +273,13 @@ fn run_headless(
     } else {
         // A real robot moves in real time: keep the session clock on the wall clock, and
         // stop the robot on SIGINT, SIGTERM or SIGHUP.
-        let signal = watch_signals().context("cannot watch for signals")?;
+        let signals = Signals::watch().context("cannot watch for signals")?;
         let mut pace = |t: f64| {
             let ahead = t - started.elapsed().as_secs_f64();
             if ahead > 0.0 {
                 std::thread::sleep(std::time::Duration::from_secs_f64(ahead));
             }
-            signal.load(std::sync::atomic::Ordering::SeqCst) == 0
+            signals.pending().is_none()
         };
         headless::run_paced(&mut app, &keys, cli.key_rate, &mut pace)
     };
@@ -435,12 +438,25 @@ fn run_map(command: &MapCommand) -> Result<ExitCode> {
     Ok(ExitCode::SUCCESS)
 }
 
+/// How long the console may take to end once the robot has been told to stop: restoring
+/// the terminal and closing the link must fit in it, whatever they wait on.
+const EXIT_DEADLINE: std::time::Duration = std::time::Duration::from_millis(800);
+
+/// The exit deadline: `NAVDECK_EXIT_DEADLINE_MS` (tests lengthen it to tell an immediate
+/// exit from the deadline's), else `EXIT_DEADLINE`.
+fn exit_deadline() -> std::time::Duration {
+    std::env::var("NAVDECK_EXIT_DEADLINE_MS")
+        .ok()
+        .and_then(|ms| ms.trim().parse::<u64>().ok())
+        .map_or(EXIT_DEADLINE, std::time::Duration::from_millis)
+}
+
 fn run_console(
     session: Session,
     cli: &Cli,
     stopwatch: std::sync::Arc<dyn Stopwatch>,
 ) -> Result<ExitCode> {
-    let signal = watch_signals().context("cannot watch signals")?;
+    let signals = Signals::watch().context("cannot watch signals")?;
     let theme = Theme::from_env(std::env::var_os("NO_COLOR"));
     let clock = WallClock::start();
     let mut app = session.into_app(0.0);
@@ -459,39 +475,47 @@ fn run_console(
     let mut stats = RunStats::default();
     let outcome = {
         let mut guard = TerminalGuard::enter().context("cannot set up the terminal")?;
-        app.set_release_events(guard.release_events);
-        run(
+        let mut events = TtyEvents::open(&signals).context("cannot read the terminal")?;
+        let outcome = run(
             &mut guard.terminal,
             &mut app,
-            &mut TerminalEvents,
+            &mut events,
             &clock,
-            &signal,
+            signals.cell(),
             theme,
             &mut stats,
-        )
+        );
+        // The robot has been told to stop: from here the process ends within the deadline,
+        // and a second signal ends it at once.
+        signals.arm_immediate_exit(exit_deadline(), exit_status(&outcome));
+        outcome
         // The guard drops here: the terminal is restored before anything is printed.
     };
     let label = app.link().label();
+    // Closes the link: the serial port, the DDS participant.
     drop(app);
+    let why = match &outcome {
+        Ok(Exit::Quit) => "quit by user".to_string(),
+        Ok(Exit::InputClosed) => "the terminal hung up".to_string(),
+        Ok(Exit::Signal(n)) => format!("{} received", signal_name(*n)),
+        Err(e) => e.to_string(),
+    };
+    // The terminal may be gone: a message that cannot be written is no reason to fail.
+    let _ = writeln!(
+        std::io::stderr(),
+        "navdeck: robot on {label} stopped; {why}"
+    );
+    Ok(ExitCode::from(exit_status(&outcome) as u8))
+}
+
+/// The process's exit status: 128 + the signal's number for a signal, as shells expect.
+/// The terminal's input ends only when it hangs up (in raw mode ctrl-d is a key), which
+/// the kernel signals with SIGHUP: that status too, whichever of the two came first.
+fn exit_status(outcome: &Result<Exit, RunError>) -> i32 {
     match outcome {
-        Ok(Exit::Quit) => {
-            eprintln!("navdeck: robot on {label} stopped; quit by user");
-            Ok(ExitCode::SUCCESS)
-        }
-        Ok(Exit::InputClosed) => {
-            eprintln!("navdeck: robot on {label} stopped; input closed");
-            Ok(ExitCode::SUCCESS)
-        }
-        Ok(Exit::Signal(n)) => {
-            eprintln!(
-                "navdeck: robot on {label} stopped; {} received",
-                signal_name(n)
-            );
-            Ok(ExitCode::from(128 + (n as u8)))
-        }
-        Err(e) => {
-            eprintln!("navdeck: robot on {label} stopped; {e}");
-            Ok(ExitCode::from(1))
-        }
+        Ok(Exit::Quit) => 0,
+        Ok(Exit::InputClosed) => 128 + signal_hook::consts::SIGHUP,
+        Ok(Exit::Signal(n)) => 128 + *n as i32,
+        Err(_) => 1,
     }
 }

@@ -1,9 +1,8 @@
-//! Where the main loop's input and time come from: the real terminal and clock, or a
-//! script and a hand-turned clock in tests.
+//! Where the main loop's input and time come from: the wall clock (the terminal's input
+//! is `tui::input`), or a script and a hand-turned clock in tests.
 
 use crate::app::KeyKind;
-use crate::keymap::{Key, KeyCode};
-use crossterm::event::{self, KeyEventKind, KeyModifiers};
+use crate::keymap::Key;
 use std::cell::Cell;
 use std::collections::VecDeque;
 use std::io;
@@ -58,58 +57,6 @@ impl Clock for ManualClock {
     fn now(&self) -> f64 {
         self.0.get()
     }
-}
-
-/// Terminal input through crossterm.
-pub struct TerminalEvents;
-
-impl EventSource for TerminalEvents {
-    fn next_event(&mut self, timeout: Duration) -> io::Result<Option<Event>> {
-        if !event::poll(timeout)? {
-            return Ok(None);
-        }
-        Ok(match event::read()? {
-            event::Event::Key(k) => key_from_crossterm(k).map(|(key, kind)| Event::Key(key, kind)),
-            event::Event::Resize(w, h) => Some(Event::Resize(w, h)),
-            _ => None,
-        })
-    }
-}
-
-/// crossterm's key event as navdeck's key; `None` for keys navdeck has no name for.
-pub fn key_from_crossterm(k: event::KeyEvent) -> Option<(Key, KeyKind)> {
-    use event::KeyCode as C;
-    let code = match k.code {
-        C::Char(c) => KeyCode::Char(c),
-        C::Enter => KeyCode::Enter,
-        C::Esc => KeyCode::Esc,
-        C::Tab => KeyCode::Tab,
-        C::BackTab => KeyCode::BackTab,
-        C::Backspace => KeyCode::Backspace,
-        C::Delete => KeyCode::Delete,
-        C::Insert => KeyCode::Insert,
-        C::Up => KeyCode::Up,
-        C::Down => KeyCode::Down,
-        C::Left => KeyCode::Left,
-        C::Right => KeyCode::Right,
-        C::Home => KeyCode::Home,
-        C::End => KeyCode::End,
-        C::PageUp => KeyCode::PageUp,
-        C::PageDown => KeyCode::PageDown,
-        C::F(n) => KeyCode::F(n),
-        _ => return None,
-    };
-    let kind = match k.kind {
-        KeyEventKind::Press => KeyKind::Press,
-        KeyEventKind::Repeat => KeyKind::Repeat,
-        KeyEventKind::Release => KeyKind::Release,
-    };
-    let key = Key {
-        code,
-        ctrl: k.modifiers.contains(KeyModifiers::CONTROL),
-        alt: k.modifiers.contains(KeyModifiers::ALT),
-    };
-    Some((key, kind))
 }
 
 /// A step of a scripted session.
@@ -167,19 +114,6 @@ impl EventSource for ScriptedEvents {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn shifted_letter_and_ctrl_c_convert() {
-        let w = event::KeyEvent::new(C::Char('W'), KeyModifiers::SHIFT);
-        assert_eq!(
-            key_from_crossterm(w),
-            Some((Key::char('W'), KeyKind::Press))
-        );
-        let c = event::KeyEvent::new(C::Char('c'), KeyModifiers::CONTROL);
-        let (key, _) = key_from_crossterm(c).unwrap();
-        assert!(key.ctrl && key.code == KeyCode::Char('c'));
-    }
-    use event::KeyCode as C;
 
     #[test]
     fn script_waits_turn_the_clock() {

@@ -3,7 +3,9 @@
 
 pub mod draw;
 pub mod events;
+pub mod input;
 pub mod run;
+pub mod signals;
 pub mod terminal;
 pub mod theme;
 pub mod widgets;

@@ -4,6 +4,7 @@
 
 use super::draw::draw;
 use super::events::{Clock, Event, EventSource};
+use super::signals::signal_name;
 use super::theme::Theme;
 use crate::app::App;
 use ratatui::Terminal;
@@ -54,10 +55,8 @@ pub fn run<B: Backend>(
     app.resize(size.width, size.height);
     let mut drawn: Option<u64> = None;
     loop {
-        let pending = signal.load(Ordering::SeqCst);
-        if pending != 0 {
-            app.shutdown(&format!("signal {}", signal_name(pending)));
-            return Ok(Exit::Signal(pending));
+        if let Some(exit) = signalled(app, signal) {
+            return Ok(exit);
         }
         app.update(clock.now());
         if app.should_quit() {
@@ -78,6 +77,10 @@ pub fn run<B: Backend>(
                     Event::Key(key, kind) => app.handle_key(key, kind, clock.now()),
                     Event::Resize(w, h) => app.resize(w, h),
                     Event::Closed => {
+                        // A hang-up also sends SIGHUP, which may have arrived first.
+                        if let Some(exit) = signalled(app, signal) {
+                            return Ok(exit);
+                        }
                         app.shutdown("input closed");
                         return Ok(Exit::InputClosed);
                     }
@@ -85,6 +88,10 @@ pub fn run<B: Backend>(
             }
             Ok(None) => {}
             Err(e) => {
+                if let Some(exit) = signalled(app, signal) {
+                    return Ok(exit);
+                }
+                // A terminal that errors (EIO after a hang-up) has gone: stop and leave.
                 app.shutdown(&format!("terminal input failed: {e}"));
                 return Err(RunError::Input(e));
             }
@@ -92,18 +99,18 @@ pub fn run<B: Backend>(
     }
 }
 
+/// Stops the robot and names the signal, if one has arrived.
+fn signalled(app: &mut App, signal: &AtomicUsize) -> Option<Exit> {
+    let pending = signal.load(Ordering::SeqCst);
+    if pending == 0 {
+        return None;
+    }
+    app.shutdown(&signal_name(pending));
+    Some(Exit::Signal(pending))
+}
+
 fn fail(app: &mut App, e: impl std::fmt::Display) -> RunError {
     let message = e.to_string();
     app.shutdown(&format!("terminal output failed: {message}"));
     RunError::Draw(message)
-}
-
-/// The conventional name of a signal number.
-pub fn signal_name(signal: usize) -> String {
-    match signal {
-        1 => "SIGHUP".into(),
-        2 => "SIGINT".into(),
-        15 => "SIGTERM".into(),
-        n => format!("{n}"),
-    }
 }

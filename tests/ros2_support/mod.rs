@@ -27,6 +27,9 @@ pub struct FakeOptions {
     pub joints: bool,
     /// Every n-th odometry message carries NaN.
     pub bad_odom_every: Option<u64>,
+    /// Joins the domain on 127.0.0.1 only, as a navdeck process with
+    /// `[ros2] interfaces = ["127.0.0.1"]` does.
+    pub loopback: bool,
 }
 
 impl FakeOptions {
@@ -36,6 +39,7 @@ impl FakeOptions {
             stamped: false,
             joints: true,
             bad_odom_every: None,
+            loopback: false,
         }
     }
 }
@@ -86,10 +90,16 @@ fn qos(durable: bool, best_effort: bool) -> QosProfile {
     }
 }
 
-/// A loopback-only context on `domain`.
-pub fn context(domain: u16) -> Context {
+/// A context on `domain`: on 127.0.0.1 alone when `loopback`, else on the interface
+/// NAVDECK_TEST_IFACES names, else on all.
+pub fn context(domain: u16, loopback: bool) -> Context {
     let mut b = ros2_client::dds::rustdds::DomainParticipantBuilder::new(domain);
-    if let Ok(ip) = std::env::var("NAVDECK_TEST_IFACES") {
+    let only = if loopback {
+        Some("127.0.0.1".to_string())
+    } else {
+        std::env::var("NAVDECK_TEST_IFACES").ok()
+    };
+    if let Some(ip) = only {
         b = b.with_only_networks([ip.parse::<std::net::IpAddr>().unwrap()]);
     }
     let participant = b.build().expect("DDS participant");
@@ -141,7 +151,7 @@ fn run(
     stop: Arc<AtomicBool>,
     paused: Arc<AtomicBool>,
 ) {
-    let context = context(options.domain);
+    let context = context(options.domain, options.loopback);
     let mut node = context
         .new_node(
             NodeName::new("/", "fake_turtlebot").unwrap(),

@@ -72,6 +72,8 @@ pub struct State {
     garbage: Option<Vec<u8>>,
     drop_next: bool,
     delay_next: Option<Duration>,
+    /// Reads requests and answers none from now on (a firmware that hung).
+    muted: bool,
 }
 
 impl State {
@@ -238,6 +240,7 @@ impl Emulator {
                 garbage: None,
                 drop_next: false,
                 delay_next: None,
+                muted: false,
             }),
             changed: Condvar::new(),
         });
@@ -299,6 +302,11 @@ impl Emulator {
 
     pub fn delay_next_reply(&self, delay: Duration) {
         self.state().delay_next = Some(delay);
+    }
+
+    /// The firmware hangs: it goes on reading requests but never answers again.
+    pub fn mute(&self) {
+        self.state().muted = true;
     }
 
     /// Adds `counts` to the left encoder at once, as a glitch or a reset would.
@@ -471,7 +479,7 @@ fn serve(
                 b'\r' => {
                     let request = String::from_utf8_lossy(&line).into_owned();
                     line.clear();
-                    let (reply, garbage, dropped, delay) = {
+                    let (reply, garbage, dropped, delay, muted) = {
                         let mut s = shared.state.lock().unwrap();
                         s.advance(Instant::now());
                         let reply = s.answer(&request, options, Instant::now());
@@ -481,6 +489,7 @@ fn serve(
                             s.garbage.take(),
                             std::mem::take(&mut s.drop_next),
                             s.delay_next.take(),
+                            s.muted,
                         )
                     };
                     shared.changed.notify_all();
@@ -491,7 +500,7 @@ fn serve(
                     if let Some(g) = garbage {
                         port.write(&g);
                     }
-                    if !dropped && !options.silent {
+                    if !dropped && !options.silent && !muted {
                         port.write(reply.as_bytes());
                     }
                 }

@@ -736,9 +736,15 @@ impl RobotLink for Ros2Link {
     }
 }
 
+/// How long a closing link keeps its DDS participant after the last zero cmd_vel, so the
+/// participant's own thread sends it before the writer goes (ros2-client offers no wait
+/// for acknowledgements). Well inside the console's exit deadline.
+const STOP_DELIVERY: std::time::Duration = std::time::Duration::from_millis(100);
+
 impl Drop for Ros2Link {
     fn drop(&mut self) {
         self.stop();
+        std::thread::sleep(STOP_DELIVERY);
     }
 }
 

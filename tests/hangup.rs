@@ -1,0 +1,224 @@
+//! The console's terminal goes away (an SSH drop) or navdeck is signalled while the robot
+//! is driving, on every link: the robot is told to stop, the link is let go, and the
+//! process ends by itself with the status a shell expects (128 + the signal's number).
+
+mod pty_support;
+mod ros2_support;
+mod serial_emulator;
+
+use pty_support::{Console, Finished, Terminal};
+use ros2_support::{FakeOptions, FakeRobot};
+use serial_emulator::Emulator;
+use std::path::PathBuf;
+use std::time::{Duration, Instant};
+
+/// How the console's terminal ends.
+#[derive(Clone, Copy, Debug)]
+enum Ending {
+    /// Every descriptor of the terminal's master side closes, as sshd's do on a drop.
+    HangUp,
+    Signal(i32),
+}
+
+impl Ending {
+    /// The exit status navdeck must end with. Closing the master side hangs up the
+    /// terminal, and the kernel sends SIGHUP to the session navdeck leads.
+    fn status(self) -> u32 {
+        match self {
+            Ending::HangUp => 128 + libc::SIGHUP as u32,
+            Ending::Signal(s) => 128 + s as u32,
+        }
+    }
+}
+
+fn config_file(name: &str, text: &str) -> PathBuf {
+    let path = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join(name);
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
+/// Drives forward by keys until the screen says so, then ends the terminal while keys
+/// are still arriving.
+fn drive_then_end(console: &mut Console, ending: Ending) {
+    console.wait_for(b"Status");
+    // Held w, as a terminal's auto-repeat sends it, until the robot drives (a real robot's
+    // link may take a moment to come up).
+    console.hold_until(b"w", b"forward");
+    console.send(b"wwwwwwwwww");
+    match ending {
+        Ending::HangUp => console.hang_up(),
+        Ending::Signal(s) => console.signal(s),
+    }
+}
+
+/// Waits (bounded) until `done` holds, asking again whenever `wait` returns.
+fn until(what: &str, mut done: impl FnMut() -> bool) {
+    let deadline = Instant::now() + pty_support::PATIENCE;
+    let (_tx, rx) = std::sync::mpsc::channel::<()>();
+    while !done() {
+        assert!(Instant::now() < deadline, "{what} never happened");
+        let _ = rx.recv_timeout(Duration::from_millis(10));
+    }
+}
+
+fn twin(ending: Ending) -> Finished {
+    let mut console = Console::start(&[], &[], Terminal::Plain);
+    drive_then_end(&mut console, ending);
+    console.finish()
+}
+
+fn serial(ending: Ending) -> (Finished, Emulator) {
+    let emu = Emulator::start();
+    let config = config_file(
+        &format!("hangup-serial-{ending:?}.toml"),
+        "[serial]\nreply_timeout = 0.2\n",
+    );
+    let link = format!("serial:{}@57600", emu.path());
+    let args = ["--link", &link, "--config", config.to_str().unwrap()];
+    let mut console = Console::start(&args, &[], Terminal::Plain);
+    drive_then_end(&mut console, ending);
+    emu.wait_for("a forward command", |s| {
+        s.motor_targets(0).iter().any(|&(l, r)| l == r && l > 0)
+    });
+    (console.finish(), emu)
+}
+
+fn ros2(domain: u16, ending: Ending) -> (Finished, FakeRobot) {
+    let robot = FakeRobot::start(FakeOptions {
+        loopback: true,
+        ..FakeOptions::new(domain)
+    });
+    let toml = format!(
+        "[robot]\ntrack = {}\n[ros2]\ninterfaces = [\"127.0.0.1\"]\n",
+        ros2_support::TRACK
+    );
+    let config = config_file(&format!("hangup-ros2-{domain}.toml"), &toml);
+    let domain = domain.to_string();
+    let args = [
+        "--link",
+        "ros2",
+        "--domain",
+        &domain,
+        "--config",
+        config.to_str().unwrap(),
+    ];
+    let mut console = Console::start(&args, &[], Terminal::Plain);
+    drive_then_end(&mut console, ending);
+    (console.finish(), robot)
+}
+
+fn assert_ended(end: &Finished, ending: Ending) {
+    assert_eq!(end.code, ending.status(), "{ending:?}: {}", end.output);
+    eprintln!("{ending:?}: exited {:?} after it", end.took);
+}
+
+fn assert_serial_stopped(emu: &Emulator) {
+    let state = emu.state();
+    let targets = state.motor_targets(0);
+    assert_eq!(targets.last(), Some(&(0, 0)), "{targets:?}");
+    assert!(!state.moving);
+    // navdeck stopped it, not the firmware's own 2 s auto-stop.
+    assert_eq!(state.auto_stops, 0);
+}
+
+fn assert_ros2_stopped(robot: &FakeRobot) {
+    until("a forward cmd_vel", || {
+        robot.seen().cmd_vel.iter().any(|c| c.1 > 0.0)
+    });
+    // The stop and the participant's going may still be on their way over loopback.
+    until("a zero cmd_vel last", || {
+        robot
+            .seen()
+            .cmd_vel
+            .last()
+            .is_some_and(|c| c.1 == 0.0 && c.2 == 0.0)
+    });
+}
+
+#[test]
+fn twin_hang_up_while_driving_ends_the_console() {
+    let ending = Ending::HangUp;
+    assert_ended(&twin(ending), ending);
+}
+
+#[test]
+fn twin_sigint_and_sighup_end_the_console_with_their_status() {
+    for ending in [Ending::Signal(libc::SIGINT), Ending::Signal(libc::SIGHUP)] {
+        let end = twin(ending);
+        assert_ended(&end, ending);
+        assert!(end.output.contains("\x1b[?1049l"), "terminal not restored");
+    }
+}
+
+#[test]
+fn serial_hang_up_while_driving_stops_the_motors_and_ends() {
+    let (end, emu) = serial(Ending::HangUp);
+    assert_ended(&end, Ending::HangUp);
+    assert_serial_stopped(&emu);
+}
+
+#[test]
+fn serial_sigterm_while_driving_stops_the_motors_and_ends() {
+    let ending = Ending::Signal(libc::SIGTERM);
+    let (end, emu) = serial(ending);
+    assert_ended(&end, ending);
+    assert_serial_stopped(&emu);
+    assert!(end.output.contains("SIGTERM received"), "{}", end.output);
+}
+
+#[test]
+fn ros2_hang_up_while_driving_sends_zero_cmd_vel_and_ends() {
+    let (end, robot) = ros2(71, Ending::HangUp);
+    assert_ended(&end, Ending::HangUp);
+    assert_ros2_stopped(&robot);
+}
+
+#[test]
+fn ros2_sigterm_while_driving_sends_zero_cmd_vel_and_ends() {
+    let ending = Ending::Signal(libc::SIGTERM);
+    let (end, robot) = ros2(72, ending);
+    assert_ended(&end, ending);
+    assert_ros2_stopped(&robot);
+}
+
+/// A firmware that hangs keeps the serial link from closing (its stop waits for replies
+/// for many seconds): the console still ends, by its exit deadline.
+#[test]
+fn a_link_that_will_not_close_does_not_keep_the_console_alive() {
+    let emu = Emulator::start();
+    let config = config_file(
+        "hangup-hung-firmware.toml",
+        "[serial]\nreply_timeout = 20.0\nretries = 3\n",
+    );
+    let link = format!("serial:{}@57600", emu.path());
+    let args = ["--link", &link, "--config", config.to_str().unwrap()];
+    let mut console = Console::start(&args, &[], Terminal::Plain);
+    console.wait_for(b"Status");
+    emu.mute();
+    console.signal(libc::SIGTERM);
+    let end = console.finish();
+    assert_eq!(end.code, 128 + 15, "{}", end.output);
+}
+
+/// While the console is shutting down (terminal restored, link closing), a second signal
+/// ends it at once with that signal's status, without waiting for the deadline.
+#[test]
+fn a_second_signal_during_shutdown_ends_it_at_once() {
+    let emu = Emulator::start();
+    let config = config_file(
+        "hangup-second-signal.toml",
+        "[serial]\nreply_timeout = 20.0\nretries = 3\n",
+    );
+    let link = format!("serial:{}@57600", emu.path());
+    let args = ["--link", &link, "--config", config.to_str().unwrap()];
+    // A deadline far beyond the test's patience: only the second signal can end it.
+    let env = [("NAVDECK_EXIT_DEADLINE_MS", "600000")];
+    let mut console = Console::start(&args, &env, Terminal::Plain);
+    console.wait_for(b"Status");
+    emu.mute();
+    console.signal(libc::SIGTERM);
+    console.wait_for(b"\x1b[?1049l");
+    console.signal(libc::SIGINT);
+    let end = console.finish();
+    assert_eq!(end.code, 128 + 2, "{}", end.output);
+}

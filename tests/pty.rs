@@ -44,3 +44,31 @@ fn sigterm_stops_the_robot_and_restores_the_terminal() {
     );
     assert!(end.output.contains("SIGTERM received"), "{}", end.output);
 }
+
+/// A terminal that answers the probe as kitty's does is asked for releases of every key
+/// as escape codes, and the request is taken back on exit; a kitty release stops the robot.
+#[test]
+fn a_kitty_terminal_is_asked_for_key_releases_and_given_its_keyboard_back() {
+    let mut console = Console::start(&[], &[], Terminal::Kitty);
+    console.wait_for(b"Status");
+    // DISAMBIGUATE | REPORT_EVENT_TYPES | REPORT_ALTERNATE_KEYS | REPORT_ALL_KEYS_AS_ESCAPE_CODES
+    console.wait_for(b"\x1b[>15u");
+    console.hold_until(b"\x1b[119;1:2u", b"forward");
+    console.send(b"\x1b[119;1:3u\x1b[113u\x1b[113;1:3u");
+    let end = console.finish();
+    assert_eq!(end.code, 0, "{}", end.output);
+    assert!(end.output.contains("\x1b[<1u"), "keyboard flags not popped");
+}
+
+/// A terminal that answers nothing: the console comes up and works all the same (the
+/// probe waits for no answer).
+#[test]
+fn a_silent_terminal_does_not_hold_up_the_console() {
+    let mut console = Console::start(&[], &[], Terminal::Silent);
+    console.wait_for(b"Status");
+    console.hold_until(b"w", b"forward");
+    console.send(b"q");
+    let end = console.finish();
+    assert_eq!(end.code, 0, "{}", end.output);
+    assert!(!end.output.contains("\x1b[>15u"), "flags pushed unasked");
+}

@@ -38,10 +38,18 @@ impl InputDecoder {
             if self.pending == [0x1b] && more {
                 continue;
             }
-            if let Some(reply) = probe_reply(&self.pending) {
-                out.extend(reply);
-                self.pending.clear();
-                continue;
+            match probe_reply(&self.pending) {
+                Some(Some(reply)) => {
+                    out.push_back(reply);
+                    self.pending.clear();
+                    continue;
+                }
+                Some(None) if self.pending.len() < MAX_SEQUENCE => continue,
+                Some(None) => {
+                    self.pending.clear();
+                    continue;
+                }
+                None => {}
             }
             match Event::parse_from(&self.pending) {
                 Ok(Some(event)) => {

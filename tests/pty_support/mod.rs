@@ -163,6 +163,17 @@ impl Console {
         }
     }
 
+    /// Sends `key` about 30 times a second, as a held key auto-repeats, until `done`
+    /// holds (checked between repeats).
+    pub fn hold_while_not(&mut self, key: &[u8], what: &str, mut done: impl FnMut() -> bool) {
+        let deadline = Instant::now() + PATIENCE;
+        while !done() {
+            assert!(Instant::now() < deadline, "never: {what}");
+            self.send(key);
+            self.collect(Duration::from_millis(33));
+        }
+    }
+
     /// Whether `needle` has appeared so far (reading what is waiting, not waiting).
     pub fn has_seen(&mut self, needle: &[u8]) -> bool {
         self.collect(Duration::ZERO);

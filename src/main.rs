@@ -24,6 +24,28 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 use std::time::Instant;
 
+/// Writes to standard output. A reader that has gone (`navdeck map show ... | head`, a
+/// dropped SSH session) is no reason to panic: what it no longer reads is lost, nothing else.
+macro_rules! say {
+    ($($arg:tt)*) => {{
+        let _ = write!(std::io::stdout(), $($arg)*);
+    }};
+}
+
+/// `say!` with a newline.
+macro_rules! sayln {
+    ($($arg:tt)*) => {{
+        let _ = writeln!(std::io::stdout(), $($arg)*);
+    }};
+}
+
+/// A line on standard error, which may have gone with the terminal.
+macro_rules! say_err {
+    ($($arg:tt)*) => {{
+        let _ = writeln!(std::io::stderr(), $($arg)*);
+    }};
+}
+
 /// A terminal teleop-and-autonomy console for small differential-drive robots.
 ///
 /// With no options it opens the console on the built-in digital twin in seed 001's
@@ -210,7 +232,7 @@ fn main() -> ExitCode {
     match real_main(cli) {
         Ok(code) => code,
         Err(e) => {
-            eprintln!("navdeck: {e:#}");
+            say_err!("navdeck: {e:#}");
             ExitCode::from(2)
         }
     }
@@ -268,31 +290,43 @@ fn run_headless(
     if let Some(dir) = &cli.maps_dir {
         app.set_maps_dir(dir.clone());
     }
-    let mut report = if app.link().twin().is_some() {
-        headless::run(&mut app, &keys, cli.key_rate)
-    } else {
-        // A real robot moves in real time: keep the session clock on the wall clock, and
-        // stop the robot on SIGINT, SIGTERM or SIGHUP.
-        let signals = Signals::watch().context("cannot watch for signals")?;
-        let mut pace = |t: f64| {
-            let ahead = t - started.elapsed().as_secs_f64();
-            if ahead > 0.0 {
-                std::thread::sleep(std::time::Duration::from_secs_f64(ahead));
-            }
-            signals.pending().is_none()
-        };
-        headless::run_paced(&mut app, &keys, cli.key_rate, &mut pace)
+    // A real robot moves in real time: keep the session clock on the wall clock, and
+    // stop the robot on SIGINT, SIGTERM or SIGHUP.
+    let signals = match app.link().twin() {
+        Some(_) => None,
+        None => Some(Signals::watch().context("cannot watch for signals")?),
+    };
+    let mut report = match &signals {
+        None => headless::run(&mut app, &keys, cli.key_rate),
+        Some(signals) => {
+            let mut pace = |t: f64| {
+                let ahead = t - started.elapsed().as_secs_f64();
+                if ahead > 0.0 {
+                    std::thread::sleep(std::time::Duration::from_secs_f64(ahead));
+                }
+                signals.pending().is_none()
+            };
+            headless::run_paced(&mut app, &keys, cli.key_rate, &mut pace)
+        }
     };
     app.shutdown("headless run ended");
+    let status = signals
+        .as_ref()
+        .and_then(Signals::pending)
+        .map_or(0, |n| 128 + n as i32);
+    if let Some(signals) = &signals {
+        signals.arm_immediate_exit(exit_deadline(), status);
+    }
     let wall = started.elapsed().as_secs_f64();
     report.wall_time_s = Some(wall);
     report.realtime_factor = Some(report.sim_time / wall.max(1e-9));
     if cli.json {
-        println!("{}", serde_json::to_string(&report)?);
+        sayln!("{}", serde_json::to_string(&report)?);
     } else {
-        print!("{}", headless::human(&report));
+        say!("{}", headless::human(&report));
     }
-    Ok(ExitCode::SUCCESS)
+    drop(app);
+    Ok(ExitCode::from(status as u8))
 }
 
 fn run_plan(args: &PlanArgs) -> Result<ExitCode> {
@@ -314,15 +348,15 @@ fn run_plan(args: &PlanArgs) -> Result<ExitCode> {
     let mut report = match result {
         Ok(report) => report,
         Err(e) => {
-            eprintln!("navdeck plan: no path: {e}");
+            say_err!("navdeck plan: no path: {e}");
             return Ok(ExitCode::from(1));
         }
     };
     report.planning_time_ms = Some(took);
     if args.json {
-        println!("{}", serde_json::to_string(&report)?);
+        sayln!("{}", serde_json::to_string(&report)?);
     } else {
-        print!("{}", plan_report::human(&report));
+        say!("{}", plan_report::human(&report));
     }
     Ok(ExitCode::SUCCESS)
 }
@@ -362,9 +396,9 @@ fn run_mission(args: &MissionArgs) -> Result<ExitCode> {
     let Some(range) = &args.sweep else {
         let report = one(args.seed)?;
         if args.json {
-            println!("{}", serde_json::to_string(&report)?);
+            sayln!("{}", serde_json::to_string(&report)?);
         } else {
-            print!("{}", mission_runner::human(&report));
+            say!("{}", mission_runner::human(&report));
         }
         return Ok(if report.success() {
             ExitCode::SUCCESS
@@ -395,9 +429,9 @@ fn run_mission(args: &MissionArgs) -> Result<ExitCode> {
         .collect::<Result<Vec<_>>>()?;
     let summary = mission_runner::summarise(reports);
     if args.json {
-        println!("{}", serde_json::to_string(&summary)?);
+        sayln!("{}", serde_json::to_string(&summary)?);
     } else {
-        println!(
+        sayln!(
             "{} of {} runs delivered every block ({:.0} %); median {:.1} s simulated; worst seed {} at {:.1} s; {} collisions",
             summary.successes,
             summary.runs,
@@ -408,7 +442,7 @@ fn run_mission(args: &MissionArgs) -> Result<ExitCode> {
             summary.collisions
         );
         if !summary.failed_seeds.is_empty() {
-            println!("failed seeds: {:?}", summary.failed_seeds);
+            sayln!("failed seeds: {:?}", summary.failed_seeds);
         }
     }
     Ok(if summary.successes == summary.runs {
@@ -423,16 +457,16 @@ fn run_map(command: &MapCommand) -> Result<ExitCode> {
         MapCommand::Info { file, json } => {
             let info = map_report::info(&map_io::load(file)?);
             if *json {
-                println!("{}", serde_json::to_string(&info)?);
+                sayln!("{}", serde_json::to_string(&info)?);
             } else {
-                print!("{}", map_report::human(&info));
+                say!("{}", map_report::human(&info));
             }
         }
         MapCommand::Show { file, width } => {
             if *width == 0 || *width > 2000 {
                 bail!("--width {width} must lie in 1..=2000");
             }
-            print!("{}", map_report::show(&map_io::load(file)?.grid, *width));
+            say!("{}", map_report::show(&map_io::load(file)?.grid, *width));
         }
     }
     Ok(ExitCode::SUCCESS)

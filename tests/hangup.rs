@@ -261,3 +261,37 @@ fn exit_times_by_link_and_ending() {
         }
     }
 }
+
+/// A headless run on a real robot (wall clock) ends on a signal too: the robot stopped,
+/// the report printed, the status 128 + the signal.
+#[test]
+fn a_headless_serial_run_ends_on_sigterm_with_the_robot_stopped() {
+    let emu = Emulator::start();
+    let config = config_file(
+        "hangup-headless-serial.toml",
+        "[serial]\nreply_timeout = 0.2\n",
+    );
+    let link = format!("serial:{}@57600", emu.path());
+    let keys = "w".repeat(600);
+    let child = std::process::Command::new(env!("CARGO_BIN_EXE_navdeck"))
+        .args(["--link", &link, "--config", config.to_str().unwrap()])
+        .args(["--headless", "--json", "--keys", &keys])
+        .stdout(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    emu.wait_for("a forward command", |s| {
+        s.motor_targets(0).iter().any(|&(l, r)| l == r && l > 0)
+    });
+    // SAFETY: kill(2) on our own child's pid with a valid signal number.
+    assert_eq!(unsafe { libc::kill(child.id() as i32, libc::SIGTERM) }, 0);
+    let (tx, rx) = std::sync::mpsc::channel();
+    std::thread::spawn(move || tx.send(child.wait_with_output()));
+    let out = rx
+        .recv_timeout(pty_support::PATIENCE)
+        .expect("navdeck ends by itself")
+        .unwrap();
+    assert_eq!(out.status.code(), Some(128 + 15));
+    let report: serde_json::Value = serde_json::from_slice(&out.stdout).expect("a report");
+    assert!(report["sim_time"].as_f64().unwrap() < 60.0, "{report}");
+    assert_serial_stopped(&emu);
+}

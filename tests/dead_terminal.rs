@@ -5,14 +5,12 @@ mod common;
 
 use common::{RecordingLink, hold, recording_app};
 use navdeck::tui::events::{Event, EventSource, ManualClock, ScriptedEvents};
-use navdeck::tui::run::{RunError, RunStats, run};
-use navdeck::tui::theme::Theme;
+use navdeck::tui::run::RunError;
 use ratatui::Terminal;
 use ratatui::backend::{Backend, ClearType, TestBackend, WindowSize};
 use ratatui::buffer::Cell;
 use ratatui::layout::{Position, Size};
 use std::io;
-use std::sync::atomic::AtomicUsize;
 use std::time::Duration;
 
 fn eio() -> io::Error {
@@ -97,16 +95,7 @@ fn a_write_to_a_dead_terminal_stops_the_robot_and_ends_the_loop() {
         frames: 3,
     })
     .unwrap();
-    let mut stats = RunStats::default();
-    let out = run(
-        &mut terminal,
-        &mut app,
-        &mut events,
-        &clock,
-        &AtomicUsize::new(0),
-        Theme { color: false },
-        &mut stats,
-    );
+    let (out, stats) = common::run_loop(&mut terminal, &mut app, &mut events, &clock);
     assert!(matches!(out, Err(RunError::Draw(_))), "{out:?}");
     assert!((1..=3).contains(&stats.frames_drawn), "{stats:?}");
     assert!(stops(&link) >= 1, "the robot was not told to stop");
@@ -119,16 +108,7 @@ fn a_read_error_from_the_terminal_stops_the_robot_and_ends_the_loop() {
     let clock = ManualClock::default();
     let mut events = FailingInput(ScriptedEvents::new(clock.clone(), hold('w', 1.0)));
     let mut terminal = Terminal::new(TestBackend::new(100, 30)).unwrap();
-    let mut stats = RunStats::default();
-    let out = run(
-        &mut terminal,
-        &mut app,
-        &mut events,
-        &clock,
-        &AtomicUsize::new(0),
-        Theme { color: false },
-        &mut stats,
-    );
+    let (out, _) = common::run_loop(&mut terminal, &mut app, &mut events, &clock);
     assert!(matches!(out, Err(RunError::Input(_))), "{out:?}");
     assert!(stops(&link) >= 1, "the robot was not told to stop");
     assert!(app.commanded().is_zero());

@@ -181,20 +181,23 @@ fn ros2_sigterm_while_driving_sends_zero_cmd_vel_and_ends() {
     assert_ros2_stopped(&robot);
 }
 
-/// A firmware that hangs keeps the serial link from closing (its stop waits for replies
-/// for many seconds): the console still ends, by its exit deadline.
-#[test]
-fn a_link_that_will_not_close_does_not_keep_the_console_alive() {
+/// A console on a serial robot whose firmware then hangs: it reads requests and answers
+/// none, so the link's stop waits for replies for a minute and it will not close.
+fn console_on_a_hung_firmware(name: &str, env: &[(&str, &str)]) -> (Console, Emulator) {
     let emu = Emulator::start();
-    let config = config_file(
-        "hangup-hung-firmware.toml",
-        "[serial]\nreply_timeout = 20.0\nretries = 3\n",
-    );
+    let config = config_file(name, "[serial]\nreply_timeout = 20.0\nretries = 3\n");
     let link = format!("serial:{}@57600", emu.path());
     let args = ["--link", &link, "--config", config.to_str().unwrap()];
-    let mut console = Console::start(&args, &[], Terminal::Plain);
+    let mut console = Console::start(&args, env, Terminal::Plain);
     console.wait_for(b"Status");
     emu.mute();
+    (console, emu)
+}
+
+/// A link that will not close does not keep the console alive: it ends by its deadline.
+#[test]
+fn a_link_that_will_not_close_does_not_keep_the_console_alive() {
+    let (mut console, _emu) = console_on_a_hung_firmware("hangup-hung-firmware.toml", &[]);
     console.signal(libc::SIGTERM);
     let end = console.finish();
     assert_eq!(end.code, 128 + 15, "{}", end.output);
@@ -204,18 +207,9 @@ fn a_link_that_will_not_close_does_not_keep_the_console_alive() {
 /// ends it at once with that signal's status, without waiting for the deadline.
 #[test]
 fn a_second_signal_during_shutdown_ends_it_at_once() {
-    let emu = Emulator::start();
-    let config = config_file(
-        "hangup-second-signal.toml",
-        "[serial]\nreply_timeout = 20.0\nretries = 3\n",
-    );
-    let link = format!("serial:{}@57600", emu.path());
-    let args = ["--link", &link, "--config", config.to_str().unwrap()];
     // A deadline far beyond the test's patience: only the second signal can end it.
     let env = [("NAVDECK_EXIT_DEADLINE_MS", "600000")];
-    let mut console = Console::start(&args, &env, Terminal::Plain);
-    console.wait_for(b"Status");
-    emu.mute();
+    let (mut console, _emu) = console_on_a_hung_firmware("hangup-second-signal.toml", &env);
     console.signal(libc::SIGTERM);
     console.wait_for(b"\x1b[?1049l");
     console.signal(libc::SIGINT);

@@ -11,12 +11,10 @@ mod common;
 use common::{hold, key, press};
 use navdeck::keymap::{Key, KeyCode};
 use navdeck::tui::events::{Clock, Event, EventSource, ManualClock, ScriptedEvents, Step};
-use navdeck::tui::run::{Exit, RunStats, run};
-use navdeck::tui::theme::Theme;
+use navdeck::tui::run::Exit;
 use ratatui::Terminal;
 use ratatui::backend::TestBackend;
 use std::io;
-use std::sync::atomic::AtomicUsize;
 use std::time::{Duration, Instant};
 
 const HOUR: f64 = 3600.0;
@@ -69,7 +67,7 @@ fn typed(text: &str) -> Vec<Step> {
 fn one_hour(h: usize) -> Vec<Step> {
     let mut steps = Vec::new();
     let mut used = 0.0;
-    let mut wait = |steps: &mut Vec<Step>, s: f64| {
+    let wait = |steps: &mut Vec<Step>, s: f64| {
         steps.push(Step::Wait(s));
         s
     };
@@ -117,18 +115,9 @@ fn eight_hours_on_the_twin_keep_memory_log_and_clock_steady() {
         samples: Vec::new(),
     };
     let mut terminal = Terminal::new(TestBackend::new(100, 30)).unwrap();
-    let mut stats = RunStats::default();
     let started = Instant::now();
-    let exit = run(
-        &mut terminal,
-        &mut app,
-        &mut events,
-        &clock,
-        &AtomicUsize::new(0),
-        Theme { color: false },
-        &mut stats,
-    )
-    .expect("the loop runs");
+    let (exit, stats) = common::run_loop(&mut terminal, &mut app, &mut events, &clock);
+    let exit = exit.expect("the loop runs");
     let wall = started.elapsed();
     assert_eq!(exit, Exit::InputClosed);
 

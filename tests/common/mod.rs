@@ -73,6 +73,26 @@ pub fn run_script_with_signal(
     }
 }
 
+/// Runs the console loop on any backend and event source, with no signal and no colour.
+pub fn run_loop<B: ratatui::backend::Backend>(
+    terminal: &mut Terminal<B>,
+    app: &mut App,
+    events: &mut dyn navdeck::tui::events::EventSource,
+    clock: &ManualClock,
+) -> (Result<Exit, navdeck::tui::run::RunError>, RunStats) {
+    let mut stats = RunStats::default();
+    let out = run(
+        terminal,
+        app,
+        events,
+        clock,
+        &AtomicUsize::new(0),
+        Theme { color: false },
+        &mut stats,
+    );
+    (out, stats)
+}
+
 /// A key press step.
 pub fn press(c: char) -> Step {
     Step::Event(Event::Key(Key::char(c), navdeck::app::KeyKind::Press))

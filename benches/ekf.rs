@@ -3,8 +3,8 @@
 use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
 use nalgebra::Matrix3;
 use navdeck::config::SlamConfig;
+use navdeck::data::{MarkerSighting, WheelTravel};
 use navdeck::geometry::{Pose2, wrap_angle};
-use navdeck::link::{MarkerSighting, WheelTravel};
 use navdeck::slam::ekf::EkfSlam;
 
 /// A filter holding `n` landmarks on a spiral around the robot.

@@ -3,6 +3,7 @@
 pub mod app;
 pub mod config;
 pub mod control;
+pub mod data;
 pub mod field_check;
 pub mod geometry;
 pub mod headless;

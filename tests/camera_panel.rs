@@ -6,8 +6,9 @@ mod common;
 use common::render;
 use navdeck::app::{App, KeyKind};
 use navdeck::config::Config;
+use navdeck::data::{Command, SensorFrame};
 use navdeck::keymap::{Key, Keymap};
-use navdeck::link::{Command, LinkError, RobotLink, SensorFrame};
+use navdeck::link::{LinkError, RobotLink};
 use navdeck::perception::frame::{CameraStatus, Thumbnail};
 
 /// A robot whose camera sends a frame every 0.1 s: left half black, right half white.

@@ -4,8 +4,8 @@
 mod mission_rig;
 
 use mission_rig::{DT, Rig, all_free, config, half_known, plan_to};
+use navdeck::data::GripperCommand;
 use navdeck::geometry::{Point2, wrap_angle};
-use navdeck::link::GripperCommand;
 use navdeck::mission::step::{Motion, PathStatus};
 
 #[test]

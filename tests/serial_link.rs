@@ -5,10 +5,11 @@ mod serial_emulator;
 
 use navdeck::app::{App, KeyKind, LinkStatus};
 use navdeck::config::Config;
+use navdeck::data::{Command, GripperCommand, GripperState, WheelTravel};
 use navdeck::geometry::Twist;
 use navdeck::keymap::{Key, Keymap};
+use navdeck::link::RobotLink;
 use navdeck::link::serial::SerialLink;
-use navdeck::link::{Command, GripperCommand, GripperState, RobotLink, WheelTravel};
 use serial_emulator::{Emulator, Options, PATIENCE};
 use std::io::{Read, Write};
 use std::time::{Duration, Instant};

@@ -2,8 +2,8 @@
 //! step-size independence and determinism.
 
 use navdeck::config::Config;
+use navdeck::data::{GripperCommand, GripperState, SensorFrame};
 use navdeck::geometry::{Pose2, Twist};
-use navdeck::link::{GripperCommand, GripperState, SensorFrame};
 use navdeck::sim::{Twin, World};
 use std::f64::consts::PI;
 use std::path::Path;

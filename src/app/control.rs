@@ -3,8 +3,8 @@
 use super::log::Level;
 use super::mode::Mode;
 use super::{App, LinkStatus};
+use crate::data::{Command, WheelTravel};
 use crate::geometry::Twist;
-use crate::link::{Command, WheelTravel};
 use crate::slam::odometry::twist_from_wheels;
 
 /// A stall longer than this is skipped rather than caught up, seconds.

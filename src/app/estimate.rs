@@ -2,8 +2,8 @@
 
 use super::log::Level;
 use super::{App, Mode};
+use crate::data::{MarkerSighting, WheelTravel};
 use crate::geometry::{Pose2, wrap_angle};
-use crate::link::{MarkerSighting, WheelTravel};
 use crate::slam::ekf::Outcome;
 use nalgebra::{Matrix3, Vector3};
 

@@ -3,7 +3,8 @@
 
 use super::App;
 use crate::config::Config;
-use crate::link::{LaserScan, MarkerSighting, RobotLink};
+use crate::data::{LaserScan, MarkerSighting};
+use crate::link::RobotLink;
 use crate::map::belief::BeliefMap;
 
 /// The footprint is marked free again after the robot moved this far, metres.

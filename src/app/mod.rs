@@ -22,9 +22,10 @@ pub mod teleop;
 pub mod view;
 
 use crate::config::Config;
+use crate::data::{GripperCommand, GripperState, MarkerSighting};
 use crate::geometry::{Point2, Pose2, Twist};
 use crate::keymap::{Key, KeyCode, Keymap};
-use crate::link::{GripperCommand, GripperState, MarkerSighting, RobotLink};
+use crate::link::RobotLink;
 use crate::map::belief::BeliefMap;
 use crate::map::grid::OccupancyGrid;
 use crate::slam::ekf::EkfSlam;

@@ -5,7 +5,7 @@ use super::mode::Mode;
 use super::view::ViewState;
 use super::{App, LinkStatus};
 use crate::control::config::ControllerKind;
-use crate::link::GripperState;
+use crate::data::GripperState;
 
 /// The rounded values the screen shows; a change means a redraw is due.
 #[derive(Clone, Debug, PartialEq)]

@@ -1,5 +1,5 @@
-//! The one trait every robot connection implements (twin, ROS 2, serial, test doubles),
-//! and the data that crosses it.
+//! The one trait every robot connection implements (twin, ROS 2, serial, test doubles).
+//! The data that crosses it lives below every other module, in `crate::data`.
 
 #[cfg(feature = "vision")]
 pub mod camera;
@@ -7,103 +7,13 @@ pub mod ros2;
 pub mod serial;
 pub mod sim;
 
-use crate::geometry::{Point2, Pose2, Twist};
+pub use crate::data::{
+    Command, GripperCommand, GripperState, LaserScan, MarkerSighting, SensorFrame, WheelTravel,
+};
+use crate::geometry::{Point2, Pose2};
 use crate::map::grid::OccupancyGrid;
 use crate::slam::ekf::LandmarkEstimate;
 use nalgebra::Matrix3;
-use serde::{Deserialize, Serialize};
-
-/// What the console asks of the robot for the next control period.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct Command {
-    pub twist: Twist,
-    /// `Some` to move the gripper; `None` leaves it as it is.
-    pub gripper: Option<GripperCommand>,
-}
-
-impl Command {
-    pub const STOP: Command = Command {
-        twist: Twist::ZERO,
-        gripper: None,
-    };
-}
-
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum GripperCommand {
-    Open,
-    Close,
-}
-
-/// The gripper as the robot reports it.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum GripperState {
-    Open,
-    Opening,
-    Closing,
-    /// Closed on nothing.
-    Closed,
-    /// Closed around a block (the twin knows; a real robot may not).
-    Holding,
-}
-
-impl GripperState {
-    pub fn label(self) -> &'static str {
-        match self {
-            Self::Open => "open",
-            Self::Opening => "opening",
-            Self::Closing => "closing",
-            Self::Closed => "closed",
-            Self::Holding => "holding",
-        }
-    }
-}
-
-/// Travel of each wheel since the previous frame, metres (seed 001's l and r).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
-pub struct WheelTravel {
-    pub left: f64,
-    pub right: f64,
-}
-
-/// One marker seen by the camera: seed 001's measurement (r, alpha) in the robot frame.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-pub struct MarkerSighting {
-    pub id: u32,
-    /// Range from the robot centre, metres.
-    pub range: f64,
-    /// Bearing from the robot's heading, radians, CCW positive, in (-pi, pi].
-    pub bearing: f64,
-}
-
-/// A planar laser scan in the robot frame, laid out like sensor_msgs/LaserScan.
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-pub struct LaserScan {
-    pub angle_min: f64,
-    pub angle_increment: f64,
-    pub range_min: f64,
-    pub range_max: f64,
-    /// One range per beam; `f32::INFINITY` where nothing was hit within `range_max`.
-    pub ranges: Vec<f32>,
-}
-
-/// Everything the robot reported since the previous poll.
-#[derive(Clone, Debug, Default, PartialEq)]
-pub struct SensorFrame {
-    /// Link time of the newest data, seconds.
-    pub stamp: f64,
-    /// Seconds of robot motion the wheel travel covers.
-    pub elapsed: f64,
-    pub wheels: Option<WheelTravel>,
-    /// Sightings of the newest camera frame, if one arrived.
-    pub sightings: Option<Vec<MarkerSighting>>,
-    /// The newest scan, if one arrived.
-    pub scan: Option<LaserScan>,
-    pub gripper: Option<GripperState>,
-    /// How the camera pipeline did on the newest frame (when frames are detected in navdeck).
-    pub camera: Option<crate::perception::frame::CameraStatus>,
-}
 
 /// A line for the console's log from the link.
 #[derive(Clone, Debug, PartialEq, Eq)]

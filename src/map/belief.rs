@@ -6,8 +6,8 @@ use super::costmap::{Costmap, INFLATED, LETHAL, NO_INFORMATION};
 use super::evidence::{Evidence, line_cells};
 use super::grid::{OCCUPIED, OccupancyGrid};
 use super::landmark_layer::LandmarkLayer;
+use crate::data::LaserScan;
 use crate::geometry::{Point2, Pose2};
-use crate::link::LaserScan;
 
 /// A landmark is restamped once its estimate moved this far, metres: the filter nudges
 /// every correlated landmark a little with each correction, and two centimetres are well

@@ -7,8 +7,8 @@ use super::leg::{Ctx, Leg, LegStep};
 use super::objects::{Colour, Gate};
 use super::pickup::name;
 use super::step::{Inputs, Motion, Tone};
+use crate::data::GripperCommand;
 use crate::geometry::{Twist, wrap_angle};
-use crate::link::GripperCommand;
 
 #[derive(Clone, Debug)]
 enum Stage {

@@ -2,8 +2,8 @@
 //! heading, turning to face a heading, and waiting for the gripper.
 
 use super::config::{FACE_TOLERANCE, MissionConfig};
+use crate::data::GripperState;
 use crate::geometry::{Point2, Pose2, Twist, wrap_angle};
-use crate::link::GripperState;
 
 /// A turn in place by a given angle, counted from the heading changes step by step.
 #[derive(Clone, Debug)]

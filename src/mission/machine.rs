@@ -8,8 +8,8 @@ use super::leg::{Ctx, Leg, LegStep};
 use super::objects::{Colour, Objects};
 use super::pickup::{PickEvent, Pickup, name};
 use super::step::{Inputs, Motion, Outputs, Tone};
+use crate::data::GripperCommand;
 use crate::geometry::{Point2, Twist};
-use crate::link::GripperCommand;
 use std::collections::{BTreeMap, BTreeSet};
 
 /// What exploration is heading for.

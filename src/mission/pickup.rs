@@ -6,8 +6,8 @@ use super::drive::{Wait, bearing, faces, opened, steer, towards, turn_towards};
 use super::leg::{Ctx, Leg, LegStep};
 use super::objects::{Block, Colour, Objects};
 use super::step::{Inputs, Motion, Tone};
+use crate::data::{GripperCommand, GripperState};
 use crate::geometry::{Point2, Twist};
-use crate::link::{GripperCommand, GripperState};
 use crate::map::costmap::{Costmap, is_lethal};
 
 /// Where a pick-up is.

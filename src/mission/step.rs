@@ -1,8 +1,8 @@
 //! What the mission reads each control step and what it asks for: the contract between
 //! the pure state machine and the console that runs it.
 
+use crate::data::{GripperCommand, GripperState};
 use crate::geometry::{Point2, Pose2, Twist};
-use crate::link::{GripperCommand, GripperState};
 use crate::map::costmap::Costmap;
 use std::collections::BTreeMap;
 

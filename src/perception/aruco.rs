@@ -13,7 +13,7 @@ use super::frame::{CameraStatus, GrayFrame};
 use super::intrinsics::Intrinsics;
 use super::mount::{Mount, range_bearing};
 use super::stopwatch::Stopwatch;
-use crate::link::MarkerSighting;
+use crate::data::MarkerSighting;
 use nalgebra::Vector3;
 use opencv::core::{Mat, Point2f, Point3f, Ptr, Vector};
 use opencv::prelude::*;

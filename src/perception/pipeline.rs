@@ -6,7 +6,7 @@
 use super::aruco::Detector;
 use super::frame::{CameraStatus, GrayFrame};
 use super::stopwatch::Stopwatch;
-use crate::link::MarkerSighting;
+use crate::data::MarkerSighting;
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::{Arc, Condvar, Mutex};
 use std::thread::JoinHandle;

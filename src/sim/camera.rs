@@ -7,8 +7,8 @@
 use super::Marker;
 use super::shapes::segments_cross;
 use crate::config::CameraConfig;
+use crate::data::MarkerSighting;
 use crate::geometry::{Point2, Pose2, Segment, wrap_angle};
-use crate::link::MarkerSighting;
 use rand::Rng;
 use rand_chacha::ChaCha8Rng;
 use rand_distr::StandardNormal;

@@ -6,7 +6,7 @@
 //! odometry says. That is the drift an estimator has to correct with landmarks.
 
 use crate::config::{EncoderConfig, RobotConfig};
-use crate::link::WheelTravel;
+use crate::data::WheelTravel;
 use rand::Rng;
 use rand_chacha::ChaCha8Rng;
 use rand_distr::StandardNormal;

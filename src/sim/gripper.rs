@@ -1,8 +1,8 @@
 //! The gripper: jaws that take `actuation_time` to move, and the zone they catch blocks in.
 
 use crate::config::GripperConfig;
+use crate::data::{GripperCommand, GripperState};
 use crate::geometry::{Point2, Pose2};
-use crate::link::{GripperCommand, GripperState};
 
 #[derive(Clone, Debug)]
 pub struct Gripper {

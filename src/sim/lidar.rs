@@ -8,8 +8,8 @@
 
 use super::shapes::dist2_to_segment;
 use crate::config::LidarConfig;
+use crate::data::LaserScan;
 use crate::geometry::{Pose2, Segment, wrap_angle};
-use crate::link::LaserScan;
 use rand::Rng;
 use rand_chacha::ChaCha8Rng;
 use rand_distr::StandardNormal;

@@ -11,8 +11,8 @@
 
 use super::Marker;
 use super::camera::clear_line;
+use crate::data::MarkerSighting;
 use crate::geometry::{Pose2, Segment};
-use crate::link::MarkerSighting;
 use crate::perception::aruco::{Detector, VisionError};
 use crate::perception::config::{MarkerSizes, RenderConfig, VisionConfig};
 use crate::perception::frame::{CameraStatus, GrayFrame};

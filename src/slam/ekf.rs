@@ -7,8 +7,8 @@
 use super::motion::{control_jacobian, state_jacobian};
 use super::odometry::predict_pose;
 use crate::config::SlamConfig;
+use crate::data::{MarkerSighting, WheelTravel};
 use crate::geometry::{Point2, Pose2, wrap_angle};
-use crate::link::{MarkerSighting, WheelTravel};
 use nalgebra::{DMatrix, DVector, Matrix2, Matrix2x3, Matrix3, Vector2};
 use std::collections::HashMap;
 

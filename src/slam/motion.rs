@@ -1,8 +1,8 @@
 //! Jacobians of seed 001's motion model (section 3, "Prediction Step") for the EKF.
 
 use super::odometry::STRAIGHT_THRESHOLD;
+use crate::data::WheelTravel;
 use crate::geometry::Pose2;
-use crate::link::WheelTravel;
 use nalgebra::{Matrix3, Matrix3x2};
 
 /// G = d(pose') / d(pose): seed 001 section 3, with the centre's turning radius.

@@ -1,7 +1,7 @@
 //! Dead reckoning from wheel travel with seed 001's motion model (section 3, "Prediction Step").
 
+use crate::data::WheelTravel;
 use crate::geometry::{Pose2, Twist, wrap_angle};
-use crate::link::WheelTravel;
 
 /// Below this difference between the wheels (metres) the motion counts as straight.
 pub const STRAIGHT_THRESHOLD: f64 = 1e-9;

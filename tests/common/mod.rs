@@ -3,8 +3,9 @@
 
 use navdeck::app::App;
 use navdeck::config::Config;
+use navdeck::data::{Command, SensorFrame};
 use navdeck::keymap::{Key, Keymap};
-use navdeck::link::{Command, LinkError, RobotLink, SensorFrame};
+use navdeck::link::{LinkError, RobotLink};
 use navdeck::session::{LinkChoice, Session, SessionSpec};
 use navdeck::tui::events::{Event, ManualClock, ScriptedEvents, Step};
 use navdeck::tui::run::{Exit, RunStats, run};

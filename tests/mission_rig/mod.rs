@@ -1,8 +1,8 @@
 //! A scripted stand-in for the console around the mission: straight-line paths, a gripper
 //! that catches what lies between its jaws, hand-made landmark maps. No twin, no clock.
 
+use navdeck::data::{GripperCommand, GripperState};
 use navdeck::geometry::{Point2, Pose2, wrap_angle};
-use navdeck::link::{GripperCommand, GripperState};
 use navdeck::map::costmap::{Costmap, FREE, NO_INFORMATION};
 use navdeck::mission::step::{Inputs, Motion, Outputs, PathStatus};
 use navdeck::mission::{Mission, MissionConfig};

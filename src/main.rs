@@ -2,6 +2,7 @@
 
 use anyhow::{Context, Result, bail};
 use clap::Parser;
+use navdeck::clock::Clock;
 use navdeck::config::Config;
 use navdeck::geometry::Point2;
 use navdeck::headless;
@@ -9,7 +10,6 @@ use navdeck::keymap::parse_key_sequence;
 use navdeck::map::io as map_io;
 use navdeck::map_report;
 use navdeck::mission_runner;
-use navdeck::perception::stopwatch::Stopwatch;
 use navdeck::plan_report::{self, Terrain};
 use navdeck::session::{LinkChoice, Session, SessionSpec};
 use navdeck::sim::World;
@@ -198,21 +198,6 @@ struct PlanArgs {
     json: bool,
 }
 
-/// Seconds since start from the machine's monotonic clock: latency figures at the edge.
-struct WallStopwatch(Instant);
-
-impl WallStopwatch {
-    fn start() -> Self {
-        Self(Instant::now())
-    }
-}
-
-impl Stopwatch for WallStopwatch {
-    fn seconds(&self) -> f64 {
-        self.0.elapsed().as_secs_f64()
-    }
-}
-
 fn parse_point(s: &str) -> Result<Point2, String> {
     let parts: Vec<&str> = s.split(',').map(str::trim).collect();
     let [x, y] = parts.as_slice() else {
@@ -261,7 +246,7 @@ fn real_main(cli: Cli) -> Result<ExitCode> {
     // Everything is loaded and validated before the terminal is touched.
     let mut session = Session::load(&spec)?;
     // One monotonic clock times planning and camera detection alike.
-    let stopwatch: std::sync::Arc<dyn Stopwatch> = std::sync::Arc::new(WallStopwatch::start());
+    let stopwatch: std::sync::Arc<dyn Clock> = std::sync::Arc::new(WallClock::start());
     if cli.sim_camera {
         session.use_sim_camera(Some(stopwatch.clone()))?;
     }
@@ -277,7 +262,7 @@ fn real_main(cli: Cli) -> Result<ExitCode> {
 fn run_headless(
     session: Session,
     cli: &Cli,
-    stopwatch: std::sync::Arc<dyn Stopwatch>,
+    stopwatch: std::sync::Arc<dyn Clock>,
 ) -> Result<ExitCode> {
     if !(cli.key_rate.is_finite() && cli.key_rate > 0.0) {
         bail!("--key-rate {} must be a positive number", cli.key_rate);
@@ -488,7 +473,7 @@ fn exit_deadline() -> std::time::Duration {
 fn run_console(
     session: Session,
     cli: &Cli,
-    stopwatch: std::sync::Arc<dyn Stopwatch>,
+    stopwatch: std::sync::Arc<dyn Clock>,
 ) -> Result<ExitCode> {
     let signals = Signals::watch().context("cannot watch signals")?;
     let theme = Theme::from_env(std::env::var_os("NO_COLOR"));

@@ -138,7 +138,7 @@ impl Session {
     /// was built without the `vision` feature or the link has no twin.
     pub fn use_sim_camera(
         &mut self,
-        stopwatch: Option<std::sync::Arc<dyn crate::perception::stopwatch::Stopwatch>>,
+        stopwatch: Option<std::sync::Arc<dyn crate::clock::Clock>>,
     ) -> Result<()> {
         #[cfg(feature = "vision")]
         {
@@ -164,7 +164,7 @@ impl Session {
     pub fn with_camera(
         #[cfg_attr(not(feature = "vision"), allow(unused_mut))] mut self,
         source: &str,
-        stopwatch: std::sync::Arc<dyn crate::perception::stopwatch::Stopwatch>,
+        stopwatch: std::sync::Arc<dyn crate::clock::Clock>,
     ) -> Result<Session> {
         #[cfg(feature = "vision")]
         {

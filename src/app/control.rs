@@ -171,12 +171,7 @@ impl App {
             Err(e) => self.lose_link(t, e.to_string()),
         }
         for note in self.link.take_notes() {
-            let level = if note.warning {
-                Level::Warn
-            } else {
-                Level::Info
-            };
-            self.log.push(t, level, note.text);
+            self.log.push(t, note.level, note.text);
         }
     }
 

@@ -7,7 +7,7 @@ use super::mode::Mode;
 use super::navigation::Target;
 use crate::geometry::Twist;
 use crate::mission::machine::Mission;
-use crate::mission::step::{Inputs, Motion, PathStatus, Tone};
+use crate::mission::step::{Inputs, Motion, PathStatus};
 use std::collections::BTreeMap;
 
 /// How far the console may move a mission goal that lies in an obstacle, metres.
@@ -66,13 +66,7 @@ impl App {
             map: self.belief.costmap(),
         });
         self.exploring.mission = Some(mission);
-        for (tone, text) in outputs.log {
-            let level = match tone {
-                Tone::Info => Level::Info,
-                Tone::Success => Level::Success,
-                Tone::Warn => Level::Warn,
-                Tone::Error => Level::Error,
-            };
+        for (level, text) in outputs.log {
             self.log.push(t, level, text);
         }
         self.ignored_markers = outputs.ignore_markers;

@@ -1,28 +1,7 @@
 //! The status log: timestamped, levelled lines in the spirit of seed 001's console.
 
+pub use crate::data::Level;
 use std::collections::VecDeque;
-
-/// How much a log line matters; the TUI colours by level.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
-pub enum Level {
-    Info,
-    /// Progress worth celebrating, seed 001's `[green]` lines.
-    Success,
-    /// Seed 001's `[red]Warning!` lines: overruns, refusals.
-    Warn,
-    Error,
-}
-
-impl Level {
-    pub fn tag(self) -> &'static str {
-        match self {
-            Level::Info => "INFO",
-            Level::Success => " OK ",
-            Level::Warn => "WARN",
-            Level::Error => "ERR ",
-        }
-    }
-}
 
 #[derive(Clone, Debug, PartialEq)]
 pub struct Entry {

@@ -113,7 +113,7 @@ pub struct App {
     picker: loading::Picker,
     /// A monotonic clock in seconds, installed by the runner, to time planning; the
     /// console itself never reads a clock.
-    stopwatch: Option<std::sync::Arc<dyn crate::perception::stopwatch::Stopwatch>>,
+    stopwatch: Option<std::sync::Arc<dyn crate::clock::Clock>>,
     revision: u64,
     visible: Option<revision::Visible>,
     /// When the full picture last went to the link, and the map revision it carried.
@@ -494,10 +494,7 @@ impl App {
     }
 
     /// Installs the clock that times planning (seconds, monotonic).
-    pub fn set_stopwatch(
-        &mut self,
-        stopwatch: std::sync::Arc<dyn crate::perception::stopwatch::Stopwatch>,
-    ) {
+    pub fn set_stopwatch(&mut self, stopwatch: std::sync::Arc<dyn crate::clock::Clock>) {
         self.stopwatch = Some(stopwatch);
     }
 

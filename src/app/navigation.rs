@@ -103,9 +103,9 @@ impl App {
             },
         };
         let map = escape_map(self.belief.costmap(), start, self.config.map.lethal_radius);
-        let began = self.stopwatch.as_ref().map(|w| w.seconds());
+        let began = self.stopwatch.as_ref().map(|w| w.now());
         let result = self.planner.plan(&map, start, goal, &self.config.plan);
-        let took = began.zip(self.stopwatch.as_ref().map(|w| w.seconds()));
+        let took = began.zip(self.stopwatch.as_ref().map(|w| w.now()));
         match result {
             Ok(plan) => {
                 let time = took.map_or(String::new(), |(a, b)| {

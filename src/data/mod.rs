@@ -1,11 +1,13 @@
 //! The data that crosses a robot link, below every other module: commands out, sensor
-//! frames in. The core, the links and the console all speak it; it imports nothing of
+//! frames in, and the level of a log line. The core, the links and the console all speak it; it imports nothing of
 //! navdeck but geometry.
 
 pub mod camera;
 pub mod command;
+pub mod level;
 pub mod sensors;
 
 pub use camera::{CameraStatus, Thumbnail};
 pub use command::{Command, GripperCommand};
+pub use level::Level;
 pub use sensors::{GripperState, LaserScan, MarkerSighting, SensorFrame, WheelTravel};

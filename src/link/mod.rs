@@ -7,6 +7,7 @@ pub mod ros2;
 pub mod serial;
 pub mod sim;
 
+use crate::data::Level;
 pub use crate::data::{
     Command, GripperCommand, GripperState, LaserScan, MarkerSighting, SensorFrame, WheelTravel,
 };
@@ -18,20 +19,20 @@ use nalgebra::Matrix3;
 /// A line for the console's log from the link.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Notice {
-    pub warning: bool,
+    pub level: Level,
     pub text: String,
 }
 
 impl Notice {
     pub fn info(text: impl Into<String>) -> Self {
         Self {
-            warning: false,
+            level: Level::Info,
             text: text.into(),
         }
     }
     pub fn warn(text: impl Into<String>) -> Self {
         Self {
-            warning: true,
+            level: Level::Warn,
             text: text.into(),
         }
     }

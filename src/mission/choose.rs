@@ -7,17 +7,17 @@ use super::leg::Leg;
 use super::machine::{Mission, Phase, Target};
 use super::objects::Block;
 use super::pickup::{Pickup, name};
-use super::step::{Inputs, Tone};
+use super::step::{Inputs, Level};
 use super::targets::{frontiers, furthest_marker};
 use crate::geometry::Point2;
 
 impl Mission {
-    pub(super) fn choose(&mut self, inputs: &Inputs, log: &mut Vec<(Tone, String)>) {
+    pub(super) fn choose(&mut self, inputs: &Inputs, log: &mut Vec<(Level, String)>) {
         let robot = inputs.pose.position();
         let total = self.config.total_blocks as usize;
         if total > 0 && self.objects.delivered() >= total {
             log.push((
-                Tone::Success,
+                Level::Success,
                 format!("All {total} blocks delivered - mission complete"),
             ));
             self.phase = Phase::Done;
@@ -64,11 +64,11 @@ impl Mission {
             };
             return;
         }
-        log.push((Tone::Info, "Exploration complete".into()));
+        log.push((Level::Info, "Exploration complete".into()));
         let left = self.objects.blocks().any(|b| b.confirmed && !b.delivered);
         if !left && total == 0 {
             log.push((
-                Tone::Success,
+                Level::Success,
                 format!(
                     "All {} blocks found delivered - mission complete",
                     self.objects.delivered()
@@ -77,7 +77,7 @@ impl Mission {
             self.phase = Phase::Done;
         } else {
             log.push((
-                Tone::Warn,
+                Level::Warn,
                 format!(
                     "Exploration complete with {}{} blocks delivered - switching to manual",
                     self.objects.delivered(),

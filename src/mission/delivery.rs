@@ -6,7 +6,7 @@ use super::drive::{Wait, faces, opened, steer, turn_towards};
 use super::leg::{Ctx, Leg, LegStep};
 use super::objects::{Colour, Gate};
 use super::pickup::name;
-use super::step::{Inputs, Motion, Tone};
+use super::step::{Inputs, Level, Motion};
 use crate::data::GripperCommand;
 use crate::geometry::{Twist, wrap_angle};
 
@@ -108,7 +108,7 @@ impl Delivery {
         inputs: &Inputs,
         config: &MissionConfig,
         ctx: &mut Ctx,
-        log: &mut Vec<(Tone, String)>,
+        log: &mut Vec<(Level, String)>,
     ) -> DropEvent {
         let (t, pose) = (inputs.t, inputs.pose);
         let waited = t - self.since;
@@ -144,7 +144,7 @@ impl Delivery {
                 Wait::Waiting => stop,
                 outcome => {
                     if outcome == Wait::TimedOut {
-                        log.push((Tone::Warn, "Gripper did not report open".into()));
+                        log.push((Level::Warn, "Gripper did not report open".into()));
                     }
                     self.enter(Stage::BackOff, t);
                     DropEvent::Go(Motion::Drive(Twist::new(-BACK_OFF_SPEED, 0.0)), None)

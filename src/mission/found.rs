@@ -5,11 +5,11 @@ use super::config::DEMOTED_FOR;
 use super::machine::Mission;
 use super::objects::{Colour, Found};
 use super::pickup::name;
-use super::step::{Inputs, Tone};
+use super::step::{Inputs, Level};
 
 impl Mission {
     /// Updates the objects from the landmarks and tells the log what is new.
-    pub(super) fn note_found(&mut self, inputs: &Inputs, log: &mut Vec<(Tone, String)>) {
+    pub(super) fn note_found(&mut self, inputs: &Inputs, log: &mut Vec<(Level, String)>) {
         let robot = inputs.pose.position();
         for found in self
             .objects
@@ -20,7 +20,7 @@ impl Mission {
                 Found::Block(b) if self.demoted.contains_key(&b.markers[0]) => {}
                 Found::Block(b) => {
                     log.push((
-                        Tone::Success,
+                        Level::Success,
                         format!("Found {}", name(b.colour, b.markers[0])),
                     ));
                     if !self.timeline.iter().any(|e| e.0 == b.markers[0]) {
@@ -28,11 +28,11 @@ impl Mission {
                     }
                 }
                 Found::PotentialBlock(b) => log.push((
-                    Tone::Info,
+                    Level::Info,
                     format!("Found potential {}", name(b.colour, b.markers[0])),
                 )),
                 Found::Gate(g) => {
-                    log.push((Tone::Success, format!("Found {} gate", g.colour.label())))
+                    log.push((Level::Success, format!("Found {} gate", g.colour.label())))
                 }
             }
         }
@@ -54,7 +54,7 @@ impl Mission {
             if ready && self.announced.insert(colour) {
                 // Seed 001 section 7: both a block and its gate known: stop exploring.
                 log.push((
-                    Tone::Info,
+                    Level::Info,
                     format!(
                         "Found {} gate and blocks - switching to thinking",
                         colour.label()

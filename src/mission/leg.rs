@@ -3,7 +3,7 @@
 
 use super::config::{BACK_OFF_SPEED, MissionConfig, STUCK_PROGRESS};
 use super::drive::Turn;
-use super::step::{Inputs, Motion, PathStatus, Tone};
+use super::step::{Inputs, Level, Motion, PathStatus};
 use crate::geometry::{Point2, Twist};
 use crate::map::costmap::is_lethal;
 
@@ -72,7 +72,7 @@ impl Leg {
         inputs: &Inputs,
         config: &MissionConfig,
         ctx: &mut Ctx,
-        log: &mut Vec<(Tone, String)>,
+        log: &mut Vec<(Level, String)>,
     ) -> LegStep {
         let t = inputs.t;
         if let Some(turn) = &mut self.turn {
@@ -95,8 +95,8 @@ impl Leg {
             PathStatus::Following { remaining } => {
                 if !self.following {
                     self.following = true;
-                    log.push((Tone::Info, "Path found".into()));
-                    log.push((Tone::Info, format!("Following path to {}", self.label)));
+                    log.push((Level::Info, "Path found".into()));
+                    log.push((Level::Info, format!("Following path to {}", self.label)));
                 }
                 if *remaining < self.best - STUCK_PROGRESS {
                     self.best = *remaining;
@@ -109,7 +109,7 @@ impl Leg {
                     if cooled(ctx, t, config) {
                         ctx.recoveries += 1;
                         log.push((
-                            Tone::Warn,
+                            Level::Warn,
                             format!(
                                 "Stuck: no progress for {:.0} s - backing up and replanning to {}",
                                 config.stuck_timeout, self.label
@@ -131,7 +131,7 @@ impl Leg {
                 // Seed 001 "No Path Found": turn a little and try again, then give up.
                 if self.failures > config.no_path_retries {
                     log.push((
-                        Tone::Error,
+                        Level::Error,
                         format!(
                             "No path to {} after {} retries - switching to manual",
                             self.label, config.no_path_retries
@@ -141,7 +141,7 @@ impl Leg {
                 }
                 ctx.recoveries += 1;
                 log.push((
-                    Tone::Warn,
+                    Level::Warn,
                     format!(
                         "No path to {} ({reason}) - turning {:.0}° and retrying ({}/{})",
                         self.label, config.retry_turn_deg, self.failures, config.no_path_retries
@@ -166,13 +166,13 @@ impl Leg {
         t: f64,
         config: &MissionConfig,
         ctx: &mut Ctx,
-        log: &mut Vec<(Tone, String)>,
+        log: &mut Vec<(Level, String)>,
     ) -> LegStep {
         if !cooled(ctx, t, config) {
             return LegStep::Move(Motion::Stop);
         }
         if self.requests == 0 {
-            log.push((Tone::Info, format!("Thinking path to {}", self.label)));
+            log.push((Level::Info, format!("Thinking path to {}", self.label)));
         } else {
             ctx.replans += 1;
         }

@@ -7,7 +7,7 @@ use super::drive::Turn;
 use super::leg::{Ctx, Leg, LegStep};
 use super::objects::{Colour, Objects};
 use super::pickup::{PickEvent, Pickup, name};
-use super::step::{Inputs, Motion, Outputs, Tone};
+use super::step::{Inputs, Level, Motion, Outputs};
 use crate::data::GripperCommand;
 use crate::geometry::{Point2, Twist};
 use std::collections::{BTreeMap, BTreeSet};
@@ -115,7 +115,7 @@ impl Mission {
         out
     }
 
-    fn tick(&mut self, inputs: &Inputs, log: &mut Vec<(Tone, String)>) -> Tick {
+    fn tick(&mut self, inputs: &Inputs, log: &mut Vec<(Level, String)>) -> Tick {
         let t = inputs.t;
         let scan = Motion::Drive(Twist::new(0.0, self.config.scan_speed));
         let exploring = matches!(
@@ -130,7 +130,7 @@ impl Mission {
         if exploring && t - self.last_marker >= LOST_SCAN_AFTER {
             self.ctx.recoveries += 1;
             log.push((
-                Tone::Warn,
+                Level::Warn,
                 format!("No landmarks for {LOST_SCAN_AFTER:.0} s - rotating to scan"),
             ));
             self.phase = Phase::Lost;
@@ -138,7 +138,7 @@ impl Mission {
         match &mut self.phase {
             Phase::Start => {
                 // Seed 001 section 7: a full turn in place first.
-                log.push((Tone::Info, "Initial rotation scan".into()));
+                log.push((Level::Info, "Initial rotation scan".into()));
                 self.phase = Phase::Scan {
                     turn: Turn::full(inputs.pose, t, self.config.scan_speed),
                     initial: true,
@@ -162,7 +162,7 @@ impl Mission {
                     LegStep::Arrived => {
                         let (goal, target) = (leg.goal, target.clone());
                         self.arrived(goal, target);
-                        log.push((Tone::Info, "Arrived - scanning".into()));
+                        log.push((Level::Info, "Arrived - scanning".into()));
                         self.phase = Phase::Scan {
                             turn: Turn::full(inputs.pose, t, self.config.scan_speed),
                             initial: false,
@@ -174,13 +174,13 @@ impl Mission {
             }
             Phase::Lost => {
                 if t - self.last_marker < LOST_SCAN_AFTER {
-                    log.push((Tone::Success, "Landmarks back in view".into()));
+                    log.push((Level::Success, "Landmarks back in view".into()));
                     self.phase = Phase::Choose;
                     return Tick::Again;
                 }
                 if t - self.last_marker >= self.config.lost_timeout {
                     log.push((
-                        Tone::Error,
+                        Level::Error,
                         format!(
                             "Robot lost: no landmarks for {:.0} s - switching to manual",
                             self.config.lost_timeout
@@ -195,7 +195,7 @@ impl Mission {
                 match pickup.step(inputs, &self.config, &self.objects, &mut self.ctx, log) {
                     PickEvent::Go(motion, gripper) => Tick::Out(motion, gripper),
                     PickEvent::Picked => {
-                        log.push((Tone::Success, format!("Picked up {}", name(colour, odd))));
+                        log.push((Level::Success, format!("Picked up {}", name(colour, odd))));
                         self.held = Some(odd);
                         self.stamp(odd, t, 2);
                         let gate = self.objects.gate_for(colour).copied();
@@ -241,7 +241,7 @@ impl Mission {
                             n => format!("/{n}"),
                         };
                         log.push((
-                            Tone::Success,
+                            Level::Success,
                             format!(
                                 "Delivered {} ({}{of})",
                                 name(colour, odd),

@@ -5,7 +5,7 @@ use super::config::{BLOCK_LOST_AFTER, CAMERA_HALF_FOV, CAMERA_RANGE, MissionConf
 use super::drive::{Wait, bearing, faces, opened, steer, towards, turn_towards};
 use super::leg::{Ctx, Leg, LegStep};
 use super::objects::{Block, Colour, Objects};
-use super::step::{Inputs, Motion, Tone};
+use super::step::{Inputs, Level, Motion};
 use crate::data::{GripperCommand, GripperState};
 use crate::geometry::{Point2, Twist};
 use crate::map::costmap::{Costmap, is_lethal};
@@ -122,7 +122,7 @@ impl Pickup {
         config: &MissionConfig,
         objects: &Objects,
         ctx: &mut Ctx,
-        log: &mut Vec<(Tone, String)>,
+        log: &mut Vec<(Level, String)>,
     ) -> PickEvent {
         let Some(block) = objects.blocks().find(|b| b.markers[0] == self.block) else {
             return PickEvent::Demote;
@@ -144,7 +144,7 @@ impl Pickup {
                 self.last_seen = t;
             } else if t - self.last_seen >= BLOCK_LOST_AFTER {
                 log.push((
-                    Tone::Warn,
+                    Level::Warn,
                     format!(
                         "Lost {} during the approach - back to a potential block",
                         name(self.colour, self.block)
@@ -166,7 +166,7 @@ impl Pickup {
                 Wait::Waiting => stop,
                 outcome => {
                     if outcome == Wait::TimedOut {
-                        log.push((Tone::Warn, "Gripper did not report open".into()));
+                        log.push((Level::Warn, "Gripper did not report open".into()));
                     }
                     let next = match self.stage {
                         Stage::Open => Stage::Face,
@@ -220,11 +220,11 @@ impl Pickup {
     }
 
     /// The gripper closed on nothing: reopen and retry once, then give the block up.
-    fn missed(&mut self, t: f64, ctx: &mut Ctx, log: &mut Vec<(Tone, String)>) -> PickEvent {
+    fn missed(&mut self, t: f64, ctx: &mut Ctx, log: &mut Vec<(Level, String)>) -> PickEvent {
         let block = name(self.colour, self.block);
         if self.retried {
             log.push((
-                Tone::Error,
+                Level::Error,
                 format!("Gripper missed {block} again - back to a potential block"),
             ));
             return PickEvent::Demote;
@@ -232,7 +232,7 @@ impl Pickup {
         self.retried = true;
         ctx.recoveries += 1;
         log.push((
-            Tone::Warn,
+            Level::Warn,
             format!("Gripper closed on nothing - reopening to retry {block}"),
         ));
         self.enter(Stage::Reopen, t);

@@ -50,14 +50,8 @@ pub enum Motion {
     Follow,
 }
 
-/// How a log line should look.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Tone {
-    Info,
-    Success,
-    Warn,
-    Error,
-}
+/// How a log line should look: the console's one scale of levels.
+pub use crate::data::Level;
 
 /// The mission's answer for one step.
 #[derive(Clone, Debug, PartialEq)]
@@ -65,7 +59,7 @@ pub struct Outputs {
     pub motion: Motion,
     pub gripper: Option<GripperCommand>,
     /// Lines for the log, in seed 001's words where it has them.
-    pub log: Vec<(Tone, String)>,
+    pub log: Vec<(Level, String)>,
     /// Marker IDs the filter must not use now: those of the block in the gripper, and of
     /// delivered blocks (they moved, so their landmarks would mislead it).
     pub ignore_markers: Vec<u32>,

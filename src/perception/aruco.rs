@@ -12,7 +12,7 @@ use super::edge_fit::{Refined, shortest_side};
 use super::frame::{CameraStatus, GrayFrame};
 use super::intrinsics::Intrinsics;
 use super::mount::{Mount, range_bearing};
-use super::stopwatch::Stopwatch;
+use crate::clock::Clock;
 use crate::data::MarkerSighting;
 use nalgebra::Vector3;
 use opencv::core::{Mat, Point2f, Point3f, Ptr, Vector};
@@ -174,7 +174,7 @@ impl Detector {
     pub fn read(
         &self,
         frame: &GrayFrame,
-        stopwatch: Option<&dyn Stopwatch>,
+        stopwatch: Option<&dyn Clock>,
     ) -> (Vec<MarkerSighting>, CameraStatus) {
         match self.detect(frame, stopwatch) {
             Ok(d) => (
@@ -197,9 +197,9 @@ impl Detector {
     pub fn detect(
         &self,
         frame: &GrayFrame,
-        stopwatch: Option<&dyn Stopwatch>,
+        stopwatch: Option<&dyn Clock>,
     ) -> Result<Detection, VisionError> {
-        let started = stopwatch.map(|s| s.seconds());
+        let started = stopwatch.map(|s| s.now());
         if frame.width != self.intrinsics.width as usize
             || frame.height != self.intrinsics.height as usize
             || frame.data.len() != frame.width * frame.height
@@ -265,7 +265,7 @@ impl Detector {
         }
         out.ids.sort_unstable();
         out.sightings.sort_by_key(|s| s.id);
-        out.latency = stopwatch.zip(started).map(|(s, t0)| s.seconds() - t0);
+        out.latency = stopwatch.zip(started).map(|(s, t0)| s.now() - t0);
         Ok(out)
     }
 

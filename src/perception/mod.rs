@@ -16,4 +16,3 @@ pub mod markers;
 pub mod mount;
 #[cfg(feature = "vision")]
 pub mod pipeline;
-pub mod stopwatch;

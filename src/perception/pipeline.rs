@@ -5,7 +5,7 @@
 
 use super::aruco::Detector;
 use super::frame::{CameraStatus, GrayFrame};
-use super::stopwatch::Stopwatch;
+use crate::clock::Clock;
 use crate::data::MarkerSighting;
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::{Arc, Condvar, Mutex};
@@ -78,7 +78,7 @@ impl CameraPipeline {
     pub fn start(
         mut source: Box<dyn FrameSource>,
         detector: Detector,
-        stopwatch: Option<Arc<dyn Stopwatch>>,
+        stopwatch: Option<Arc<dyn Clock>>,
     ) -> Self {
         let frames = Arc::new(Slot::<GrayFrame>::new());
         let results = Arc::new(Slot::new());

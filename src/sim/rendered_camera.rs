@@ -11,12 +11,12 @@
 
 use super::Marker;
 use super::camera::clear_line;
+use crate::clock::Clock;
 use crate::data::MarkerSighting;
 use crate::geometry::{Pose2, Segment};
 use crate::perception::aruco::{Detector, VisionError};
 use crate::perception::config::{MarkerSizes, RenderConfig, VisionConfig};
 use crate::perception::frame::{CameraStatus, GrayFrame};
-use crate::perception::stopwatch::Stopwatch;
 use nalgebra::Vector3;
 use opencv::core::{BORDER_TRANSPARENT, Mat, Point2f, Rect, Scalar, Size};
 use opencv::prelude::*;
@@ -301,7 +301,7 @@ fn add_noise(pixels: &mut [u8], std: f64, rng: &mut ChaCha8Rng) {
 pub struct RenderedCamera {
     renderer: Renderer,
     detector: Detector,
-    stopwatch: Option<std::sync::Arc<dyn Stopwatch>>,
+    stopwatch: Option<std::sync::Arc<dyn Clock>>,
 }
 
 impl std::fmt::Debug for RenderedCamera {
@@ -318,7 +318,7 @@ impl RenderedCamera {
     pub fn new(
         vision: &VisionConfig,
         max_range: f64,
-        stopwatch: Option<std::sync::Arc<dyn Stopwatch>>,
+        stopwatch: Option<std::sync::Arc<dyn Clock>>,
     ) -> Result<Self, VisionError> {
         let mut twin = vision.clone();
         twin.mount = vision.render.mount.clone();

@@ -199,7 +199,7 @@ impl Twin {
     pub fn use_rendered_camera(
         &mut self,
         vision: &crate::perception::config::VisionConfig,
-        stopwatch: Option<Arc<dyn crate::perception::stopwatch::Stopwatch>>,
+        stopwatch: Option<Arc<dyn crate::clock::Clock>>,
     ) -> Result<&crate::perception::aruco::Detector, crate::perception::aruco::VisionError> {
         let camera = self
             .rendered

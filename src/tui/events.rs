@@ -3,10 +3,10 @@
 
 use crate::app::KeyKind;
 use crate::keymap::Key;
-use std::cell::Cell;
 use std::collections::VecDeque;
 use std::io;
-use std::rc::Rc;
+use std::sync::Arc;
+use std::sync::atomic::{AtomicU64, Ordering};
 use std::time::{Duration, Instant};
 
 /// One input the console reacts to.
@@ -23,10 +23,7 @@ pub trait EventSource {
     fn next_event(&mut self, timeout: Duration) -> io::Result<Option<Event>>;
 }
 
-/// The session clock in seconds.
-pub trait Clock {
-    fn now(&self) -> f64;
-}
+pub use crate::clock::Clock;
 
 /// Wall time since the console started.
 pub struct WallClock(Instant);
@@ -45,17 +42,18 @@ impl Clock for WallClock {
 
 /// A clock that moves only when told: shared between a script and the loop.
 #[derive(Clone, Default)]
-pub struct ManualClock(Rc<Cell<f64>>);
+pub struct ManualClock(Arc<AtomicU64>);
 
 impl ManualClock {
     pub fn advance(&self, seconds: f64) {
-        self.0.set(self.0.get() + seconds);
+        let now = f64::from_bits(self.0.load(Ordering::SeqCst));
+        self.0.store((now + seconds).to_bits(), Ordering::SeqCst);
     }
 }
 
 impl Clock for ManualClock {
     fn now(&self) -> f64 {
-        self.0.get()
+        f64::from_bits(self.0.load(Ordering::SeqCst))
     }
 }
 

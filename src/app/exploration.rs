@@ -90,7 +90,7 @@ impl App {
             Motion::PlanTo { goal, label } => {
                 self.nav.last_step = None;
                 // A goal that the map has since filled in moves to the nearest open spot.
-                let goal = super::navigation::nearest_passable(
+                let goal = crate::map::reach::nearest_passable(
                     self.belief.costmap(),
                     goal,
                     GOAL_TOLERANCE,

@@ -7,7 +7,8 @@ use super::log::Level;
 use super::mode::Mode;
 use crate::control::follower::FollowStatus;
 use crate::geometry::{Point2, Twist};
-use crate::map::costmap::{Costmap, INFLATED, is_lethal};
+use crate::map::costmap::is_lethal;
+use crate::map::reach::{approach_point, escape_map};
 use crate::perception::markers::MarkerCategory;
 use crate::plan::pipeline::Plan;
 
@@ -410,79 +411,6 @@ impl App {
             _ => false,
         }
     }
-}
-
-/// A copy of the map in which the lethal ring around the robot's own position is made
-/// merely inflated, so a robot standing close to a wall can still plan its way out.
-fn escape_map(map: &Costmap, start: Point2, radius: f64) -> std::borrow::Cow<'_, Costmap> {
-    if !map
-        .cell_of(start)
-        .is_some_and(|(x, y)| is_lethal(map.get(x, y)))
-    {
-        return std::borrow::Cow::Borrowed(map);
-    }
-    let mut copy = map.clone();
-    let r = (radius / map.resolution).ceil() as i64;
-    if let Some((cx, cy)) = map.cell_of(start) {
-        for dy in -r..=r {
-            for dx in -r..=r {
-                let (x, y) = (cx as i64 + dx, cy as i64 + dy);
-                if dx * dx + dy * dy > r * r || x < 0 || y < 0 {
-                    continue;
-                }
-                let (x, y) = (x as usize, y as usize);
-                if x < map.width && y < map.height && is_lethal(map.get(x, y)) {
-                    copy.set(x, y, INFLATED + 29);
-                }
-            }
-        }
-    }
-    std::borrow::Cow::Owned(copy)
-}
-
-/// Where the robot goes to reach a landmark: on the line from `marker` towards `robot`, the
-/// first point at least `approach` away that a plan may enter, then `margin` further.
-fn approach_point(
-    map: &Costmap,
-    marker: Point2,
-    robot: Point2,
-    approach: f64,
-    margin: f64,
-) -> Point2 {
-    let d = marker.distance(robot);
-    if d < 1e-9 {
-        return marker;
-    }
-    let (ux, uy) = ((robot.x - marker.x) / d, (robot.y - marker.y) / d);
-    let along = |s: f64| Point2::new(marker.x + ux * s, marker.y + uy * s);
-    let mut s = approach;
-    while s < d {
-        if !is_lethal(map.at(along(s))) {
-            return along((s + margin).min(d));
-        }
-        s += map.resolution;
-    }
-    robot
-}
-
-/// `p` itself if a plan may end there, else the nearest such point within `reach` metres
-/// (searched ring by ring, 32 directions a ring), like Nav2's goal tolerance.
-pub(super) fn nearest_passable(map: &Costmap, p: Point2, reach: f64) -> Option<Point2> {
-    if !is_lethal(map.at(p)) {
-        return Some(p);
-    }
-    let mut r = map.resolution;
-    while r <= reach {
-        let found = (0..32)
-            .map(|k| f64::from(k) * std::f64::consts::TAU / 32.0)
-            .map(|a| Point2::new(p.x + r * a.cos(), p.y + r * a.sin()))
-            .find(|q| map.cell_of(*q).is_some() && !is_lethal(map.at(*q)));
-        if found.is_some() {
-            return found;
-        }
-        r += map.resolution;
-    }
-    None
 }
 
 /// Distance from `p` to the polyline through the trajectory's samples.

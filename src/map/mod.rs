@@ -9,4 +9,5 @@ pub mod grid;
 pub mod io;
 pub mod landmark_layer;
 pub mod pgm;
+pub mod reach;
 pub mod stamp;

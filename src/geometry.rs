@@ -149,9 +149,38 @@ impl Segment {
     }
 }
 
+/// A root mean square built up one sample at a time (cross-track errors, say).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Rms {
+    sum_squares: f64,
+    count: usize,
+}
+
+impl Rms {
+    pub fn add(&mut self, value: f64) {
+        self.sum_squares += value * value;
+        self.count += 1;
+    }
+
+    /// sqrt(sum of squares / count); `None` before the first sample.
+    pub fn value(&self) -> Option<f64> {
+        (self.count > 0).then(|| (self.sum_squares / self.count as f64).sqrt())
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn rms_of_known_samples() {
+        let mut rms = Rms::default();
+        assert_eq!(rms.value(), None);
+        for v in [3.0, -4.0] {
+            rms.add(v);
+        }
+        assert!((rms.value().unwrap() - 12.5f64.sqrt()).abs() < 1e-12);
+    }
 
     #[test]
     fn wrap_angle_lands_in_half_open_interval() {

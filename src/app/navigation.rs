@@ -6,7 +6,7 @@ use super::command::{self, Command};
 use super::log::Level;
 use super::mode::Mode;
 use crate::control::follower::FollowStatus;
-use crate::geometry::{Point2, Twist};
+use crate::geometry::{Point2, Rms, Twist};
 use crate::map::costmap::is_lethal;
 use crate::map::reach::{approach_point, escape_map};
 use crate::perception::markers::MarkerCategory;
@@ -76,12 +76,10 @@ pub(super) struct Navigation {
     pub landmarks_checked: std::collections::BTreeSet<u32>,
     /// The last follower command and when it was computed.
     pub last_step: Option<(f64, Twist)>,
-    /// Cross-track error of the twin's true pose: sum of squares and count; and of the
-    /// estimated pose (the follower's own), over every path since following started.
-    pub true_squares: f64,
-    pub true_samples: usize,
-    pub squares: f64,
-    pub samples: usize,
+    /// Cross-track error of the twin's true pose, and of the estimated pose (the
+    /// follower's own), over every path since following started.
+    pub true_cross_track: Rms,
+    pub cross_track: Rms,
 }
 
 impl App {
@@ -186,10 +184,8 @@ impl App {
         };
         let (target, label) = (route.target, route.label.clone());
         self.nav.arrived = false;
-        self.nav.true_squares = 0.0;
-        self.nav.true_samples = 0;
-        self.nav.squares = 0.0;
-        self.nav.samples = 0;
+        self.nav.true_cross_track = Rms::default();
+        self.nav.cross_track = Rms::default();
         if !self.plan_route(target) {
             return false;
         }
@@ -226,8 +222,7 @@ impl App {
                     eta,
                     cross_track,
                 });
-                self.nav.squares += cross_track * cross_track;
-                self.nav.samples += 1;
+                self.nav.cross_track.add(cross_track);
                 self.sample_true_cross_track();
             }
             FollowStatus::Arrived => {
@@ -314,8 +309,7 @@ impl App {
             return;
         };
         let d = distance_to_polyline(&route.plan.trajectory.points, truth.position());
-        self.nav.true_squares += d * d;
-        self.nav.true_samples += 1;
+        self.nav.true_cross_track.add(d);
     }
 
     pub(super) fn move_cursor(&mut self, dx: f64, dy: f64) {
@@ -391,12 +385,11 @@ impl App {
     /// RMS cross-track error of the estimated pose since following started, replans
     /// included, metres.
     pub fn cross_track_rms(&self) -> Option<f64> {
-        (self.nav.samples > 0).then(|| (self.nav.squares / self.nav.samples as f64).sqrt())
+        self.nav.cross_track.value()
     }
     /// RMS cross-track error of the twin's true pose over the last following, metres.
     pub fn true_cross_track_rms(&self) -> Option<f64> {
-        (self.nav.true_samples > 0)
-            .then(|| (self.nav.true_squares / self.nav.true_samples as f64).sqrt())
+        self.nav.true_cross_track.value()
     }
     /// Paths the console planned again because the map changed under them.
     pub fn replans(&self) -> usize {

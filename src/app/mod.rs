@@ -419,10 +419,7 @@ impl App {
         self.set_speed_limits(mode);
         if matches!(self.mode, Mode::PathFollowing | Mode::Exploration) {
             // Leaving an autonomous mode stops it at once.
-            self.follower.clear_trajectory();
-            self.nav.following = None;
-            self.nav.last_step = None;
-            self.exploring.last_step = None;
+            self.leave_autonomy();
         }
         self.nav.cursor = (mode == Mode::Thinking).then(|| {
             self.nav
@@ -480,10 +477,7 @@ impl App {
         if self.mode != Mode::Manual {
             self.set_speed_limits(Mode::Manual);
             self.mode = Mode::Manual;
-            self.exploring.last_step = None;
-            self.follower.clear_trajectory();
-            self.nav.following = None;
-            self.nav.last_step = None;
+            self.leave_autonomy();
             self.nav.cursor = None;
         }
         self.control_step(self.now);
@@ -491,6 +485,15 @@ impl App {
             Level::Error,
             "EMERGENCY STOP: robot halted; drive keys release it",
         );
+    }
+
+    /// Stops following and the mission's driving at once: the trajectory and the last
+    /// commands of both are dropped.
+    fn leave_autonomy(&mut self) {
+        self.follower.clear_trajectory();
+        self.nav.following = None;
+        self.nav.last_step = None;
+        self.exploring.last_step = None;
     }
 
     /// Installs the clock that times planning (seconds, monotonic).

@@ -2,7 +2,8 @@
 //! source for the camera pipeline, on a DDS participant of its own.
 
 use super::config::Ros2Config;
-use super::{Factory, join, msgs, qos_profile, take_all};
+use super::msgs;
+use super::participant::{Factory, join, qos_profile, take_all};
 use crate::link::LinkError;
 use crate::perception::frame::GrayFrame;
 use crate::perception::pipeline::FrameSource;

@@ -13,17 +13,19 @@ pub mod inbound;
 pub mod msgs;
 pub mod participant;
 pub mod picture;
+mod rviz;
 
 use super::{
     Command, GripperCommand, LinkError, Notice, Picture, RobotLink, SensorFrame, WheelTravel,
 };
 use crate::geometry::Pose2;
 use cmd_vel::CmdVelPolicy;
-use config::{CmdVelType, Distro, Qos, Ros2Config};
+use config::{CmdVelType, Ros2Config};
 use inbound::Refusal;
 use participant::{Factory, fail, join, qos_profile, take_all, topic_name};
 pub use participant::{dds_type, domain_from};
 use ros2_client::{Context, Node, NodeName, Publisher, Subscription};
+use rviz::RvizPublishers;
 use std::collections::BTreeMap;
 
 /// How often discovery is asked which type cmd_vel's subscribers read, seconds: often
@@ -42,12 +44,6 @@ pub struct Ros2Options {
     /// Wheel travel faster than this between two messages is refused, m/s
     /// (`RobotConfig::max_wheel_speed`).
     pub max_wheel_speed: f64,
-}
-
-/// The RViz markers in the distribution's layout.
-enum LandmarkPublisher {
-    Humble(Publisher<msgs::MarkerArray<msgs::MarkerHumble>>),
-    Jazzy(Publisher<msgs::MarkerArray<msgs::MarkerJazzy>>),
 }
 
 /// What cmd_vel's subscribers were seen to read.
@@ -72,11 +68,7 @@ pub struct Ros2Link {
     twist: Option<Publisher<msgs::Twist>>,
     stamped: Option<Publisher<msgs::TwistStamped>>,
     gripper: Publisher<msgs::Float64>,
-    map: Publisher<msgs::OccupancyGrid>,
-    plan: Publisher<msgs::Path>,
-    landmarks: LandmarkPublisher,
-    pose: Publisher<msgs::PoseWithCovarianceStamped>,
-    tf: Publisher<msgs::TfMessage>,
+    rviz: RvizPublishers,
     cmd_vel_dds: String,
     policy: CmdVelPolicy,
     peer: Peer,
@@ -94,8 +86,6 @@ pub struct Ros2Link {
     notices: Vec<Notice>,
 }
 
-/// Everything waiting on `sub` (at most MAX_TAKE), oldest first; unreadable samples are
-/// noted under `topic` and skipped.
 impl Ros2Link {
     /// Joins the DDS domain and sets up every topic. Nothing is published until the
     /// first command.
@@ -158,50 +148,7 @@ impl Ros2Link {
             "Float64",
             qos.clone(),
         )?;
-        let map = f.publisher(
-            "map_topic",
-            &c.map_topic,
-            "nav_msgs",
-            "OccupancyGrid",
-            latched.clone(),
-        )?;
-        let plan = f.publisher("plan_topic", &c.plan_topic, "nav_msgs", "Path", qos.clone())?;
-        let landmarks = match c.distro {
-            Distro::Humble => LandmarkPublisher::Humble(f.publisher(
-                "landmarks_topic",
-                &c.landmarks_topic,
-                "visualization_msgs",
-                "MarkerArray",
-                qos.clone(),
-            )?),
-            Distro::Jazzy => LandmarkPublisher::Jazzy(f.publisher(
-                "landmarks_topic",
-                &c.landmarks_topic,
-                "visualization_msgs",
-                "MarkerArray",
-                qos.clone(),
-            )?),
-        };
-        let pose = f.publisher(
-            "pose_topic",
-            &c.pose_topic,
-            "geometry_msgs",
-            "PoseWithCovarianceStamped",
-            qos.clone(),
-        )?;
-        let tf = f.publisher(
-            "tf",
-            "/tf",
-            "tf2_msgs",
-            "TFMessage",
-            qos_profile(
-                Qos {
-                    depth: 100,
-                    ..c.qos
-                },
-                false,
-            ),
-        )?;
+        let rviz = RvizPublishers::open(&mut f, qos.clone(), latched)?;
         let cmd_vel_dds = topic_name(&namespace, "cmd_vel_topic", &c.cmd_vel_topic)?.to_dds_name(
             "rt",
             &NodeName::new(&namespace, "navdeck").expect("checked above"),
@@ -228,11 +175,7 @@ impl Ros2Link {
             twist,
             stamped,
             gripper,
-            map,
-            plan,
-            landmarks,
-            pose,
-            tf,
+            rviz,
             cmd_vel_dds,
             policy: CmdVelPolicy::default(),
             peer: Peer::Unknown,
@@ -432,7 +375,7 @@ impl Ros2Link {
 }
 
 /// The wall clock as a ROS time stamp (the edge of the system may read it).
-fn now_stamp() -> msgs::Time {
+pub(super) fn now_stamp() -> msgs::Time {
     let t = std::time::SystemTime::now()
         .duration_since(std::time::UNIX_EPOCH)
         .map(|d| d.as_secs_f64())
@@ -517,43 +460,8 @@ impl RobotLink for Ros2Link {
     }
 
     fn show(&mut self, picture: &Picture) {
-        let stamp = now_stamp();
-        let frame = self.config.map_frame.clone();
-        let _ = self.pose.publish(picture::pose_with_covariance(
-            picture.pose,
-            &picture.pose_covariance,
-            stamp,
-            &frame,
-        ));
-        if let Some((in_odom, _)) = self.odom_pose {
-            let t = picture::map_to_odom(picture.pose, in_odom);
-            let _ = self.tf.publish(picture::transform(
-                &frame,
-                &self.config.odom_frame,
-                t,
-                stamp,
-            ));
-        }
-        if let Some(path) = &picture.path {
-            let _ = self.plan.publish(picture::path(path, stamp, &frame));
-        }
-        if let Some(grid) = &picture.map {
-            let _ = self.map.publish(picture::grid(grid, stamp, &frame));
-        }
-        if let Some(list) = &picture.landmarks {
-            let markers = picture::landmarks(list, stamp, &frame);
-            let _ = match &self.landmarks {
-                LandmarkPublisher::Humble(p) => p
-                    .publish(msgs::MarkerArray { markers })
-                    .map(|_| ())
-                    .map_err(|_| ()),
-                LandmarkPublisher::Jazzy(p) => p
-                    .publish(msgs::MarkerArray {
-                        markers: markers.into_iter().map(Into::into).collect(),
-                    })
-                    .map_err(|_| ()),
-            };
-        }
+        let odom = self.odom_pose.map(|(pose, _)| pose);
+        self.rviz.show(picture, odom, &self.config);
     }
 }
 

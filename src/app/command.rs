@@ -1,33 +1,53 @@
-//! The command line (`:`): what a typed command means.
+//! The command line (`:`): a typed command is an intent like a key's action, applied
+//! through the same `App::apply` (helix's typable and static commands in one type).
 
+use super::action::Action;
 use crate::control::config::ControllerKind;
 use crate::geometry::Point2;
 
-/// A parsed command.
+/// The commands that take arguments, so no key can stand for them.
 #[derive(Clone, Debug, PartialEq)]
-pub enum Command {
+pub enum Typed {
     /// `goto X Y`: plan to a point of the map frame, metres.
     GotoPoint(Point2),
     /// `goto marker ID`: plan to a landmark's approach point.
     GotoMarker(u32),
     /// `controller NAME`.
     Controller(ControllerKind),
-    /// `clear`: forget the planned path.
-    Clear,
     /// `save NAME`: save the map as NAME.yaml + NAME.pgm in the maps folder.
     Save(String),
+}
+
+/// Everything that changes the console's state, through one door (`App::apply`): a key's
+/// action or a typed command.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Intent {
+    Action(Action),
+    Typed(Typed),
+}
+
+impl From<Action> for Intent {
+    fn from(action: Action) -> Self {
+        Intent::Action(action)
+    }
+}
+
+impl From<Typed> for Intent {
+    fn from(typed: Typed) -> Self {
+        Intent::Typed(typed)
+    }
 }
 
 pub const USAGE: &str =
     "goto X Y | goto marker ID | controller pid|pure_pursuit|hybrid | clear | save NAME";
 
 /// Reads one command line, or says what is wrong with it.
-pub fn parse(line: &str) -> Result<Command, String> {
+pub fn parse(line: &str) -> Result<Intent, String> {
     let words: Vec<&str> = line.split_whitespace().collect();
     match words.as_slice() {
         ["goto", "marker", id] => id
             .parse()
-            .map(Command::GotoMarker)
+            .map(|id| Typed::GotoMarker(id).into())
             .map_err(|_| format!("goto marker: `{id}` is not a marker ID")),
         ["goto", x, y] => {
             let coord = |s: &str| {
@@ -37,15 +57,16 @@ pub fn parse(line: &str) -> Result<Command, String> {
                     .filter(|v| v.is_finite())
                     .ok_or_else(|| format!("goto: `{s}` is not a number of metres"))
             };
-            Ok(Command::GotoPoint(Point2::new(coord(x)?, coord(y)?)))
+            Ok(Typed::GotoPoint(Point2::new(coord(x)?, coord(y)?)).into())
         }
         ["goto", ..] => Err("goto wants X Y in metres, or marker ID".to_string()),
         ["controller", name] => name
             .parse()
-            .map(Command::Controller)
+            .map(|kind| Typed::Controller(kind).into())
             .map_err(|e: crate::control::config::UnknownController| e.to_string()),
-        ["clear"] => Ok(Command::Clear),
-        ["save", name] => Ok(Command::Save(name.to_string())),
+        // The same as the key that clears the route.
+        ["clear"] => Ok(Action::ClearRoute.into()),
+        ["save", name] => Ok(Typed::Save(name.to_string()).into()),
         ["save", ..] => Err("save wants one NAME (letters, digits, - and _)".to_string()),
         [] => Err(format!("empty command; try {USAGE}")),
         [other, ..] => Err(format!("unknown command `{other}`; try {USAGE}")),
@@ -60,13 +81,14 @@ mod tests {
     fn reads_the_issue_examples() {
         assert_eq!(
             parse("goto 1.20 -0.50"),
-            Ok(Command::GotoPoint(Point2::new(1.2, -0.5)))
+            Ok(Typed::GotoPoint(Point2::new(1.2, -0.5)).into())
         );
-        assert_eq!(parse("goto marker 421"), Ok(Command::GotoMarker(421)));
+        assert_eq!(parse("goto marker 421"), Ok(Typed::GotoMarker(421).into()));
         assert_eq!(
             parse("controller pid"),
-            Ok(Command::Controller(ControllerKind::Pid))
+            Ok(Typed::Controller(ControllerKind::Pid).into())
         );
+        assert_eq!(parse("clear"), Ok(Intent::Action(Action::ClearRoute)));
     }
 
     #[test]

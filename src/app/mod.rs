@@ -31,6 +31,7 @@ use crate::map::grid::OccupancyGrid;
 use crate::slam::ekf::EkfSlam;
 use crate::slam::odometry::Odometry;
 use action::Action;
+use command::Intent;
 use log::{Level, LogBook};
 use mode::Mode;
 use nalgebra::Matrix3;
@@ -300,8 +301,12 @@ impl App {
         self.control_step(self.now);
     }
 
-    /// The one place actions change the console's state.
-    pub fn apply(&mut self, action: Action) {
+    /// The one place the console's state changes: a key's action or a typed command.
+    pub fn apply(&mut self, intent: impl Into<Intent>) {
+        let action = match intent.into() {
+            Intent::Action(action) => action,
+            Intent::Typed(typed) => return self.apply_typed(typed),
+        };
         match action {
             Action::ModeManual => self.set_mode(Mode::Manual),
             Action::ModeExplore => self.set_mode(Mode::Exploration),

@@ -2,7 +2,7 @@
 //! following the planned path, replanning when it is blocked, and arrival.
 
 use super::App;
-use super::command::{self, Command};
+use super::command::{self, Typed};
 use super::log::Level;
 use super::mode::Mode;
 use crate::control::follower::FollowStatus;
@@ -330,25 +330,28 @@ impl App {
         self.plan_route(Target::Point(goal));
     }
 
-    /// Runs a command typed after `:`.
+    /// Runs a command typed after `:` through the same door as keys.
     pub(super) fn run_command(&mut self, line: &str) {
         match command::parse(line) {
-            Ok(Command::GotoPoint(p)) => {
+            Ok(intent) => self.apply(intent),
+            Err(e) => self.log(Level::Error, format!(":{line}: {e}")),
+        }
+    }
+
+    /// Acts on a typed command.
+    pub(super) fn apply_typed(&mut self, typed: Typed) {
+        match typed {
+            Typed::GotoPoint(p) => {
                 self.nav.cursor = self.nav.cursor.map(|_| p);
                 self.plan_route(Target::Point(p));
             }
-            Ok(Command::GotoMarker(id)) => {
+            Typed::GotoMarker(id) => {
                 self.plan_route(Target::Marker(id));
             }
-            Ok(Command::Controller(kind)) => self.set_controller(kind),
-            Ok(Command::Save(name)) => {
+            Typed::Controller(kind) => self.set_controller(kind),
+            Typed::Save(name) => {
                 self.save_map(&name);
             }
-            Ok(Command::Clear) => {
-                self.drop_route();
-                self.log(Level::Info, "path cleared");
-            }
-            Err(e) => self.log(Level::Error, format!(":{line}: {e}")),
         }
     }
 

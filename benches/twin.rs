@@ -24,13 +24,13 @@ fn twin_realtime_factor(c: &mut Criterion) {
     let config = Config::default();
     assert!(config.sim.lidar.enabled);
     let world = World::default_arena();
-    let check = run(Twin::new(world.clone(), &config, 1));
+    let check = run(Twin::new(world.clone(), &config.robot, &config.sim, 1));
     assert_eq!(check.collisions(), 0, "the benchmark curve must stay clear");
     let mut group = c.benchmark_group("twin");
     group.throughput(Throughput::Elements(SIM_SECONDS));
     group.bench_function("arena_60s_lidar", |b| {
         b.iter_batched(
-            || Twin::new(world.clone(), &config, 7),
+            || Twin::new(world.clone(), &config.robot, &config.sim, 7),
             run,
             BatchSize::SmallInput,
         )

@@ -4,11 +4,16 @@
 //! with the file, line and field in the message.
 
 use crate::control::config::FollowConfig;
+pub use crate::data::robot::RobotConfig;
 use crate::link::serial::config::SerialConfig;
 use crate::map::config::MapConfig;
 use crate::mission::config::MissionConfig;
 use crate::perception::config::VisionConfig;
 use crate::plan::config::PlanConfig;
+pub use crate::sim::config::{
+    CameraConfig, EncoderConfig, GripperConfig, LidarConfig, PhysicsConfig, SimConfig,
+};
+pub use crate::slam::config::SlamConfig;
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 
@@ -77,82 +82,6 @@ impl Default for RaceConfig {
     }
 }
 
-/// EKF-SLAM noise and landmark management (seed 001 `ekf_slam` and "Landmark Management").
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(default, deny_unknown_fields)]
-pub struct SlamConfig {
-    /// Wheel rotation noise, degrees per revolution of the wheel (seed 001 `motor_std`: 4).
-    pub motor_std_deg: f64,
-    /// Range noise, metres (seed 001 `dist_std`: 0.1).
-    pub dist_std: f64,
-    /// Bearing noise, degrees (seed 001 `angle_std`: 4).
-    pub angle_std_deg: f64,
-    /// Sightings of an ID before it enters the state (seed 001: "1+").
-    pub min_sightings: u32,
-    /// `Some(v)`: new landmarks start with variance v m^2 and no correlation (seed 001: 0.5);
-    /// `None`: the uncertainty is propagated through the inverse observation model.
-    pub fixed_initial_variance: Option<f64>,
-    /// Mahalanobis gate on a sighting's innovation, chi-square with 2 degrees of freedom
-    /// (13.82 rejects 0.1 % of good sightings).
-    pub gate_chi2: f64,
-}
-
-impl Default for SlamConfig {
-    fn default() -> Self {
-        Self {
-            motor_std_deg: 4.0,
-            dist_std: 0.1,
-            angle_std_deg: 4.0,
-            min_sightings: 1,
-            fixed_initial_variance: None,
-            gate_chi2: 13.82,
-        }
-    }
-}
-
-/// The differential-drive base (seed 001 "Robot Configuration").
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(default, deny_unknown_fields)]
-pub struct RobotConfig {
-    /// Wheel radius in metres (seed 001: 0.027216).
-    pub wheel_radius: f64,
-    /// Distance between the wheels in metres (seed 001 `width`: 0.11).
-    pub track: f64,
-    /// Control loop period in seconds (seed 001 `delta_t`: 0.1).
-    pub control_period: f64,
-    /// Radius of the robot's footprint for collisions, metres.
-    pub footprint_radius: f64,
-    /// Hard limits the base can reach: m/s and rad/s.
-    pub max_linear: f64,
-    pub max_angular: f64,
-    /// Acceleration limits: m/s^2 and rad/s^2.
-    pub max_linear_accel: f64,
-    pub max_angular_accel: f64,
-}
-
-impl Default for RobotConfig {
-    fn default() -> Self {
-        Self {
-            wheel_radius: 0.027216,
-            track: 0.11,
-            control_period: 0.1,
-            footprint_radius: 0.08,
-            max_linear: 0.4,
-            max_angular: 4.0,
-            max_linear_accel: 1.0,
-            max_angular_accel: 8.0,
-        }
-    }
-}
-
-impl RobotConfig {
-    /// The fastest a wheel is ever asked to turn, v + w b / 2, with half again for
-    /// overshoot, m/s: wheel travel beyond this between two readings is a bad reading.
-    pub fn max_wheel_speed(&self) -> f64 {
-        1.5 * (self.max_linear + self.max_angular * self.track / 2.0)
-    }
-}
-
 /// Keyboard driving (teleop_twist_keyboard habits plus a deadman).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
@@ -179,134 +108,6 @@ impl Default for TeleopConfig {
             deadman_timeout: 0.5,
             max_linear: 0.25,
             max_angular: 2.5,
-        }
-    }
-}
-
-/// The digital twin's sensors and physics.
-#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
-#[serde(default, deny_unknown_fields)]
-pub struct SimConfig {
-    pub physics: PhysicsConfig,
-    pub encoders: EncoderConfig,
-    pub camera: CameraConfig,
-    pub lidar: LidarConfig,
-    pub gripper: GripperConfig,
-}
-
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(default, deny_unknown_fields)]
-pub struct PhysicsConfig {
-    /// Integration step of the twin, seconds.
-    pub step: f64,
-}
-
-impl Default for PhysicsConfig {
-    fn default() -> Self {
-        Self { step: 0.01 }
-    }
-}
-
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(default, deny_unknown_fields)]
-pub struct EncoderConfig {
-    /// Counts per wheel revolution (an EV3 motor reports degrees: 360).
-    pub ticks_per_rev: u32,
-    /// Multiplicative noise on each wheel's travel, as a standard deviation (0.02 = 2 %).
-    pub noise_std: f64,
-    /// Probability per physics step that a wheel slips and loses `slip_fraction` of its travel.
-    pub slip_probability: f64,
-    pub slip_fraction: f64,
-}
-
-impl Default for EncoderConfig {
-    fn default() -> Self {
-        Self {
-            ticks_per_rev: 360,
-            noise_std: 0.02,
-            slip_probability: 0.001,
-            slip_fraction: 0.5,
-        }
-    }
-}
-
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(default, deny_unknown_fields)]
-pub struct CameraConfig {
-    /// Horizontal field of view in degrees: 2 atan(432 / 635.93) from seed 001's intrinsics at 864 px.
-    pub fov_deg: f64,
-    pub min_range: f64,
-    pub max_range: f64,
-    /// A marker seen further than this from face-on is not detected, degrees.
-    pub max_view_angle_deg: f64,
-    pub rate_hz: f64,
-    /// Range noise, metres (seed 001 `dist_std`: 0.1).
-    pub dist_std: f64,
-    /// Bearing noise, degrees (seed 001 `angle_std`: 4).
-    pub angle_std_deg: f64,
-    /// Probability that a visible marker is missed in a frame.
-    pub miss_probability: f64,
-}
-
-impl Default for CameraConfig {
-    fn default() -> Self {
-        Self {
-            fov_deg: 68.4,
-            min_range: 0.1,
-            max_range: 3.0,
-            max_view_angle_deg: 75.0,
-            rate_hz: 10.0,
-            dist_std: 0.1,
-            angle_std_deg: 4.0,
-            miss_probability: 0.05,
-        }
-    }
-}
-
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(default, deny_unknown_fields)]
-pub struct LidarConfig {
-    pub enabled: bool,
-    /// Beams over a full turn (TurtleBot3's LDS-01: 360).
-    pub beams: u32,
-    pub min_range: f64,
-    pub max_range: f64,
-    pub rate_hz: f64,
-    pub range_std: f64,
-}
-
-impl Default for LidarConfig {
-    fn default() -> Self {
-        Self {
-            enabled: true,
-            beams: 360,
-            min_range: 0.12,
-            max_range: 3.5,
-            rate_hz: 5.0,
-            range_std: 0.01,
-        }
-    }
-}
-
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(default, deny_unknown_fields)]
-pub struct GripperConfig {
-    /// Time the jaws take to open or close, seconds (seed 001 waits 1 s).
-    pub actuation_time: f64,
-    /// The jaws' reach in front of the robot centre: a block whose centre lies within
-    /// [near, far] ahead and `half_width` sideways is caught when they close.
-    pub reach_near: f64,
-    pub reach_far: f64,
-    pub half_width: f64,
-}
-
-impl Default for GripperConfig {
-    fn default() -> Self {
-        Self {
-            actuation_time: 1.0,
-            reach_near: 0.06,
-            reach_far: 0.14,
-            half_width: 0.035,
         }
     }
 }

@@ -88,7 +88,7 @@ impl Session {
                         .with_context(|| format!("cannot use world {}", path.display()))?,
                     None => World::default_arena(),
                 };
-                let twin = Twin::new(world, &config, spec.seed);
+                let twin = Twin::new(world, &config.robot, &config.sim, spec.seed);
                 Box::new(SimLink::new(twin, 0.0))
             }
             LinkChoice::Ros2(target) => {

@@ -61,7 +61,7 @@ fn a_moved_landmark_recomputes_only_its_neighbourhood() {
 #[test]
 fn the_twin_lidar_marks_walls_occupied_and_open_floor_free() {
     let config = Config::default();
-    let mut twin = Twin::new(World::default_arena(), &config, 7);
+    let mut twin = Twin::new(World::default_arena(), &config.robot, &config.sim, 7);
     let mut m = map();
     for _ in 0..10 {
         twin.step(0.2);

@@ -8,6 +8,11 @@ use navdeck::sim::{Twin, World};
 use std::f64::consts::PI;
 use std::path::Path;
 
+/// A twin in `world` with `config`'s robot and sensors.
+fn twin_in(world: World, config: &Config, seed: u64) -> Twin {
+    Twin::new(world, &config.robot, &config.sim, seed)
+}
+
 /// An empty 4 m x 4 m arena plus `extra` world-file text, robot at `start` (degrees).
 fn world(start: [f64; 3], extra: &str) -> World {
     let text = format!(
@@ -43,7 +48,7 @@ fn twin_is_clone_and_send() {
 
 #[test]
 fn driving_straight_one_second_at_a_tenth_moves_a_tenth() {
-    let mut t = Twin::new(world([0.0, 0.0, 30.0], ""), &quiet(), 1);
+    let mut t = twin_in(world([0.0, 0.0, 30.0], ""), &quiet(), 1);
     drive(&mut t, Twist::new(0.1, 0.0), 1.0);
     let p = t.pose();
     // 0.1 m less the 5 mm lost to the 0.1 s ramp at 1 m/s^2.
@@ -56,7 +61,7 @@ fn driving_straight_one_second_at_a_tenth_moves_a_tenth() {
 
 #[test]
 fn spinning_in_place_keeps_the_position() {
-    let mut t = Twin::new(world([0.3, -0.2, 0.0], ""), &quiet(), 1);
+    let mut t = twin_in(world([0.3, -0.2, 0.0], ""), &quiet(), 1);
     drive(&mut t, Twist::new(0.0, 2.0), 2.0);
     let p = t.pose();
     assert!(
@@ -70,7 +75,7 @@ fn spinning_in_place_keeps_the_position() {
 
 #[test]
 fn acceleration_limit_shapes_the_ramp_and_speed_is_capped() {
-    let mut t = Twin::new(world([-1.5, 0.0, 0.0], ""), &quiet(), 1);
+    let mut t = twin_in(world([-1.5, 0.0, 0.0], ""), &quiet(), 1);
     t.set_command(Twist::new(2.0, 0.0));
     let mut speeds = Vec::new();
     for _ in 0..6 {
@@ -87,7 +92,7 @@ fn acceleration_limit_shapes_the_ramp_and_speed_is_capped() {
 
 #[test]
 fn encoder_travel_agrees_with_true_travel_within_noise() {
-    let mut t = Twin::new(World::default_arena(), &Config::default(), 11);
+    let mut t = twin_in(World::default_arena(), &Config::default(), 11);
     t.set_command(Twist::new(0.2, 0.4));
     let (mut odo, mut turn) = (0.0, 0.0);
     for _ in 0..100 {
@@ -120,7 +125,7 @@ fn scripted(twin: &mut Twin, slices: &[f64]) -> SensorFrame {
 
 #[test]
 fn one_long_step_equals_many_short_ones() {
-    let make = || Twin::new(World::default_arena(), &Config::default(), 5);
+    let make = || twin_in(World::default_arena(), &Config::default(), 5);
     let (mut a, mut b, mut c) = (make(), make(), make());
     let fa = scripted(&mut a, &[1.0]);
     let fb = scripted(&mut b, &[0.1; 10]);
@@ -140,7 +145,7 @@ fn one_long_step_equals_many_short_ones() {
 
 #[test]
 fn zero_and_tiny_steps_accumulate() {
-    let mut t = Twin::new(world([0.0, 0.0, 0.0], ""), &quiet(), 1);
+    let mut t = twin_in(world([0.0, 0.0, 0.0], ""), &quiet(), 1);
     t.set_command(Twist::new(0.1, 0.0));
     t.step(0.0);
     t.step(-1.0);
@@ -156,7 +161,7 @@ fn zero_and_tiny_steps_accumulate() {
 #[test]
 fn same_seed_same_frames_and_different_seeds_differ() {
     let run = |seed: u64| {
-        let mut t = Twin::new(World::default_arena(), &Config::default(), seed);
+        let mut t = twin_in(World::default_arena(), &Config::default(), seed);
         t.set_command(Twist::new(0.15, 0.3));
         (0..30)
             .map(|_| {
@@ -186,7 +191,7 @@ fn same_seed_same_frames_and_different_seeds_differ() {
 
 #[test]
 fn frames_carry_the_newest_camera_frame_once() {
-    let mut t = Twin::new(World::default_arena(), &quiet(), 1);
+    let mut t = twin_in(World::default_arena(), &quiet(), 1);
     t.step(0.05);
     let f = t.take_frame();
     assert!(
@@ -205,7 +210,7 @@ fn frames_carry_the_newest_camera_frame_once() {
 fn camera_reports_a_marker_ahead_and_not_one_hidden_behind_an_obstacle() {
     let extra = "[[markers]]\nid = 200\nx = 1.0\ny = 0.0\nfacing_deg = 180.0\n\
                  [[markers]]\nid = 201\nx = 0.0\ny = 1.5\nfacing_deg = -90.0\n";
-    let mut t = Twin::new(world([0.0, 0.0, 0.0], extra), &quiet(), 1);
+    let mut t = twin_in(world([0.0, 0.0, 0.0], extra), &quiet(), 1);
     t.step(0.1);
     let seen = t.take_frame().sightings.unwrap();
     assert_eq!(seen.len(), 1, "{seen:?}");
@@ -220,7 +225,7 @@ fn camera_reports_a_marker_ahead_and_not_one_hidden_behind_an_obstacle() {
     assert!((seen[0].bearing - (PI / 2.0 - turned)).abs() < 1e-9);
 
     let hidden = format!("{extra}[[obstacles]]\ncenter = [0.5, 0.0]\nsize = [0.1, 0.3]\n");
-    let mut t = Twin::new(world([0.0, 0.0, 0.0], &hidden), &quiet(), 1);
+    let mut t = twin_in(world([0.0, 0.0, 0.0], &hidden), &quiet(), 1);
     t.step(0.1);
     assert_eq!(t.take_frame().sightings.unwrap(), vec![]);
 }
@@ -229,7 +234,7 @@ fn camera_reports_a_marker_ahead_and_not_one_hidden_behind_an_obstacle() {
 fn camera_sees_block_markers_where_the_block_is() {
     let extra =
         "[[blocks]]\ncolor = \"red\"\nx = 0.5\ny = 0.5\nyaw_deg = 180.0\nmarkers = [421, 422]\n";
-    let mut t = Twin::new(world([0.0, 0.0, 45.0], extra), &quiet(), 1);
+    let mut t = twin_in(world([0.0, 0.0, 45.0], extra), &quiet(), 1);
     t.step(0.1);
     let mut ids: Vec<u32> = t
         .take_frame()
@@ -244,7 +249,7 @@ fn camera_sees_block_markers_where_the_block_is() {
 
 #[test]
 fn lidar_reads_the_arena_walls_and_obstacles() {
-    let mut t = Twin::new(world([0.0, 0.0, 0.0], ""), &quiet(), 1);
+    let mut t = twin_in(world([0.0, 0.0, 0.0], ""), &quiet(), 1);
     t.step(0.2);
     let scan = t.take_frame().scan.unwrap();
     assert_eq!(scan.ranges.len(), 360);
@@ -257,7 +262,7 @@ fn lidar_reads_the_arena_walls_and_obstacles() {
     assert!((scan.ranges[beam(45.0)] - 8f32.sqrt()).abs() < 1e-5);
 
     let boxed = "[[obstacles]]\ncenter = [0.0, -1.0]\nsize = [0.4, 0.2]\n";
-    let mut t = Twin::new(world([0.0, 0.0, 0.0], boxed), &quiet(), 1);
+    let mut t = twin_in(world([0.0, 0.0, 0.0], boxed), &quiet(), 1);
     t.step(0.2);
     let near = t.take_frame().scan.unwrap();
     assert!(
@@ -275,7 +280,7 @@ fn lidar_reads_the_arena_walls_and_obstacles() {
 
 #[test]
 fn driving_into_a_wall_stops_once_and_backing_off_works() {
-    let mut t = Twin::new(world([1.5, 0.3, 0.0], ""), &quiet(), 1);
+    let mut t = twin_in(world([1.5, 0.3, 0.0], ""), &quiet(), 1);
     drive(&mut t, Twist::new(0.3, 0.0), 3.0);
     let r = Config::default().robot.footprint_radius;
     let stopped = t.pose().x;
@@ -302,7 +307,7 @@ fn driving_into_a_wall_stops_once_and_backing_off_works() {
 #[test]
 fn gripper_catches_a_block_in_its_jaws_and_carries_it() {
     let extra = "[[blocks]]\ncolor = \"blue\"\nx = 0.3\ny = 0.0\nmarkers = [521, 522]\n";
-    let mut t = Twin::new(world([0.0, 0.0, 0.0], extra), &quiet(), 1);
+    let mut t = twin_in(world([0.0, 0.0, 0.0], extra), &quiet(), 1);
     t.command_gripper(GripperCommand::Open);
     t.step(1.0);
     assert_eq!(t.gripper(), GripperState::Open);
@@ -344,7 +349,7 @@ fn gripper_catches_a_block_in_its_jaws_and_carries_it() {
 #[test]
 fn closing_on_nothing_ends_closed_and_a_closed_gripper_bumps_blocks() {
     let extra = "[[blocks]]\ncolor = \"red\"\nx = 0.5\ny = 0.0\nmarkers = [423, 424]\n";
-    let mut t = Twin::new(world([0.0, 0.0, 0.0], extra), &quiet(), 1);
+    let mut t = twin_in(world([0.0, 0.0, 0.0], extra), &quiet(), 1);
     t.command_gripper(GripperCommand::Open);
     t.step(1.0);
     t.command_gripper(GripperCommand::Close);
@@ -365,7 +370,7 @@ fn closing_on_nothing_ends_closed_and_a_closed_gripper_bumps_blocks() {
 fn lidar_sees_free_blocks_but_not_the_held_one() {
     let extra = "[[blocks]]\ncolor = \"red\"\nx = 0.1\ny = 0.0\nmarkers = [421, 422]\n\
                  [[blocks]]\ncolor = \"red\"\nx = 0.0\ny = 1.0\nsize = 0.1\nmarkers = [423, 424]\n";
-    let mut t = Twin::new(world([0.0, 0.0, 0.0], extra), &quiet(), 1);
+    let mut t = twin_in(world([0.0, 0.0, 0.0], extra), &quiet(), 1);
     t.command_gripper(GripperCommand::Open);
     t.step(1.0);
     t.command_gripper(GripperCommand::Close);
@@ -388,7 +393,7 @@ fn lidar_sees_free_blocks_but_not_the_held_one() {
 #[test]
 fn the_warehouse_world_drives_and_shows_markers() {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("maps/warehouse.toml");
-    let mut t = Twin::new(World::load(&path).unwrap(), &quiet(), 3);
+    let mut t = twin_in(World::load(&path).unwrap(), &quiet(), 3);
     let mut seen = std::collections::BTreeSet::new();
     t.set_command(Twist::new(0.2, 0.0));
     for _ in 0..40 {

@@ -10,7 +10,7 @@ use navdeck::slam::ekf::EkfSlam;
 #[test]
 fn an_hour_of_driving_keeps_sigma_symmetric_and_psd() {
     let config = Config::default();
-    let mut twin = Twin::new(World::default_arena(), &config, 11);
+    let mut twin = Twin::new(World::default_arena(), &config.robot, &config.sim, 11);
     let mut ekf = EkfSlam::new(
         twin.pose(),
         Matrix3::from_diagonal_element(1e-6),

@@ -260,7 +260,12 @@ fn the_twin_with_a_rendered_camera_reports_sightings_deterministically() {
     use navdeck::config::Config;
     use navdeck::sim::Twin;
     let run = || {
-        let mut twin = Twin::new(World::default_arena(), &Config::default(), 3);
+        let mut twin = Twin::new(
+            World::default_arena(),
+            &Config::default().robot,
+            &Config::default().sim,
+            3,
+        );
         twin.use_rendered_camera(&level(), None).unwrap();
         twin.set_command(navdeck::geometry::Twist::new(0.0, 0.5));
         twin.step(1.0);

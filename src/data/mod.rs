@@ -1,10 +1,11 @@
 //! The data that crosses a robot link, below every other module: commands out, sensor
-//! frames in, and the level of a log line. The core, the links and the console all speak it; it imports nothing of
-//! navdeck but geometry.
+//! frames in, the level of a log line, and the robot's geometry and limits. The core,
+//! the links and the console all speak it; it imports nothing of navdeck but geometry.
 
 pub mod camera;
 pub mod command;
 pub mod level;
+pub mod robot;
 pub mod sensors;
 
 pub use camera::{CameraStatus, Thumbnail};

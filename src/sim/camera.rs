@@ -5,8 +5,8 @@
 //! robot centre (seed 001's r and alpha are measured from there).
 
 use super::Marker;
+use super::config::CameraConfig;
 use super::shapes::segments_cross;
-use crate::config::CameraConfig;
 use crate::data::MarkerSighting;
 use crate::geometry::{Point2, Pose2, Segment, wrap_angle};
 use rand::Rng;

@@ -1,7 +1,7 @@
 //! Differential-drive kinematics: speed and acceleration limits, wheel travel, and the
 //! exact pose update for one physics step.
 
-use crate::config::RobotConfig;
+use crate::data::robot::RobotConfig;
 use crate::geometry::{Pose2, Twist};
 use std::f64::consts::PI;
 

@@ -5,8 +5,9 @@
 //! point advances only `1 - slip_fraction` of it, so the robot really moves less than the
 //! odometry says. That is the drift an estimator has to correct with landmarks.
 
-use crate::config::{EncoderConfig, RobotConfig};
+use super::config::EncoderConfig;
 use crate::data::WheelTravel;
+use crate::data::robot::RobotConfig;
 use rand::Rng;
 use rand_chacha::ChaCha8Rng;
 use rand_distr::StandardNormal;

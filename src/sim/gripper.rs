@@ -1,6 +1,6 @@
 //! The gripper: jaws that take `actuation_time` to move, and the zone they catch blocks in.
 
-use crate::config::GripperConfig;
+use super::config::GripperConfig;
 use crate::data::{GripperCommand, GripperState};
 use crate::geometry::{Point2, Pose2};
 

@@ -6,8 +6,8 @@
 //! Ranges follow REP-117: +inf when nothing is within `range_max`, -inf when the surface
 //! is closer than `range_min`.
 
+use super::config::LidarConfig;
 use super::shapes::dist2_to_segment;
-use crate::config::LidarConfig;
 use crate::data::LaserScan;
 use crate::geometry::{Pose2, Segment, wrap_angle};
 use rand::Rng;

@@ -15,6 +15,7 @@ mod camera;
 mod checks;
 mod clock;
 mod collision;
+pub mod config;
 mod drive;
 mod encoders;
 mod error;

@@ -5,12 +5,13 @@ use super::blocks::BlockState;
 use super::camera::Camera;
 use super::clock::SensorClock;
 use super::collision::{Collider, Disc};
+use super::config::{PhysicsConfig, SimConfig};
 use super::drive::{clamp_twist, integrate, ramp, wheel_travel};
 use super::encoders::Encoders;
 use super::gripper::Gripper;
 use super::lidar::Lidar;
 use super::{Marker, World};
-use crate::config::{Config, PhysicsConfig, RobotConfig};
+use crate::data::robot::RobotConfig;
 use crate::data::{GripperCommand, GripperState, LaserScan, MarkerSighting, SensorFrame};
 use crate::geometry::{Pose2, Segment, Twist};
 use rand::SeedableRng;
@@ -70,8 +71,7 @@ impl Twin {
     /// A twin at the world's start pose, its noise drawn from `seed`. Config values are
     /// expected validated; a physics step that is not a positive number falls back to the
     /// default, and a sensor rate that is not positive turns that sensor off.
-    pub fn new(world: World, config: &Config, seed: u64) -> Twin {
-        let sim = &config.sim;
+    pub fn new(world: World, robot: &RobotConfig, sim: &SimConfig, seed: u64) -> Twin {
         let h = if sim.physics.step.is_finite() && sim.physics.step > 0.0 {
             sim.physics.step
         } else {
@@ -85,19 +85,19 @@ impl Twin {
             pose: world.start,
             blocks: world.blocks.iter().map(BlockState::from_block).collect(),
             world: Arc::new(world),
-            robot: config.robot.clone(),
+            robot: robot.clone(),
             h,
             rng: ChaCha8Rng::seed_from_u64(seed),
             ticks: 0,
             carry: 0.0,
             command: Twist::ZERO,
             drive: Twist::ZERO,
-            encoders: Encoders::new(&config.robot, &sim.encoders),
+            encoders: Encoders::new(robot, &sim.encoders),
             camera: Camera::new(&sim.camera),
             camera_clock: SensorClock::new(sim.camera.rate_hz),
             lidar,
             gripper: Gripper::new(&sim.gripper),
-            collider: Collider::new(config.robot.footprint_radius),
+            collider: Collider::new(robot.footprint_radius),
             in_contact: false,
             collisions: 0,
             distance: 0.0,

@@ -4,9 +4,9 @@
 //! Sigma is symmetric, so only its lower triangle (row >= column) is stored and updated:
 //! half the memory traffic of the O(n^2) update, which is memory-bound at large n.
 
+use super::config::SlamConfig;
 use super::motion::{control_jacobian, state_jacobian};
 use super::odometry::predict_pose;
-use crate::config::SlamConfig;
 use crate::data::{MarkerSighting, WheelTravel};
 use crate::geometry::{Point2, Pose2, wrap_angle};
 use nalgebra::{DMatrix, DVector, Matrix2, Matrix2x3, Matrix3, Vector2};

@@ -1,5 +1,6 @@
 //! Estimating where the robot is: wheel odometry now, EKF-SLAM later.
 
+pub mod config;
 pub mod ekf;
 pub mod ellipse;
 pub mod motion;

@@ -1,0 +1,46 @@
+//! `[robot]`: the robot's geometry and limits, which every layer reads.
+
+use serde::{Deserialize, Serialize};
+
+/// The differential-drive base (seed 001 "Robot Configuration").
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct RobotConfig {
+    /// Wheel radius in metres (seed 001: 0.027216).
+    pub wheel_radius: f64,
+    /// Distance between the wheels in metres (seed 001 `width`: 0.11).
+    pub track: f64,
+    /// Control loop period in seconds (seed 001 `delta_t`: 0.1).
+    pub control_period: f64,
+    /// Radius of the robot's footprint for collisions, metres.
+    pub footprint_radius: f64,
+    /// Hard limits the base can reach: m/s and rad/s.
+    pub max_linear: f64,
+    pub max_angular: f64,
+    /// Acceleration limits: m/s^2 and rad/s^2.
+    pub max_linear_accel: f64,
+    pub max_angular_accel: f64,
+}
+
+impl Default for RobotConfig {
+    fn default() -> Self {
+        Self {
+            wheel_radius: 0.027216,
+            track: 0.11,
+            control_period: 0.1,
+            footprint_radius: 0.08,
+            max_linear: 0.4,
+            max_angular: 4.0,
+            max_linear_accel: 1.0,
+            max_angular_accel: 8.0,
+        }
+    }
+}
+
+impl RobotConfig {
+    /// The fastest a wheel is ever asked to turn, v + w b / 2, with half again for
+    /// overshoot, m/s: wheel travel beyond this between two readings is a bad reading.
+    pub fn max_wheel_speed(&self) -> f64 {
+        1.5 * (self.max_linear + self.max_angular * self.track / 2.0)
+    }
+}

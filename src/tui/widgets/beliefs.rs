@@ -1,7 +1,7 @@
 //! What the filter believes, drawn over the map: landmark estimates with their 95 %
 //! ellipses and the robot's position ellipse. ASCII outlines use `+`; braille sets dots.
 
-use super::map::Viewport;
+use super::viewport::Viewport;
 use crate::app::App;
 use crate::geometry::Point2;
 use crate::perception::markers::MarkerCategory;

@@ -10,63 +10,7 @@ use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
 use ratatui::style::Style;
 
-/// Where the map area sits in the world: left edge, top edge, metres per column.
-#[derive(Clone, Copy, Debug)]
-pub struct Viewport {
-    pub area: Rect,
-    pub left: f64,
-    pub top: f64,
-    /// Metres per column; a row covers twice as much (terminal cells are about 1:2).
-    pub scale: f64,
-}
-
-impl Viewport {
-    pub fn new(area: Rect, center: Point2, scale: f64) -> Self {
-        Self {
-            area,
-            left: center.x - f64::from(area.width) * scale / 2.0,
-            top: center.y + f64::from(area.height) * scale,
-            scale,
-        }
-    }
-
-    /// The cell showing world point `p`, if it is on screen.
-    pub fn cell(&self, p: Point2) -> Option<(u16, u16)> {
-        let c = ((p.x - self.left) / self.scale).floor();
-        let r = ((self.top - p.y) / (2.0 * self.scale)).floor();
-        let (w, h) = (f64::from(self.area.width), f64::from(self.area.height));
-        if c < 0.0 || r < 0.0 || c >= w || r >= h {
-            return None;
-        }
-        Some((self.area.x + c as u16, self.area.y + r as u16))
-    }
-
-    /// Grid index ranges under each of `per_col` sub-columns of every column and `per_row`
-    /// sub-rows of every row, computed once per frame rather than once per cell.
-    #[allow(clippy::type_complexity)]
-    fn grid_spans(
-        &self,
-        grid: &dyn CellRanges,
-        per_col: u16,
-        per_row: u16,
-    ) -> (Vec<Option<(usize, usize)>>, Vec<Option<(usize, usize)>>) {
-        let dx = self.scale / f64::from(per_col);
-        let dy = 2.0 * self.scale / f64::from(per_row);
-        let cols = (0..self.area.width * per_col)
-            .map(|i| {
-                let x0 = self.left + f64::from(i) * dx;
-                grid.columns_in(x0, x0 + dx)
-            })
-            .collect();
-        let rows = (0..self.area.height * per_row)
-            .map(|i| {
-                let y1 = self.top - f64::from(i) * dy;
-                grid.rows_in(y1 - dy, y1)
-            })
-            .collect();
-        (cols, rows)
-    }
-}
+pub use super::viewport::Viewport;
 
 /// Grids the viewport can cut into screen cells.
 trait CellRanges {
@@ -143,7 +87,7 @@ fn draw_ascii(
     buf: &mut Buffer,
     look: impl Fn((usize, usize), (usize, usize)) -> Option<(char, Style)>,
 ) {
-    let (cols, rows) = vp.grid_spans(grid, 1, 1);
+    let (cols, rows) = grid_spans(vp, grid, 1, 1);
     for (r, row_span) in rows.iter().enumerate() {
         let Some(row_span) = *row_span else { continue };
         for (c, col_span) in cols.iter().enumerate() {
@@ -160,7 +104,7 @@ fn draw_ascii(
 /// Braille: each cell holds 2 x 4 dots, so the map gets twice the columns and four
 /// times the rows of the ASCII view (the technique termviz uses).
 fn draw_grid_braille(grid: &OccupancyGrid, vp: &Viewport, style: Style, buf: &mut Buffer) {
-    let (cols, rows) = vp.grid_spans(grid, 2, 4);
+    let (cols, rows) = grid_spans(vp, grid, 2, 4);
     let occupied = |c: usize, r: usize| match (cols[c], rows[r]) {
         (Some(cs), Some(rs)) => grid.max_in_cells(cs, rs) >= OCCUPIED / 2,
         _ => false,
@@ -182,7 +126,7 @@ fn draw_costmap_ascii(map: &Costmap, vp: &Viewport, theme: Theme, buf: &mut Buff
 
 /// The robot's map as braille dots: lethal cells only.
 fn draw_costmap_braille(map: &Costmap, vp: &Viewport, style: Style, buf: &mut Buffer) {
-    let (cols, rows) = vp.grid_spans(map, 2, 4);
+    let (cols, rows) = grid_spans(vp, map, 2, 4);
     let lethal = |c: usize, r: usize| match (cols[c], rows[r]) {
         (Some(cs), Some(rs)) => map.worst_in_cells(cs, rs) == Shade::Lethal,
         _ => false,
@@ -290,6 +234,32 @@ fn draw_robot(pose: Pose2, body: char, vp: &Viewport, style: Style, buf: &mut Bu
         buf[(tx as u16, ty as u16)].set_char(tick).set_style(style);
     }
     buf[(cx, cy)].set_char(body).set_style(style);
+}
+
+/// Grid index ranges under each of `per_col` sub-columns of every column and `per_row`
+/// sub-rows of every row, computed once per frame rather than once per cell.
+#[allow(clippy::type_complexity)]
+fn grid_spans(
+    vp: &Viewport,
+    grid: &dyn CellRanges,
+    per_col: u16,
+    per_row: u16,
+) -> (Vec<Option<(usize, usize)>>, Vec<Option<(usize, usize)>>) {
+    let dx = vp.scale / f64::from(per_col);
+    let dy = 2.0 * vp.scale / f64::from(per_row);
+    let cols = (0..vp.area.width * per_col)
+        .map(|i| {
+            let x0 = vp.left + f64::from(i) * dx;
+            grid.columns_in(x0, x0 + dx)
+        })
+        .collect();
+    let rows = (0..vp.area.height * per_row)
+        .map(|i| {
+            let y1 = vp.top - f64::from(i) * dy;
+            grid.rows_in(y1 - dy, y1)
+        })
+        .collect();
+    (cols, rows)
 }
 
 #[cfg(test)]

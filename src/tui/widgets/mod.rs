@@ -9,3 +9,4 @@ pub mod map;
 pub mod path;
 pub mod status;
 pub mod title;
+pub mod viewport;

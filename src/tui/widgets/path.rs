@@ -1,6 +1,6 @@
 //! The planned path, its goal and thinking mode's goal cursor, over the map.
 
-use super::map::Viewport;
+use super::viewport::Viewport;
 use crate::app::App;
 use crate::geometry::Point2;
 use crate::tui::theme::Theme;

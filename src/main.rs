@@ -4,6 +4,7 @@ use anyhow::{Context, Result, bail};
 use clap::Parser;
 use navdeck::clock::Clock;
 use navdeck::config::Config;
+use navdeck::console::{ConsoleOptions, run_console};
 use navdeck::geometry::Point2;
 use navdeck::headless;
 use navdeck::keymap::parse_key_sequence;
@@ -14,11 +15,7 @@ use navdeck::plan_report::{self, Terrain};
 use navdeck::session::{LinkChoice, Session, SessionSpec};
 use navdeck::sim::World;
 use navdeck::tui::events::WallClock;
-use navdeck::tui::input::TtyEvents;
-use navdeck::tui::run::{Exit, RunError, RunStats, run};
-use navdeck::tui::signals::{Signals, signal_name};
-use navdeck::tui::terminal::TerminalGuard;
-use navdeck::tui::theme::Theme;
+use navdeck::tui::signals::Signals;
 use std::io::Write;
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -256,7 +253,11 @@ fn real_main(cli: Cli) -> Result<ExitCode> {
     if cli.headless {
         return run_headless(session, &cli, stopwatch);
     }
-    run_console(session, &cli, stopwatch)
+    let options = ConsoleOptions {
+        maps_dir: cli.maps_dir.clone(),
+        braille: cli.braille,
+    };
+    Ok(ExitCode::from(run_console(session, &options, stopwatch)?))
 }
 
 fn run_headless(
@@ -300,7 +301,7 @@ fn run_headless(
         .and_then(Signals::pending)
         .map_or(0, |n| 128 + n as i32);
     if let Some(signals) = &signals {
-        signals.arm_immediate_exit(exit_deadline(), status);
+        signals.arm_immediate_exit(navdeck::console::exit_deadline(), status);
     }
     let wall = started.elapsed().as_secs_f64();
     report.wall_time_s = Some(wall);
@@ -455,86 +456,4 @@ fn run_map(command: &MapCommand) -> Result<ExitCode> {
         }
     }
     Ok(ExitCode::SUCCESS)
-}
-
-/// How long the console may take to end once the robot has been told to stop: restoring
-/// the terminal and closing the link must fit in it, whatever they wait on.
-const EXIT_DEADLINE: std::time::Duration = std::time::Duration::from_millis(800);
-
-/// The exit deadline: `NAVDECK_EXIT_DEADLINE_MS` (tests lengthen it to tell an immediate
-/// exit from the deadline's), else `EXIT_DEADLINE`.
-fn exit_deadline() -> std::time::Duration {
-    std::env::var("NAVDECK_EXIT_DEADLINE_MS")
-        .ok()
-        .and_then(|ms| ms.trim().parse::<u64>().ok())
-        .map_or(EXIT_DEADLINE, std::time::Duration::from_millis)
-}
-
-fn run_console(
-    session: Session,
-    cli: &Cli,
-    stopwatch: std::sync::Arc<dyn Clock>,
-) -> Result<ExitCode> {
-    let signals = Signals::watch().context("cannot watch signals")?;
-    let theme = Theme::from_env(std::env::var_os("NO_COLOR"));
-    let clock = WallClock::start();
-    let mut app = session.into_app(0.0);
-    app.set_stopwatch(stopwatch);
-    app.set_maps_dir(
-        cli.maps_dir
-            .clone()
-            .unwrap_or_else(|| PathBuf::from("maps")),
-    );
-    app.set_date_source(Box::new(|| {
-        humantime::format_rfc3339_seconds(std::time::SystemTime::now()).to_string()
-    }));
-    if cli.braille {
-        app.apply(navdeck::app::action::Action::ToggleBraille);
-    }
-    let mut stats = RunStats::default();
-    let outcome = {
-        let mut guard = TerminalGuard::enter().context("cannot set up the terminal")?;
-        let mut events = TtyEvents::open(&signals).context("cannot read the terminal")?;
-        let outcome = run(
-            &mut guard.terminal,
-            &mut app,
-            &mut events,
-            &clock,
-            signals.cell(),
-            theme,
-            &mut stats,
-        );
-        // The robot has been told to stop: from here the process ends within the deadline,
-        // and a second signal ends it at once.
-        signals.arm_immediate_exit(exit_deadline(), exit_status(&outcome));
-        outcome
-        // The guard drops here: the terminal is restored before anything is printed.
-    };
-    let label = app.link().label();
-    // Closes the link: the serial port, the DDS participant.
-    drop(app);
-    let why = match &outcome {
-        Ok(Exit::Quit) => "quit by user".to_string(),
-        Ok(Exit::InputClosed) => "the terminal hung up".to_string(),
-        Ok(Exit::Signal(n)) => format!("{} received", signal_name(*n)),
-        Err(e) => e.to_string(),
-    };
-    // The terminal may be gone: a message that cannot be written is no reason to fail.
-    let _ = writeln!(
-        std::io::stderr(),
-        "navdeck: robot on {label} stopped; {why}"
-    );
-    Ok(ExitCode::from(exit_status(&outcome) as u8))
-}
-
-/// The process's exit status: 128 + the signal's number for a signal, as shells expect.
-/// The terminal's input ends only when it hangs up (in raw mode ctrl-d is a key), which
-/// the kernel signals with SIGHUP: that status too, whichever of the two came first.
-fn exit_status(outcome: &Result<Exit, RunError>) -> i32 {
-    match outcome {
-        Ok(Exit::Quit) => 0,
-        Ok(Exit::InputClosed) => 128 + signal_hook::consts::SIGHUP,
-        Ok(Exit::Signal(n)) => 128 + *n as i32,
-        Err(_) => 1,
-    }
 }

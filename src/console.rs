@@ -1,0 +1,109 @@
+//! The console on a real terminal: signals watched, the terminal entered, the main loop
+//! run on the wall clock, and on the way out the robot stopped, the terminal restored
+//! and the link closed within a deadline.
+
+use crate::clock::Clock;
+use crate::session::Session;
+use crate::tui::events::WallClock;
+use crate::tui::input::TtyEvents;
+use crate::tui::run::{Exit, RunError, RunStats, run};
+use crate::tui::signals::{Signals, signal_name};
+use crate::tui::terminal::TerminalGuard;
+use crate::tui::theme::Theme;
+use anyhow::{Context, Result};
+use std::io::Write;
+use std::path::PathBuf;
+use std::sync::Arc;
+
+/// How long the console may take to end once the robot has been told to stop: restoring
+/// the terminal and closing the link must fit in it, whatever they wait on.
+const EXIT_DEADLINE: std::time::Duration = std::time::Duration::from_millis(800);
+
+/// The exit deadline: `NAVDECK_EXIT_DEADLINE_MS` (tests lengthen it to tell an immediate
+/// exit from the deadline's), else `EXIT_DEADLINE`.
+pub fn exit_deadline() -> std::time::Duration {
+    std::env::var("NAVDECK_EXIT_DEADLINE_MS")
+        .ok()
+        .and_then(|ms| ms.trim().parse::<u64>().ok())
+        .map_or(EXIT_DEADLINE, std::time::Duration::from_millis)
+}
+
+/// What the console takes from the command line.
+pub struct ConsoleOptions {
+    /// Where maps are saved; `maps` when not given.
+    pub maps_dir: Option<PathBuf>,
+    /// Start with the braille map.
+    pub braille: bool,
+}
+
+/// Runs the console on the real terminal until quit, a signal, a hang-up or a terminal
+/// error; the robot stopped and the link closed in every case. Returns the exit status.
+pub fn run_console(
+    session: Session,
+    options: &ConsoleOptions,
+    stopwatch: Arc<dyn Clock>,
+) -> Result<u8> {
+    let signals = Signals::watch().context("cannot watch signals")?;
+    let theme = Theme::from_env(std::env::var_os("NO_COLOR"));
+    let clock = WallClock::start();
+    let mut app = session.into_app(0.0);
+    app.set_stopwatch(stopwatch);
+    app.set_maps_dir(
+        options
+            .maps_dir
+            .clone()
+            .unwrap_or_else(|| PathBuf::from("maps")),
+    );
+    app.set_date_source(Box::new(|| {
+        humantime::format_rfc3339_seconds(std::time::SystemTime::now()).to_string()
+    }));
+    if options.braille {
+        app.apply(crate::app::action::Action::ToggleBraille);
+    }
+    let mut stats = RunStats::default();
+    let outcome = {
+        let mut guard = TerminalGuard::enter().context("cannot set up the terminal")?;
+        let mut events = TtyEvents::open(&signals).context("cannot read the terminal")?;
+        let outcome = run(
+            &mut guard.terminal,
+            &mut app,
+            &mut events,
+            &clock,
+            signals.cell(),
+            theme,
+            &mut stats,
+        );
+        // The robot has been told to stop: from here the process ends within the deadline,
+        // and a second signal ends it at once.
+        signals.arm_immediate_exit(exit_deadline(), exit_status(&outcome));
+        outcome
+        // The guard drops here: the terminal is restored before anything is printed.
+    };
+    let label = app.link().label();
+    // Closes the link: the serial port, the DDS participant.
+    drop(app);
+    let why = match &outcome {
+        Ok(Exit::Quit) => "quit by user".to_string(),
+        Ok(Exit::InputClosed) => "the terminal hung up".to_string(),
+        Ok(Exit::Signal(n)) => format!("{} received", signal_name(*n)),
+        Err(e) => e.to_string(),
+    };
+    // The terminal may be gone: a message that cannot be written is no reason to fail.
+    let _ = writeln!(
+        std::io::stderr(),
+        "navdeck: robot on {label} stopped; {why}"
+    );
+    Ok(exit_status(&outcome) as u8)
+}
+
+/// The process's exit status: 128 + the signal's number for a signal, as shells expect.
+/// The terminal's input ends only when it hangs up (in raw mode ctrl-d is a key), which
+/// the kernel signals with SIGHUP: that status too, whichever of the two came first.
+fn exit_status(outcome: &Result<Exit, RunError>) -> i32 {
+    match outcome {
+        Ok(Exit::Quit) => 0,
+        Ok(Exit::InputClosed) => 128 + signal_hook::consts::SIGHUP,
+        Ok(Exit::Signal(n)) => 128 + *n as i32,
+        Err(_) => 1,
+    }
+}

@@ -38,30 +38,37 @@ impl InputDecoder {
             if self.pending == [0x1b] && more {
                 continue;
             }
-            match probe_reply(&self.pending) {
-                Some(Some(reply)) => {
-                    out.push_back(reply);
-                    self.pending.clear();
-                    continue;
-                }
-                Some(None) if self.pending.len() < MAX_SEQUENCE => continue,
-                Some(None) => {
-                    self.pending.clear();
-                    continue;
-                }
-                None => {}
-            }
-            match Event::parse_from(&self.pending) {
-                Ok(Some(event)) => {
-                    if let Some((key, kind)) = key_from_event(&event) {
-                        out.push_back(Input::Key(key, kind));
-                    }
+            match decode(&self.pending) {
+                Decoded::Done(input) => {
+                    out.extend(input);
                     self.pending.clear();
                 }
-                Ok(None) if self.pending.len() < MAX_SEQUENCE => {}
-                _ => self.pending.clear(),
+                Decoded::Unfinished if self.pending.len() >= MAX_SEQUENCE => self.pending.clear(),
+                Decoded::Unfinished => {}
             }
         }
+    }
+}
+
+/// What the bytes so far amount to.
+enum Decoded {
+    /// A whole sequence: an input, or nothing navdeck uses (or garbage, dropped).
+    Done(Option<Input>),
+    /// The start of a sequence: wait for more bytes.
+    Unfinished,
+}
+
+fn decode(pending: &[u8]) -> Decoded {
+    match probe_reply(pending) {
+        Some(Some(reply)) => Decoded::Done(Some(reply)),
+        Some(None) => Decoded::Unfinished,
+        None => match Event::parse_from(pending) {
+            Ok(Some(event)) => {
+                Decoded::Done(key_from_event(&event).map(|(key, kind)| Input::Key(key, kind)))
+            }
+            Ok(None) => Decoded::Unfinished,
+            Err(_) => Decoded::Done(None),
+        },
     }
 }
 
@@ -265,5 +272,68 @@ mod tests {
         decoder.feed(b"\x1bq", &mut out);
         decoder.feed(b"q", &mut out);
         assert_eq!(out.back(), Some(&key('q', KeyKind::Press)));
+    }
+
+    /// Sequences of every kind the decoder knows, as terminals send them.
+    const SEQUENCES: &[&[u8]] = &[
+        b"w",
+        b"\x03",
+        b"\x1b[A",
+        b"\x1bOA",
+        b"\x1b[1;1:3A",
+        b"\x1b[119u",
+        b"\x1b[119;1:2u",
+        b"\x1b[119;1:3u",
+        b"\x1b[59:58;2u",
+        b"\x1b[13;1:3u",
+        b"\x1b[99;5u",
+        b"\x1b[5~",
+        b"\x1b[?0u",
+        b"\x1b[?62;22c",
+    ];
+
+    #[test]
+    fn every_sequence_split_anywhere_between_two_reads_decodes_as_whole() {
+        for seq in SEQUENCES {
+            let whole = decode(&[seq]);
+            assert_eq!(whole.len(), 1, "{seq:?} gives {whole:?}");
+            // A split right after a lone ESC is the Esc key by design (see `feed`).
+            for at in 2..seq.len() {
+                let (a, b) = seq.split_at(at);
+                assert_eq!(decode(&[a, b]), whole, "{seq:?} split at {at}");
+            }
+        }
+    }
+
+    #[test]
+    fn random_bytes_never_panic_never_grow_the_buffer_and_decoding_recovers() {
+        use rand::{Rng, SeedableRng};
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(15);
+        for _ in 0..500 {
+            let mut decoder = InputDecoder::default();
+            let mut out = VecDeque::new();
+            for _ in 0..rng.random_range(1..20) {
+                let len = rng.random_range(1..40);
+                // Escape-heavy noise: ESC, '[', '?', digits, ';', ':' and any byte.
+                let chunk: Vec<u8> = (0..len)
+                    .map(|_| match rng.random_range(0..6) {
+                        0 => 0x1b,
+                        1 => b'[',
+                        2 => b"?;:"[rng.random_range(0..3)],
+                        3 => b'0' + rng.random_range(0..10u8),
+                        _ => rng.random(),
+                    })
+                    .collect();
+                decoder.feed(&chunk, &mut out);
+                assert!(decoder.pending.len() < MAX_SEQUENCE);
+            }
+            out.clear();
+            // Whatever was left unfinished completes or is dropped within MAX_SEQUENCE
+            // bytes; after that a plain key reads as itself.
+            for _ in 0..=MAX_SEQUENCE {
+                decoder.feed(b"q", &mut out);
+            }
+            assert_eq!(out.back(), Some(&key('q', KeyKind::Press)), "{out:?}");
+        }
     }
 }

@@ -105,14 +105,8 @@ impl EventSource for TtyEvents<'_> {
         if let Some(event) = self.next_queued() {
             return Ok(Some(event));
         }
-        if self.signals.pending().is_some() {
-            return Ok(None);
-        }
-        if self.signals.take_resized()
-            && let Some(event) = self.resize_event()
-        {
-            return Ok(Some(event));
-        }
+        // A signal that arrived since the loop last looked has left a byte on the wake
+        // socket, so the poll below returns at once.
         let timeout = Timespec::try_from(timeout).unwrap_or(Timespec {
             tv_sec: 1,
             tv_nsec: 0,

@@ -8,9 +8,8 @@ mod serial_emulator;
 
 use pty_support::{Console, Finished, Terminal};
 use ros2_support::{FakeOptions, FakeRobot};
-use serial_emulator::Emulator;
+use serial_emulator::{Emulator, until};
 use std::path::PathBuf;
-use std::time::{Duration, Instant};
 
 /// How the console's terminal ends.
 #[derive(Clone, Copy, Debug)]
@@ -39,26 +38,16 @@ fn config_file(name: &str, text: &str) -> PathBuf {
 
 /// Drives forward by keys until the screen says so and the robot has been told to drive
 /// (`robot_drives`), then ends the terminal while keys are still arriving.
-fn drive_then_end(console: &mut Console, ending: Ending, robot_drives: impl FnMut() -> bool) {
+fn drive_then_end(console: &mut Console, ending: Ending, mut robot_drives: impl FnMut() -> bool) {
     console.wait_for(b"Status");
     // Held w, as a terminal's auto-repeat sends it, until the robot drives (a real robot's
     // link may take a moment to come up).
     console.hold_until(b"w", b"forward");
-    console.hold_while_not(b"w", "the robot told to drive", robot_drives);
+    console.hold_while_not(b"w", "the robot told to drive", |_| robot_drives());
     console.send(b"wwwwwwwwww");
     match ending {
         Ending::HangUp => console.hang_up(),
         Ending::Signal(s) => console.signal(s),
-    }
-}
-
-/// Waits (bounded) until `done` holds, asking again whenever `wait` returns.
-fn until(what: &str, mut done: impl FnMut() -> bool) {
-    let deadline = Instant::now() + pty_support::PATIENCE;
-    let (_tx, rx) = std::sync::mpsc::channel::<()>();
-    while !done() {
-        assert!(Instant::now() < deadline, "{what} never happened");
-        let _ = rx.recv_timeout(Duration::from_millis(10));
     }
 }
 

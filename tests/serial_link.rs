@@ -10,9 +10,9 @@ use navdeck::geometry::Twist;
 use navdeck::keymap::{Key, Keymap};
 use navdeck::link::RobotLink;
 use navdeck::link::serial::SerialLink;
-use serial_emulator::{Emulator, Options, PATIENCE};
+use serial_emulator::{Emulator, Options, until};
 use std::io::{Read, Write};
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 /// Timing for tests on a busy machine: generous replies, quick reconnection.
 fn config() -> Config {
@@ -21,15 +21,6 @@ fn config() -> Config {
     c.serial.reconnect_every = 0.1;
     c.serial.boot_wait = 2.0;
     c
-}
-
-/// Checks `done` until it holds, failing the test after PATIENCE.
-fn until(what: &str, mut done: impl FnMut() -> bool) {
-    let deadline = Instant::now() + PATIENCE;
-    while !done() {
-        assert!(Instant::now() < deadline, "never saw {what}");
-        std::thread::sleep(Duration::from_millis(5));
-    }
 }
 
 /// Waits (bounded) until the link has noted a line containing `text`.

@@ -150,34 +150,23 @@ impl Console {
     /// Sends `key` about 30 times a second, as a held key auto-repeats, until `needle`
     /// has appeared.
     pub fn hold_until(&mut self, key: &[u8], needle: &[u8]) {
+        let what = format!("{:?} on screen", String::from_utf8_lossy(needle));
+        self.hold_while_not(key, &what, |seen| contains(seen, needle));
+    }
+
+    /// Sends `key` about 30 times a second, as a held key auto-repeats, until `done`
+    /// holds for what the console has written so far (checked between repeats).
+    pub fn hold_while_not(&mut self, key: &[u8], what: &str, mut done: impl FnMut(&[u8]) -> bool) {
         let deadline = Instant::now() + PATIENCE;
-        while !contains(&self.seen, needle) {
+        while !done(&self.seen) {
             assert!(
                 Instant::now() < deadline,
-                "never saw {:?} holding {:?}",
-                String::from_utf8_lossy(needle),
+                "never: {what}, holding {:?}",
                 String::from_utf8_lossy(key)
             );
             self.send(key);
             self.collect(Duration::from_millis(33));
         }
-    }
-
-    /// Sends `key` about 30 times a second, as a held key auto-repeats, until `done`
-    /// holds (checked between repeats).
-    pub fn hold_while_not(&mut self, key: &[u8], what: &str, mut done: impl FnMut() -> bool) {
-        let deadline = Instant::now() + PATIENCE;
-        while !done() {
-            assert!(Instant::now() < deadline, "never: {what}");
-            self.send(key);
-            self.collect(Duration::from_millis(33));
-        }
-    }
-
-    /// Whether `needle` has appeared so far (reading what is waiting, not waiting).
-    pub fn has_seen(&mut self, needle: &[u8]) -> bool {
-        self.collect(Duration::ZERO);
-        contains(&self.seen, needle)
     }
 
     pub fn send(&mut self, bytes: &[u8]) {
@@ -186,7 +175,7 @@ impl Console {
         writer.flush().unwrap();
     }
 
-    pub fn pid(&self) -> i32 {
+    fn pid(&self) -> i32 {
         let child = self.child.as_ref().expect("still running");
         child.process_id().expect("a pid") as i32
     }

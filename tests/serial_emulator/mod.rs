@@ -29,6 +29,16 @@ const SERVO_STEP: f64 = 6.0;
 /// Generous bound for a slow machine; reaching it fails the test.
 pub const PATIENCE: Duration = Duration::from_secs(20);
 
+/// Checks `done` every few milliseconds until it holds, failing the test after PATIENCE:
+/// for what a link's other side reports with no event to wait on.
+pub fn until(what: &str, mut done: impl FnMut() -> bool) {
+    let deadline = Instant::now() + PATIENCE;
+    while !done() {
+        assert!(Instant::now() < deadline, "never saw {what}");
+        std::thread::sleep(Duration::from_millis(5));
+    }
+}
+
 /// What the emulated firmware has and how it talks.
 #[derive(Clone, Copy, Debug)]
 pub struct Options {

@@ -254,11 +254,6 @@ impl App {
         }
     }
 
-    /// Tells the console the terminal reports key releases (kitty keyboard protocol).
-    pub fn set_release_events(&mut self, on: bool) {
-        self.teleop.set_release_events(on);
-    }
-
     /// Keys typed after `:`: enter runs the command, esc (or backspace on empty) cancels.
     fn edit_prompt(&mut self, key: Key) {
         let Some(text) = self.nav.prompt.as_mut() else {

@@ -105,7 +105,7 @@ fn signalled(app: &mut App, signal: &AtomicUsize) -> Option<Exit> {
     if pending == 0 {
         return None;
     }
-    app.shutdown(&signal_name(pending));
+    app.shutdown(&format!("signal {}", signal_name(pending)));
     Some(Exit::Signal(pending))
 }
 

@@ -116,6 +116,6 @@ pub fn signal_name(signal: usize) -> String {
         SIGHUP => "SIGHUP".into(),
         SIGINT => "SIGINT".into(),
         SIGTERM => "SIGTERM".into(),
-        n => format!("signal {n}"),
+        n => n.to_string(),
     }
 }

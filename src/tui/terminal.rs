@@ -32,7 +32,7 @@ pub struct TerminalOut(Stdout);
 impl TerminalOut {
     fn check<T>(result: io::Result<T>) -> io::Result<T> {
         if result.is_err() {
-            GONE.store(true, Ordering::SeqCst);
+            mark_gone();
         }
         result
     }

@@ -82,7 +82,7 @@ pub fn run_paced(
     };
     // A real robot may take a moment to be discovered: keys wait for its first data.
     let period = app.config().robot.control_period;
-    if app.link().twin().is_none() {
+    if app.link().ground_truth().is_none() {
         if !step(app, t) {
             return report(app, keys.len());
         }
@@ -128,7 +128,7 @@ pub fn run_paced(
 
 /// The report of the session as it stands.
 pub fn report(app: &App, keys: usize) -> Report {
-    let twin = app.link().twin();
+    let twin = app.link().ground_truth();
     Report {
         navdeck: env!("CARGO_PKG_VERSION"),
         link: app.link().label(),

@@ -278,7 +278,7 @@ fn run_headless(
     }
     // A real robot moves in real time: keep the session clock on the wall clock, and
     // stop the robot on SIGINT, SIGTERM or SIGHUP.
-    let signals = match app.link().twin() {
+    let signals = match app.link().ground_truth() {
         Some(_) => None,
         None => Some(Signals::watch().context("cannot watch for signals")?),
     };

@@ -65,7 +65,7 @@ pub fn run(app: &mut App, seed: u64, time_limit: f64) -> MissionReport {
 }
 
 fn report(app: &App, seed: u64) -> MissionReport {
-    let twin = app.link().twin();
+    let twin = app.link().ground_truth();
     let total = twin.map_or(app.config().mission.total_blocks as usize, |t| {
         t.blocks().len()
     });

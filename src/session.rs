@@ -59,11 +59,27 @@ pub struct SessionSpec {
     pub link: LinkChoice,
 }
 
+/// The robot a session drives: the twin stays itself until the console starts, so its
+/// sensors can still be changed (`--sim-camera`); any other robot is already a link.
+enum Robot {
+    Twin(Box<Twin>),
+    Link(Box<dyn RobotLink>),
+}
+
+impl Robot {
+    fn into_link(self) -> Box<dyn RobotLink> {
+        match self {
+            Robot::Twin(twin) => Box::new(SimLink::new(*twin, 0.0)),
+            Robot::Link(link) => link,
+        }
+    }
+}
+
 /// A loaded, validated session, ready for the TUI or the headless runner.
 pub struct Session {
     pub config: Config,
     pub keymap: Keymap,
-    pub link: Box<dyn RobotLink>,
+    robot: Robot,
     /// The DDS domain of a ROS 2 link, for a ROS 2 camera beside it.
     pub ros2_domain: Option<u16>,
     /// Whether the config file set `[mission] blind_distance` (else it follows the camera).
@@ -81,7 +97,7 @@ impl Session {
             None => Keymap::default_map(),
         };
         let mut ros2_domain = None;
-        let link: Box<dyn RobotLink> = match &spec.link {
+        let robot = match &spec.link {
             LinkChoice::Sim => {
                 let world = match &spec.world {
                     Some(path) => World::load(path)
@@ -89,7 +105,7 @@ impl Session {
                     None => World::default_arena(),
                 };
                 let twin = Twin::new(world, &config.robot, &config.sim, spec.seed);
-                Box::new(SimLink::new(twin, 0.0))
+                Robot::Twin(Box::new(twin))
             }
             LinkChoice::Ros2(target) => {
                 // The command line's namespace holds for everything on ROS 2 (a camera too).
@@ -106,15 +122,15 @@ impl Session {
                     max_wheel_speed: config.robot.max_wheel_speed(),
                 })
                 .context("cannot open the ROS 2 link")?;
-                Box::new(link)
+                Robot::Link(Box::new(link))
             }
-            LinkChoice::Serial(spec) => Box::new(SerialLink::open(spec, &config)?),
+            LinkChoice::Serial(spec) => Robot::Link(Box::new(SerialLink::open(spec, &config)?)),
         };
         let blind_from_user = config.mission.blind_distance.is_some();
         let mut session = Session {
             config,
             keymap,
-            link,
+            robot,
             ros2_domain,
             blind_from_user,
         };
@@ -142,7 +158,7 @@ impl Session {
     ) -> Result<()> {
         #[cfg(feature = "vision")]
         {
-            let Some(twin) = self.link.twin_mut() else {
+            let Robot::Twin(twin) = &mut self.robot else {
                 bail!("--sim-camera needs the twin (--link sim)");
             };
             let detector = twin
@@ -198,11 +214,11 @@ impl Session {
             self.set_blind_distance(blind);
             let pipeline = CameraPipeline::start(frames, detector, Some(stopwatch));
             Ok(Session {
-                link: Box::new(crate::link::camera::WithCamera::new(
-                    self.link,
+                robot: Robot::Link(Box::new(crate::link::camera::WithCamera::new(
+                    self.robot.into_link(),
                     pipeline,
                     source.to_string(),
-                )),
+                ))),
                 ..self
             })
         }
@@ -215,7 +231,7 @@ impl Session {
 
     /// The console on this session, starting at session time `now`.
     pub fn into_app(self, now: f64) -> App {
-        App::new(self.config, self.keymap, self.link, now)
+        App::new(self.config, self.keymap, self.robot.into_link(), now)
     }
 }
 

@@ -25,7 +25,7 @@ fn last_log(app: &App) -> &str {
 }
 
 fn true_speed(app: &App) -> f64 {
-    app.link().twin().unwrap().velocity().linear
+    app.link().ground_truth().unwrap().velocity().linear
 }
 
 #[test]
@@ -170,7 +170,7 @@ fn a_signal_stops_the_robot_and_ends_the_loop() {
     signal.store(15, Ordering::SeqCst);
     let s = run_script_with_signal(app, 80, 24, hold('w', 1.0), &signal);
     assert_eq!(s.exit, Exit::Signal(15));
-    assert_eq!(s.app.link().twin().unwrap().command().linear, 0.0);
+    assert_eq!(s.app.link().ground_truth().unwrap().command().linear, 0.0);
     assert!(last_log(&s.app).contains("SIGTERM"), "{}", last_log(&s.app));
     assert_eq!(s.app.commanded().linear, 0.0);
 }
@@ -241,7 +241,7 @@ fn driving_into_a_wall_is_logged_as_a_collision() {
     // From the start pose facing east, turn right to face the south wall and drive on.
     let mut app = default_app();
     hold_in_turn(&mut app, &[('d', 1.1), ('w', 6.0)], 0.0);
-    assert!(app.link().twin().unwrap().collisions() >= 1);
+    assert!(app.link().ground_truth().unwrap().collisions() >= 1);
     assert!(
         app.log_book()
             .iter()
@@ -287,8 +287,8 @@ fn race_mode_drives_faster_with_fewer_slam_corrections() {
     assert!(race.teleop().linear_speed > manual.teleop().linear_speed);
     assert!(race.teleop().limits().0 > manual.teleop().limits().0);
     assert!(
-        race.link().twin().unwrap().distance_driven()
-            > 1.5 * manual.link().twin().unwrap().distance_driven()
+        race.link().ground_truth().unwrap().distance_driven()
+            > 1.5 * manual.link().ground_truth().unwrap().distance_driven()
     );
     let (m, r) = (corrections(&manual), corrections(&race));
     assert!(r * 2 < m, "race corrected {r} times, manual {m}");
@@ -324,7 +324,7 @@ fn race_mode_warns_when_the_pose_uncertainty_grows() {
             .any(|e| e.text.starts_with("race: position uncertainty")),
         "no uncertainty warning: sigma {:?}, collisions {}",
         app.pose_sigma(),
-        app.link().twin().unwrap().collisions()
+        app.link().ground_truth().unwrap().collisions()
     );
 }
 

@@ -16,7 +16,7 @@ fn blocks_and_gates_from_a_drive_round_the_arena_match_the_twin() {
     let landmarks: BTreeMap<_, _> = app.slam().landmarks().map(|l| (l.id, l.mean)).collect();
     let mut objects = Objects::default();
     objects.update(&landmarks, app.estimated_pose().position(), 0.05);
-    let twin = app.link().twin().unwrap();
+    let twin = app.link().ground_truth().unwrap();
     let confirmed: Vec<_> = objects.blocks().filter(|b| b.confirmed).collect();
     assert!(
         !confirmed.is_empty(),

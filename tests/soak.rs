@@ -153,7 +153,7 @@ fn eight_hours_on_the_twin_keep_memory_log_and_clock_steady() {
         "session clock {}",
         app.now()
     );
-    let twin_time = app.link().twin().expect("the twin").time();
+    let twin_time = app.link().ground_truth().expect("the twin").time();
     let period = app.config().robot.control_period;
     assert!(
         (twin_time - end).abs() <= period,

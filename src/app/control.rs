@@ -177,10 +177,14 @@ impl App {
 
     /// The twin counts contacts; each new one is worth a line in the log.
     fn note_collisions(&mut self, t: f64) {
-        let count = self.link.twin().map_or(0, |twin| twin.collisions());
+        let count = self.link.ground_truth().map_or(0, |twin| twin.collisions());
         if count > self.collisions_logged {
             self.collisions_logged = count;
-            let p = self.link.twin().map(|twin| twin.pose()).unwrap_or_default();
+            let p = self
+                .link
+                .ground_truth()
+                .map(|twin| twin.pose())
+                .unwrap_or_default();
             self.log.push(
                 t,
                 Level::Warn,

@@ -21,7 +21,7 @@ const SIGHT_LINE_MARGIN: f64 = 0.1;
 pub(super) fn belief_map_for(config: &Config, link: &dyn RobotLink) -> BeliefMap {
     let m = &config.map;
     let (w, h) = link
-        .twin()
+        .ground_truth()
         .map_or((m.width, m.height), |t| (t.world().width, t.world().height));
     BeliefMap::new(m, (m.width.max(w), m.height.max(h)))
 }

@@ -126,8 +126,10 @@ pub struct App {
 impl App {
     /// A console on `link`, starting at session time `now`.
     pub fn new(config: Config, keymap: Keymap, link: Box<dyn RobotLink>, now: f64) -> Self {
-        let start = link.twin().map_or(Pose2::default(), |t| t.pose());
-        let world_grid = link.twin().map(|t| t.world().rasterize(WORLD_RASTER));
+        let start = link.ground_truth().map_or(Pose2::default(), |t| t.pose());
+        let world_grid = link
+            .ground_truth()
+            .map(|t| t.world().rasterize(WORLD_RASTER));
         let belief = mapping::belief_map_for(&config, link.as_ref());
         let teleop = Teleop::new(
             &config.teleop,
@@ -358,7 +360,7 @@ impl App {
             Action::ToggleLandmarks => self.view.landmarks = !self.view.landmarks,
             Action::ToggleCamera => self.view.camera = self.view.camera.next(),
             Action::ToggleTruth => {
-                if self.link.twin().is_some() {
+                if self.link.ground_truth().is_some() {
                     self.view.show_truth = !self.view.show_truth;
                 } else {
                     self.log(Level::Warn, "true pose exists only in the twin");
@@ -545,7 +547,7 @@ impl App {
         self.odometry.distance()
     }
     pub fn true_pose(&self) -> Option<Pose2> {
-        self.link.twin().map(|t| t.pose())
+        self.link.ground_truth().map(|t| t.pose())
     }
     pub fn commanded(&self) -> Twist {
         self.commanded
@@ -606,7 +608,7 @@ impl App {
 
     /// The world extent the map fits to: the twin's world, else 4 m x 4 m (seed 001's grid).
     pub fn world_extent(&self) -> (Point2, (f64, f64)) {
-        match self.link.twin() {
+        match self.link.ground_truth() {
             Some(t) => (Point2::new(0.0, 0.0), (t.world().width, t.world().height)),
             None => (Point2::new(0.0, 0.0), (4.0, 4.0)),
         }

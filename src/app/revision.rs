@@ -61,7 +61,7 @@ impl App {
         let map = self.shown_map_revision();
         let pose = self.estimated_pose();
         let deg = |t: f64| t.to_degrees().round() as i64;
-        let twin = self.link.twin();
+        let twin = self.link.ground_truth();
         let visible = Visible {
             mode: self.mode,
             pose: (centi(pose.x), centi(pose.y), deg(pose.theta)),

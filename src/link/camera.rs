@@ -50,15 +50,11 @@ impl RobotLink for WithCamera {
         self.inner.show(picture);
     }
 
-    fn twin(&self) -> Option<&crate::sim::Twin> {
-        self.inner.twin()
+    fn ground_truth(&self) -> Option<&dyn crate::sim::GroundTruth> {
+        self.inner.ground_truth()
     }
 
     fn take_notes(&mut self) -> Vec<Notice> {
         self.inner.take_notes()
-    }
-
-    fn twin_mut(&mut self) -> Option<&mut crate::sim::Twin> {
-        self.inner.twin_mut()
     }
 }

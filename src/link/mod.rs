@@ -80,17 +80,13 @@ pub trait RobotLink: Send {
     }
     /// Shows what navdeck believes: the pose every control step, the rest when due.
     fn show(&mut self, _picture: &Picture) {}
-    /// The digital twin behind this link, when there is one (ground truth for display).
-    fn twin(&self) -> Option<&crate::sim::Twin> {
+    /// Ground truth, when a simulator stands behind this link (for display and scoring).
+    fn ground_truth(&self) -> Option<&dyn crate::sim::GroundTruth> {
         None
     }
     /// What the link noticed since the last call (retries, bad replies, dropped messages,
     /// a type mismatch), one line each, for the console's log.
     fn take_notes(&mut self) -> Vec<Notice> {
         Vec::new()
-    }
-    /// The digital twin behind this link, to change how it senses (e.g. its rendered camera).
-    fn twin_mut(&mut self) -> Option<&mut crate::sim::Twin> {
-        None
     }
 }

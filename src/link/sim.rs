@@ -41,11 +41,7 @@ impl RobotLink for SimLink {
         self.twin.set_command(crate::geometry::Twist::ZERO);
     }
 
-    fn twin(&self) -> Option<&Twin> {
+    fn ground_truth(&self) -> Option<&dyn crate::sim::GroundTruth> {
         Some(&self.twin)
-    }
-
-    fn twin_mut(&mut self) -> Option<&mut Twin> {
-        Some(&mut self.twin)
     }
 }

@@ -178,7 +178,7 @@ fn put(buf: &mut Buffer, vp: &Viewport, p: Point2, glyph: char, style: Style) {
 
 /// Markers by category, blocks where they are now; markers in view of the camera reversed.
 fn draw_world_objects(app: &App, vp: &Viewport, theme: Theme, buf: &mut Buffer) {
-    let Some(twin) = app.link().twin() else {
+    let Some(twin) = app.link().ground_truth() else {
         return;
     };
     let seen = app.in_view();

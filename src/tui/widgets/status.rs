@@ -133,7 +133,7 @@ pub fn lines(app: &App, theme: Theme) -> Vec<Line<'static>> {
             format!("{:.0} Hz  t {}", app.loop_rate(), clock_text(app.now())),
         ),
     ]);
-    if let Some(twin) = app.link().twin() {
+    if let Some(twin) = app.link().ground_truth() {
         rows.push(row(
             theme,
             "Hits",

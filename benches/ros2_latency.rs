@@ -64,7 +64,7 @@ fn main() {
     let mut app = App::new(config, Keymap::default_map(), Box::new(link), clock.now());
     // Wait for the robot before the first key.
     let give_up = Instant::now() + Duration::from_secs(20);
-    while app.link_status() != &LinkStatus::Ok || app.now() < 1.5 {
+    while app.pilot().link_status() != &LinkStatus::Ok || app.now() < 1.5 {
         assert!(Instant::now() < give_up, "the fake robot never answered");
         app.update(clock.now());
         std::thread::sleep(Duration::from_millis(5));

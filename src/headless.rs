@@ -86,7 +86,7 @@ pub fn run_paced(
         if !step(app, t) {
             return report(app, keys.len());
         }
-        while app.link_status() != &LinkStatus::Ok && t < start + LINK_WAIT {
+        while app.pilot().link_status() != &LinkStatus::Ok && t < start + LINK_WAIT {
             t += period;
             if !step(app, t) {
                 return report(app, keys.len());
@@ -109,7 +109,7 @@ pub fn run_paced(
             return report(app, keys.len());
         }
         let give_up = t + FOLLOW_TIMEOUT;
-        while app.is_busy() && t < give_up {
+        while app.pilot().is_busy() && t < give_up {
             t += period;
             if !step(app, t) {
                 return report(app, keys.len());
@@ -134,23 +134,23 @@ pub fn report(app: &App, keys: usize) -> Report {
         link: app.link().label(),
         keys,
         sim_time: app.now(),
-        mode: app.mode().label().to_string(),
+        mode: app.pilot().mode().label().to_string(),
         true_pose: app.true_pose(),
-        estimated_pose: app.estimated_pose(),
-        distance_driven: twin.map_or(app.odometry_distance(), |t| t.distance_driven()),
-        odometry_distance: app.odometry_distance(),
+        estimated_pose: app.pilot().estimated_pose(),
+        distance_driven: twin.map_or(app.pilot().odometry_distance(), |t| t.distance_driven()),
+        odometry_distance: app.pilot().odometry_distance(),
         collisions: twin.map(|t| t.collisions()),
-        landmarks: app.slam().landmark_count(),
-        rejected_sightings: app.slam().rejected(),
-        position_rmse: twin.map(|_| app.accuracy().position_rmse()),
-        heading_rmse_deg: twin.map(|_| app.accuracy().heading_rmse().to_degrees()),
-        mean_nees: twin.map(|_| app.accuracy().mean_nees()),
-        gripper: app.gripper().map(|g| g.label().to_string()),
-        controller: app.follower().controller().name().to_string(),
-        arrived: app.arrived(),
-        path_length: app.route().map(|r| r.plan.length),
-        cross_track_rms: app.cross_track_rms(),
-        true_cross_track_rms: app.true_cross_track_rms(),
+        landmarks: app.pilot().slam().landmark_count(),
+        rejected_sightings: app.pilot().slam().rejected(),
+        position_rmse: twin.map(|_| app.pilot().accuracy().position_rmse()),
+        heading_rmse_deg: twin.map(|_| app.pilot().accuracy().heading_rmse().to_degrees()),
+        mean_nees: twin.map(|_| app.pilot().accuracy().mean_nees()),
+        gripper: app.pilot().gripper().map(|g| g.label().to_string()),
+        controller: app.pilot().follower().controller().name().to_string(),
+        arrived: app.pilot().arrived(),
+        path_length: app.pilot().route().map(|r| r.plan.length),
+        cross_track_rms: app.pilot().cross_track_rms(),
+        true_cross_track_rms: app.pilot().true_cross_track_rms(),
         quit: app.should_quit(),
         warnings: app.log_book().problems().map(|e| e.text.clone()).collect(),
         wall_time_s: None,

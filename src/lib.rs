@@ -16,6 +16,7 @@ pub mod map_report;
 pub mod mission;
 pub mod mission_runner;
 pub mod perception;
+pub mod pilot;
 pub mod plan;
 pub mod plan_report;
 pub mod session;

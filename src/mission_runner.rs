@@ -57,7 +57,8 @@ pub fn run(app: &mut App, seed: u64, time_limit: f64) -> MissionReport {
     let start = app.now();
     app.apply(Action::ModeExplore);
     let mut t = start;
-    while t - start < time_limit && app.mode() == Mode::Exploration && app.is_busy() {
+    while t - start < time_limit && app.pilot().mode() == Mode::Exploration && app.pilot().is_busy()
+    {
         t += STEP;
         app.update(t);
     }
@@ -69,11 +70,11 @@ fn report(app: &App, seed: u64) -> MissionReport {
     let total = twin.map_or(app.config().mission.total_blocks as usize, |t| {
         t.blocks().len()
     });
-    let mission = app.mission();
+    let mission = app.pilot().mission();
     let delivered = mission.map_or(0, |m| m.delivered());
     let outcome = if mission.is_some_and(|m| m.is_done()) && delivered >= total {
         "delivered all"
-    } else if app.mode() != Mode::Exploration {
+    } else if app.pilot().mode() != Mode::Exploration {
         "handed to manual"
     } else {
         "time limit"
@@ -101,10 +102,10 @@ fn report(app: &App, seed: u64) -> MissionReport {
         outcome: outcome.into(),
         sim_time: app.now(),
         collisions: twin.map(|t| t.collisions()),
-        replans: mission.map_or(0, |m| m.replans()) + app.replans(),
+        replans: mission.map_or(0, |m| m.replans()) + app.pilot().replans(),
         recoveries: mission.map_or(0, |m| m.recoveries()),
-        position_rmse: twin.map(|_| app.accuracy().position_rmse()),
-        heading_rmse_deg: twin.map(|_| app.accuracy().heading_rmse().to_degrees()),
+        position_rmse: twin.map(|_| app.pilot().accuracy().position_rmse()),
+        heading_rmse_deg: twin.map(|_| app.pilot().accuracy().heading_rmse().to_degrees()),
         timeline: mission.map_or(Vec::new(), |m| {
             m.timeline()
                 .iter()

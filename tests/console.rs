@@ -38,7 +38,10 @@ fn holding_w_drives_forward_and_robot_rests_within_deadman_of_last_key() {
         app.handle_key(Key::char('w'), KeyKind::Press, t);
         t += 1.0 / 30.0;
         app.update(t);
-        assert!(app.commanded().linear > 0.0, "command dropped at {t:.3} s");
+        assert!(
+            app.pilot().commanded().linear > 0.0,
+            "command dropped at {t:.3} s"
+        );
     }
     let last_key = t - 1.0 / 30.0;
     let moved = app.true_pose().unwrap();
@@ -77,9 +80,9 @@ fn release_event_stops_at_once_in_kitty_terminals() {
     app.handle_key(Key::char('w'), KeyKind::Press, 0.0);
     idle(&mut app, 0.6);
     // No repeat yet after 0.6 s: with release events the key is still held.
-    assert!(app.commanded().linear > 0.0);
+    assert!(app.pilot().commanded().linear > 0.0);
     app.handle_key(Key::char('w'), KeyKind::Release, 0.6);
-    assert_eq!(app.commanded().linear, 0.0);
+    assert_eq!(app.pilot().commanded().linear, 0.0);
 }
 
 #[test]
@@ -91,8 +94,8 @@ fn space_is_an_emergency_stop_and_a_drive_key_releases_it() {
     app.update(0.5);
     assert!(true_speed(&app) > 0.0);
     app.handle_key(key("space"), KeyKind::Press, 0.5);
-    assert!(app.estop());
-    assert_eq!(app.commanded().linear, 0.0);
+    assert!(app.pilot().estop());
+    assert_eq!(app.pilot().commanded().linear, 0.0);
     idle(&mut app, 0.3);
     assert_eq!(true_speed(&app), 0.0);
     assert!(
@@ -101,14 +104,14 @@ fn space_is_an_emergency_stop_and_a_drive_key_releases_it() {
             .any(|e| e.text.contains("EMERGENCY STOP"))
     );
     app.handle_key(Key::char('w'), KeyKind::Press, app.now());
-    assert!(!app.estop() && app.commanded().linear > 0.0);
+    assert!(!app.pilot().estop() && app.pilot().commanded().linear > 0.0);
 }
 
 #[test]
 fn follow_mode_without_a_path_says_so_and_changes_nothing() {
     let mut app = default_app();
     app.handle_key(Key::char('p'), KeyKind::Press, 0.0);
-    assert_eq!(app.mode(), Mode::Manual);
+    assert_eq!(app.pilot().mode(), Mode::Manual);
     let said: Vec<&str> = app.log_book().iter().map(|e| e.text.as_str()).collect();
     assert!(
         said.iter().any(|l| l.starts_with("no path to follow")),
@@ -121,25 +124,25 @@ fn gripper_keys_open_and_close_the_twins_gripper() {
     let mut app = default_app();
     app.handle_key(Key::char('o'), KeyKind::Press, 0.0);
     idle(&mut app, 2.0);
-    assert_eq!(app.gripper(), Some(GripperState::Open));
+    assert_eq!(app.pilot().gripper(), Some(GripperState::Open));
     // In manual mode `c` stops (seed 001); the gripper closes from other bindings only.
     app.handle_key(Key::char('c'), KeyKind::Press, app.now());
     idle(&mut app, 2.0);
-    assert_eq!(app.gripper(), Some(GripperState::Open));
+    assert_eq!(app.pilot().gripper(), Some(GripperState::Open));
 }
 
 #[test]
 fn speed_keys_change_the_drive_speed_within_limits() {
     let mut app = default_app();
-    let before = app.teleop().linear_speed;
+    let before = app.pilot().teleop().linear_speed;
     app.handle_key(Key::char(']'), KeyKind::Press, 0.0);
-    assert!(app.teleop().linear_speed > before);
+    assert!(app.pilot().teleop().linear_speed > before);
     for _ in 0..50 {
         app.handle_key(Key::char(']'), KeyKind::Press, 0.0);
     }
-    let (max_v, max_w) = app.teleop().limits();
-    assert_eq!(app.teleop().linear_speed, max_v);
-    assert_eq!(app.teleop().angular_speed, max_w);
+    let (max_v, max_w) = app.pilot().teleop().limits();
+    assert_eq!(app.pilot().teleop().linear_speed, max_v);
+    assert_eq!(app.pilot().teleop().angular_speed, max_w);
     assert!(
         app.log_book()
             .iter()
@@ -154,7 +157,7 @@ fn quit_stops_the_robot_and_ends_the_loop() {
     steps.push(Step::Wait(5.0));
     let s = run_script(default_app(), 80, 24, steps);
     assert_eq!(s.exit, Exit::Quit);
-    assert_eq!(s.app.commanded().linear, 0.0);
+    assert_eq!(s.app.pilot().commanded().linear, 0.0);
     assert!(
         last_log(&s.app).contains("quit by user"),
         "{}",
@@ -172,7 +175,7 @@ fn a_signal_stops_the_robot_and_ends_the_loop() {
     assert_eq!(s.exit, Exit::Signal(15));
     assert_eq!(s.app.link().ground_truth().unwrap().command().linear, 0.0);
     assert!(last_log(&s.app).contains("SIGTERM"), "{}", last_log(&s.app));
-    assert_eq!(s.app.commanded().linear, 0.0);
+    assert_eq!(s.app.pilot().commanded().linear, 0.0);
 }
 
 #[test]
@@ -276,16 +279,16 @@ fn drive_pattern(mut app: App, mode_key: char) -> App {
 }
 
 fn corrections(app: &App) -> u32 {
-    app.slam().landmarks().map(|l| l.sightings).sum()
+    app.pilot().slam().landmarks().map(|l| l.sightings).sum()
 }
 
 #[test]
 fn race_mode_drives_faster_with_fewer_slam_corrections() {
     let manual = drive_pattern(default_app(), 'm');
     let race = drive_pattern(default_app(), 'r');
-    assert_eq!(race.mode(), Mode::Race);
-    assert!(race.teleop().linear_speed > manual.teleop().linear_speed);
-    assert!(race.teleop().limits().0 > manual.teleop().limits().0);
+    assert_eq!(race.pilot().mode(), Mode::Race);
+    assert!(race.pilot().teleop().linear_speed > manual.pilot().teleop().linear_speed);
+    assert!(race.pilot().teleop().limits().0 > manual.pilot().teleop().limits().0);
     assert!(
         race.link().ground_truth().unwrap().distance_driven()
             > 1.5 * manual.link().ground_truth().unwrap().distance_driven()
@@ -295,8 +298,14 @@ fn race_mode_drives_faster_with_fewer_slam_corrections() {
     // Back to manual: manual's speeds and limits return.
     let mut race = race;
     race.handle_key(Key::char('m'), KeyKind::Press, race.now());
-    assert_eq!(race.teleop().limits().0, manual.teleop().limits().0);
-    assert_eq!(race.teleop().linear_speed, manual.teleop().linear_speed);
+    assert_eq!(
+        race.pilot().teleop().limits().0,
+        manual.pilot().teleop().limits().0
+    );
+    assert_eq!(
+        race.pilot().teleop().linear_speed,
+        manual.pilot().teleop().linear_speed
+    );
 }
 
 #[test]
@@ -323,7 +332,7 @@ fn race_mode_warns_when_the_pose_uncertainty_grows() {
             .iter()
             .any(|e| e.text.starts_with("race: position uncertainty")),
         "no uncertainty warning: sigma {:?}, collisions {}",
-        app.pose_sigma(),
+        app.pilot().pose_sigma(),
         app.link().ground_truth().unwrap().collisions()
     );
 }
@@ -354,10 +363,10 @@ fn drive_keys_on_a_lost_link_command_nothing_and_time_moves_on() {
     );
     app.update(0.1);
     app.handle_key(Key::char('w'), KeyKind::Press, 0.1);
-    assert_eq!(app.commanded().linear, 0.0);
+    assert_eq!(app.pilot().commanded().linear, 0.0);
     app.update(2.0);
     assert_eq!(app.now(), 2.0);
-    assert_eq!(app.commanded().linear, 0.0);
+    assert_eq!(app.pilot().commanded().linear, 0.0);
     assert!(app.held_keys().is_empty(), "the deadman let the key go");
 }
 
@@ -407,33 +416,36 @@ fn after_a_link_loss_the_robot_stays_still_until_a_key_is_pressed() {
     );
     app.handle_key(Key::char('w'), KeyKind::Press, 0.1);
     app.update(0.2);
-    assert!(app.commanded().linear > 0.0, "driving before the loss");
+    assert!(
+        app.pilot().commanded().linear > 0.0,
+        "driving before the loss"
+    );
 
     alive.store(false, Ordering::SeqCst);
     app.update(0.3);
-    assert!(matches!(app.link_status(), LinkStatus::Lost(_)));
-    assert_eq!(app.commanded().linear, 0.0);
+    assert!(matches!(app.pilot().link_status(), LinkStatus::Lost(_)));
+    assert_eq!(app.pilot().commanded().linear, 0.0);
     let screen = render(&app);
     assert!(screen.contains("LINK LOST"), "{screen}");
 
     // Data flows again: still no motion, and the first key only resumes control.
     alive.store(true, Ordering::SeqCst);
     app.update(0.5);
-    assert_eq!(app.link_status(), &LinkStatus::Back);
+    assert_eq!(app.pilot().link_status(), &LinkStatus::Back);
     assert!(render(&app).contains("LINK BACK"));
     app.handle_key(Key::char('w'), KeyKind::Press, 0.6);
     app.update(0.7);
     assert_eq!(
-        app.commanded().linear,
+        app.pilot().commanded().linear,
         0.0,
         "the resuming key does not drive"
     );
-    assert_eq!(app.link_status(), &LinkStatus::Ok);
+    assert_eq!(app.pilot().link_status(), &LinkStatus::Ok);
     assert!(app.log_book().iter().any(|e| e.text == "control resumed"));
     app.handle_key(Key::char('w'), KeyKind::Press, 0.8);
     app.update(0.9);
     assert!(
-        app.commanded().linear > 0.0,
+        app.pilot().commanded().linear > 0.0,
         "driving again after the resume"
     );
 }

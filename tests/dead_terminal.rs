@@ -99,7 +99,7 @@ fn a_write_to_a_dead_terminal_stops_the_robot_and_ends_the_loop() {
     assert!(matches!(out, Err(RunError::Draw(_))), "{out:?}");
     assert!((1..=3).contains(&stats.frames_drawn), "{stats:?}");
     assert!(stops(&link) >= 1, "the robot was not told to stop");
-    assert!(app.commanded().is_zero());
+    assert!(app.pilot().commanded().is_zero());
 }
 
 #[test]
@@ -111,5 +111,5 @@ fn a_read_error_from_the_terminal_stops_the_robot_and_ends_the_loop() {
     let (out, _) = common::run_loop(&mut terminal, &mut app, &mut events, &clock);
     assert!(matches!(out, Err(RunError::Input(_))), "{out:?}");
     assert!(stops(&link) >= 1, "the robot was not told to stop");
-    assert!(app.commanded().is_zero());
+    assert!(app.pilot().commanded().is_zero());
 }

@@ -61,7 +61,7 @@ impl Keyboard {
     }
 
     fn driving(&self) -> bool {
-        self.app.commanded().linear > 0.0
+        self.app.pilot().commanded().linear > 0.0
     }
 
     fn deadman(&self) -> f64 {

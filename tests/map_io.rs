@@ -308,7 +308,7 @@ fn load_mode_picks_a_saved_map_and_seeds_the_filter_with_its_landmarks() {
         &parse_key_sequence(&format!("{drive}:save arena<enter>")).unwrap(),
         10.0,
     );
-    let saved = first.slam().landmark_count();
+    let saved = first.pilot().slam().landmark_count();
     assert!(saved >= 10, "{saved}");
     // An unreadable file beside it is listed but does not load.
     std::fs::write(
@@ -336,15 +336,15 @@ fn load_mode_picks_a_saved_map_and_seeds_the_filter_with_its_landmarks() {
             .any(|l| l.contains("map not loaded, the current one stays")),
         "{said:?}"
     );
-    assert_eq!(second.mode(), navdeck::app::mode::Mode::Load);
+    assert_eq!(second.pilot().mode(), navdeck::app::mode::Mode::Load);
     navdeck::headless::run(
         &mut second,
         &parse_key_sequence("<up><enter>").unwrap(),
         10.0,
     );
-    assert_eq!(second.mode(), navdeck::app::mode::Mode::Manual);
+    assert_eq!(second.pilot().mode(), navdeck::app::mode::Mode::Manual);
     assert!(
-        second.slam().landmark_count() >= saved,
+        second.pilot().slam().landmark_count() >= saved,
         "the saved landmarks are the prior"
     );
     assert!(
@@ -354,8 +354,9 @@ fn load_mode_picks_a_saved_map_and_seeds_the_filter_with_its_landmarks() {
             .any(|e| e.text.contains("loaded") && e.text.contains("arena.yaml"))
     );
     // Markers the robot cannot see from its start are already on its map.
-    let far = first.slam().landmarks().map(|l| l.id).find(|id| {
-        second.slam().landmark(*id).is_some() && !matches!(id, 4..=6 | 310 | 311 | 521 | 522)
+    let far = first.pilot().slam().landmarks().map(|l| l.id).find(|id| {
+        second.pilot().slam().landmark(*id).is_some()
+            && !matches!(id, 4..=6 | 310 | 311 | 521 | 522)
     });
     assert!(far.is_some());
 }

@@ -79,21 +79,21 @@ fn seed_ranges_parse() {
 fn in_the_console_e_starts_the_mission_and_a_drive_key_takes_over() {
     let mut app = default_app();
     app.handle_key(key("e"), KeyKind::Press, 0.0);
-    assert_eq!(app.mode(), Mode::Exploration);
+    assert_eq!(app.pilot().mode(), Mode::Exploration);
     for k in 1..=300 {
         app.update(0.1 * f64::from(k));
     }
-    let mission = app.mission().expect("a mission runs");
+    let mission = app.pilot().mission().expect("a mission runs");
     assert!(mission.known_blocks() >= 1, "{}", mission.state_label());
     assert!(
         app.log_book().iter().any(|e| e.text.starts_with("Found ")),
         "seed-style log lines"
     );
-    let moving = app.commanded();
+    let moving = app.pilot().commanded();
     assert!(!moving.is_zero() || app.true_pose().is_some());
     app.handle_key(key("w"), KeyKind::Press, 30.05);
-    assert_eq!(app.mode(), Mode::Manual);
-    assert!(app.commanded().linear > 0.0, "w drives at once");
+    assert_eq!(app.pilot().mode(), Mode::Manual);
+    assert!(app.pilot().commanded().linear > 0.0, "w drives at once");
 }
 
 #[test]
@@ -101,11 +101,14 @@ fn gripper_keys_wait_while_the_mission_uses_the_gripper() {
     let mut app = default_app();
     app.handle_key(key("e"), KeyKind::Press, 0.0);
     let mut t = 0.0;
-    while !app.mission().unwrap().holds_gripper() && t < 120.0 {
+    while !app.pilot().mission().unwrap().holds_gripper() && t < 120.0 {
         t += 0.1;
         app.update(t);
     }
-    assert!(app.mission().unwrap().holds_gripper(), "a pick-up began");
+    assert!(
+        app.pilot().mission().unwrap().holds_gripper(),
+        "a pick-up began"
+    );
     app.handle_key(key("c"), KeyKind::Press, t + 0.01);
     assert!(
         app.log_book()

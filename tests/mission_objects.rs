@@ -13,9 +13,14 @@ fn blocks_and_gates_from_a_drive_round_the_arena_match_the_twin() {
     let mut app = default_app();
     let keys = ("w".repeat(30) + &"a".repeat(9)).repeat(12);
     headless::run(&mut app, &parse_key_sequence(&keys).unwrap(), 10.0);
-    let landmarks: BTreeMap<_, _> = app.slam().landmarks().map(|l| (l.id, l.mean)).collect();
+    let landmarks: BTreeMap<_, _> = app
+        .pilot()
+        .slam()
+        .landmarks()
+        .map(|l| (l.id, l.mean))
+        .collect();
     let mut objects = Objects::default();
-    objects.update(&landmarks, app.estimated_pose().position(), 0.05);
+    objects.update(&landmarks, app.pilot().estimated_pose().position(), 0.05);
     let twin = app.link().ground_truth().unwrap();
     let confirmed: Vec<_> = objects.blocks().filter(|b| b.confirmed).collect();
     assert!(

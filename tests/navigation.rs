@@ -37,10 +37,10 @@ fn thinking_mode_plans_to_the_cursor_and_the_robot_stays_put() {
     let mut app = default_app();
     let start = app.true_pose().unwrap();
     let report = play(&mut app, "t<right><right><right><right><right>kkkk<enter>");
-    let route = app.route().expect("a path was planned");
+    let route = app.pilot().route().expect("a path was planned");
     assert!(route.plan.length > 0.2, "{}", route.plan.length);
     assert!(logged(&app, "path to ("), "log: plan time, length and cost");
-    assert_eq!(app.mode(), Mode::Thinking);
+    assert_eq!(app.pilot().mode(), Mode::Thinking);
     let end = report.true_pose.unwrap();
     assert!((end.x - start.x).abs() < 1e-6 && (end.y - start.y).abs() < 1e-6);
     assert!(app.goal_cursor().is_some());
@@ -58,7 +58,7 @@ fn goto_then_p_follows_to_destination_arrived() {
     // The hybrid controller (the default) keeps within seed 004's curve error, and better.
     assert!(report.true_cross_track_rms.unwrap() < 0.03);
     // Stopped at the end.
-    assert!(app.commanded().is_zero());
+    assert!(app.pilot().commanded().is_zero());
 }
 
 #[test]
@@ -67,7 +67,7 @@ fn goto_marker_approaches_a_landmark_on_the_map() {
     // Marker 311 is on the face of box 3 that looks at the robot's start: seen at once.
     let report = play(&mut app, ":goto marker 311<enter>p");
     assert!(report.arrived, "warnings: {:?}", report.warnings);
-    let marker = app.slam().landmark(311).unwrap().mean;
+    let marker = app.pilot().slam().landmark(311).unwrap().mean;
     let p = report.true_pose.unwrap();
     let d = (p.x - marker.x).hypot(p.y - marker.y);
     assert!(
@@ -90,7 +90,7 @@ fn a_goal_inside_an_obstacle_is_refused_and_the_robot_does_not_move() {
     );
     assert!(logged(&app, "inside an obstacle"));
     assert!(logged(&app, "no path to follow"));
-    assert_ne!(app.mode(), Mode::PathFollowing);
+    assert_ne!(app.pilot().mode(), Mode::PathFollowing);
     let end = report.true_pose.unwrap();
     assert!((end.x - start.x).hypot(end.y - start.y) < 1e-6);
 }
@@ -105,7 +105,7 @@ fn an_unknown_marker_or_a_bad_command_is_named_in_the_log() {
     assert!(logged(&app, "marker 999: it is not on the map yet"));
     assert!(logged(&app, "unknown command `fly`"));
     assert!(logged(&app, "`north` is not a number"));
-    assert!(app.route().is_none());
+    assert!(app.pilot().route().is_none());
 }
 
 #[test]
@@ -126,11 +126,14 @@ fn a_drive_key_takes_control_back_at_once() {
     for k in 1..=20 {
         app.update(t + 0.1 * f64::from(k));
     }
-    assert_eq!(app.mode(), Mode::PathFollowing);
-    assert!(app.commanded().linear > 0.05, "following");
+    assert_eq!(app.pilot().mode(), Mode::PathFollowing);
+    assert!(app.pilot().commanded().linear > 0.05, "following");
     app.handle_key(key("s"), KeyKind::Press, t + 2.05);
-    assert_eq!(app.mode(), Mode::Manual);
-    assert!(app.commanded().linear < 0.0, "s drives backward at once");
+    assert_eq!(app.pilot().mode(), Mode::Manual);
+    assert!(
+        app.pilot().commanded().linear < 0.0,
+        "s drives backward at once"
+    );
     assert!(logged(&app, "manual control taken back"));
 }
 
@@ -144,22 +147,25 @@ fn space_and_a_mode_change_stop_following_at_once() {
         for k in 1..=20 {
             app.update(t + 0.1 * f64::from(k));
         }
-        assert!(app.commanded().linear > 0.05);
+        assert!(app.pilot().commanded().linear > 0.05);
         let k = parse_key_sequence(stop_key).unwrap()[0];
         app.handle_key(k, KeyKind::Press, t + 2.05);
-        assert!(app.commanded().is_zero(), "{stop_key} stops the robot");
-        assert_ne!(app.mode(), Mode::PathFollowing);
+        assert!(
+            app.pilot().commanded().is_zero(),
+            "{stop_key} stops the robot"
+        );
+        assert_ne!(app.pilot().mode(), Mode::PathFollowing);
     }
 }
 
 #[test]
 fn the_controller_is_chosen_by_key_and_by_command() {
     let mut app = default_app();
-    assert_eq!(app.follower().controller().name(), "hybrid");
+    assert_eq!(app.pilot().follower().controller().name(), "hybrid");
     play(&mut app, "tn");
-    assert_eq!(app.follower().controller().name(), "pid");
+    assert_eq!(app.pilot().follower().controller().name(), "pid");
     play(&mut app, ":controller pure_pursuit<enter>");
-    assert_eq!(app.follower().controller().name(), "pure_pursuit");
+    assert_eq!(app.pilot().follower().controller().name(), "pure_pursuit");
     assert!(logged(&app, "path controller: Pure pursuit"));
 }
 

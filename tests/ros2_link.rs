@@ -87,7 +87,7 @@ impl Console {
     /// Runs the console until the robot's first data brings the link up.
     fn until_up(&mut self) {
         self.until("the link to come up", |a| {
-            a.link_status() == &LinkStatus::Ok
+            a.pilot().link_status() == &LinkStatus::Ok
         });
     }
 
@@ -120,7 +120,9 @@ fn holding_w_drives_the_robot_over_ros2_and_its_odometry_comes_back() {
     let robot = FakeRobot::start(FakeOptions::new(61));
     let mut c = Console::open(61, |_| {});
     c.until("the link to come up", |a| {
-        a.link_status() == &LinkStatus::Ok && a.measured().linear == 0.0 && a.now() > 0.5
+        a.pilot().link_status() == &LinkStatus::Ok
+            && a.pilot().measured().linear == 0.0
+            && a.now() > 0.5
     });
     assert!(c.logged("link up"));
     c.run_for(1.5, Some('w'));
@@ -149,7 +151,7 @@ fn holding_w_drives_the_robot_over_ros2_and_its_odometry_comes_back() {
     // The wheel joints carried the motion back: navdeck's estimate follows the robot.
     let (x, y, _) = seen.pose;
     assert!(x > 0.1, "the fake robot drove {x:.3} m");
-    let est = c.app.estimated_pose();
+    let est = c.app.pilot().estimated_pose();
     assert!(
         (est.x - x).abs() < 0.03 && (est.y - y).abs() < 0.03,
         "estimate ({:.3}, {:.3}) vs robot ({x:.3}, {y:.3})",
@@ -172,7 +174,7 @@ fn without_joint_states_the_odometry_deltas_drive_the_estimate() {
     c.run_for(1.0, None);
     let (x, y, th) = robot.seen().pose;
     assert!(th < -0.3, "the robot turned right: {th:.2} rad");
-    let est = c.app.estimated_pose();
+    let est = c.app.pilot().estimated_pose();
     assert!(
         (est.theta - th).abs() < 0.02 && (est.x - x).abs() < 0.02 && (est.y - y).abs() < 0.02,
         "estimate {est:?} vs robot ({x:.3}, {y:.3}, {th:.3})"
@@ -213,7 +215,7 @@ fn odometry_silence_stops_the_robot_until_data_and_a_key_return() {
     let paused_at = Instant::now();
     // Keys keep coming, but the watchdog wins.
     c.until("LINK LOST", |a| {
-        matches!(a.link_status(), LinkStatus::Lost(_))
+        matches!(a.pilot().link_status(), LinkStatus::Lost(_))
     });
     let lost_after = paused_at.elapsed().as_secs_f64();
     assert!(lost_after < 2.0, "noticed after {lost_after:.2} s");
@@ -227,7 +229,9 @@ fn odometry_silence_stops_the_robot_until_data_and_a_key_return() {
     robot
         .odom_paused
         .store(false, std::sync::atomic::Ordering::SeqCst);
-    c.until("data to return", |a| a.link_status() == &LinkStatus::Back);
+    c.until("data to return", |a| {
+        a.pilot().link_status() == &LinkStatus::Back
+    });
     let heard = robot.seen().cmd_vel.len();
     c.run_for(0.5, None);
     assert_eq!(
@@ -237,7 +241,7 @@ fn odometry_silence_stops_the_robot_until_data_and_a_key_return() {
     );
     c.press('x');
     c.run_for(0.5, Some('w'));
-    assert_eq!(c.app.link_status(), &LinkStatus::Ok);
+    assert_eq!(c.app.pilot().link_status(), &LinkStatus::Ok);
     assert!(
         robot.seen().cmd_vel.last().unwrap().1 > 0.0,
         "driving again"
@@ -260,7 +264,7 @@ fn bad_odometry_is_dropped_and_counted_not_estimated() {
         c.app.link().label()
     );
     assert!(c.logged("dropped a odometry message (non-finite value"));
-    let est = c.app.estimated_pose();
+    let est = c.app.pilot().estimated_pose();
     assert!(
         est.x.is_finite() && est.x > 0.05,
         "{est:?}; robot at {:?}; log:\n{}",

@@ -148,7 +148,7 @@ fn holding_w_in_the_console_drives_the_robot_and_quitting_stops_it() {
         app.handle_key(Key::char('w'), KeyKind::Press, t);
         app.update(t);
         emu.wait_frames(3);
-        app.odometry_distance() > 0.02
+        app.pilot().odometry_distance() > 0.02
     });
     let targets = emu.state().motor_targets(0);
     assert!(
@@ -307,20 +307,20 @@ fn unplugging_loses_the_link_and_plugging_back_in_restores_it_without_moving() {
     };
     until("driving", || {
         step(&mut app, Some('w'));
-        app.odometry_distance() > 0.02
+        app.pilot().odometry_distance() > 0.02
     });
-    let driven = app.odometry_distance();
+    let driven = app.pilot().odometry_distance();
     emu.unplug();
     until("LINK LOST", || {
         step(&mut app, Some('w'));
-        matches!(app.link_status(), LinkStatus::Lost(_))
+        matches!(app.pilot().link_status(), LinkStatus::Lost(_))
     });
-    assert_eq!(app.commanded(), Twist::ZERO);
+    assert_eq!(app.pilot().commanded(), Twist::ZERO);
     emu.replug();
     let plugged_at = emu.state().requests.len();
     until("the link back", || {
         step(&mut app, None);
-        *app.link_status() == LinkStatus::Back
+        *app.pilot().link_status() == LinkStatus::Back
     });
     // Data flows again but nothing moves until the user presses a key.
     for _ in 0..5 {
@@ -330,12 +330,12 @@ fn unplugging_loses_the_link_and_plugging_back_in_restores_it_without_moving() {
     assert!(after.iter().all(|t| *t == (0, 0)), "{after:?}");
     assert!(!emu.state().moving);
     // The session goes on: what was driven is kept, and a key drives again.
-    assert!(app.odometry_distance() >= driven);
+    assert!(app.pilot().odometry_distance() >= driven);
     until("driving again", || {
         step(&mut app, Some('w'));
         emu.state().moving
     });
-    assert_eq!(*app.link_status(), LinkStatus::Ok);
+    assert_eq!(*app.pilot().link_status(), LinkStatus::Ok);
     let log: Vec<String> = app.log_book().iter().map(|e| e.text.clone()).collect();
     assert!(log.iter().any(|l| l.contains("link back")), "{log:?}");
     assert!(log.iter().any(|l| l.contains("reconnected")), "{log:?}");

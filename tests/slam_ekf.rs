@@ -53,8 +53,8 @@ fn an_hour_of_driving_keeps_sigma_symmetric_and_psd() {
 /// its confidence must be honest (mean NEES in the 95 % band of a 3-dof chi-square).
 #[test]
 fn scripted_five_minute_loop_meets_seed_accuracy_with_consistent_covariance() {
-    use navdeck::app::estimate::NEES_BAND_3DOF;
     use navdeck::keymap::parse_key_sequence;
+    use navdeck::pilot::estimate::NEES_BAND_3DOF;
     use navdeck::session::{LinkChoice, Session, SessionSpec};
     let loop_keys = format!("{}{}", "w".repeat(30), "a".repeat(9)).repeat(77);
     let keys = parse_key_sequence(&loop_keys).unwrap();

@@ -1,5 +1,7 @@
 //! The one enum through which keys change the console's state.
 
+use crate::pilot::teleop::{DriveKey, SpeedChange};
+
 /// Everything a key can ask for. Keymap files name these in snake_case.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub enum Action {
@@ -220,18 +222,30 @@ impl Action {
         }
     }
 
-    /// For drive keys: direction of (linear, angular) as -1, 0 or +1.
-    pub fn motion(self) -> Option<(i8, i8)> {
+    /// For drive keys: which one.
+    pub fn motion(self) -> Option<DriveKey> {
         match self {
-            Action::Forward => Some((1, 0)),
-            Action::Backward => Some((-1, 0)),
-            Action::TurnLeft => Some((0, 1)),
-            Action::TurnRight => Some((0, -1)),
-            Action::ForwardLeft => Some((1, 1)),
-            Action::ForwardRight => Some((1, -1)),
-            // Backing while turning left swings the nose left, as teleop_twist_keyboard's `m`.
-            Action::BackwardLeft => Some((-1, -1)),
-            Action::BackwardRight => Some((-1, 1)),
+            Action::Forward => Some(DriveKey::Forward),
+            Action::Backward => Some(DriveKey::Backward),
+            Action::TurnLeft => Some(DriveKey::TurnLeft),
+            Action::TurnRight => Some(DriveKey::TurnRight),
+            Action::ForwardLeft => Some(DriveKey::ForwardLeft),
+            Action::ForwardRight => Some(DriveKey::ForwardRight),
+            Action::BackwardLeft => Some(DriveKey::BackwardLeft),
+            Action::BackwardRight => Some(DriveKey::BackwardRight),
+            _ => None,
+        }
+    }
+
+    /// The speed change a speed key asks for.
+    pub fn speed_change(self) -> Option<SpeedChange> {
+        match self {
+            Action::SpeedUp => Some(SpeedChange::SpeedUp),
+            Action::SpeedDown => Some(SpeedChange::SpeedDown),
+            Action::LinearUp => Some(SpeedChange::LinearUp),
+            Action::LinearDown => Some(SpeedChange::LinearDown),
+            Action::AngularUp => Some(SpeedChange::AngularUp),
+            Action::AngularDown => Some(SpeedChange::AngularDown),
             _ => None,
         }
     }

@@ -3,9 +3,8 @@
 
 use super::App;
 use super::log::Level;
-use super::mode::Mode;
 use crate::map::io;
-use nalgebra::Matrix2;
+use crate::pilot::{self, mode::Mode};
 use std::path::PathBuf;
 
 /// One map file in the picker.
@@ -27,7 +26,7 @@ pub(super) struct Picker {
 impl App {
     /// Lists the maps folder's map files, newest name order, for the picker.
     pub(super) fn open_picker(&mut self) {
-        let Some(dir) = self.maps_dir.clone() else {
+        let Some(dir) = self.files.maps_dir.clone() else {
             self.picker = Picker::default();
             self.log(Level::Warn, "no maps folder in this session (--maps-dir)");
             return;
@@ -96,35 +95,15 @@ impl App {
                 return;
             }
         };
-        self.belief.absorb_grid(&map.grid);
-        let mut added = 0;
-        let landmarks = map.extras.map(|e| e.landmarks).unwrap_or_default();
-        for l in &landmarks {
-            let c = &l.covariance;
-            let cov = Matrix2::new(c[0][0], c[0][1], c[1][0], c[1][1]);
-            let mean = crate::geometry::Point2::new(l.mean[0], l.mean[1]);
-            if self.ekf.add_prior(l.id, mean, cov, l.sightings) {
-                added += 1;
-            }
-        }
-        let estimates: Vec<_> = self.ekf.landmarks().map(|l| (l.id, l.mean)).collect();
-        self.belief.update_landmarks(estimates);
-        self.log(
-            Level::Success,
-            format!(
-                "loaded {}: {} x {} cells at {} m, {} landmarks ({added} new to the filter)",
-                entry.path.display(),
-                map.grid.width,
-                map.grid.height,
-                map.grid.resolution,
-                landmarks.len()
-            ),
-        );
-        self.set_mode(Mode::Manual);
+        self.run_intent(pilot::Intent::AdoptMap {
+            map: Box::new(map),
+            source: entry.path.display().to_string(),
+        });
     }
 
     /// The picker's maps and the chosen one, in load mode.
     pub fn map_picker(&self) -> Option<(&[MapEntry], usize)> {
-        (self.mode == Mode::Load).then_some((self.picker.entries.as_slice(), self.picker.selected))
+        (self.pilot.mode() == Mode::Load)
+            .then_some((self.picker.entries.as_slice(), self.picker.selected))
     }
 }

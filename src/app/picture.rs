@@ -3,24 +3,42 @@
 use super::App;
 use crate::link::Picture;
 
+/// When the full picture last went to the link, and the map revision it carried.
+#[derive(Clone, Debug)]
+pub(super) struct Shown {
+    at: f64,
+    map: Option<u64>,
+}
+
+impl Default for Shown {
+    fn default() -> Self {
+        Self {
+            at: f64::NEG_INFINITY,
+            map: None,
+        }
+    }
+}
+
 impl App {
     /// The pose every control step; the map, landmarks and plan at the link's period.
     pub(super) fn show_picture(&mut self, t: f64) {
         let Some(period) = self.link.picture_period() else {
             return;
         };
-        let full = t - self.picture_at >= period - 1e-9;
+        let full = t - self.picture.at >= period - 1e-9;
         if full {
-            self.picture_at = t;
+            self.picture.at = t;
         }
+        let (slam, belief) = (self.pilot.slam(), self.pilot.belief());
         let picture = Picture {
             stamp: t,
-            pose: self.ekf.pose(),
-            pose_covariance: self.ekf.pose_covariance(),
-            landmarks: full.then(|| self.ekf.landmarks().collect()),
+            pose: slam.pose(),
+            pose_covariance: slam.pose_covariance(),
+            landmarks: full.then(|| slam.landmarks().collect()),
             // An empty path clears the last one from the display.
             path: full.then(|| {
-                self.route()
+                self.pilot
+                    .route()
                     .map(|r| {
                         r.plan
                             .trajectory
@@ -33,11 +51,11 @@ impl App {
             }),
             // The map goes out only when it changed: its topic is transient local, so a
             // display that joins later still gets the last one.
-            map: (full && self.picture_map != Some(self.belief.revision()))
-                .then(|| self.belief.occupancy_grid()),
+            map: (full && self.picture.map != Some(belief.revision()))
+                .then(|| belief.occupancy_grid()),
         };
         if picture.map.is_some() {
-            self.picture_map = Some(self.belief.revision());
+            self.picture.map = Some(belief.revision());
         }
         self.link.show(&picture);
     }

@@ -6,10 +6,30 @@ use super::view::ViewState;
 use super::{App, LinkStatus};
 use crate::control::config::ControllerKind;
 use crate::data::GripperState;
+use crate::pilot::Pilot;
+
+/// Whether the screen needs drawing: the values last drawn and a counter of changes.
+#[derive(Clone, Debug)]
+pub(super) struct Redraw {
+    revision: u64,
+    visible: Option<Visible>,
+    /// The map revision on screen and the session second it was taken in.
+    map_shown: (u64, f64),
+}
+
+impl Default for Redraw {
+    fn default() -> Self {
+        Self {
+            revision: 0,
+            visible: None,
+            map_shown: (0, f64::NEG_INFINITY),
+        }
+    }
+}
 
 /// The rounded values the screen shows; a change means a redraw is due.
 #[derive(Clone, Debug, PartialEq)]
-pub(super) struct Visible {
+struct Visible {
     mode: Mode,
     pose: (i64, i64, i64),
     truth: Option<(i64, i64, i64)>,
@@ -46,59 +66,60 @@ fn centi(v: f64) -> i64 {
 }
 
 impl App {
+    /// Increases whenever something on screen changed: the TUI draws only then.
+    pub fn revision(&self) -> u64 {
+        self.redraw.revision
+    }
+
     /// The map revision the screen should show: the newest as of the current second. A scan
     /// changes a few cells at a time, mostly finer than a screen cell shows, so the map
     /// alone redraws only with the clock, once a second.
     fn shown_map_revision(&mut self) -> u64 {
         let second = self.now.floor();
-        if second > self.map_shown.1 {
-            self.map_shown = (self.belief.revision(), second);
+        let shown = &mut self.redraw.map_shown;
+        if second > shown.1 {
+            *shown = (self.pilot.belief().revision(), second);
         }
-        self.map_shown.0
+        shown.0
     }
 
     pub(super) fn refresh_revision(&mut self) {
         let map = self.shown_map_revision();
-        let pose = self.estimated_pose();
+        let p: &Pilot = &self.pilot;
+        let pose = p.estimated_pose();
         let deg = |t: f64| t.to_degrees().round() as i64;
         let twin = self.link.ground_truth();
+        let (commanded, measured, teleop) = (p.commanded(), p.measured(), p.teleop());
         let visible = Visible {
-            mode: self.mode,
+            mode: p.mode(),
             pose: (centi(pose.x), centi(pose.y), deg(pose.theta)),
             truth: twin.map(|t| {
                 let p = t.pose();
                 (centi(p.x), centi(p.y), deg(p.theta))
             }),
-            commanded: (centi(self.commanded.linear), centi(self.commanded.angular)),
-            measured: (centi(self.measured.linear), centi(self.measured.angular)),
-            speeds: (
-                centi(self.teleop.linear_speed),
-                centi(self.teleop.angular_speed),
-            ),
+            commanded: (centi(commanded.linear), centi(commanded.angular)),
+            measured: (centi(measured.linear), centi(measured.angular)),
+            speeds: (centi(teleop.linear_speed), centi(teleop.angular_speed)),
             second: self.now.floor() as i64,
             loop_rate: self.clock.rate().round() as i64,
             log: self.log.written(),
-            gripper: self.gripper,
-            estop: self.estop,
+            gripper: p.gripper(),
+            estop: p.estop(),
             held: self.held_keys().len(),
-            link: self.link_status.clone(),
+            link: p.link_status().clone(),
             map,
-            cursor: self.nav.cursor.map(|c| (centi(c.x), centi(c.y))),
-            prompt: self.nav.prompt.clone(),
-            following: self.nav.following.map(|f| {
+            cursor: self.cursor.map(|c| (centi(c.x), centi(c.y))),
+            prompt: self.prompt.clone(),
+            following: p.following().map(|f| {
                 (
                     centi(f.remaining),
                     (f.eta * 10.0).round() as i64,
                     (f.cross_track * 1000.0).round() as i64,
                 )
             }),
-            route: self
-                .nav
-                .route
-                .as_ref()
-                .map(|r| (centi(r.plan.length), r.label.clone())),
-            controller: self.follower.controller(),
-            arrived: self.nav.arrived,
+            route: p.route().map(|r| (centi(r.plan.length), r.label.clone())),
+            controller: p.follower().controller(),
+            arrived: p.arrived(),
             picked: self.picker.selected,
             maps: self.picker.entries.len(),
             view: self.view.clone(),
@@ -114,9 +135,9 @@ impl App {
             camera: (self.view.camera != super::view::CameraPanel::Off)
                 .then_some(self.camera.frames),
         };
-        if self.visible.as_ref() != Some(&visible) {
-            self.visible = Some(visible);
-            self.revision += 1;
+        if self.redraw.visible.as_ref() != Some(&visible) {
+            self.redraw.visible = Some(visible);
+            self.redraw.revision += 1;
         }
     }
 }

@@ -11,16 +11,34 @@ use std::path::PathBuf;
 pub const SAVE_KEY_NAME: &str = "saved";
 pub const AUTOSAVE_NAME: &str = "autosave";
 
+/// Where maps are saved, how they are dated, and when exploration last saved one.
+#[derive(Default)]
+pub(super) struct Files {
+    pub maps_dir: Option<PathBuf>,
+    date_source: Option<Box<dyn Fn() -> String + Send>>,
+    last_autosave: f64,
+}
+
+impl Files {
+    /// No folder yet; autosaves count from session time `now`.
+    pub fn new(now: f64) -> Self {
+        Self {
+            last_autosave: now,
+            ..Self::default()
+        }
+    }
+}
+
 impl App {
     /// Tells the console where maps live; without a folder (headless runs and tests that
     /// do not ask) nothing is written.
     pub fn set_maps_dir(&mut self, dir: PathBuf) {
-        self.maps_dir = Some(dir);
+        self.files.maps_dir = Some(dir);
     }
 
     /// Installs the source of the date written into saved maps (the console reads no clock).
     pub fn set_date_source(&mut self, date: Box<dyn Fn() -> String + Send>) {
-        self.date_source = Some(date);
+        self.files.date_source = Some(date);
     }
 
     /// Saves the map as `NAME.yaml` + `NAME.pgm` in the maps folder; logs the outcome.
@@ -36,7 +54,7 @@ impl App {
             );
             return false;
         }
-        let Some(dir) = self.maps_dir.clone() else {
+        let Some(dir) = self.files.maps_dir.clone() else {
             self.log(
                 Level::Error,
                 "map not saved: this session has no maps folder",
@@ -51,9 +69,10 @@ impl App {
             );
             return false;
         }
-        let pose = self.ekf.pose();
+        let pose = self.pilot.estimated_pose();
         let landmarks: Vec<SavedLandmark> = self
-            .ekf
+            .pilot
+            .slam()
             .landmarks()
             .map(|l| SavedLandmark {
                 id: l.id,
@@ -69,10 +88,11 @@ impl App {
         let count = landmarks.len();
         let (blocks, gates) = self.blocks_and_gates();
         let map = MapFile {
-            grid: self.belief.occupancy_grid(),
+            grid: self.pilot.belief().occupancy_grid(),
             extras: Some(Extras {
                 version: env!("CARGO_PKG_VERSION").to_string(),
                 created: self
+                    .files
                     .date_source
                     .as_ref()
                     .map_or_else(|| format!("session time {:.1} s", self.now), |d| d()),
@@ -99,9 +119,10 @@ impl App {
 
     /// Blocks and gates as the landmarks show them (seed 001's marker pairs).
     fn blocks_and_gates(&self) -> (Vec<SavedBlock>, Vec<SavedGate>) {
-        let landmarks = self.ekf.landmarks().map(|l| (l.id, l.mean)).collect();
+        let slam = self.pilot.slam();
+        let landmarks = slam.landmarks().map(|l| (l.id, l.mean)).collect();
         let mut objects = Objects::default();
-        let here = self.ekf.pose().position();
+        let here = slam.pose().position();
         objects.update(&landmarks, here, self.config.mission.block_size);
         let blocks = objects
             .blocks()
@@ -128,10 +149,11 @@ impl App {
     /// previous one stays as its `.bak`.
     pub(super) fn autosave(&mut self, t: f64) {
         let every = self.config.map.autosave_every;
-        if self.maps_dir.is_none() || every <= 0.0 || t - self.last_autosave < every {
+        let files = &mut self.files;
+        if files.maps_dir.is_none() || every <= 0.0 || t - files.last_autosave < every {
             return;
         }
-        self.last_autosave = t;
+        files.last_autosave = t;
         self.save_map(AUTOSAVE_NAME);
     }
 }

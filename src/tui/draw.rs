@@ -231,7 +231,7 @@ fn draw_help(frame: &mut Frame, app: &App, theme: Theme, size: Rect) {
     let block = Block::bordered()
         .title(format!(
             " Keys in {} mode ({}): any other key closes ",
-            app.mode().label().to_lowercase(),
+            app.pilot().mode().label().to_lowercase(),
             app.keymap().source()
         ))
         .border_style(theme.border());

@@ -16,7 +16,7 @@ const BITS: [[u32; 4]; 2] = [[0x01, 0x02, 0x04, 0x40], [0x08, 0x10, 0x20, 0x80]]
 
 pub fn render(app: &App, vp: &Viewport, theme: Theme, buf: &mut Buffer) {
     let braille = app.view().braille;
-    let slam = app.slam();
+    let slam = app.pilot().slam();
     for l in slam.landmarks() {
         let style = theme.marker(MarkerCategory::of(l.id));
         draw_ellipse(l.mean, &l.covariance, vp, braille, style, buf);

@@ -7,7 +7,7 @@ use ratatui::text::{Line, Span};
 /// Lines of `key(s)  description`, one per bound action.
 pub fn entries(app: &App, theme: Theme) -> Vec<Line<'static>> {
     app.keymap()
-        .bindings(app.mode())
+        .bindings(app.pilot().mode())
         .into_iter()
         .map(|(action, keys)| {
             let names: Vec<String> = keys.iter().map(|k| k.to_string()).collect();

@@ -7,7 +7,7 @@ use ratatui::text::Line;
 
 /// Header and rows, sorted by ID; `rows` limits the count (the rest is summarised).
 pub fn lines(app: &App, theme: Theme, rows: usize) -> Vec<Line<'static>> {
-    let mut landmarks: Vec<_> = app.slam().landmarks().collect();
+    let mut landmarks: Vec<_> = app.pilot().slam().landmarks().collect();
     landmarks.sort_by_key(|l| l.id);
     let mut out = vec![Line::styled(
         "  ID category      x      y    σx    σy   seen",

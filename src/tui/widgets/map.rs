@@ -43,7 +43,7 @@ pub fn render(app: &App, theme: Theme, area: Rect, buf: &mut Buffer) {
     }
     let scale = app.view().scale(app.fitted_scale());
     let vp = Viewport::new(area, app.map_center(), scale);
-    let costmap = app.belief().costmap();
+    let costmap = app.pilot().belief().costmap();
     if app.view().braille {
         if app.view().show_truth
             && let Some(grid) = app.world_grid()
@@ -69,7 +69,7 @@ pub fn render(app: &App, theme: Theme, area: Rect, buf: &mut Buffer) {
     {
         draw_robot(truth, 'o', &vp, theme.truth(), buf);
     }
-    draw_robot(app.estimated_pose(), '@', &vp, theme.robot(), buf);
+    draw_robot(app.pilot().estimated_pose(), '@', &vp, theme.robot(), buf);
 }
 
 /// The twin's true walls, dimmed, under the robot's own map (`g`).

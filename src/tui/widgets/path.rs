@@ -11,7 +11,7 @@ use ratatui::style::Style;
 const DOTS_PER_COLUMN: f64 = 2.0;
 
 pub fn render(app: &App, vp: &Viewport, theme: Theme, buf: &mut Buffer) {
-    if let Some(route) = app.route() {
+    if let Some(route) = app.pilot().route() {
         let points: Vec<Point2> = route
             .plan
             .trajectory

@@ -52,21 +52,21 @@ fn dash_if_empty<T>(items: &[T], text: String) -> String {
 
 /// Status rows, most important first (a short panel shows the top ones).
 pub fn lines(app: &App, theme: Theme) -> Vec<Line<'static>> {
-    let link = match app.link_status() {
+    let link = match app.pilot().link_status() {
         LinkStatus::Ok => "ok".to_string(),
         LinkStatus::Lost(_) => "LOST".to_string(),
         LinkStatus::Back => "back, press a key".to_string(),
     };
-    let (cmd, meas) = (app.commanded(), app.measured());
-    let t = app.teleop();
+    let (cmd, meas) = (app.pilot().commanded(), app.pilot().measured());
+    let t = app.pilot().teleop();
     let (max_v, max_w) = t.limits();
-    let mut rows = vec![row(theme, "Mode", app.mode().label().to_string())];
+    let mut rows = vec![row(theme, "Mode", app.pilot().mode().label().to_string())];
     rows.extend(navigation_rows(app, theme));
     rows.extend([
         row(theme, "Link", format!("{} {link}", app.link().label())),
-        row(theme, "Pose", pose_text(app.estimated_pose())),
+        row(theme, "Pose", pose_text(app.pilot().estimated_pose())),
     ]);
-    let (sx, sy, st) = app.pose_sigma();
+    let (sx, sy, st) = app.pilot().pose_sigma();
     rows.push(row(
         theme,
         "Sigma",
@@ -74,7 +74,7 @@ pub fn lines(app: &App, theme: Theme) -> Vec<Line<'static>> {
     ));
     if let Some(truth) = app.true_pose() {
         rows.push(row(theme, "Truth", pose_text(truth)));
-        let est = app.estimated_pose();
+        let est = app.pilot().estimated_pose();
         let dtheta = crate::geometry::wrap_angle(truth.theta - est.theta);
         rows.push(row(
             theme,
@@ -108,24 +108,26 @@ pub fn lines(app: &App, theme: Theme) -> Vec<Line<'static>> {
         row(
             theme,
             "SLAM",
-            if app.mode() == crate::app::mode::Mode::Race {
+            if app.pilot().mode() == crate::app::mode::Mode::Race {
                 format!(
                     "{} lm, every {} frames",
-                    app.slam().landmark_count(),
+                    app.pilot().slam().landmark_count(),
                     app.config().race.correct_every
                 )
             } else {
                 format!(
                     "{} lm, {} rejected",
-                    app.slam().landmark_count(),
-                    app.slam().rejected()
+                    app.pilot().slam().landmark_count(),
+                    app.pilot().slam().rejected()
                 )
             },
         ),
         row(
             theme,
             "Gripper",
-            app.gripper().map_or("-".into(), |g| g.label().to_string()),
+            app.pilot()
+                .gripper()
+                .map_or("-".into(), |g| g.label().to_string()),
         ),
         row(
             theme,
@@ -154,7 +156,7 @@ pub fn lines(app: &App, theme: Theme) -> Vec<Line<'static>> {
 /// The path and its progress, right under the mode: what an autonomous mode is doing.
 fn navigation_rows(app: &App, theme: Theme) -> Vec<Line<'static>> {
     let mut rows = Vec::new();
-    if let Some(m) = app.mission() {
+    if let Some(m) = app.pilot().mission() {
         // The state and its target can be long: two rows, broken between words.
         let (first, rest) = split_words(&m.state_label(), 21);
         rows.push(row(theme, "Mission", first));
@@ -172,12 +174,12 @@ fn navigation_rows(app: &App, theme: Theme) -> Vec<Line<'static>> {
                 "{}/{total} done {} seen {}",
                 m.delivered(),
                 m.known_blocks(),
-                minutes_text(app.mission_elapsed())
+                minutes_text(app.pilot().mission_elapsed())
             ),
         ));
     }
-    let controller = app.follower().controller().label();
-    if let Some(f) = app.following() {
+    let controller = app.pilot().follower().controller().label();
+    if let Some(f) = app.pilot().following() {
         rows.push(row(
             theme,
             "Path",
@@ -188,8 +190,12 @@ fn navigation_rows(app: &App, theme: Theme) -> Vec<Line<'static>> {
             "XTE",
             format!("{:+.1} cm  {controller}", f.cross_track * 100.0),
         ));
-    } else if let Some(route) = app.route() {
-        let state = if app.arrived() { "arrived at" } else { "to" };
+    } else if let Some(route) = app.pilot().route() {
+        let state = if app.pilot().arrived() {
+            "arrived at"
+        } else {
+            "to"
+        };
         rows.push(row(
             theme,
             "Path",

@@ -7,11 +7,11 @@ use ratatui::text::{Line, Span};
 pub fn line(app: &App, theme: Theme) -> Line<'static> {
     let mut spans = vec![
         Span::styled(" navdeck ", theme.title()),
-        Span::styled(format!(" {} ", app.mode().label()), theme.mode()),
+        Span::styled(format!(" {} ", app.pilot().mode().label()), theme.mode()),
         Span::raw(" "),
         Span::styled(app.link().label(), theme.value()),
     ];
-    match app.link_status() {
+    match app.pilot().link_status() {
         LinkStatus::Lost(_) => {
             spans.push(Span::raw(" "));
             spans.push(Span::styled(" LINK LOST ", theme.alert()));
@@ -22,7 +22,7 @@ pub fn line(app: &App, theme: Theme) -> Line<'static> {
         }
         LinkStatus::Ok => {}
     }
-    if app.estop() {
+    if app.pilot().estop() {
         spans.push(Span::raw(" "));
         spans.push(Span::styled(" E-STOP ", theme.alert()));
     }

@@ -1,10 +1,10 @@
-//! Exploration mode: the console runs the mission's state machine each control step,
+//! Exploration mode: the pilot runs the mission's state machine each control step,
 //! plans and follows the paths it asks for, and works its gripper.
 
-use super::App;
-use super::log::Level;
+use super::Pilot;
 use super::mode::Mode;
 use super::navigation::Target;
+use crate::data::Level;
 use crate::geometry::Twist;
 use crate::mission::machine::Mission;
 use crate::mission::step::{Inputs, Motion, PathStatus};
@@ -27,11 +27,11 @@ pub(super) struct Exploring {
     pub started: f64,
 }
 
-impl App {
+impl Pilot {
     /// Starts the mission afresh on entering exploration mode.
     pub(super) fn start_mission(&mut self) {
         self.drop_route();
-        self.exploring.mission = Some(Mission::new(self.config.mission.clone(), self.now));
+        self.exploring.mission = Some(Mission::new(self.settings.mission.clone(), self.now));
         self.exploring.last_step = None;
         self.exploring.no_path = None;
         self.exploring.started = self.now;
@@ -51,7 +51,6 @@ impl App {
         let Some(mut mission) = self.exploring.mission.take() else {
             return Twist::ZERO;
         };
-        self.autosave(t);
         let landmarks: BTreeMap<_, _> = self.ekf.landmarks().map(|l| (l.id, l.mean)).collect();
         let frame = self.exploring.frame.take();
         let path = self.path_status();
@@ -61,17 +60,17 @@ impl App {
             landmarks: &landmarks,
             seen: frame.as_deref().unwrap_or(&[]),
             camera_frame: frame.is_some(),
-            gripper: self.gripper,
+            gripper: self.hand.state,
             path: &path,
             map: self.belief.costmap(),
         });
         self.exploring.mission = Some(mission);
         for (level, text) in outputs.log {
-            self.log.push(t, level, text);
+            self.log_at(t, level, text);
         }
-        self.ignored_markers = outputs.ignore_markers;
+        self.estimating.ignored_markers = outputs.ignore_markers;
         if let Some(cmd) = outputs.gripper {
-            self.pending_gripper = Some(cmd);
+            self.hand.pending = Some(cmd);
         }
         if outputs.to_manual {
             self.log(Level::Warn, "mission handed the robot to manual control");

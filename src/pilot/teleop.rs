@@ -7,16 +7,70 @@
 //! robot does not stutter in the pause before auto-repeat starts (teleop_twist_keyboard
 //! issues 8 and 29 show both failure modes).
 
-use super::action::Action;
-use crate::config::TeleopConfig;
+use super::config::TeleopConfig;
 use crate::geometry::Twist;
 
 /// Auto-repeat delays of common terminals run from about 0.25 s to 0.66 s (X11's default).
 pub const INITIAL_REPEAT_DELAY: f64 = 0.7;
 
+/// The eight drive keys of teleop_twist_keyboard's layout.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum DriveKey {
+    Forward,
+    Backward,
+    TurnLeft,
+    TurnRight,
+    ForwardLeft,
+    ForwardRight,
+    BackwardLeft,
+    BackwardRight,
+}
+
+impl DriveKey {
+    /// (linear, angular) direction, each -1, 0 or 1.
+    pub fn direction(self) -> (i8, i8) {
+        match self {
+            DriveKey::Forward => (1, 0),
+            DriveKey::Backward => (-1, 0),
+            DriveKey::TurnLeft => (0, 1),
+            DriveKey::TurnRight => (0, -1),
+            DriveKey::ForwardLeft => (1, 1),
+            DriveKey::ForwardRight => (1, -1),
+            // Backing while turning left swings the nose left, as teleop_twist_keyboard's `m`.
+            DriveKey::BackwardLeft => (-1, -1),
+            DriveKey::BackwardRight => (-1, 1),
+        }
+    }
+
+    /// The name keymap files give the key's action.
+    pub fn name(self) -> &'static str {
+        match self {
+            DriveKey::Forward => "forward",
+            DriveKey::Backward => "backward",
+            DriveKey::TurnLeft => "turn_left",
+            DriveKey::TurnRight => "turn_right",
+            DriveKey::ForwardLeft => "forward_left",
+            DriveKey::ForwardRight => "forward_right",
+            DriveKey::BackwardLeft => "backward_left",
+            DriveKey::BackwardRight => "backward_right",
+        }
+    }
+}
+
+/// The speed keys: both speeds, or one, up or down by `speed_step`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SpeedChange {
+    SpeedUp,
+    SpeedDown,
+    LinearUp,
+    LinearDown,
+    AngularUp,
+    AngularDown,
+}
+
 #[derive(Clone, Copy, Debug, PartialEq)]
 struct Held {
-    action: Action,
+    key: DriveKey,
     /// Time of the newest press or repeat.
     last_event: f64,
     repeated: bool,
@@ -59,23 +113,22 @@ impl Teleop {
     }
 
     /// A press (`repeat == false`) or auto-repeat of a drive key at `now`.
-    pub fn press(&mut self, action: Action, now: f64, repeat: bool) {
-        debug_assert!(action.motion().is_some());
-        match self.held.iter_mut().find(|h| h.action == action) {
+    pub fn press(&mut self, key: DriveKey, now: f64, repeat: bool) {
+        match self.held.iter_mut().find(|h| h.key == key) {
             Some(h) => {
                 h.repeated |= repeat || now > h.last_event;
                 h.last_event = now;
             }
             None => self.held.push(Held {
-                action,
+                key,
                 last_event: now,
                 repeated: repeat,
             }),
         }
     }
 
-    pub fn release(&mut self, action: Action) {
-        self.held.retain(|h| h.action != action);
+    pub fn release(&mut self, key: DriveKey) {
+        self.held.retain(|h| h.key != key);
     }
 
     /// Forgets every held key: stop, e-stop, mode change.
@@ -96,23 +149,22 @@ impl Teleop {
     }
 
     /// Drive keys still held at `now`, dropping those whose deadman fired.
-    pub fn held_at(&mut self, now: f64, brake: f64) -> Vec<Action> {
+    pub fn held_at(&mut self, now: f64, brake: f64) -> Vec<DriveKey> {
         let kept: Vec<Held> = (self.held.iter().copied())
             .filter(|h| now < self.expiry(h, brake))
             .collect();
         self.held = kept;
-        self.held.iter().map(|h| h.action).collect()
+        self.held.iter().map(|h| h.key).collect()
     }
 
     /// The twist the held keys ask for at `now`: the sum of their directions, each axis
     /// clamped to one unit, scaled by the current speeds.
     pub fn twist(&mut self, now: f64, brake: f64) -> Twist {
         let (mut lin, mut ang) = (0i32, 0i32);
-        for action in self.held_at(now, brake) {
-            if let Some((l, a)) = action.motion() {
-                lin += i32::from(l);
-                ang += i32::from(a);
-            }
+        for key in self.held_at(now, brake) {
+            let (l, a) = key.direction();
+            lin += i32::from(l);
+            ang += i32::from(a);
         }
         Twist::new(
             f64::from(lin.clamp(-1, 1)) * self.linear_speed,
@@ -137,15 +189,14 @@ impl Teleop {
     }
 
     /// Applies a speed key; returns false when the speeds were already at their limit.
-    pub fn adjust(&mut self, action: Action) -> bool {
-        let (lin, ang) = match action {
-            Action::SpeedUp => (self.step, self.step),
-            Action::SpeedDown => (1.0 / self.step, 1.0 / self.step),
-            Action::LinearUp => (self.step, 1.0),
-            Action::LinearDown => (1.0 / self.step, 1.0),
-            Action::AngularUp => (1.0, self.step),
-            Action::AngularDown => (1.0, 1.0 / self.step),
-            _ => return false,
+    pub fn adjust(&mut self, change: SpeedChange) -> bool {
+        let (lin, ang) = match change {
+            SpeedChange::SpeedUp => (self.step, self.step),
+            SpeedChange::SpeedDown => (1.0 / self.step, 1.0 / self.step),
+            SpeedChange::LinearUp => (self.step, 1.0),
+            SpeedChange::LinearDown => (1.0 / self.step, 1.0),
+            SpeedChange::AngularUp => (1.0, self.step),
+            SpeedChange::AngularDown => (1.0, 1.0 / self.step),
         };
         let before = (self.linear_speed, self.angular_speed);
         // Floors keep a slowed robot able to move: 1 cm/s and 0.05 rad/s.
@@ -166,7 +217,7 @@ mod tests {
     #[test]
     fn tap_drives_until_deadman_then_stops() {
         let mut t = teleop();
-        t.press(Action::Forward, 1.0, false);
+        t.press(DriveKey::Forward, 1.0, false);
         assert_eq!(t.twist(1.2, 0.0).linear, 0.15);
         assert_eq!(t.twist(1.49, 0.0).linear, 0.15);
         assert!(t.twist(1.5, 0.0).is_zero());
@@ -177,11 +228,11 @@ mod tests {
         let mut t = teleop();
         // Auto-repeat at 30 Hz for two seconds: never a zero in between.
         let mut now = 0.0;
-        t.press(Action::Forward, now, false);
+        t.press(DriveKey::Forward, now, false);
         while now < 2.0 {
             assert_eq!(t.twist(now, 0.0).linear, 0.15, "stutter at {now}");
             now += 1.0 / 30.0;
-            t.press(Action::Forward, now, true);
+            t.press(DriveKey::Forward, now, true);
         }
         assert!(t.twist(now + 0.5, 0.0).is_zero());
     }
@@ -190,22 +241,22 @@ mod tests {
     fn release_stops_at_once_and_grace_covers_repeat_delay() {
         let mut t = teleop();
         t.set_release_events(true);
-        t.press(Action::Forward, 0.0, false);
+        t.press(DriveKey::Forward, 0.0, false);
         // 0.6 s before the first repeat: still driving with release events on.
         assert_eq!(t.twist(0.6, 0.0).linear, 0.15);
-        t.press(Action::Forward, 0.65, true);
-        t.release(Action::Forward);
+        t.press(DriveKey::Forward, 0.65, true);
+        t.release(DriveKey::Forward);
         assert!(t.twist(0.66, 0.0).is_zero());
     }
 
     #[test]
     fn keys_combine_and_cancel() {
         let mut t = teleop();
-        t.press(Action::Forward, 0.0, false);
-        t.press(Action::TurnLeft, 0.0, false);
+        t.press(DriveKey::Forward, 0.0, false);
+        t.press(DriveKey::TurnLeft, 0.0, false);
         let tw = t.twist(0.1, 0.0);
         assert!(tw.linear > 0.0 && tw.angular > 0.0);
-        t.press(Action::Backward, 0.0, false);
+        t.press(DriveKey::Backward, 0.0, false);
         assert_eq!(t.twist(0.1, 0.0).linear, 0.0);
     }
 
@@ -213,11 +264,11 @@ mod tests {
     fn speed_keys_respect_limits() {
         let mut t = teleop();
         for _ in 0..100 {
-            t.adjust(Action::SpeedUp);
+            t.adjust(SpeedChange::SpeedUp);
         }
         assert_eq!((t.linear_speed, t.angular_speed), (0.4, 4.0));
-        assert!(!t.adjust(Action::SpeedUp));
-        assert!(t.adjust(Action::LinearDown));
+        assert!(!t.adjust(SpeedChange::SpeedUp));
+        assert!(t.adjust(SpeedChange::LinearDown));
         assert!(t.linear_speed < 0.4 && t.angular_speed == 4.0);
     }
 }

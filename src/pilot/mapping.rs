@@ -1,11 +1,9 @@
 //! Feeding the planning map: landmarks from the filter, camera sight lines, lidar scans
 //! and the robot's own footprint, all placed with the filter's pose.
 
-use super::App;
-use crate::config::Config;
+use super::Pilot;
 use crate::data::{LaserScan, MarkerSighting};
-use crate::link::RobotLink;
-use crate::map::belief::BeliefMap;
+use crate::geometry::{Point2, Pose2};
 
 /// The footprint is marked free again after the robot moved this far, metres.
 const FOOTPRINT_STEP: f64 = 0.02;
@@ -17,16 +15,15 @@ const SCAN_EVERY: f64 = 2.0;
 /// Sight lines stop this short of the marker: the marker's own surface is not free.
 const SIGHT_LINE_MARGIN: f64 = 0.1;
 
-/// A map covering the config's extent, or the twin's world if that is larger.
-pub(super) fn belief_map_for(config: &Config, link: &dyn RobotLink) -> BeliefMap {
-    let m = &config.map;
-    let (w, h) = link
-        .ground_truth()
-        .map_or((m.width, m.height), |t| (t.world().width, t.world().height));
-    BeliefMap::new(m, (m.width.max(w), m.height.max(h)))
+/// Where the map was last updated from, so that the same view is not folded in again.
+#[derive(Clone, Debug, Default)]
+pub(super) struct Upkeep {
+    last_footprint: Option<Point2>,
+    /// Where and when the last scan was folded into the map.
+    last_scan_pose: Option<(Pose2, f64)>,
 }
 
-impl App {
+impl Pilot {
     pub(super) fn map_sightings(&mut self, sightings: &[MarkerSighting]) {
         let estimates: Vec<_> = self.ekf.landmarks().map(|l| (l.id, l.mean)).collect();
         self.belief.update_landmarks(estimates.iter().copied());
@@ -43,32 +40,28 @@ impl App {
     /// overconfidence (gmapping's linearUpdate / angularUpdate / temporalUpdate).
     pub(super) fn map_scan(&mut self, t: f64, scan: &LaserScan) {
         let pose = self.ekf.pose();
-        if let Some((last, at)) = self.last_scan_pose {
+        if let Some((last, at)) = self.upkeep.last_scan_pose {
             let moved = last.position().distance(pose.position());
             let turned = crate::geometry::wrap_angle(pose.theta - last.theta).abs();
             if moved < SCAN_MOVE && turned < SCAN_TURN && t - at < SCAN_EVERY {
                 return;
             }
         }
-        self.last_scan_pose = Some((pose, t));
+        self.upkeep.last_scan_pose = Some((pose, t));
         self.belief.observe_scan(pose, scan);
     }
 
     pub(super) fn map_footprint(&mut self) {
         let here = self.ekf.pose().position();
         if self
+            .upkeep
             .last_footprint
             .is_some_and(|p| p.distance(here) < FOOTPRINT_STEP)
         {
             return;
         }
-        self.last_footprint = Some(here);
+        self.upkeep.last_footprint = Some(here);
         self.belief
-            .observe_footprint(here, self.config.robot.footprint_radius);
-    }
-
-    /// The robot's planning map.
-    pub fn belief(&self) -> &BeliefMap {
-        &self.belief
+            .observe_footprint(here, self.settings.robot.footprint_radius);
     }
 }

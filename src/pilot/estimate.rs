@@ -1,8 +1,8 @@
-//! The console's estimator: EKF-SLAM fed from the link, and how well it tracks the twin.
+//! The pilot's estimator: EKF-SLAM fed from the link, and how well it tracks the truth
+//! when a simulator knows it.
 
-use super::log::Level;
-use super::{App, Mode};
-use crate::data::{MarkerSighting, WheelTravel};
+use super::{Mode, Pilot};
+use crate::data::{Level, MarkerSighting, WheelTravel};
 use crate::geometry::{Pose2, wrap_angle};
 use crate::slam::ekf::Outcome;
 use nalgebra::{Matrix3, Vector3};
@@ -46,23 +46,37 @@ impl Accuracy {
     }
 }
 
+/// What the estimator keeps besides the filter.
+#[derive(Clone, Debug, Default)]
+pub(super) struct Estimating {
+    pub accuracy: Accuracy,
+    /// Camera frames seen, for race mode's every-k-th correction.
+    pub camera_frames: u64,
+    pub race_sigma_warned: bool,
+    /// Marker IDs the filter must not correct with: blocks the mission moved.
+    pub ignored_markers: Vec<u32>,
+    /// The true pose given with this step, to score against.
+    pub truth: Option<Pose2>,
+}
+
 /// The 95 % chi-square band of one NEES sample with 3 degrees of freedom.
 pub const NEES_BAND_3DOF: (f64, f64) = (0.216, 9.348);
 
-impl App {
+impl Pilot {
     pub(super) fn estimate_motion(&mut self, wheels: WheelTravel) {
         self.odometry.update(wheels);
         self.ekf.predict(wheels);
     }
 
     pub(super) fn estimate_sightings(&mut self, sightings: &[MarkerSighting]) {
-        self.camera_frames += 1;
+        self.estimating.camera_frames += 1;
         let mut nearest;
         let mut used = sightings;
         if self.mode == Mode::Race {
             // Seed 001 race mode: reduced SLAM updates, every k-th frame, nearest m.
-            let race = &self.config.race;
+            let race = &self.settings.race;
             if !self
+                .estimating
                 .camera_frames
                 .is_multiple_of(u64::from(race.correct_every))
             {
@@ -77,52 +91,48 @@ impl App {
         }
         // Gated-out sightings are counted by the filter; non-finite ones are dropped. Markers
         // the mission moved (a block in the gripper or delivered) would mislead it.
-        for s in used
-            .iter()
-            .filter(|s| !self.ignored_markers.contains(&s.id))
-        {
-            if self.ekf.correct(*s) == Outcome::Added {
-                let category = crate::perception::markers::MarkerCategory::of(s.id);
-                self.log.push(
-                    self.now,
-                    Level::Info,
-                    format!("new landmark {} ({})", s.id, category.label()),
-                );
-            }
+        let ignored = &self.estimating.ignored_markers;
+        let added: Vec<u32> = (used.iter())
+            .filter(|s| !ignored.contains(&s.id))
+            .filter(|s| self.ekf.correct(**s) == Outcome::Added)
+            .map(|s| s.id)
+            .collect();
+        for id in added {
+            let category = crate::perception::markers::MarkerCategory::of(id);
+            self.log(
+                Level::Info,
+                format!("new landmark {id} ({})", category.label()),
+            );
         }
     }
 
     /// In race mode, warns once when the position's uncertainty passes the bound.
     pub(super) fn check_race_uncertainty(&mut self) {
         let (major, _, _) = crate::slam::ellipse::axes(&self.ekf.position_covariance(), 1.0);
-        let bound = self.config.race.sigma_warning;
-        if self.mode == Mode::Race && major > bound && !self.race_sigma_warned {
-            self.race_sigma_warned = true;
-            self.log.push(
-                self.now,
+        let bound = self.settings.race.sigma_warning;
+        if self.mode == Mode::Race && major > bound && !self.estimating.race_sigma_warned {
+            self.estimating.race_sigma_warned = true;
+            self.log(
                 Level::Warn,
                 format!("race: position uncertainty {major:.3} m is past {bound:.3} m; slow down"),
             );
         } else if major <= bound {
-            self.race_sigma_warned = false;
+            self.estimating.race_sigma_warned = false;
         }
     }
 
-    /// One accuracy sample against the twin's truth (twin only).
+    /// One accuracy sample against the truth, when it is known.
     pub(super) fn sample_accuracy(&mut self) {
-        if let Some(truth) = self.true_pose() {
+        if let Some(truth) = self.estimating.truth {
             let cov = self.ekf.pose_covariance();
             let est = self.ekf.pose();
-            self.accuracy.add(truth, est, &cov);
+            self.estimating.accuracy.add(truth, est, &cov);
         }
     }
 
+    /// How well the estimate tracked the truth (empty without a simulator).
     pub fn accuracy(&self) -> &Accuracy {
-        &self.accuracy
-    }
-
-    pub fn slam(&self) -> &crate::slam::ekf::EkfSlam {
-        &self.ekf
+        &self.estimating.accuracy
     }
 
     /// Standard deviations of the pose estimate: x, y (m) and heading (rad).

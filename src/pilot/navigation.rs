@@ -1,11 +1,10 @@
 //! Thinking and path-following modes: the goal cursor, planning on the robot's map,
 //! following the planned path, replanning when it is blocked, and arrival.
 
-use super::App;
-use super::command::{self, Typed};
-use super::log::Level;
+use super::Pilot;
 use super::mode::Mode;
 use crate::control::follower::FollowStatus;
+use crate::data::Level;
 use crate::geometry::{Point2, Rms, Twist};
 use crate::map::costmap::is_lethal;
 use crate::map::reach::{approach_point, escape_map};
@@ -59,12 +58,10 @@ pub struct FollowView {
     pub cross_track: f64,
 }
 
-/// Navigation state the App keeps.
+/// Navigation state the pilot keeps.
 #[derive(Debug, Default)]
 pub(super) struct Navigation {
     pub route: Option<Route>,
-    pub cursor: Option<Point2>,
-    pub prompt: Option<String>,
     pub following: Option<FollowView>,
     pub arrived: bool,
     /// The map revision the route was last checked against, and when it was last replanned.
@@ -82,7 +79,7 @@ pub(super) struct Navigation {
     pub cross_track: Rms,
 }
 
-impl App {
+impl Pilot {
     /// Plans from the robot's estimated position to `target`; logs the outcome.
     pub(super) fn plan_route(&mut self, target: Target) -> bool {
         let label = target.label();
@@ -101,9 +98,13 @@ impl App {
                 }
             },
         };
-        let map = escape_map(self.belief.costmap(), start, self.config.map.lethal_radius);
+        let map = escape_map(
+            self.belief.costmap(),
+            start,
+            self.settings.map.lethal_radius,
+        );
         let began = self.stopwatch.as_ref().map(|w| w.now());
-        let result = self.planner.plan(&map, start, goal, &self.config.plan);
+        let result = self.planner.plan(&map, start, goal, &self.settings.plan);
         let took = began.zip(self.stopwatch.as_ref().map(|w| w.now()));
         match result {
             Ok(plan) => {
@@ -305,54 +306,11 @@ impl App {
 
     /// Cross-track error of the twin's true pose against the route, for the report.
     fn sample_true_cross_track(&mut self) {
-        let (Some(truth), Some(route)) = (self.true_pose(), &self.nav.route) else {
+        let (Some(truth), Some(route)) = (self.estimating.truth, &self.nav.route) else {
             return;
         };
         let d = distance_to_polyline(&route.plan.trajectory.points, truth.position());
         self.nav.true_cross_track.add(d);
-    }
-
-    pub(super) fn move_cursor(&mut self, dx: f64, dy: f64) {
-        let scale = self.view.scale(self.fitted_scale());
-        let c = self
-            .nav
-            .cursor
-            .unwrap_or_else(|| self.ekf.pose().position());
-        // One screen cell: a row is twice as tall as a column is wide.
-        self.nav.cursor = Some(Point2::new(c.x + dx * scale, c.y + dy * 2.0 * scale));
-    }
-
-    pub(super) fn plan_to_cursor(&mut self) {
-        let goal = self
-            .nav
-            .cursor
-            .unwrap_or_else(|| self.ekf.pose().position());
-        self.plan_route(Target::Point(goal));
-    }
-
-    /// Runs a command typed after `:` through the same door as keys.
-    pub(super) fn run_command(&mut self, line: &str) {
-        match command::parse(line) {
-            Ok(intent) => self.apply(intent),
-            Err(e) => self.log(Level::Error, format!(":{line}: {e}")),
-        }
-    }
-
-    /// Acts on a typed command.
-    pub(super) fn apply_typed(&mut self, typed: Typed) {
-        match typed {
-            Typed::GotoPoint(p) => {
-                self.nav.cursor = self.nav.cursor.map(|_| p);
-                self.plan_route(Target::Point(p));
-            }
-            Typed::GotoMarker(id) => {
-                self.plan_route(Target::Marker(id));
-            }
-            Typed::Controller(kind) => self.set_controller(kind),
-            Typed::Save(name) => {
-                self.save_map(&name);
-            }
-        }
     }
 
     pub(super) fn set_controller(&mut self, kind: crate::control::config::ControllerKind) {
@@ -366,14 +324,6 @@ impl App {
     /// The planned path, if any.
     pub fn route(&self) -> Option<&Route> {
         self.nav.route.as_ref()
-    }
-    /// Thinking mode's goal cursor.
-    pub fn goal_cursor(&self) -> Option<Point2> {
-        self.nav.cursor
-    }
-    /// The command being typed after `:`.
-    pub fn prompt(&self) -> Option<&str> {
-        self.nav.prompt.as_deref()
     }
     /// Progress along the path while following.
     pub fn following(&self) -> Option<FollowView> {

@@ -371,9 +371,9 @@ fn run_mission(args: &MissionArgs) -> Result<ExitCode> {
     // Load once up front so a bad file is refused before anything runs.
     load(args.seed)?;
     let one = |seed: u64| -> Result<mission_runner::MissionReport> {
-        let mut app = load(seed)?.into_app(0.0);
+        let (config, mut link) = load(seed)?.into_link();
         let started = Instant::now();
-        let mut report = mission_runner::run(&mut app, seed, args.time_limit);
+        let mut report = mission_runner::run(&config, link.as_mut(), seed, args.time_limit);
         let wall = started.elapsed().as_secs_f64();
         report.wall_time_s = Some(wall);
         report.realtime_factor = Some(report.sim_time / wall.max(1e-9));

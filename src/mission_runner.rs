@@ -1,9 +1,13 @@
 //! `navdeck mission`: the whole exploration-and-delivery mission on simulated time, once
 //! or over many seeds, reported for people or as JSON.
 
-use crate::app::App;
-use crate::app::action::Action;
-use crate::app::mode::Mode;
+use crate::config::Config;
+use crate::data::Level;
+use crate::geometry::Pose2;
+use crate::link::RobotLink;
+use crate::link::drive;
+use crate::pilot::mode::Mode;
+use crate::pilot::{Due, Input, Intent, LogLine, Pilot};
 use serde::Serialize;
 
 /// A simulated control step of the runner, seconds (seed 001's period).
@@ -51,30 +55,73 @@ impl MissionReport {
     }
 }
 
-/// Runs exploration mode on `app` from its start until the mission ends or `time_limit`
-/// simulated seconds pass.
-pub fn run(app: &mut App, seed: u64, time_limit: f64) -> MissionReport {
-    let start = app.now();
-    app.apply(Action::ModeExplore);
-    let mut t = start;
-    while t - start < time_limit && app.pilot().mode() == Mode::Exploration && app.pilot().is_busy()
-    {
-        t += STEP;
-        app.update(t);
+/// Runs the mission on `link` with a pilot of `config`'s settings, from session time 0
+/// until it ends or `time_limit` simulated seconds pass. No console: the pilot is driven
+/// directly, a control step every period.
+pub fn run(config: &Config, link: &mut dyn RobotLink, seed: u64, time_limit: f64) -> MissionReport {
+    let truth = link.ground_truth();
+    let start = truth.map_or(Pose2::default(), |t| t.pose());
+    let extent = truth.map_or((0.0, 0.0), |t| (t.world().width, t.world().height));
+    let mut pilot = Pilot::new(config.pilot_settings(), start, extent, 0.0);
+    let mut run = Run::default();
+    let out = pilot.step(Input::intent(
+        0.0,
+        Intent::Mode(Mode::Exploration),
+        Some(start),
+    ));
+    run.log.extend(out.log);
+    if out.act_now {
+        run.step(link, &mut pilot, 0.0, Due::Command);
     }
-    report(app, seed)
+    // The first control period starts at once, as the console's does.
+    run.step(link, &mut pilot, 0.0, Due::Tick);
+    let mut t = 0.0;
+    while t < time_limit && pilot.mode() == Mode::Exploration && pilot.is_busy() {
+        t += STEP;
+        run.step(link, &mut pilot, t, Due::Tick);
+    }
+    report(&pilot, &*link, &run.log, config, seed, t)
 }
 
-fn report(app: &App, seed: u64) -> MissionReport {
-    let twin = app.link().ground_truth();
-    let total = twin.map_or(app.config().mission.total_blocks as usize, |t| {
-        t.blocks().len()
-    });
-    let mission = app.pilot().mission();
+/// What the run logged, and the contacts already logged.
+#[derive(Default)]
+struct Run {
+    log: Vec<LogLine>,
+    collisions: u32,
+}
+
+impl Run {
+    fn step(&mut self, link: &mut dyn RobotLink, pilot: &mut Pilot, t: f64, due: Due) {
+        self.log.extend(drive::step(link, pilot, t, due).log);
+        let note = link
+            .ground_truth()
+            .and_then(|truth| crate::sim::collision_note(truth, &mut self.collisions));
+        if let Some(text) = note {
+            let (time, level) = (t, Level::Warn);
+            self.log.push(LogLine { time, level, text });
+        }
+        for note in link.take_notes() {
+            let (time, level, text) = (t, note.level, note.text);
+            self.log.push(LogLine { time, level, text });
+        }
+    }
+}
+
+fn report(
+    pilot: &Pilot,
+    link: &dyn RobotLink,
+    log: &[LogLine],
+    config: &Config,
+    seed: u64,
+    sim_time: f64,
+) -> MissionReport {
+    let twin = link.ground_truth();
+    let total = twin.map_or(config.mission.total_blocks as usize, |t| t.blocks().len());
+    let mission = pilot.mission();
     let delivered = mission.map_or(0, |m| m.delivered());
     let outcome = if mission.is_some_and(|m| m.is_done()) && delivered >= total {
         "delivered all"
-    } else if app.pilot().mode() != Mode::Exploration {
+    } else if pilot.mode() != Mode::Exploration {
         "handed to manual"
     } else {
         "time limit"
@@ -93,6 +140,7 @@ fn report(app: &App, seed: u64) -> MissionReport {
             })
             .count()
     });
+    let accuracy = pilot.accuracy();
     MissionReport {
         world: twin.map_or("none".into(), |t| t.world().name.clone()),
         seed,
@@ -100,12 +148,12 @@ fn report(app: &App, seed: u64) -> MissionReport {
         true_delivered,
         total,
         outcome: outcome.into(),
-        sim_time: app.now(),
+        sim_time,
         collisions: twin.map(|t| t.collisions()),
-        replans: mission.map_or(0, |m| m.replans()) + app.pilot().replans(),
+        replans: mission.map_or(0, |m| m.replans()) + pilot.replans(),
         recoveries: mission.map_or(0, |m| m.recoveries()),
-        position_rmse: twin.map(|_| app.pilot().accuracy().position_rmse()),
-        heading_rmse_deg: twin.map(|_| app.pilot().accuracy().heading_rmse().to_degrees()),
+        position_rmse: twin.map(|_| accuracy.position_rmse()),
+        heading_rmse_deg: twin.map(|_| accuracy.heading_rmse().to_degrees()),
         timeline: mission.map_or(Vec::new(), |m| {
             m.timeline()
                 .iter()
@@ -117,9 +165,8 @@ fn report(app: &App, seed: u64) -> MissionReport {
                 })
                 .collect()
         }),
-        warnings: app
-            .log_book()
-            .problems()
+        warnings: (log.iter())
+            .filter(|e| e.level >= Level::Warn)
             .map(|e| format!("{:.1} s: {}", e.time, e.text))
             .collect(),
         wall_time_s: None,

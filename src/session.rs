@@ -229,6 +229,11 @@ impl Session {
         }
     }
 
+    /// The session's config and its robot as a link, for runners that need no console.
+    pub fn into_link(self) -> (Config, Box<dyn RobotLink>) {
+        (self.config, self.robot.into_link())
+    }
+
     /// The console on this session, starting at session time `now`.
     pub fn into_app(self, now: f64) -> App {
         App::new(self.config, self.keymap, self.robot.into_link(), now)

@@ -4,7 +4,7 @@
 use super::App;
 use super::log::Level;
 use super::mode::Mode;
-use crate::pilot::{self, Due, Report};
+use crate::pilot::{self, Due};
 
 /// A stall longer than this is skipped rather than caught up, seconds.
 const MAX_CATCH_UP: f64 = 1.0;
@@ -119,21 +119,14 @@ impl App {
     }
 
     /// Polls the link at `t`, runs the pilot on what it reported, and sends the command
-    /// when one is due.
+    /// when one is due; then the console's own panels take what the frame showed.
     fn run_step(&mut self, t: f64, due: Due) {
         self.now = self.now.max(t);
-        let polled = self.link.poll(t);
-        let truth = self.true_pose();
-        let failure;
-        let report = match &polled {
-            Ok(frame) => Report::Frame(frame),
-            Err(e) => {
-                failure = e.to_string();
-                Report::Failed(&failure)
-            }
-        };
-        let out = self.pilot_step(pilot::Input::report(t, report, truth, due));
-        if let Ok(frame) = polled {
+        let before = self.pilot.mode();
+        let stepped = crate::link::drive::step(self.link.as_mut(), &mut self.pilot, t, due);
+        self.take_log(stepped.log);
+        self.follow_mode(before);
+        if let Some(frame) = stepped.frame {
             if let Some(s) = &frame.sightings {
                 self.note_sightings(t, s);
             }
@@ -145,22 +138,27 @@ impl App {
         for note in self.link.take_notes() {
             self.log.push(t, note.level, note.text);
         }
-        let Some(command) = out.command else { return };
-        if let Err(e) = self.link.send(&command) {
-            let reason = format!("command not sent: {e}");
-            let failed = pilot::Input::report(t, Report::Failed(&reason), truth, Due::Nothing);
-            self.pilot_step(failed);
-        }
     }
 
-    /// Runs the pilot once, logs what it said, and keeps the console's mode-dependent
-    /// state (goal cursor, map picker) in step with the pilot's mode.
+    /// Runs the pilot on `input` alone (no link), logs what it said.
     pub(super) fn pilot_step(&mut self, input: pilot::Input<'_>) -> pilot::Output {
         let before = self.pilot.mode();
         let mut out = self.pilot.step(input);
-        for line in out.log.drain(..) {
+        let log = std::mem::take(&mut out.log);
+        self.take_log(log);
+        self.follow_mode(before);
+        out
+    }
+
+    fn take_log(&mut self, lines: Vec<pilot::LogLine>) {
+        for line in lines {
             self.log.push(line.time, line.level, line.text);
         }
+    }
+
+    /// Keeps the console's mode-dependent state (goal cursor, map picker) in step with the
+    /// pilot's mode, which was `before`.
+    fn follow_mode(&mut self, before: Mode) {
         let mode = self.pilot.mode();
         if mode != before {
             self.cursor = (mode == Mode::Thinking).then(|| self.pilot.cursor_start());
@@ -168,7 +166,6 @@ impl App {
                 self.open_picker();
             }
         }
-        out
     }
 
     /// The twin counts contacts; each new one is worth a line in the log.
@@ -176,17 +173,8 @@ impl App {
         let Some(truth) = self.link.ground_truth() else {
             return;
         };
-        let (count, p) = (truth.collisions(), truth.pose());
-        if count > self.collisions_logged {
-            self.collisions_logged = count;
-            self.log.push(
-                t,
-                Level::Warn,
-                format!(
-                    "collision at ({:.2}, {:.2}): robot stopped against an obstacle ({count} so far)",
-                    p.x, p.y
-                ),
-            );
+        if let Some(note) = crate::sim::collision_note(truth, &mut self.collisions_logged) {
+            self.log.push(t, Level::Warn, note);
         }
     }
 }

@@ -3,6 +3,7 @@
 
 #[cfg(feature = "vision")]
 pub mod camera;
+pub mod drive;
 pub mod ros2;
 pub mod serial;
 pub mod sim;

@@ -33,7 +33,7 @@ mod world_file;
 pub use blocks::BlockState;
 pub use camera::clear_line as line_of_sight;
 pub use error::WorldError;
-pub use truth::GroundTruth;
+pub use truth::{GroundTruth, collision_note};
 pub use twin::Twin;
 pub use world::{Block, BlockColor, Gate, Marker, Obstacle, World};
 pub use world_file::{DEFAULT_BLOCK_SIZE, DEFAULT_GATE_WIDTH};

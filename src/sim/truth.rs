@@ -53,3 +53,17 @@ impl GroundTruth for Twin {
         Twin::distance_driven(self)
     }
 }
+
+/// A log line for each contact `truth` counted since `logged`, which it updates.
+pub fn collision_note(truth: &dyn GroundTruth, logged: &mut u32) -> Option<String> {
+    let count = truth.collisions();
+    if count <= *logged {
+        return None;
+    }
+    *logged = count;
+    let p = truth.pose();
+    Some(format!(
+        "collision at ({:.2}, {:.2}): robot stopped against an obstacle ({count} so far)",
+        p.x, p.y
+    ))
+}

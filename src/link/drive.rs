@@ -1,0 +1,42 @@
+//! One control step over a link: poll what the robot reported, run the pilot on it, send
+//! the pilot's command. The console and the headless mission runner both drive through it.
+
+use super::RobotLink;
+use crate::data::SensorFrame;
+use crate::pilot::{Due, Input, LogLine, Pilot, Report};
+
+/// What one step brought: the frame the link reported (for the console's own panels) and
+/// the pilot's log lines.
+#[derive(Debug, Default)]
+pub struct Stepped {
+    pub frame: Option<SensorFrame>,
+    pub log: Vec<LogLine>,
+}
+
+/// Polls `link` at session time `t`, runs `pilot` on the report, and sends the command
+/// when `due` asks for one. A failed poll or send puts the pilot's link in doubt.
+pub fn step(link: &mut dyn RobotLink, pilot: &mut Pilot, t: f64, due: Due) -> Stepped {
+    let polled = link.poll(t);
+    let truth = link.ground_truth().map(|g| g.pose());
+    let failure;
+    let report = match &polled {
+        Ok(frame) => Report::Frame(frame),
+        Err(e) => {
+            failure = e.to_string();
+            Report::Failed(&failure)
+        }
+    };
+    let out = pilot.step(Input::report(t, report, truth, due));
+    let mut log = out.log;
+    if let Some(command) = out.command
+        && let Err(e) = link.send(&command)
+    {
+        let reason = format!("command not sent: {e}");
+        let failed = Input::report(t, Report::Failed(&reason), truth, Due::Nothing);
+        log.extend(pilot.step(failed).log);
+    }
+    Stepped {
+        frame: polled.ok(),
+        log,
+    }
+}

@@ -90,97 +90,15 @@ impl Config {
         Ok(config)
     }
 
-    /// Checks values a parser cannot: signs and ranges.
+    /// Checks values a parser cannot, section by section: each section's `validate()`
+    /// names its first bad field, and the error adds the file and the section.
     pub fn validate(&self, path: &Path) -> Result<(), ConfigError> {
-        let positive: [(&'static str, f64); 24] = [
-            ("robot.wheel_radius", self.robot.wheel_radius),
-            ("robot.track", self.robot.track),
-            ("robot.control_period", self.robot.control_period),
-            ("robot.footprint_radius", self.robot.footprint_radius),
-            ("robot.max_linear", self.robot.max_linear),
-            ("robot.max_angular", self.robot.max_angular),
-            ("robot.max_linear_accel", self.robot.max_linear_accel),
-            ("robot.max_angular_accel", self.robot.max_angular_accel),
-            ("teleop.linear_speed", self.teleop.linear_speed),
-            ("teleop.angular_speed", self.teleop.angular_speed),
-            ("teleop.deadman_timeout", self.teleop.deadman_timeout),
-            ("teleop.max_linear", self.teleop.max_linear),
-            ("teleop.max_angular", self.teleop.max_angular),
-            ("race.linear_speed", self.race.linear_speed),
-            ("race.angular_speed", self.race.angular_speed),
-            ("race.sigma_warning", self.race.sigma_warning),
-            ("sim.physics.step", self.sim.physics.step),
-            ("slam.dist_std", self.slam.dist_std),
-            ("slam.angle_std_deg", self.slam.angle_std_deg),
-            ("slam.gate_chi2", self.slam.gate_chi2),
-            ("sim.camera.max_range", self.sim.camera.max_range),
-            ("sim.camera.rate_hz", self.sim.camera.rate_hz),
-            ("sim.lidar.max_range", self.sim.lidar.max_range),
-            ("sim.lidar.rate_hz", self.sim.lidar.rate_hz),
-        ];
-        for (field, value) in positive {
-            if !(value.is_finite() && value > 0.0) {
-                return Err(invalid(path, field, value, "must be a positive number"));
-            }
-        }
-        let probabilities = [
-            (
-                "sim.encoders.slip_probability",
-                self.sim.encoders.slip_probability,
-            ),
-            (
-                "sim.encoders.slip_fraction",
-                self.sim.encoders.slip_fraction,
-            ),
-            (
-                "sim.camera.miss_probability",
-                self.sim.camera.miss_probability,
-            ),
-        ];
-        for (field, value) in probabilities {
-            if !(0.0..=1.0).contains(&value) {
-                return Err(invalid(path, field, value, "must lie in 0..=1"));
-            }
-        }
-        let non_negative = [
-            ("sim.encoders.noise_std", self.sim.encoders.noise_std),
-            ("sim.camera.dist_std", self.sim.camera.dist_std),
-            ("sim.camera.angle_std_deg", self.sim.camera.angle_std_deg),
-            ("sim.lidar.range_std", self.sim.lidar.range_std),
-        ];
-        for (field, value) in non_negative {
-            if !(value.is_finite() && value >= 0.0) {
-                return Err(invalid(path, field, value, "must be zero or more"));
-            }
-        }
-        if self.teleop.speed_step <= 1.0 || !self.teleop.speed_step.is_finite() {
-            return Err(invalid(
-                path,
-                "teleop.speed_step",
-                self.teleop.speed_step,
-                "must be a factor above 1",
-            ));
-        }
-        if !(0.0..360.0).contains(&self.sim.camera.fov_deg) || self.sim.camera.fov_deg == 0.0 {
-            return Err(invalid(
-                path,
-                "sim.camera.fov_deg",
-                self.sim.camera.fov_deg,
-                "must lie in (0, 360)",
-            ));
-        }
-        if self.race.correct_every == 0 {
-            return Err(invalid(
-                path,
-                "race.correct_every",
-                0.0,
-                "must be at least 1",
-            ));
-        }
-        if self.sim.lidar.beams == 0 {
-            return Err(invalid(path, "sim.lidar.beams", 0.0, "must be at least 1"));
-        }
         let sections = [
+            ("robot", self.robot.validate()),
+            ("teleop", self.teleop.validate()),
+            ("slam", self.slam.validate()),
+            ("race", self.race.validate()),
+            ("sim", self.sim.validate()),
             ("map", self.map.validate()),
             ("plan", self.plan.validate()),
             ("follow", self.follow.validate()),
@@ -199,24 +117,7 @@ impl Config {
                 });
             }
         }
-        if self.sim.encoders.ticks_per_rev == 0 {
-            return Err(invalid(
-                path,
-                "sim.encoders.ticks_per_rev",
-                0.0,
-                "must be at least 1",
-            ));
-        }
         Ok(())
-    }
-}
-
-fn invalid(path: &Path, field: &str, value: f64, reason: &'static str) -> ConfigError {
-    ConfigError::Invalid {
-        path: path.to_path_buf(),
-        field: field.to_string(),
-        value: value.to_string(),
-        reason,
     }
 }
 
@@ -252,6 +153,31 @@ mod tests {
         assert!(err.contains("bad.toml"), "{err}");
         assert!(err.contains("wheel_radus"), "{err}");
         assert!(err.contains("line 3"), "{err}");
+    }
+
+    #[test]
+    fn every_section_names_its_bad_field_the_same_way() {
+        let cases = [
+            ("[robot]\ncontrol_period = 0.0", "robot.control_period", "0"),
+            ("[teleop]\nspeed_step = 0.9", "teleop.speed_step", "0.9"),
+            ("[race]\ncorrect_every = 0", "race.correct_every", "0"),
+            ("[slam]\ngate_chi2 = -1.0", "slam.gate_chi2", "-1"),
+            ("[sim.camera]\nfov_deg = 400.0", "sim.camera.fov_deg", "400"),
+            (
+                "[sim.encoders]\nslip_probability = 1.5",
+                "sim.encoders.slip_probability",
+                "1.5",
+            ),
+            ("[sim.lidar]\nbeams = 0", "sim.lidar.beams", "0"),
+            ("[map]\nresolution = -0.05", "map.resolution", "-0.05"),
+        ];
+        for (text, field, value) in cases {
+            let err = Config::parse(text, Path::new("bad.toml"))
+                .unwrap_err()
+                .to_string();
+            let expected = format!("config bad.toml: field `{field}` = {value}:");
+            assert!(err.starts_with(&expected), "{text}: {err}");
+        }
     }
 
     #[test]

@@ -6,7 +6,6 @@ pub mod config;
 pub mod console;
 pub mod control;
 pub mod data;
-pub mod field_check;
 pub mod geometry;
 pub mod headless;
 pub mod keymap;

@@ -185,7 +185,7 @@ impl Default for HybridConfig {
 }
 
 /// A refused value: the field's path within `[follow]`, its value and why.
-pub use crate::field_check::Invalid;
+pub use crate::data::check::Invalid;
 
 impl FollowConfig {
     /// Checks signs and ranges a parser cannot.
@@ -207,7 +207,7 @@ impl FollowConfig {
             ("hybrid.heading_exponent", self.hybrid.heading_exponent),
             ("hybrid.max_accel", self.hybrid.max_accel),
         ];
-        crate::field_check::all_positive(&positive)?;
+        crate::data::check::all_positive(&positive)?;
         let non_negative = [
             ("pid.kp", self.pid.kp),
             ("pid.ki", self.pid.ki),
@@ -217,7 +217,7 @@ impl FollowConfig {
             ("hybrid.ki", self.hybrid.ki),
             ("hybrid.kd", self.hybrid.kd),
         ];
-        crate::field_check::all_non_negative(&non_negative)?;
+        crate::data::check::all_non_negative(&non_negative)?;
         let turn = self.pid.stop_turn_deg;
         if !(turn > 0.0 && turn <= 180.0) {
             return Err(("pid.stop_turn_deg", turn, "must lie in (0, 180]"));

@@ -1,8 +1,10 @@
 //! The data that crosses a robot link, below every other module: commands out, sensor
-//! frames in, the level of a log line, and the robot's geometry and limits. The core,
+//! frames in, the level of a log line, the robot's geometry and limits, and the range
+//! checks every config section validates with. The core,
 //! the links and the console all speak it; it imports nothing of navdeck but geometry.
 
 pub mod camera;
+pub mod check;
 pub mod command;
 pub mod level;
 pub mod robot;

@@ -38,6 +38,20 @@ impl Default for RobotConfig {
 }
 
 impl RobotConfig {
+    /// Checks what the parser cannot: every size, period and limit positive.
+    pub fn validate(&self) -> Result<(), super::check::Invalid> {
+        super::check::all_positive(&[
+            ("wheel_radius", self.wheel_radius),
+            ("track", self.track),
+            ("control_period", self.control_period),
+            ("footprint_radius", self.footprint_radius),
+            ("max_linear", self.max_linear),
+            ("max_angular", self.max_angular),
+            ("max_linear_accel", self.max_linear_accel),
+            ("max_angular_accel", self.max_angular_accel),
+        ])
+    }
+
     /// The fastest a wheel is ever asked to turn, v + w b / 2, with half again for
     /// overshoot, m/s: wheel travel beyond this between two readings is a bad reading.
     pub fn max_wheel_speed(&self) -> f64 {

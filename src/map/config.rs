@@ -64,7 +64,7 @@ impl MapConfig {
             ("block_inflation", self.block_inflation),
             ("hit_log_odds", f64::from(self.hit_log_odds)),
         ];
-        crate::field_check::all_positive(&positive)?;
+        crate::data::check::all_positive(&positive)?;
         let non_negative = [
             ("lethal_radius", self.lethal_radius),
             ("block_lethal_radius", self.block_lethal_radius),
@@ -72,7 +72,7 @@ impl MapConfig {
             ("wall_join", self.wall_join),
             ("autosave_every", self.autosave_every),
         ];
-        crate::field_check::all_non_negative(&non_negative)?;
+        crate::data::check::all_non_negative(&non_negative)?;
         let miss = f64::from(self.miss_log_odds);
         if !(miss.is_finite() && miss < 0.0) {
             return Err(("miss_log_odds", miss, "must be negative"));

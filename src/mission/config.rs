@@ -132,16 +132,16 @@ impl MissionConfig {
             ("retry_turn_deg", self.retry_turn_deg),
             ("stuck_timeout", self.stuck_timeout),
         ];
-        crate::field_check::all_positive(&positive)?;
+        crate::data::check::all_positive(&positive)?;
         if let Some(blind) = self.blind_distance {
-            crate::field_check::all_non_negative(&[("blind_distance", blind)])?;
+            crate::data::check::all_non_negative(&[("blind_distance", blind)])?;
         }
         let non_negative = [
             ("gripper_wait", self.gripper_wait),
             ("back_off_time", self.back_off_time),
             ("replan_cooldown", self.replan_cooldown),
         ];
-        crate::field_check::all_non_negative(&non_negative)?;
+        crate::data::check::all_non_negative(&non_negative)?;
         if !(self.lost_timeout.is_finite() && self.lost_timeout > LOST_SCAN_AFTER) {
             return Err((
                 "lost_timeout",

@@ -230,14 +230,14 @@ impl VisionConfig {
             ("detector.max_range", d.max_range),
             ("render.brightness", r.brightness),
         ];
-        crate::field_check::all_positive(&positive)?;
+        crate::data::check::all_positive(&positive)?;
         let non_negative = [
             ("markers.wall_height", m.wall_height),
             ("markers.block_height", m.block_height),
             ("render.noise_std", r.noise_std),
             ("detector.min_side_px", d.min_side_px),
         ];
-        crate::field_check::all_non_negative(&non_negative)?;
+        crate::data::check::all_non_negative(&non_negative)?;
         let finite = [
             ("mount.rotation_deg[0]", self.mount.rotation_deg[0]),
             ("mount.rotation_deg[1]", self.mount.rotation_deg[1]),

@@ -2,6 +2,7 @@
 //! section of the config that decides how the robot moves.
 
 use crate::control::config::FollowConfig;
+use crate::data::check::{self, Invalid};
 use crate::data::robot::RobotConfig;
 use crate::map::config::MapConfig;
 use crate::mission::config::MissionConfig;
@@ -76,5 +77,34 @@ impl Default for TeleopConfig {
             max_linear: 0.25,
             max_angular: 2.5,
         }
+    }
+}
+
+impl RaceConfig {
+    /// Checks what the parser cannot.
+    pub fn validate(&self) -> Result<(), Invalid> {
+        check::all_positive(&[
+            ("linear_speed", self.linear_speed),
+            ("angular_speed", self.angular_speed),
+            ("sigma_warning", self.sigma_warning),
+        ])?;
+        check::all_at_least_one(&[("correct_every", self.correct_every)])
+    }
+}
+
+impl TeleopConfig {
+    /// Checks what the parser cannot.
+    pub fn validate(&self) -> Result<(), Invalid> {
+        check::all_positive(&[
+            ("linear_speed", self.linear_speed),
+            ("angular_speed", self.angular_speed),
+            ("deadman_timeout", self.deadman_timeout),
+            ("max_linear", self.max_linear),
+            ("max_angular", self.max_angular),
+        ])?;
+        if !(self.speed_step.is_finite() && self.speed_step > 1.0) {
+            return Err(("speed_step", self.speed_step, "must be a factor above 1"));
+        }
+        Ok(())
     }
 }

@@ -56,7 +56,7 @@ impl PlanConfig {
             ("max_accel", self.max_accel),
             ("max_lateral_accel", self.max_lateral_accel),
         ];
-        crate::field_check::all_positive(&positive)?;
+        crate::data::check::all_positive(&positive)?;
         if self.unknown_cost >= LETHAL {
             return Err((
                 "unknown_cost",

@@ -129,3 +129,36 @@ impl Default for GripperConfig {
         }
     }
 }
+
+impl SimConfig {
+    /// Checks what the parser cannot; fields are named within `[sim]`.
+    pub fn validate(&self) -> Result<(), crate::data::check::Invalid> {
+        use crate::data::check;
+        let (camera, lidar, encoders) = (&self.camera, &self.lidar, &self.encoders);
+        check::all_positive(&[
+            ("physics.step", self.physics.step),
+            ("camera.max_range", camera.max_range),
+            ("camera.rate_hz", camera.rate_hz),
+            ("lidar.max_range", lidar.max_range),
+            ("lidar.rate_hz", lidar.rate_hz),
+        ])?;
+        check::all_probabilities(&[
+            ("encoders.slip_probability", encoders.slip_probability),
+            ("encoders.slip_fraction", encoders.slip_fraction),
+            ("camera.miss_probability", camera.miss_probability),
+        ])?;
+        check::all_non_negative(&[
+            ("encoders.noise_std", encoders.noise_std),
+            ("camera.dist_std", camera.dist_std),
+            ("camera.angle_std_deg", camera.angle_std_deg),
+            ("lidar.range_std", lidar.range_std),
+        ])?;
+        if !(camera.fov_deg > 0.0 && camera.fov_deg < 360.0) {
+            return Err(("camera.fov_deg", camera.fov_deg, "must lie in (0, 360)"));
+        }
+        check::all_at_least_one(&[
+            ("lidar.beams", lidar.beams),
+            ("encoders.ticks_per_rev", encoders.ticks_per_rev),
+        ])
+    }
+}

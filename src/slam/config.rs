@@ -34,3 +34,14 @@ impl Default for SlamConfig {
         }
     }
 }
+
+impl SlamConfig {
+    /// Checks what the parser cannot.
+    pub fn validate(&self) -> Result<(), crate::data::check::Invalid> {
+        crate::data::check::all_positive(&[
+            ("dist_std", self.dist_std),
+            ("angle_std_deg", self.angle_std_deg),
+            ("gate_chi2", self.gate_chi2),
+        ])
+    }
+}

@@ -1,6 +1,6 @@
 //! `[ros2]`: topic names, QoS, message variants and the robot's wheels, for `--link ros2`.
 
-use crate::field_check::{Invalid, all_positive};
+use crate::data::check::{Invalid, all_positive};
 use serde::{Deserialize, Serialize};
 
 /// Which message cmd_vel carries (Humble's TurtleBot3 takes Twist, Jazzy's TwistStamped).

@@ -1,7 +1,7 @@
 //! The `[serial]` config section: a ROSArduinoBridge robot's encoders, PID rate, timing and
 //! gripper servo. Wheel radius and track come from `[robot]`.
 
-use crate::field_check::{Invalid, all_non_negative, all_positive};
+use crate::data::check::{Invalid, all_non_negative, all_positive};
 use serde::{Deserialize, Serialize};
 
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]

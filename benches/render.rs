@@ -24,7 +24,7 @@ fn frame(c: &mut Criterion) {
         let mut app = Session::load(&spec).unwrap().into_app(0.0);
         app.resize(200, 60);
         if braille {
-            app.apply(navdeck::app::action::Action::ToggleBraille);
+            app.apply(navdeck::keymap::Action::ToggleBraille);
         }
         // Drive a little so the frame has motion, sightings and log lines in it.
         for i in 0..20 {

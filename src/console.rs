@@ -58,7 +58,7 @@ pub fn run_console(
         humantime::format_rfc3339_seconds(std::time::SystemTime::now()).to_string()
     }));
     if options.braille {
-        app.apply(crate::app::action::Action::ToggleBraille);
+        app.apply(crate::keymap::Action::ToggleBraille);
     }
     let mut stats = RunStats::default();
     let outcome = {

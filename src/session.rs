@@ -124,7 +124,11 @@ impl Session {
                 .context("cannot open the ROS 2 link")?;
                 Robot::Link(Box::new(link))
             }
-            LinkChoice::Serial(spec) => Robot::Link(Box::new(SerialLink::open(spec, &config)?)),
+            LinkChoice::Serial(spec) => Robot::Link(Box::new(SerialLink::open(
+                spec,
+                &config.serial,
+                &config.robot,
+            )?)),
         };
         let blind_from_user = config.mission.blind_distance.is_some();
         let mut session = Session {

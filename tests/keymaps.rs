@@ -1,7 +1,7 @@
 //! The shipped keymap files, read the way a user's `--keymap` is read.
 
-use navdeck::app::action::Action;
 use navdeck::app::mode::Mode;
+use navdeck::keymap::Action;
 use navdeck::keymap::{Key, Keymap, KeymapError};
 use std::path::{Path, PathBuf};
 

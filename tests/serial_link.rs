@@ -98,7 +98,8 @@ fn the_emulator_answers_as_the_firmware_does_and_stops_by_itself() {
 #[test]
 fn driving_forward_sends_equal_tick_targets_and_reads_equal_travel() {
     let emu = Emulator::start();
-    let mut link = SerialLink::open(&emu.path(), &config()).expect("the emulator answers");
+    let mut link = SerialLink::open(&emu.path(), &config().serial, &config().robot)
+        .expect("the emulator answers");
     assert_eq!(link.label(), format!("serial:{}@57600", emu.path()));
     let travel = drive(&mut link, &emu, forward(0.1), 0.05);
     assert!((travel.left - travel.right).abs() < 1e-9, "{travel:?}");
@@ -123,7 +124,7 @@ fn driving_forward_sends_equal_tick_targets_and_reads_equal_travel() {
 #[test]
 fn turning_on_the_spot_sends_opposite_targets() {
     let emu = Emulator::start();
-    let mut link = SerialLink::open(&emu.path(), &config()).unwrap();
+    let mut link = SerialLink::open(&emu.path(), &config().serial, &config().robot).unwrap();
     let turn = Command {
         twist: Twist::new(0.0, 1.0),
         gripper: None,
@@ -140,7 +141,7 @@ fn turning_on_the_spot_sends_opposite_targets() {
 fn holding_w_in_the_console_drives_the_robot_and_quitting_stops_it() {
     let emu = Emulator::start();
     let config = config();
-    let link = SerialLink::open(&emu.path(), &config).unwrap();
+    let link = SerialLink::open(&emu.path(), &config.serial, &config.robot).unwrap();
     let mut app = App::new(config, Keymap::default_map(), Box::new(link), 0.0);
     let mut t = 0.0;
     until("the console drive the robot", || {
@@ -170,7 +171,7 @@ fn holding_w_in_the_console_drives_the_robot_and_quitting_stops_it() {
 #[test]
 fn a_quiet_console_stops_the_robot() {
     let emu = Emulator::start();
-    let mut link = SerialLink::open(&emu.path(), &config()).unwrap();
+    let mut link = SerialLink::open(&emu.path(), &config().serial, &config().robot).unwrap();
     link.send(&forward(0.1)).unwrap();
     emu.wait_for("a forward command", |s| s.moving);
     // No further command: the link's own watchdog stops the robot (well before the
@@ -183,7 +184,7 @@ fn a_quiet_console_stops_the_robot() {
 #[test]
 fn garbage_on_the_wire_is_counted_and_driving_goes_on() {
     let emu = Emulator::start();
-    let mut link = SerialLink::open(&emu.path(), &config()).unwrap();
+    let mut link = SerialLink::open(&emu.path(), &config().serial, &config().robot).unwrap();
     emu.inject_garbage(b"\xff\xfe#!\r\n12 3");
     until("garbage counted", || link.stats().garbage >= 1);
     let readings = link.stats().readings;
@@ -196,7 +197,7 @@ fn garbage_on_the_wire_is_counted_and_driving_goes_on() {
 #[test]
 fn a_dropped_reply_is_asked_again() {
     let emu = Emulator::start();
-    let mut link = SerialLink::open(&emu.path(), &config()).unwrap();
+    let mut link = SerialLink::open(&emu.path(), &config().serial, &config().robot).unwrap();
     emu.drop_next_reply();
     until("a timeout and a retry", || {
         let s = link.stats();
@@ -212,7 +213,7 @@ fn a_slow_reply_times_out_and_the_link_carries_on() {
     let emu = Emulator::start();
     let mut config = config();
     config.serial.reply_timeout = 0.1;
-    let mut link = SerialLink::open(&emu.path(), &config).unwrap();
+    let mut link = SerialLink::open(&emu.path(), &config.serial, &config.robot).unwrap();
     emu.delay_next_reply(Duration::from_millis(300));
     until("a timeout", || link.stats().timeouts >= 1);
     let travel = drive(&mut link, &emu, forward(0.1), 0.02);
@@ -223,7 +224,7 @@ fn a_slow_reply_times_out_and_the_link_carries_on() {
 #[test]
 fn an_encoder_jump_is_rejected_not_driven() {
     let emu = Emulator::start();
-    let mut link = SerialLink::open(&emu.path(), &config()).unwrap();
+    let mut link = SerialLink::open(&emu.path(), &config().serial, &config().robot).unwrap();
     let readings = link.stats().readings;
     until("a baseline reading", || link.stats().readings > readings);
     emu.jump_left(1.0e6);
@@ -238,7 +239,7 @@ fn an_encoder_jump_is_rejected_not_driven() {
 fn counters_wrapping_round_are_still_travel() {
     let emu = Emulator::start();
     emu.set_counts(2_147_483_000.0, -2_147_483_000.0);
-    let mut link = SerialLink::open(&emu.path(), &config()).unwrap();
+    let mut link = SerialLink::open(&emu.path(), &config().serial, &config().robot).unwrap();
     let travel = drive(&mut link, &emu, forward(0.1), 0.05);
     let (l, _) = emu.state().counts();
     assert!(l < 0, "the left counter has wrapped: {l}");
@@ -251,7 +252,7 @@ fn the_gripper_is_reported_moving_then_where_the_servo_says() {
     let emu = Emulator::start();
     let mut config = config();
     config.serial.gripper_servo = Some(1);
-    let mut link = SerialLink::open(&emu.path(), &config).unwrap();
+    let mut link = SerialLink::open(&emu.path(), &config.serial, &config.robot).unwrap();
     let open = Command {
         twist: Twist::ZERO,
         gripper: Some(GripperCommand::Open),
@@ -278,7 +279,7 @@ fn a_firmware_without_servos_is_named_and_driving_goes_on() {
     });
     let mut config = config();
     config.serial.gripper_servo = Some(0);
-    let mut link = SerialLink::open(&emu.path(), &config).unwrap();
+    let mut link = SerialLink::open(&emu.path(), &config.serial, &config.robot).unwrap();
     let close = Command {
         twist: Twist::ZERO,
         gripper: Some(GripperCommand::Close),
@@ -294,7 +295,7 @@ fn a_firmware_without_servos_is_named_and_driving_goes_on() {
 fn unplugging_loses_the_link_and_plugging_back_in_restores_it_without_moving() {
     let emu = Emulator::start();
     let config = config();
-    let link = SerialLink::open(&emu.path(), &config).unwrap();
+    let link = SerialLink::open(&emu.path(), &config.serial, &config.robot).unwrap();
     let mut app = App::new(config, Keymap::default_map(), Box::new(link), 0.0);
     let mut t = 0.0;
     let mut step = |app: &mut App, key: Option<char>| {
@@ -343,10 +344,14 @@ fn unplugging_loses_the_link_and_plugging_back_in_restores_it_without_moving() {
 
 #[test]
 fn a_wrong_path_or_a_silent_device_is_refused_with_a_reason() {
-    let e = SerialLink::open("/dev/nonexistent-navdeck-tty", &config())
-        .err()
-        .unwrap()
-        .to_string();
+    let e = SerialLink::open(
+        "/dev/nonexistent-navdeck-tty",
+        &config().serial,
+        &config().robot,
+    )
+    .err()
+    .unwrap()
+    .to_string();
     assert!(e.contains("/dev/nonexistent-navdeck-tty"), "{e}");
     let silent = Emulator::start_with(Options {
         silent: true,
@@ -354,7 +359,7 @@ fn a_wrong_path_or_a_silent_device_is_refused_with_a_reason() {
     });
     let mut config = config();
     config.serial.boot_wait = 0.5;
-    let e = SerialLink::open(&silent.path(), &config)
+    let e = SerialLink::open(&silent.path(), &config.serial, &config.robot)
         .err()
         .unwrap()
         .to_string();

@@ -52,7 +52,7 @@ fn round_trip_and_encoder_poll_rate_at_57600_baud() {
     // The link's own worker asked for more encoder readings than the wire can carry.
     let mut config = Config::default();
     config.serial.poll_hz = 10_000.0;
-    let link = SerialLink::open(&emu.path(), &config).unwrap();
+    let link = SerialLink::open(&emu.path(), &config.serial, &config.robot).unwrap();
     let (n0, t0) = (link.stats().readings, Instant::now());
     emu.wait_frames(90);
     let (n1, t1) = (link.stats().readings, Instant::now());

@@ -1,9 +1,9 @@
 //! The command line (`:`): a typed command is an intent like a key's action, applied
 //! through the same `App::apply` (helix's typable and static commands in one type).
 
-use super::action::Action;
 use crate::control::config::ControllerKind;
 use crate::geometry::Point2;
+use crate::keymap::Action;
 
 /// The commands that take arguments, so no key can stand for them.
 #[derive(Clone, Debug, PartialEq)]

@@ -3,7 +3,6 @@
 //! Time is passed in as `now` (seconds on the session clock): the TUI passes wall time,
 //! the headless runner and the tests pass simulated time.
 
-pub mod action;
 mod camera_feed;
 mod command;
 mod control;
@@ -18,12 +17,12 @@ pub mod view;
 use crate::config::Config;
 use crate::data::{GripperCommand, MarkerSighting};
 use crate::geometry::{Point2, Pose2};
+use crate::keymap::Action;
 use crate::keymap::{Key, KeyCode, Keymap};
 use crate::link::RobotLink;
 use crate::map::grid::OccupancyGrid;
 use crate::pilot::navigation::Target;
 use crate::pilot::{self, Pilot};
-use action::Action;
 use command::{Intent, Typed};
 use log::{Level, LogBook};
 use mode::Mode;

@@ -2,8 +2,8 @@
 
 use super::error::KeymapError;
 use super::key::Key;
-use crate::app::action::Action;
-use crate::app::mode::Mode;
+use crate::keymap::Action;
+use crate::pilot::mode::Mode;
 use std::collections::HashMap;
 use std::path::Path;
 use toml::de::{DeTable, DeValue};

@@ -3,8 +3,8 @@
 use super::error::KeymapError;
 use super::file::{self, Section};
 use super::key::Key;
-use crate::app::action::Action;
-use crate::app::mode::Mode;
+use crate::keymap::Action;
+use crate::pilot::mode::Mode;
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::Path;
 

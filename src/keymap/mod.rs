@@ -8,12 +8,14 @@
 //!
 //! Nothing here knows about terminals: the TUI turns its key events into [`Key`].
 
+pub mod action;
 mod error;
 mod file;
 mod key;
 mod layers;
 mod sequence;
 
+pub use action::Action;
 pub use error::KeymapError;
 pub use key::{Key, KeyCode, KeyParseError};
 pub use layers::Keymap;

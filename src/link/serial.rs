@@ -13,7 +13,8 @@ pub mod wheels;
 pub mod worker;
 
 use super::{Command, GripperState, LinkError, Notice, RobotLink, SensorFrame, WheelTravel};
-use crate::config::Config;
+use crate::data::robot::RobotConfig;
+use config::SerialConfig;
 use std::sync::Arc;
 use std::sync::mpsc::{self, Receiver, Sender};
 use std::thread::JoinHandle;
@@ -70,19 +71,22 @@ pub struct SerialLink {
 }
 
 impl SerialLink {
-    /// Opens `PATH[@BAUD]` with the robot of `config` and waits for the firmware to answer.
-    pub fn open(spec: &str, config: &Config) -> Result<SerialLink, ConnectError> {
-        let (path, baud) = parse_spec(spec, config.serial.baud)?;
-        let robot = &config.robot;
+    /// Opens `PATH[@BAUD]` for `robot` and waits for the firmware to answer.
+    pub fn open(
+        spec: &str,
+        serial: &SerialConfig,
+        robot: &RobotConfig,
+    ) -> Result<SerialLink, ConnectError> {
+        let (path, baud) = parse_spec(spec, serial.baud)?;
         let settings = Settings {
             path: path.clone(),
             baud,
-            serial: config.serial.clone(),
+            serial: serial.clone(),
             geometry: WheelGeometry {
                 wheel_radius: robot.wheel_radius,
                 track: robot.track,
-                counts_per_rev: config.serial.counts_per_rev,
-                pid_rate_hz: config.serial.pid_rate_hz,
+                counts_per_rev: serial.counts_per_rev,
+                pid_rate_hz: serial.pid_rate_hz,
             },
             max_wheel_speed: robot.max_wheel_speed(),
         };
@@ -229,10 +233,14 @@ mod tests {
 
     #[test]
     fn a_missing_device_is_a_clear_error() {
-        let e = SerialLink::open("/nonexistent/ttyACM9", &Config::default())
-            .err()
-            .expect("no such device")
-            .to_string();
+        let e = SerialLink::open(
+            "/nonexistent/ttyACM9",
+            &SerialConfig::default(),
+            &RobotConfig::default(),
+        )
+        .err()
+        .expect("no such device")
+        .to_string();
         assert!(
             e.contains("/nonexistent/ttyACM9") && e.contains("57600"),
             "{e}"

@@ -1,7 +1,9 @@
-//! The console's state and behaviour, free of terminal and clock: actions in, commands out.
+//! The console around the pilot: the link, the keymap, the view, the log, thinking
+//! mode's cursor, the `:` prompt, the map picker and map files. Keys become actions;
+//! what concerns the robot goes to the pilot as an intent, the rest changes the console.
 //!
-//! Time is passed in as `now` (seconds on the session clock): the TUI passes wall time,
-//! the headless runner and the tests pass simulated time.
+//! Free of terminal and clock: time is passed in as `now` (seconds on the session
+//! clock). The TUI passes wall time, the headless runner and the tests simulated time.
 
 mod camera_feed;
 mod command;

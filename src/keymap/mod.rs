@@ -1,4 +1,4 @@
-//! Keymaps as data (ARCHITECTURE.md principle 5).
+//! Keymaps as data: every binding lives in a file, none in code.
 //!
 //! The built-in bindings are `keymaps/default.toml`, compiled in. A user file is TOML with a
 //! `[global]` section and one per mode (`[manual]`, `[exploration]`, `[thinking]`,

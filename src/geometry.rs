@@ -4,7 +4,8 @@
 use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
 
-/// Wraps an angle to (-pi, pi] (seed 001 section 6 wraps the heading error the same way).
+/// Wraps an angle to (-pi, pi] (seed 001 section 6 wraps the heading error to [-pi, pi),
+/// which differs only at +-pi).
 pub fn wrap_angle(a: f64) -> f64 {
     let mut w = a.rem_euclid(2.0 * PI);
     if w > PI {

@@ -1,4 +1,5 @@
-//! Path-following parameters: the `[follow]` section, every default taken from a seed.
+//! Path-following parameters: the `[follow]` section, defaults from the seeds where they
+//! give one.
 
 use serde::{Deserialize, Serialize};
 use std::fmt;
@@ -98,7 +99,8 @@ pub struct PidFollowConfig {
     pub kd: f64,
     /// Bound on the integral of the heading error, rad*s (anti-windup; the seed has none).
     pub integral_limit: f64,
-    /// Stop and turn in place above this heading error, degrees (seed 001 section 6: 60).
+    /// Stop and turn in place above this heading error, degrees (seed 001 section 6: 60;
+    /// the seed applies it to the PID output).
     pub stop_turn_deg: f64,
     /// A waypoint closer than this is done, metres (seed 001 section 6: 5 cm).
     pub waypoint_radius: f64,

@@ -13,7 +13,7 @@ use crate::plan::trajectory::Trajectory;
 /// What the follower is doing after a step.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum FollowStatus {
-    /// Nothing to follow (seed 004 section C: "no_traj").
+    /// Nothing to follow (seed 004 section D: "no_traj").
     NoTrajectory,
     /// On the way: arc length (m) and planned time (s) left, signed cross-track error (m,
     /// positive when the path lies to the robot's left).
@@ -22,7 +22,7 @@ pub enum FollowStatus {
         eta: f64,
         cross_track: f64,
     },
-    /// Within the goal tolerance (seed 004 section C: "finished"); the twist is zero from now on.
+    /// Within the goal tolerance (seed 004 section D: "finished"); the twist is zero from now on.
     Arrived,
 }
 

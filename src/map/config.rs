@@ -11,7 +11,8 @@ pub struct MapConfig {
     /// Extent centred on the origin, metres (seed 001: 4 x 4); a larger twin world wins.
     pub width: f64,
     pub height: f64,
-    /// Boundary, gate and obstacle markers: radius of the 0.7 region (seed 001: 0.30 m).
+    /// Boundary, gate and obstacle markers: radius of the 0.7 region (seed 001: 0.30 m for
+    /// boundary and obstacle markers; including gates is navdeck's choice).
     pub obstacle_inflation: f64,
     /// Blocks: radius of the 0.7 region (seed 001: 0.25 m).
     pub block_inflation: f64,

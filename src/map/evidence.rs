@@ -6,7 +6,7 @@
 /// `RELEASE`: the hysteresis keeps a noisy wall edge from flickering.
 const OCCUPY: f32 = 1.2;
 const RELEASE: f32 = 0.0;
-/// Clamping keeps a cell able to change its mind (Probabilistic Robotics, 9.2).
+/// Clamping keeps a cell able to change its mind (as OctoMap does: Hornung et al. 2013).
 const MIN_LOG_ODDS: f32 = -2.0;
 const MAX_LOG_ODDS: f32 = 3.5;
 

@@ -57,7 +57,8 @@ impl LandmarkLayer {
     }
 }
 
-/// Rings by marker category: walls, gates and obstacles at seed 001's 0.30 m, blocks 0.25 m.
+/// Rings by marker category: walls and obstacles at seed 001's 0.30 m (gates too, navdeck's
+/// choice), blocks at its 0.25 m.
 pub fn rings_for(id: u32, config: &MapConfig) -> Rings {
     let block = matches!(
         MarkerCategory::of(id),

@@ -1,5 +1,5 @@
-//! Choosing what to do next (seed 001 section 7 "thinking"): a deliverable block first,
-//! else the next exploration target, else potential blocks, else finish.
+//! Choosing what to do next (seed 001 "Operating Modes", `t` Thinking): a deliverable
+//! block first, else the next exploration target, else potential blocks, else finish.
 
 use super::config::{FRONTIER_MIN_CELLS, MAX_BLOCK_ATTEMPTS, TARGET_TOO_CLOSE, TargetRule};
 use super::drive::towards;

@@ -3,11 +3,13 @@
 
 use serde::{Deserialize, Serialize};
 
-/// Seed 001 "Robot Lost": rotate to scan after this long without any marker in view, s.
+/// Rotate to scan after this long without any marker in view, s (navdeck's trigger for
+/// seed 001 "Robot Lost", whose only figure is the 30 s hand-over to manual).
 pub const LOST_SCAN_AFTER: f64 = 10.0;
 /// Heading error accepted when turning to face a block or a gate, radians (3 degrees).
 pub const FACE_TOLERANCE: f64 = 3.0 * std::f64::consts::PI / 180.0;
-/// Seed 001 "Block Lost During Approach": markers unseen this long while in view, s.
+/// Seed 001 "Block Lost During Approach": markers unseen this long while in view, s
+/// (navdeck's value; the seed gives no time).
 pub const BLOCK_LOST_AFTER: f64 = 3.0;
 /// How far ahead the camera is expected to see a block's markers, metres.
 pub const CAMERA_RANGE: f64 = 0.6;
@@ -15,7 +17,8 @@ pub const CAMERA_RANGE: f64 = 0.6;
 pub const CAMERA_HALF_FOV: f64 = 0.5;
 /// Smallest frontier cluster worth exploring, cells.
 pub const FRONTIER_MIN_CELLS: usize = 20;
-/// Targets closer to the robot than this are ignored, metres (seed 001 `TOO_CLOSE`).
+/// Targets closer to the robot than this are ignored, metres (seed 001
+/// `get_furthest_marker`, < 0.3 m).
 pub const TARGET_TOO_CLOSE: f64 = 0.3;
 /// Seed 001 section 8: backing off after a drop, m/s.
 pub const BACK_OFF_SPEED: f64 = 0.1;
@@ -31,9 +34,10 @@ pub const DEMOTED_FOR: f64 = 5.0;
 #[serde(rename_all = "snake_case")]
 pub enum TargetRule {
     /// Seed 001 "Marker Selection Heuristic": the furthest valid unvisited marker. The
-    /// default: in the 4 m arena the 360-degree lidar leaves no frontier after the first
-    /// scans, so both rules drive the same missions (`navdeck mission --sweep 1..50` with
-    /// either: 50 of 50 delivered), and this one is the seed's.
+    /// enum's default, as the seed's rule; `MissionConfig::default()` uses `Frontiers`, so
+    /// a config without `target_rule` explores by frontiers. In the 4 m arena the
+    /// 360-degree lidar leaves no frontier after the first scans, so both rules drive the
+    /// same missions (`navdeck mission --sweep 1..50` with either: 50 of 50 delivered).
     #[default]
     Markers,
     /// The nearest frontier between known and unknown space (falls back to markers).

@@ -29,7 +29,7 @@ impl Turn {
         }
     }
 
-    /// A full turn, as the scans of seed 001 section 7 do.
+    /// A full turn: navdeck's scan, in place of seed 001 section 7's 30 s rotation.
     pub fn full(pose: Pose2, t: f64, rate: f64) -> Self {
         Self::new(pose, t, 2.0 * std::f64::consts::PI, rate)
     }

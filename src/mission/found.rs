@@ -52,7 +52,8 @@ impl Mission {
                     .blocks()
                     .any(|b| b.colour == colour && b.confirmed && !b.delivered);
             if ready && self.announced.insert(colour) {
-                // Seed 001 section 7: both a block and its gate known: stop exploring.
+                // Both a block and its gate known: stop exploring (seed 001 "Operating Modes /
+                // Autonomous Operation" and its "Found red gate and blocks" console line).
                 log.push((
                     Level::Info,
                     format!(

@@ -102,9 +102,9 @@ impl Leg {
                     self.best = *remaining;
                     self.best_t = t;
                 }
-                // Seed 001 "Stuck": no progress for the timeout: back up (Nav2's BackUp
-                // recovery; the robot may be pressed against what it cannot see), then
-                // plan again.
+                // No progress for the timeout: replan (seed 001 section 7 "Path
+                // Recalculation", 30 s), but back up first (navdeck's, after Nav2's BackUp
+                // recovery; the robot may be pressed against what it cannot see).
                 if t - self.best_t >= config.stuck_timeout {
                     if cooled(ctx, t, config) {
                         ctx.recoveries += 1;
@@ -128,7 +128,7 @@ impl Leg {
                 self.failures += 1;
                 self.asked = None;
                 self.following = false;
-                // Seed 001 "No Path Found": turn a little and try again, then give up.
+                // Seed 001 "Path Planning Failure": turn a little and try again, then give up.
                 if self.failures > config.no_path_retries {
                     log.push((
                         Level::Error,

@@ -126,7 +126,8 @@ impl Mission {
             self.phase = Phase::Choose;
             return Tick::Again;
         }
-        // Seed 001 "Robot Lost": no marker for 10 s while exploring: rotate to scan.
+        // No marker for 10 s while exploring (navdeck's trigger): rotate to scan, as seed 001
+        // "Robot Lost" says.
         if exploring && t - self.last_marker >= LOST_SCAN_AFTER {
             self.ctx.recoveries += 1;
             log.push((
@@ -137,7 +138,7 @@ impl Mission {
         }
         match &mut self.phase {
             Phase::Start => {
-                // Seed 001 section 7: a full turn in place first.
+                // One full turn in place first (seed 001 section 7 rotates for 30 s instead).
                 log.push((Level::Info, "Initial rotation scan".into()));
                 self.phase = Phase::Scan {
                     turn: Turn::full(inputs.pose, t, self.config.scan_speed),

@@ -1,4 +1,4 @@
-//! Picking a block up (seed 001 section 8 "Pick-up Sequence"): path to a staging point,
+//! Picking a block up (seed 001 section 8 "Pickup Sequence"): path to a staging point,
 //! open, face the block, creep up to it, close, and check the gripper holds it.
 
 use super::config::{BLOCK_LOST_AFTER, CAMERA_HALF_FOV, CAMERA_RANGE, MissionConfig};
@@ -133,8 +133,9 @@ impl Pickup {
         let waited = t - self.since;
         let stop = PickEvent::Go(Motion::Stop, None);
         if matches!(self.stage, Stage::Face | Stage::Approach) {
-            // Seed 001 "Block Lost During Approach": in view but unseen for 3 s. Nearer than
-            // the camera's blind distance the block is under its view, not lost.
+            // Seed 001 "Block Lost During Approach": in view but unseen for 3 s (navdeck's
+            // figure; the seed gives none). Nearer than the camera's blind distance the
+            // block is under its view, not lost.
             let blind = config.blind_distance.unwrap_or(0.0);
             let in_view =
                 (blind..=CAMERA_RANGE).contains(&distance) && error.abs() < CAMERA_HALF_FOV;

@@ -1,5 +1,5 @@
 //! Where to explore next: seed 001's furthest-valid-marker rule, or the nearest frontier
-//! between known free space and unknown space (Yamauchi, "A frontier-based approach to
+//! between known free space and unknown space (Yamauchi, "A frontier-based approach for
 //! autonomous exploration", CIRA 1997).
 
 use crate::geometry::Point2;

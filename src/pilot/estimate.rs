@@ -27,7 +27,8 @@ impl Accuracy {
         self.samples += 1;
         self.sum_position_sq += e[0] * e[0] + e[1] * e[1];
         self.sum_heading_sq += e[2] * e[2];
-        // NEES = e^T P^-1 e (Bar-Shalom, Estimation with Applications to Tracking, 5.4).
+        // NEES = e^T P^-1 e (Bar-Shalom et al., Estimation with Applications to Tracking and
+        // Navigation, 5.4).
         if let Some(inv) = covariance.try_inverse() {
             self.sum_nees += (e.transpose() * inv * e)[0];
         }
@@ -73,7 +74,8 @@ impl Pilot {
         let mut nearest;
         let mut used = sightings;
         if self.mode == Mode::Race {
-            // Seed 001 race mode: reduced SLAM updates, every k-th frame, nearest m.
+            // Seed 001 race mode: "reduced SLAM updates". Every k-th frame and the nearest m
+            // are navdeck's way of reducing them.
             let race = &self.settings.race;
             if !self
                 .estimating

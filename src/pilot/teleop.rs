@@ -36,7 +36,7 @@ impl DriveKey {
             DriveKey::TurnRight => (0, -1),
             DriveKey::ForwardLeft => (1, 1),
             DriveKey::ForwardRight => (1, -1),
-            // Backing while turning left swings the nose left, as teleop_twist_keyboard's `m`.
+            // Backs towards the left rear (nose swings right), as teleop_twist_keyboard's `m`.
             DriveKey::BackwardLeft => (-1, -1),
             DriveKey::BackwardRight => (-1, 1),
         }

@@ -36,8 +36,8 @@ impl BSpline {
         (self.knots[self.degree], self.knots[self.control.len()])
     }
 
-    /// The point at parameter `u` (de Boor's algorithm, The NURBS Book A3.1 in its
-    /// triangular form).
+    /// The point at parameter `u` by de Boor's triangular scheme (de Boor 1972); the result
+    /// equals The NURBS Book A3.1, which goes through the basis functions.
     pub fn eval(&self, u: f64) -> [f64; 2] {
         let p = self.degree;
         let n = self.control.len();

@@ -15,7 +15,7 @@ pub struct PlanConfig {
     pub smooth: bool,
     /// Whether unexplored cells may be planned through.
     pub allow_unknown: bool,
-    /// The cost an unexplored cell counts as, 0..=99 (seed 001's value x 100).
+    /// The cost an unexplored cell counts as, 0..=99 (on seed 001's 0.0-1.0 scale, x 100).
     pub unknown_cost: u8,
     /// Distance between the spline's control points, metres.
     pub control_spacing: f64,

@@ -63,7 +63,8 @@ impl Encoders {
             }
             if self.noise_std > 0.0 {
                 let n: f64 = rng.sample(StandardNormal);
-                // Multiplicative odometry noise, as seed 001's motor_std scales with travel.
+                // Multiplicative odometry noise: navdeck reads seed 001's motor_std as
+                // growing with travel.
                 step.measured[k] = turn * (1.0 + self.noise_std * n);
             }
         }

@@ -33,7 +33,7 @@ fn cell(grid: &OccupancyGrid, p: Point2) -> ([i64; 2], [f64; 2]) {
 
 /// Marks every cell the segment passes through, stepping one axis at a time so the trace
 /// is 4-connected and nothing can leak diagonally (Amanatides & Woo, "A Fast Voxel
-/// Traversal Algorithm", Eurographics 1987).
+/// Traversal Algorithm for Ray Tracing", Eurographics 1987).
 fn trace(grid: &mut OccupancyGrid, s: Segment) {
     let (start, fa) = cell(grid, s.a);
     let (end, fb) = cell(grid, s.b);

@@ -44,7 +44,8 @@ fn orient(a: Point2, b: Point2, c: Point2) -> f64 {
 pub fn segments_cross(p0: Point2, p1: Point2, q0: Point2, q1: Point2) -> bool {
     let (d1, d2) = (orient(q0, q1, p0), orient(q0, q1, p1));
     let (d3, d4) = (orient(p0, p1, q0), orient(p0, p1, q1));
-    // Straddle test (de Berg et al. section 2.1); collinear overlaps fall to the distance check.
+    // Straddle test (Cormen et al., Introduction to Algorithms, 33.1); collinear overlaps
+    // fall to the distance check.
     ((d1 > 0.0 && d2 < 0.0) || (d1 < 0.0 && d2 > 0.0))
         && ((d3 > 0.0 && d4 < 0.0) || (d3 < 0.0 && d4 > 0.0))
 }

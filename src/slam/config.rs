@@ -6,7 +6,8 @@ use serde::{Deserialize, Serialize};
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct SlamConfig {
-    /// Wheel rotation noise, degrees per revolution of the wheel (seed 001 `motor_std`: 4).
+    /// Wheel rotation noise, degrees per revolution of the wheel (seed 001 `motor_std`: 4,
+    /// "degrees"; per revolution is navdeck's reading).
     pub motor_std_deg: f64,
     /// Range noise, metres (seed 001 `dist_std`: 0.1).
     pub dist_std: f64,

@@ -24,7 +24,7 @@ pub fn state_jacobian(pose: Pose2, wheels: WheelTravel, track: f64) -> Matrix3<f
 }
 
 /// V = d(pose') / d(l, r), which maps the wheels' noise Q into the pose
-/// (Thrun, Burgard, Fox, Probabilistic Robotics, 5.3, for wheel-travel controls).
+/// (Thrun, Burgard, Fox, Probabilistic Robotics, 7.4 (Table 7.2), with wheel-travel controls).
 pub fn control_jacobian(pose: Pose2, wheels: WheelTravel, track: f64) -> Matrix3x2<f64> {
     let (l, r, th, w) = (wheels.left, wheels.right, pose.theta, track);
     if (r - l).abs() > STRAIGHT_THRESHOLD {

@@ -47,7 +47,7 @@ impl Theme {
     pub fn inflated(self) -> Style {
         self.fg(Color::DarkGray).add_modifier(Modifier::BOLD)
     }
-    /// The planned path (seed 001's viewer draws it green).
+    /// The planned path (green, as in seed 001's saved map image, "Saving Maps").
     pub fn path(self) -> Style {
         self.fg(Color::LightGreen)
     }
@@ -96,7 +96,8 @@ impl Theme {
         }
     }
 
-    /// Seed 001's viewer colours: boundary green, obstacle orange, gates and blocks by colour.
+    /// Seed 001's saved-map colours ("Saving Maps"): boundary green, obstacle orange, gates
+    /// and blocks by colour.
     pub fn marker(self, category: MarkerCategory) -> Style {
         match category {
             MarkerCategory::Boundary => self.fg(Color::Green),

@@ -7,7 +7,8 @@ use std::f64::consts::FRAC_PI_2;
 /// Cruise speed of the hand-built trajectories, m/s.
 pub const CRUISE: f64 = 0.2;
 
-/// The simulated base's acceleration limits, m/s^2 and rad/s^2 (the seed robot's).
+/// The simulated base's acceleration limits, m/s^2 and rad/s^2 (1.0: seed 004 section B's
+/// "actual" robot; 8: navdeck's).
 const LINEAR_ACCEL: f64 = 1.0;
 const ANGULAR_ACCEL: f64 = 8.0;
 
@@ -95,7 +96,7 @@ pub fn s_curve() -> Trajectory {
 }
 
 /// An ideal unicycle whose wheel speeds lag the command: accelerations of at most
-/// 1.0 m/s^2 and 8 rad/s^2 (the seed robot's limits), integrated in 10 ms steps.
+/// 1.0 m/s^2 (seed 004 section B) and 8 rad/s^2 (navdeck's), integrated in 10 ms steps.
 pub struct Unicycle {
     pub pose: Pose2,
     pub velocity: Twist,

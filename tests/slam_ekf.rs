@@ -84,3 +84,45 @@ fn scripted_five_minute_loop_meets_seed_accuracy_with_consistent_covariance() {
         assert!(r.landmarks >= 20);
     }
 }
+
+/// A plan-and-follow from a standing start: the pose covariance starts at zero and the
+/// wheels' noise spans only two directions, which once made NEES meaningless (about
+/// -2e15). It must be finite and in the band, and the filter must keep gating sanely.
+#[test]
+fn a_standing_start_then_goto_keeps_nees_finite_and_in_band() {
+    use navdeck::keymap::parse_key_sequence;
+    use navdeck::pilot::estimate::NEES_BAND_3DOF;
+    use navdeck::session::{LinkChoice, Session, SessionSpec};
+    let keys = parse_key_sequence(":goto 1.2 1.2<enter>p").unwrap();
+    for seed in [1, 2, 3, 7] {
+        let spec = SessionSpec {
+            world: None,
+            seed,
+            config: None,
+            keymap: None,
+            link: LinkChoice::Sim,
+        };
+        let mut app = Session::load(&spec).unwrap().into_app(0.0);
+        let r = navdeck::headless::run(&mut app, &keys, 10.0);
+        let nees = r.mean_nees.unwrap();
+        assert!(
+            nees.is_finite() && nees > NEES_BAND_3DOF.0 && nees < NEES_BAND_3DOF.1,
+            "seed {seed}: mean NEES {nees}"
+        );
+        assert!(
+            r.rejected_sightings < 10,
+            "seed {seed}: {}",
+            r.rejected_sightings
+        );
+        let smallest = app
+            .pilot()
+            .slam()
+            .covariance()
+            .symmetric_eigenvalues()
+            .min();
+        assert!(
+            smallest > 0.0,
+            "seed {seed}: smallest eigenvalue {smallest:e}"
+        );
+    }
+}

@@ -14,6 +14,8 @@ pub struct Accuracy {
     sum_position_sq: f64,
     sum_heading_sq: f64,
     sum_nees: f64,
+    /// Samples whose covariance was not positive definite: NEES is undefined there.
+    pub nees_undefined: u64,
 }
 
 impl Accuracy {
@@ -29,8 +31,9 @@ impl Accuracy {
         self.sum_heading_sq += e[2] * e[2];
         // NEES = e^T P^-1 e (Bar-Shalom et al., Estimation with Applications to Tracking and
         // Navigation, 5.4).
-        if let Some(inv) = covariance.try_inverse() {
-            self.sum_nees += (e.transpose() * inv * e)[0];
+        match covariance.cholesky() {
+            Some(chol) => self.sum_nees += e.dot(&chol.solve(&e)),
+            None => self.nees_undefined += 1,
         }
     }
 
@@ -42,8 +45,10 @@ impl Accuracy {
         (self.sum_heading_sq / self.samples.max(1) as f64).sqrt()
     }
 
+    /// Mean NEES over the samples where it is defined.
     pub fn mean_nees(&self) -> f64 {
-        self.sum_nees / self.samples.max(1) as f64
+        let defined = self.samples - self.nees_undefined;
+        self.sum_nees / defined.max(1) as f64
     }
 }
 

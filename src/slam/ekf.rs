@@ -9,8 +9,14 @@ use super::motion::{control_jacobian, state_jacobian};
 use super::odometry::predict_pose;
 use crate::data::{MarkerSighting, WheelTravel};
 use crate::geometry::{Point2, Pose2, wrap_angle};
-use nalgebra::{DMatrix, DVector, Matrix2, Matrix2x3, Matrix3, Vector2};
+use nalgebra::{DMatrix, DVector, Matrix2, Matrix2x3, Matrix3, Vector2, Vector3};
 use std::collections::HashMap;
+
+/// The least pose uncertainty the filter keeps, standard deviations: position (m) and
+/// heading (rad). Its job is numerical: variances of 1e-8 sit eight orders above the
+/// rounding of unit-sized entries and far below what any encoder or camera resolves, so
+/// the floor keeps the pose block definite without shaping the estimate. navdeck's choice.
+const POSE_STD_FLOOR: (f64, f64) = (1e-4, 1e-4);
 
 /// What became of one sighting.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -161,6 +167,34 @@ impl EkfSlam {
             let lr = self.sigma.view((3, 0), (n - 3, 3)) * g.transpose();
             self.sigma.view_mut((3, 0), (n - 3, 3)).copy_from(&lr);
         }
+        self.hold_pose_floor();
+    }
+
+    /// Keeps the pose block's uncertainty at or above what wheel encoders resolve: two
+    /// wheels' noise spans only two of the pose's three directions, and rounding in many
+    /// corrections can push a collapsed block below zero. Adding `(1 - l) D^2` (l the
+    /// smallest eigenvalue of `D^-1 P D^-1`) adds a positive semidefinite term, so the
+    /// whole covariance stays positive semidefinite and the pose block definite.
+    fn hold_pose_floor(&mut self) {
+        let d = Vector3::new(POSE_STD_FLOOR.0, POSE_STD_FLOOR.0, POSE_STD_FLOOR.1);
+        let p = self.pose_covariance();
+        let scaled = Matrix3::from_fn(|i, j| p[(i, j)] / (d[i] * d[j]));
+        // Cheap first: the smallest eigenvalue is at least 1 when scaled - I is definite.
+        if (scaled - Matrix3::identity()).cholesky().is_some() {
+            return;
+        }
+        let smallest = scaled.symmetric_eigenvalues().min();
+        // A non-finite eigenvalue (a broken block) is lifted by one floor.
+        let lift = if smallest.is_finite() {
+            1.0 - smallest
+        } else {
+            1.0
+        };
+        if lift > 0.0 {
+            for i in 0..3 {
+                self.sigma[(i, i)] += lift * d[i] * d[i];
+            }
+        }
     }
 
     /// Correction by one sighting, associated by marker ID (seed 001's data association).
@@ -228,13 +262,11 @@ impl EkfSlam {
         let k = &pht * s_inv;
         self.mu += &k * nu;
         self.mu[2] = wrap_angle(self.mu[2]);
-        // Joseph form with the optimal gain reduces to Sigma - K S K^T; with S = L L^T
-        // that is Sigma - W W^T, W = K L: symmetric by construction, O(n^2).
-        let Some(chol) = s_mat.cholesky() else {
-            return Outcome::Invalid;
-        };
-        let w = k * chol.l();
-        rank2_downdate(&mut self.sigma, &w);
+        // Joseph form (Bar-Shalom et al. 5.2.3): (I - K H) P (I - K H)^T + K R K^T,
+        // expanded with U = P H^T to P - K U^T - U K^T + K S K^T: symmetric by
+        // construction, first-order insensitive to rounding in K, O(n^2) on the triangle.
+        joseph_update(&mut self.sigma, &k, &pht, &s_mat);
+        self.hold_pose_floor();
         self.sightings[slot] += 1;
         Outcome::Corrected(d2)
     }
@@ -313,18 +345,29 @@ impl EkfSlam {
     }
 }
 
-/// Sigma -= W W^T for an N x 2 matrix W, on the lower triangle, one pass over the columns.
-fn rank2_downdate(
-    sigma: &mut DMatrix<f64>,
-    w: &nalgebra::OMatrix<f64, nalgebra::Dyn, nalgebra::U2>,
-) {
+/// A Kalman gain for one two-dimensional sighting: N x 2.
+type Gain = nalgebra::OMatrix<f64, nalgebra::Dyn, nalgebra::U2>;
+
+/// Sigma <- Sigma - K U^T - U K^T + K S K^T for N x 2 matrices K and U, on the lower
+/// triangle, one pass over the columns. With A = K S - U the same matrix is
+/// Sigma - K U^T + A K^T (since K S K^T = U K^T + A K^T), which reads four columns per
+/// element instead of six.
+fn joseph_update(sigma: &mut DMatrix<f64>, k: &Gain, u: &DMatrix<f64>, s: &Matrix2<f64>) {
     let n = sigma.nrows();
-    let (w0, w1) = (w.column(0), w.column(1));
-    let (w0, w1) = (w0.as_slice(), w1.as_slice());
+    let a = k * s - u;
+    let (k0, k1) = (k.column(0), k.column(1));
+    let (a0, a1) = (a.column(0), a.column(1));
+    let (u0, u1) = (u.column(0), u.column(1));
+    let (k0, k1, a0, a1) = (k0.as_slice(), k1.as_slice(), a0.as_slice(), a1.as_slice());
+    let (u0, u1) = (u0.as_slice(), u1.as_slice());
     for (c, column) in sigma.as_mut_slice().chunks_exact_mut(n).enumerate() {
-        let (a, b) = (w0[c], w1[c]);
-        for ((v, x0), x1) in column[c..].iter_mut().zip(&w0[c..]).zip(&w1[c..]) {
-            *v -= x0 * a + x1 * b;
+        let (kc0, kc1, uc0, uc1) = (k0[c], k1[c], u0[c], u1[c]);
+        let rows = k0[c..]
+            .iter()
+            .zip(&k1[c..])
+            .zip(a0[c..].iter().zip(&a1[c..]));
+        for (v, ((ki0, ki1), (ai0, ai1))) in column[c..].iter_mut().zip(rows) {
+            *v += ai0 * kc0 + ai1 * kc1 - (ki0 * uc0 + ki1 * uc1);
         }
     }
 }
@@ -348,21 +391,59 @@ mod tests {
 
     #[test]
     fn straight_prediction_moves_along_heading_and_grows_along_track_variance() {
-        let mut f = filter(0.0);
+        // A start uncertainty above the pose floor, so the floor does not act.
+        let p0 = 1e-4;
+        let mut f = filter(p0);
         f.predict(WheelTravel {
             left: 0.1,
             right: 0.1,
         });
         let p = f.pose();
         assert!((p.x - 0.1).abs() < 1e-15 && p.y == 0.0 && p.theta == 0.0);
-        // Hand-worked: V = [[.5, .5], [-l/2w, l/2w], [-1/w, 1/w]] with l = 0.1, w = 0.11,
+        // Hand-worked: G = [[1, 0, 0], [0, 1, l], [0, 0, 1]] and
+        // V = [[.5, .5], [-l/2w, l/2w], [-1/w, 1/w]] with l = 0.1, w = 0.11,
         // Q = diag(s^2, s^2), s = 0.1 * (4 deg in rad) / 2 pi.
         let s = 0.1 * 4f64.to_radians() / std::f64::consts::TAU;
         let c = f.pose_covariance();
-        assert!((c[(0, 0)] - 0.5 * s * s).abs() < 1e-18);
+        assert!((c[(0, 0)] - (p0 + 0.5 * s * s)).abs() < 1e-18);
         let k = 0.1 / (2.0 * 0.11);
-        assert!((c[(1, 1)] - 2.0 * k * k * s * s).abs() < 1e-18);
-        assert!((c[(2, 2)] - 2.0 * s * s / (0.11 * 0.11)).abs() < 1e-15);
+        assert!((c[(1, 1)] - (p0 + 0.01 * p0 + 2.0 * k * k * s * s)).abs() < 1e-18);
+        assert!((c[(2, 2)] - (p0 + 2.0 * s * s / (0.11 * 0.11))).abs() < 1e-15);
+    }
+
+    #[test]
+    fn a_known_start_and_rank_two_wheel_noise_still_give_a_definite_pose_block() {
+        // Two wheels' noise spans two of three directions: without the floor this block
+        // would be singular, and its inverse (for NEES) meaningless.
+        let mut f = filter(0.0);
+        f.predict(WheelTravel {
+            left: 0.1,
+            right: 0.1,
+        });
+        let (sp, sh) = POSE_STD_FLOOR;
+        let d = Matrix3::from_diagonal(&Vector3::new(1.0 / sp, 1.0 / sp, 1.0 / sh));
+        let scaled = d * f.pose_covariance() * d;
+        assert!(scaled.symmetric_eigenvalues().min() >= 1.0 - 1e-9);
+        assert!(f.pose_covariance().cholesky().is_some());
+    }
+
+    #[test]
+    fn standing_still_under_thousands_of_sightings_keeps_the_covariance_definite() {
+        let mut f = filter(0.0);
+        let marks = [(1, 1.0, 0.3), (2, 1.5, -0.8), (3, 2.0, 2.0), (4, 0.7, -2.5)];
+        for round in 0..3000 {
+            for &(id, range, bearing) in &marks {
+                // Deterministic jitter within the sensor's noise.
+                let j = ((round * 7 + id as usize * 13) % 11) as f64 / 10.0 - 0.5;
+                f.correct(sighting(id, range + 0.02 * j, bearing + 0.01 * j));
+            }
+            f.predict(WheelTravel::default());
+        }
+        let full = f.covariance();
+        let smallest = full.clone().symmetric_eigenvalues().min();
+        assert!(smallest > 0.0, "smallest eigenvalue {smallest:e}");
+        assert!(full.cholesky().is_some());
+        assert_eq!(f.rejected(), 0, "a calm filter gates out nothing");
     }
 
     #[test]

@@ -14,12 +14,16 @@ use navdeck::mission_runner;
 use navdeck::plan_report::{self, Terrain};
 use navdeck::session::{LinkChoice, Session, SessionSpec};
 use navdeck::sim::World;
+use navdeck::sim::generate::{self, GenerateOptions};
 use navdeck::tui::events::WallClock;
 use navdeck::tui::signals::Signals;
 use std::io::Write;
 use std::path::PathBuf;
 use std::process::ExitCode;
 use std::time::Instant;
+use world_command::{ShapeArgs, WorldCommand, generate_error};
+
+mod world_command;
 
 /// Writes to standard output. A reader that has gone (`navdeck map show ... | head`, a
 /// dropped SSH session) is no reason to panic: what it no longer reads is lost, nothing else.
@@ -128,6 +132,9 @@ enum Subcommand {
     /// Look at a saved map (Nav2 map_server YAML + PGM).
     #[command(subcommand)]
     Map(MapCommand),
+    /// Make twin worlds.
+    #[command(subcommand)]
+    World(WorldCommand),
 }
 
 #[derive(Debug, clap::Subcommand)]
@@ -159,6 +166,11 @@ struct MissionArgs {
     /// World file for the twin; default: the built-in arena.
     #[arg(long, value_name = "FILE")]
     world: Option<PathBuf>,
+    /// Each run on a world generated from its seed (as `navdeck world generate`).
+    #[arg(long, conflicts_with = "world")]
+    generated: bool,
+    #[command(flatten)]
+    shape: ShapeArgs,
     /// Parameters (TOML), e.g. [mission] target_rule.
     #[arg(long, value_name = "FILE")]
     config: Option<PathBuf>,
@@ -225,6 +237,7 @@ fn real_main(cli: Cli) -> Result<ExitCode> {
         Some(Subcommand::Plan(args)) => return run_plan(args),
         Some(Subcommand::Mission(args)) => return run_mission(args),
         Some(Subcommand::Map(command)) => return run_map(command),
+        Some(Subcommand::World(command)) => return world_command::run(command),
         None => {}
     }
     let spec = SessionSpec {
@@ -354,6 +367,10 @@ fn run_mission(args: &MissionArgs) -> Result<ExitCode> {
             args.time_limit
         );
     }
+    if let (false, Some(flag)) = (args.generated, args.shape.given()) {
+        bail!("{flag} needs --generated");
+    }
+    let generated = args.generated.then(|| args.shape.options(args.seed));
     let spec = |seed| SessionSpec {
         world: args.world.clone(),
         seed,
@@ -362,7 +379,18 @@ fn run_mission(args: &MissionArgs) -> Result<ExitCode> {
         link: LinkChoice::Sim,
     };
     let load = |seed: u64| -> Result<Session> {
-        let mut session = Session::load(&spec(seed))?;
+        let mut session = match &generated {
+            // Seed N: the world generated from N, and the twin's noise seeded with N.
+            Some(options) => {
+                let options = GenerateOptions {
+                    seed,
+                    ..options.clone()
+                };
+                let world = generate::generate(&options).map_err(generate_error)?;
+                Session::load_with_world(&spec(seed), world)?
+            }
+            None => Session::load(&spec(seed))?,
+        };
         if args.sim_camera {
             session.use_sim_camera(None)?;
         }

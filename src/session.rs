@@ -88,6 +88,20 @@ pub struct Session {
 
 impl Session {
     pub fn load(spec: &SessionSpec) -> Result<Session> {
+        Self::load_inner(spec, None)
+    }
+
+    /// As `load`, with the twin in `world` (one made in memory, e.g. generated) instead
+    /// of `spec.world`; refused for a link that is not the twin. The mission is not told
+    /// how many blocks the world holds: it delivers what it finds.
+    pub fn load_with_world(spec: &SessionSpec, world: World) -> Result<Session> {
+        if spec.link != LinkChoice::Sim {
+            bail!("world {} needs the twin (--link sim)", world.name);
+        }
+        Self::load_inner(spec, Some(world))
+    }
+
+    fn load_inner(spec: &SessionSpec, given: Option<World>) -> Result<Session> {
         let mut config = match &spec.config {
             Some(path) => Config::load(path)?,
             None => Config::default(),
@@ -99,10 +113,11 @@ impl Session {
         let mut ros2_domain = None;
         let robot = match &spec.link {
             LinkChoice::Sim => {
-                let world = match &spec.world {
-                    Some(path) => World::load(path)
+                let world = match (given, &spec.world) {
+                    (Some(world), _) => world,
+                    (None, Some(path)) => World::load(path)
                         .with_context(|| format!("cannot use world {}", path.display()))?,
-                    None => World::default_arena(),
+                    (None, None) => World::default_arena(),
                 };
                 let twin = Twin::new(world, &config.robot, &config.sim, spec.seed);
                 Robot::Twin(Box::new(twin))
@@ -280,6 +295,35 @@ mod tests {
             link: LinkChoice::Sim,
         })
         .unwrap()
+    }
+
+    #[test]
+    fn a_world_in_memory_drives_the_twin_and_keeps_the_configs_block_count() {
+        let mut world = World::default_arena();
+        world.name = "two blocks".into();
+        world.blocks.truncate(2);
+        let spec = SessionSpec {
+            world: None,
+            seed: 1,
+            config: None,
+            keymap: None,
+            link: LinkChoice::Sim,
+        };
+        let session = Session::load_with_world(&spec, world.clone()).unwrap();
+        // The mission is not told the truth: it delivers what it finds.
+        let configured = Config::default().mission.total_blocks;
+        assert_eq!(session.config.mission.total_blocks, configured);
+        let (_, link) = session.into_link();
+        assert_eq!(link.ground_truth().unwrap().world().name, "two blocks");
+        let ros2 = SessionSpec {
+            link: LinkChoice::Ros2(Ros2Target::default()),
+            ..spec
+        };
+        let err = Session::load_with_world(&ros2, world)
+            .err()
+            .unwrap()
+            .to_string();
+        assert!(err.contains("needs the twin"), "{err}");
     }
 
     #[test]

@@ -1,7 +1,9 @@
 //! The digital twin: a simulated differential-drive robot in a simulated arena.
 //!
 //! * `World` — walls, obstacles, markers, gates and blocks from a TOML world file
-//!   (`maps/arena.toml` documents the format), checked on load and rasterisable.
+//!   (`maps/arena.toml` documents the format), checked on load, rasterisable, and written
+//!   back with `World::to_toml`.
+//! * `generate` — worlds made from a seed (rooms, boxes or corridors), checked for reach.
 //! * `Twin` — the robot: speed/acceleration-limited diff drive, encoders with noise and
 //!   slip, a marker camera, a lidar, a gripper that carries blocks, and collisions.
 //!
@@ -19,6 +21,7 @@ pub mod config;
 mod drive;
 mod encoders;
 mod error;
+pub mod generate;
 mod gripper;
 mod lidar;
 mod raster;
@@ -29,6 +32,7 @@ mod truth;
 mod twin;
 mod world;
 mod world_file;
+mod world_toml;
 
 pub use blocks::BlockState;
 pub use camera::clear_line as line_of_sight;

@@ -1,7 +1,7 @@
 //! The twin's world: static walls and obstacles, markers, gates and movable blocks,
 //! as loaded from a world file (see `maps/arena.toml` for the format).
 
-use super::{WorldError, build, raster, world_file};
+use super::{WorldError, build, raster, world_file, world_toml};
 use crate::geometry::{Point2, Pose2, Segment};
 use crate::map::grid::OccupancyGrid;
 use serde::{Deserialize, Serialize};
@@ -93,6 +93,11 @@ impl World {
             error: source,
         })?;
         Self::from_toml(&text, path)
+    }
+
+    /// The world as world-file text, which `from_toml` reads back as the same world.
+    pub fn to_toml(&self) -> String {
+        world_toml::to_toml(self)
     }
 
     /// Seed 001's 4 m x 4 m arena (`maps/arena.toml`, embedded at build time).

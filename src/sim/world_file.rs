@@ -1,8 +1,9 @@
-//! The world file as written on disk (TOML). Parsing only; `build.rs` checks and assembles.
+//! The world file as written on disk (TOML). Parsing here, `build.rs` checks and assembles;
+//! `world_toml.rs` writes a `World` back in this form.
 //! Lengths in metres, angles in degrees, `x` east and `y` north with (0, 0) the world centre.
 
 use super::{BlockColor, WorldError};
-use serde::Deserialize;
+use serde::{Deserialize, Serialize};
 use std::path::Path;
 use toml::Spanned;
 
@@ -11,7 +12,7 @@ pub const DEFAULT_BLOCK_SIZE: f64 = 0.05;
 /// Distance between a gate's two markers when the file does not give one, metres.
 pub const DEFAULT_GATE_WIDTH: f64 = 0.3;
 
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct WorldFile {
     pub name: Spanned<String>,
@@ -19,30 +20,31 @@ pub struct WorldFile {
     pub size: Spanned<[f64; 2]>,
     /// `[x, y, theta_deg]`.
     pub start: Spanned<[f64; 3]>,
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub walls: Vec<Spanned<WallSpec>>,
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub obstacles: Vec<Spanned<ObstacleSpec>>,
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub markers: Vec<Spanned<MarkerSpec>>,
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub gates: Vec<Spanned<GateSpec>>,
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub blocks: Vec<Spanned<BlockSpec>>,
 }
 
 /// A polyline wall; `closed` joins the last point back to the first.
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct WallSpec {
     pub points: Vec<[f64; 2]>,
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "is_false")]
     pub closed: bool,
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub markers: Option<WallMarkers>,
 }
 
 /// Markers generated along every segment of a wall.
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct WallMarkers {
     pub first_id: u32,
@@ -52,7 +54,7 @@ pub struct WallMarkers {
 }
 
 /// Which face of a wall carries generated markers, seen walking from one point to the next.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Side {
     #[default]
@@ -61,7 +63,7 @@ pub enum Side {
     Both,
 }
 
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct ObstacleSpec {
     pub center: [f64; 2],
@@ -70,11 +72,11 @@ pub struct ObstacleSpec {
     #[serde(default)]
     pub yaw_deg: f64,
     /// Up to four ids for the faces +x, +y, -x, -y; 0 leaves a face bare.
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub markers: Vec<u32>,
 }
 
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct MarkerSpec {
     pub id: u32,
@@ -83,7 +85,7 @@ pub struct MarkerSpec {
     pub facing_deg: f64,
 }
 
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct GateSpec {
     pub color: BlockColor,
@@ -94,7 +96,7 @@ pub struct GateSpec {
     pub width: f64,
 }
 
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct BlockSpec {
     pub color: BlockColor,
@@ -105,6 +107,10 @@ pub struct BlockSpec {
     pub markers: [u32; 2],
     #[serde(default = "default_block_size")]
     pub size: f64,
+}
+
+fn is_false(b: &bool) -> bool {
+    !*b
 }
 
 fn default_gate_width() -> f64 {

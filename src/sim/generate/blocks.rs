@@ -1,0 +1,76 @@
+//! Blocks in open floor, colours alternating red and blue, and the robot's start.
+
+use super::draft::Draft;
+use super::draw::{heading, pick};
+use super::rules::{GATE_KEEP_OUT, MIN_BLOCK_SPACING, START_CLEARANCE, TRIES, WALL_CLEARANCE};
+use crate::geometry::{Point2, Pose2};
+use crate::sim::{Block, BlockColor, DEFAULT_BLOCK_SIZE};
+use rand_chacha::ChaCha8Rng;
+
+/// First red and blue block ids (seed 001 section 1: red 421-450, blue 521-550), odd, each
+/// block taking the odd id and the next.
+const FIRST_RED: u32 = 421;
+const FIRST_BLUE: u32 = 521;
+
+/// Places `count` blocks: red, blue, red, ...
+pub fn place(d: &mut Draft, rng: &mut ChaCha8Rng, count: usize) -> Result<(), String> {
+    for i in 0..count {
+        let (color, first) = if i % 2 == 0 {
+            (BlockColor::Red, FIRST_RED)
+        } else {
+            (BlockColor::Blue, FIRST_BLUE)
+        };
+        let odd = first + 2 * (i / 2) as u32;
+        let spot = (0..TRIES).find_map(|_| {
+            let p = open_point(d, rng, WALL_CLEARANCE)?;
+            let spaced = d
+                .world
+                .blocks
+                .iter()
+                .all(|b| b.pose.position().distance(p) >= MIN_BLOCK_SPACING);
+            spaced.then_some(p)
+        });
+        let Some(p) = spot else {
+            return Err(format!(
+                "no place for block {} of {count} {WALL_CLEARANCE} m from every wall and box and {MIN_BLOCK_SPACING} m from the other blocks",
+                i + 1
+            ));
+        };
+        d.world.blocks.push(Block {
+            color,
+            pose: Pose2::new(p.x, p.y, heading(rng)),
+            size: DEFAULT_BLOCK_SIZE,
+            markers: [odd, odd + 1],
+        });
+    }
+    Ok(())
+}
+
+/// A start pose in open floor, clear of the blocks.
+pub fn start(d: &mut Draft, rng: &mut ChaCha8Rng) -> Result<(), String> {
+    let spot = (0..TRIES).find_map(|_| {
+        let p = open_point(d, rng, START_CLEARANCE)?;
+        let clear = d
+            .world
+            .blocks
+            .iter()
+            .all(|b| b.pose.position().distance(p) >= WALL_CLEARANCE);
+        clear.then_some(p)
+    });
+    let Some(p) = spot else {
+        return Err(format!(
+            "no start {START_CLEARANCE} m from every wall and box and {WALL_CLEARANCE} m from the blocks"
+        ));
+    };
+    d.world.start = Pose2::new(p.x, p.y, heading(rng));
+    Ok(())
+}
+
+/// A point on a centimetre grid `clearance` from every wall and box, out of the gate lanes.
+fn open_point(d: &Draft, rng: &mut ChaCha8Rng, clearance: f64) -> Option<Point2> {
+    let (hw, hh) = (d.world.width / 2.0, d.world.height / 2.0);
+    let x = pick(rng, -hw + clearance, hw - clearance, 0.01)?;
+    let y = pick(rng, -hh + clearance, hh - clearance, 0.01)?;
+    let p = Point2::new(x, y);
+    (d.clearance(p) >= clearance && d.lane_distance(p) >= GATE_KEEP_OUT).then_some(p)
+}

@@ -1,0 +1,157 @@
+//! Worlds generated from a seed, for measuring the mission on arenas it has never seen
+//! (issue "Autonomy in any world").
+//!
+//! A candidate is drawn from a `ChaCha8Rng` seeded with the seed: the boundary with its
+//! markers, the style's interior walls (`rooms.rs`, `corridors.rs`), both gates on the
+//! boundary (`gates.rs`), the boxes (`boxes.rs`), the blocks and the start (`blocks.rs`).
+//! It is written as a world file and read back with the loader, so the file is known to
+//! load, and the world read back must pass the reachability check (`reach.rs`). A candidate
+//! that fails is followed by the next drawn from the same generator, up to `ATTEMPTS`:
+//! the same options always give the same world.
+
+mod blocks;
+mod boxes;
+mod corridors;
+mod draft;
+mod draw;
+mod gates;
+mod options;
+mod reach;
+mod rooms;
+mod rules;
+
+pub use options::{GenerateError, GenerateOptions, Style};
+pub use reach::check as check_reachable;
+
+use crate::geometry::wrap_angle;
+use crate::sim::{BlockColor, World};
+use draft::Draft;
+use rand::SeedableRng;
+use rand_chacha::ChaCha8Rng;
+use rules::ATTEMPTS;
+use std::path::Path;
+
+/// A world for `options`: the same options always give the same world.
+pub fn generate(options: &GenerateOptions) -> Result<World, GenerateError> {
+    options.validate()?;
+    let mut rng = ChaCha8Rng::seed_from_u64(options.seed);
+    let mut reason = String::new();
+    for _ in 0..ATTEMPTS {
+        let drafted = match candidate(options, &mut rng) {
+            Ok(world) => world,
+            Err(why) => {
+                reason = why;
+                continue;
+            }
+        };
+        let world = read_back(options, &drafted)?;
+        match check_reachable(&world) {
+            Ok(()) => return Ok(world),
+            Err(why) => reason = why,
+        }
+    }
+    Err(GenerateError::Exhausted {
+        seed: options.seed,
+        style: options.style,
+        attempts: ATTEMPTS,
+        reason,
+    })
+}
+
+/// One candidate world, or why it could not be finished.
+fn candidate(options: &GenerateOptions, rng: &mut ChaCha8Rng) -> Result<World, String> {
+    let (w, h) = options.size();
+    let mut d = Draft::new(options.name(), w, h);
+    match options.style {
+        Style::Boxes => {}
+        Style::Rooms => rooms::build(&mut d, rng)?,
+        Style::Corridors => corridors::build(&mut d, rng)?,
+    }
+    gates::place(&mut d, rng, options.blocks)?;
+    boxes::place(&mut d, rng, options.obstacles)?;
+    blocks::place(&mut d, rng, options.blocks)?;
+    blocks::start(&mut d, rng)?;
+    Ok(d.world)
+}
+
+/// The candidate written as a world file and read back by the loader, which checks every
+/// rule a hand-written file must keep; it must come back as the same world.
+fn read_back(options: &GenerateOptions, drafted: &World) -> Result<World, GenerateError> {
+    let unloadable = |reason: String| GenerateError::Unloadable {
+        seed: options.seed,
+        style: options.style,
+        reason,
+    };
+    let text = drafted.to_toml();
+    let world = World::from_toml(&text, Path::new(&options.name()))
+        .map_err(|e| unloadable(e.to_string()))?;
+    same(drafted, &world).map_err(unloadable)?;
+    Ok(world)
+}
+
+/// Differences beyond the file's rounding between the drafted and the loaded world.
+fn same(a: &World, b: &World) -> Result<(), String> {
+    const CLOSE: f64 = 1e-6;
+    let counts = |w: &World| {
+        (
+            w.walls.len(),
+            w.markers.len(),
+            w.obstacles.len(),
+            w.gates.len(),
+            w.blocks.len(),
+        )
+    };
+    if counts(a) != counts(b) {
+        return Err(format!(
+            "(walls, markers, obstacles, gates, blocks) {:?} became {:?}",
+            counts(a),
+            counts(b)
+        ));
+    }
+    let segment_moved = a.walls.iter().any(|s| {
+        !b.walls
+            .iter()
+            .any(|t| s.a.distance(t.a) < CLOSE && s.b.distance(t.b) < CLOSE)
+    });
+    let marker_moved = a.markers.iter().any(|m| {
+        b.marker(m.id).is_none_or(|n| {
+            m.position.distance(n.position) > CLOSE || wrap_angle(m.normal - n.normal).abs() > CLOSE
+        })
+    });
+    let block_moved = a.blocks.iter().zip(&b.blocks).any(|(p, q)| {
+        p.markers != q.markers || p.pose.position().distance(q.pose.position()) > CLOSE
+    });
+    let start_moved = a.start.position().distance(b.start.position()) > CLOSE
+        || wrap_angle(a.start.theta - b.start.theta).abs() > CLOSE;
+    match () {
+        _ if segment_moved => Err("a wall moved".into()),
+        _ if marker_moved => Err("a marker moved".into()),
+        _ if block_moved => Err("a block moved".into()),
+        _ if start_moved => Err("the start moved".into()),
+        _ if a.gates != b.gates => Err("the gates changed".into()),
+        _ => Ok(()),
+    }
+}
+
+/// One line on a world's contents: size, boxes, interior walls, blocks, gates.
+pub fn describe(world: &World) -> String {
+    let count = |c: BlockColor| world.blocks.iter().filter(|b| b.color == c).count();
+    let outlines = 4 * world.obstacles.len();
+    // Boundary: the four sides of the rectangle; the rest are interior walls.
+    let interior = world.walls.len().saturating_sub(outlines + 4);
+    let gates: Vec<&str> = world.gates.iter().map(|g| g.color.label()).collect();
+    format!(
+        "{}, {} m x {} m, {} boxes, {} interior walls, {} blocks ({} red, {} blue), gates: {}, start ({}, {})",
+        world.name,
+        world.width,
+        world.height,
+        world.obstacles.len(),
+        interior,
+        world.blocks.len(),
+        count(BlockColor::Red),
+        count(BlockColor::Blue),
+        gates.join(" and "),
+        world.start.x,
+        world.start.y,
+    )
+}

@@ -1,0 +1,114 @@
+//! Rooms: the area split into 2-4 rooms by walls across, each wall with a doorway, so the
+//! rooms form a tree joined by doors (a binary space partition: de Berg et al.,
+//! Computational Geometry, 3rd ed., section 12.1).
+
+use super::draft::Draft;
+use super::draw::pick;
+use super::rules::{MARKER_END_CLEARANCE, MIN_PASSAGE, TRIES};
+use crate::geometry::Point2;
+use rand::Rng;
+use rand_chacha::ChaCha8Rng;
+
+/// A room is at least this wide, metres: a 0.8 m doorway and a block 0.5 m from its walls
+/// both fit across it.
+const MIN_ROOM: f64 = 1.2;
+/// Wall left either side of a doorway, metres (at least one marker's width and a half).
+const MIN_PIECE: f64 = 0.25;
+/// Widest doorway above `MIN_PASSAGE`, metres.
+const DOOR_EXTRA: f64 = 0.3;
+/// A wall meeting another keeps this far from its doorway, metres.
+const DOOR_MARGIN: f64 = 0.3;
+
+#[derive(Clone, Copy, Debug)]
+struct Rect {
+    x0: f64,
+    y0: f64,
+    x1: f64,
+    y1: f64,
+}
+
+impl Rect {
+    fn long_side(&self) -> f64 {
+        (self.x1 - self.x0).max(self.y1 - self.y0)
+    }
+
+    fn area(&self) -> f64 {
+        (self.x1 - self.x0) * (self.y1 - self.y0)
+    }
+}
+
+/// Splits the draft's area into 2-4 rooms.
+pub fn build(d: &mut Draft, rng: &mut ChaCha8Rng) -> Result<(), String> {
+    let (hw, hh) = (d.world.width / 2.0, d.world.height / 2.0);
+    let wanted = rng.random_range(2..=4usize);
+    let mut rooms = vec![Rect {
+        x0: -hw,
+        y0: -hh,
+        x1: hw,
+        y1: hh,
+    }];
+    while rooms.len() < wanted {
+        let Some(k) = (0..rooms.len())
+            .filter(|&k| rooms[k].long_side() >= 2.0 * MIN_ROOM)
+            .max_by(|&a, &b| rooms[a].area().total_cmp(&rooms[b].area()))
+        else {
+            break;
+        };
+        let (a, b) = split(d, rng, rooms.remove(k))?;
+        rooms.extend([a, b]);
+    }
+    if rooms.len() < 2 {
+        return Err("the area is too small to split into rooms".into());
+    }
+    Ok(())
+}
+
+/// A wall across `r`'s longer side with a doorway in it; returns the two rooms.
+fn split(d: &mut Draft, rng: &mut ChaCha8Rng, r: Rect) -> Result<(Rect, Rect), String> {
+    let across_x = r.x1 - r.x0 >= r.y1 - r.y0;
+    // (along the split axis, across it) -> world point.
+    let point = |t: f64, s: f64| {
+        if across_x {
+            Point2::new(t, s)
+        } else {
+            Point2::new(s, t)
+        }
+    };
+    let (t0, t1, s0, s1) = if across_x {
+        (r.x0, r.x1, r.y0, r.y1)
+    } else {
+        (r.y0, r.y1, r.x0, r.x1)
+    };
+    for _ in 0..TRIES {
+        let Some(t) = pick(rng, t0 + MIN_ROOM, t1 - MIN_ROOM, 0.05) else {
+            break;
+        };
+        let (a, b) = (point(t, s0), point(t, s1));
+        let ends_clear = [a, b].into_iter().all(|p| {
+            d.marker_distance(p) >= MARKER_END_CLEARANCE && d.door_distance(p) >= DOOR_MARGIN
+        });
+        let Some(door) = pick(rng, MIN_PASSAGE, MIN_PASSAGE + DOOR_EXTRA, 0.05) else {
+            break;
+        };
+        let Some(at) = pick(rng, s0 + MIN_PIECE, s1 - MIN_PIECE - door, 0.05) else {
+            continue;
+        };
+        if !ends_clear {
+            continue;
+        }
+        let (door_a, door_b) = (point(t, at), point(t, at + door));
+        d.add_interior(a, door_a)?;
+        d.add_interior(door_b, b)?;
+        d.doors.push(crate::geometry::Segment::new(door_a, door_b));
+        let (lo, hi) = if across_x {
+            (Rect { x1: t, ..r }, Rect { x0: t, ..r })
+        } else {
+            (Rect { y1: t, ..r }, Rect { y0: t, ..r })
+        };
+        return Ok((lo, hi));
+    }
+    Err(format!(
+        "no place for a wall across the room [{}, {}] x [{}, {}] clear of markers and doorways",
+        r.x0, r.x1, r.y0, r.y1
+    ))
+}

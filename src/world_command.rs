@@ -1,0 +1,123 @@
+//! `navdeck world ...` and the options every generated world is asked with (part of the
+//! binary, beside main.rs): the command line's side of `navdeck::sim::generate`.
+
+use anyhow::{Context, Result};
+use navdeck::sim::generate::{self, GenerateError, GenerateOptions, Style};
+use std::io::Write;
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+/// `navdeck world ...`.
+#[derive(Debug, clap::Subcommand)]
+pub enum WorldCommand {
+    /// Generate a world from a seed (rooms, boxes or corridors) and write it as a world file.
+    Generate(GenerateArgs),
+}
+
+/// `navdeck world generate`.
+#[derive(Debug, clap::Args)]
+pub struct GenerateArgs {
+    /// Seed of the world: the same seed and options give the same world.
+    #[arg(long, value_name = "N")]
+    seed: u64,
+    #[command(flatten)]
+    shape: ShapeArgs,
+    /// The world file to write (TOML, the format of maps/arena.toml).
+    #[arg(short = 'o', long = "output", value_name = "FILE")]
+    output: PathBuf,
+}
+
+/// What a generated world holds.
+#[derive(Debug, clap::Args)]
+pub struct ShapeArgs {
+    /// Width and height in metres, W,H (default 4,4 for boxes, 5,4 for rooms and corridors).
+    #[arg(long, value_name = "W,H", value_parser = parse_size)]
+    size: Option<(f64, f64)>,
+    /// Blocks, red and blue in turn (default 3).
+    #[arg(long, value_name = "K", allow_negative_numbers = true)]
+    blocks: Option<usize>,
+    /// Box obstacles (default 3).
+    #[arg(long, value_name = "K", allow_negative_numbers = true)]
+    obstacles: Option<usize>,
+    /// rooms, boxes or corridors (default boxes).
+    #[arg(long, value_name = "STYLE")]
+    style: Option<Style>,
+}
+
+impl ShapeArgs {
+    pub fn options(&self, seed: u64) -> GenerateOptions {
+        let default = GenerateOptions::default();
+        GenerateOptions {
+            seed,
+            size: self.size,
+            blocks: self.blocks.unwrap_or(default.blocks),
+            obstacles: self.obstacles.unwrap_or(default.obstacles),
+            style: self.style.unwrap_or(default.style),
+        }
+    }
+
+    /// The first option given, if any.
+    pub fn given(&self) -> Option<&'static str> {
+        [
+            (self.size.is_some(), "--size"),
+            (self.blocks.is_some(), "--blocks"),
+            (self.obstacles.is_some(), "--obstacles"),
+            (self.style.is_some(), "--style"),
+        ]
+        .into_iter()
+        .find_map(|(given, flag)| given.then_some(flag))
+    }
+}
+
+/// `W,H` in metres, e.g. `5,4`.
+fn parse_size(s: &str) -> Result<(f64, f64), String> {
+    let parts: Vec<&str> = s.split(',').map(str::trim).collect();
+    let [w, h] = parts.as_slice() else {
+        return Err(format!("`{s}` is not W,H (metres, e.g. 5,4)"));
+    };
+    let number = |v: &str| {
+        v.parse::<f64>()
+            .ok()
+            .filter(|n| n.is_finite() && *n > 0.0)
+            .ok_or_else(|| format!("`{v}` in `{s}` is not a positive number of metres"))
+    };
+    Ok((number(w)?, number(h)?))
+}
+
+/// A generator error, naming the command-line flag when an option was refused.
+pub fn generate_error(e: GenerateError) -> anyhow::Error {
+    match e {
+        GenerateError::Option {
+            option,
+            value,
+            reason,
+        } => anyhow::anyhow!("--{option} {value}: {reason}"),
+        other => other.into(),
+    }
+}
+
+/// Runs a `navdeck world` command.
+pub fn run(command: &WorldCommand) -> Result<ExitCode> {
+    match command {
+        WorldCommand::Generate(args) => run_generate(args),
+    }
+}
+
+fn run_generate(args: &GenerateArgs) -> Result<ExitCode> {
+    let options = args.shape.options(args.seed);
+    let world = generate::generate(&options).map_err(generate_error)?;
+    let text = format!(
+        "# {}\n# The format is described at the top of maps/arena.toml.\n{}",
+        options.command(),
+        world.to_toml()
+    );
+    std::fs::write(&args.output, text)
+        .with_context(|| format!("cannot write {}", args.output.display()))?;
+    let _ = writeln!(
+        std::io::stdout(),
+        "wrote {}: {}",
+        args.output.display(),
+        generate::describe(&world)
+    );
+    Ok(ExitCode::SUCCESS)
+}

@@ -1,0 +1,284 @@
+//! Generated worlds: every seed and style gives a world that loads back from its file, has
+//! what was asked for, and lets the robot reach every block and gate; the same seed gives
+//! the same file; the command line writes files the other commands load, and refuses bad
+//! options by name.
+
+use navdeck::geometry::Point2;
+use navdeck::perception::markers::MarkerCategory;
+use navdeck::sim::World;
+use navdeck::sim::generate::{GenerateOptions, Style, check_reachable, generate};
+use std::collections::HashSet;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+const SEEDS: u64 = 200;
+
+fn options(seed: u64, style: Style) -> GenerateOptions {
+    GenerateOptions {
+        seed,
+        style,
+        ..GenerateOptions::default()
+    }
+}
+
+/// Everything a world must hold, whatever the seed.
+fn assert_sound(world: &World, o: &GenerateOptions) {
+    let name = o.name();
+    let back = World::from_toml(&world.to_toml(), Path::new(&name))
+        .unwrap_or_else(|e| panic!("{name}: {e}"));
+    assert_eq!(
+        back.to_toml(),
+        world.to_toml(),
+        "{name}: the file reads back"
+    );
+    assert_eq!(world.name, name);
+    assert_eq!(world.blocks.len(), o.blocks, "{name}");
+    assert_eq!(world.obstacles.len(), o.obstacles, "{name}");
+    for colour in ["red", "blue"] {
+        assert_eq!(
+            world
+                .gates
+                .iter()
+                .filter(|g| g.color.label() == colour)
+                .count(),
+            1,
+            "{name}: one {colour} gate"
+        );
+    }
+    let mut ids = HashSet::new();
+    let block_ids = world.blocks.iter().flat_map(|b| b.markers);
+    for id in world.markers.iter().map(|m| m.id).chain(block_ids) {
+        assert!(ids.insert(id), "{name}: marker {id} twice");
+        assert_ne!(
+            MarkerCategory::of(id),
+            MarkerCategory::Unknown,
+            "{name}: {id}"
+        );
+    }
+    for g in &world.gates {
+        assert_eq!(
+            g.markers[0] % 2,
+            1,
+            "{name}: gate ids pair odd with the next"
+        );
+        assert_eq!(g.markers[1], g.markers[0] + 1, "{name}");
+    }
+    let (w, h) = o.size();
+    assert_eq!((world.width, world.height), (w, h), "{name}");
+    // Blocks stand in open floor, the start is clear of every wall and box.
+    let clearance = |p: Point2| {
+        let inside = world.obstacles.iter().any(|b| {
+            let (s, c) = b.pose.theta.sin_cos();
+            let (dx, dy) = (p.x - b.pose.x, p.y - b.pose.y);
+            (c * dx + s * dy).abs() <= b.width / 2.0 && (-s * dx + c * dy).abs() <= b.height / 2.0
+        });
+        let nearest = world
+            .walls
+            .iter()
+            .map(|s| s.distance_to(p))
+            .fold(f64::INFINITY, f64::min);
+        if inside { 0.0 } else { nearest }
+    };
+    for b in &world.blocks {
+        let c = clearance(b.pose.position());
+        assert!(
+            c >= 0.5 - 1e-9,
+            "{name}: block {} {c:.3} m from a wall",
+            b.markers[0]
+        );
+    }
+    let c = clearance(world.start.position());
+    assert!(c >= 0.4 - 1e-9, "{name}: the start is {c:.3} m from a wall");
+    check_reachable(world).unwrap_or_else(|e| panic!("{name}: {e}"));
+}
+
+#[test]
+fn every_seed_and_style_gives_a_sound_world() {
+    for style in Style::ALL {
+        for seed in 1..=SEEDS {
+            let o = options(seed, style);
+            let world = generate(&o).unwrap_or_else(|e| panic!("{e}"));
+            assert_sound(&world, &o);
+        }
+    }
+}
+
+#[test]
+fn both_colours_appear_from_two_blocks() {
+    let o = GenerateOptions {
+        blocks: 2,
+        obstacles: 0,
+        ..options(5, Style::Boxes)
+    };
+    let world = generate(&o).unwrap();
+    assert_sound(&world, &o);
+    let colours: HashSet<_> = world.blocks.iter().map(|b| b.color).collect();
+    assert_eq!(colours.len(), 2);
+}
+
+#[test]
+fn larger_worlds_hold_more() {
+    for (style, size, blocks, obstacles) in [
+        (Style::Boxes, (8.0, 6.0), 8, 6),
+        (Style::Rooms, (10.0, 8.0), 10, 5),
+        (Style::Corridors, (12.0, 6.0), 6, 4),
+        (Style::Corridors, (3.0, 6.0), 2, 1),
+    ] {
+        for seed in 1..=10 {
+            let o = GenerateOptions {
+                seed,
+                size: Some(size),
+                blocks,
+                obstacles,
+                style,
+            };
+            let world = generate(&o).unwrap_or_else(|e| panic!("{size:?}: {e}"));
+            assert_sound(&world, &o);
+        }
+    }
+}
+
+#[test]
+fn the_same_seed_gives_the_same_file_and_another_seed_another() {
+    for style in Style::ALL {
+        let a = generate(&options(7, style)).unwrap().to_toml();
+        let b = generate(&options(7, style)).unwrap().to_toml();
+        let c = generate(&options(8, style)).unwrap().to_toml();
+        assert_eq!(a, b, "{style}");
+        assert_ne!(a, c, "{style}");
+    }
+}
+
+#[test]
+fn impossible_options_are_refused_by_name() {
+    let small = GenerateOptions {
+        size: Some((1.5, 1.5)),
+        ..GenerateOptions::default()
+    };
+    let e = generate(&small).unwrap_err().to_string();
+    assert!(e.contains("`size`") && e.contains("1.5,1.5"), "{e}");
+    let crowded = GenerateOptions {
+        size: Some((2.0, 2.0)),
+        blocks: 8,
+        ..GenerateOptions::default()
+    };
+    let e = generate(&crowded).unwrap_err().to_string();
+    assert!(e.contains("`size`") && e.contains("8 blocks"), "{e}");
+    let many = GenerateOptions {
+        blocks: 31,
+        ..GenerateOptions::default()
+    };
+    assert!(
+        generate(&many)
+            .unwrap_err()
+            .to_string()
+            .contains("`blocks` = 31")
+    );
+    let nan = GenerateOptions {
+        size: Some((f64::NAN, 4.0)),
+        ..GenerateOptions::default()
+    };
+    assert!(generate(&nan).unwrap_err().to_string().contains("`size`"));
+    assert!("mazes".parse::<Style>().unwrap_err().contains("mazes"));
+}
+
+fn navdeck(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_navdeck"))
+        .args(args)
+        .env("NO_COLOR", "1")
+        .output()
+        .expect("navdeck runs")
+}
+
+fn scratch_dir() -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("navdeck-generate-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+#[test]
+fn world_generate_writes_a_file_the_twin_and_the_mission_load() {
+    let dir = scratch_dir();
+    let file = dir.join("rooms-7.toml");
+    let path = file.to_str().unwrap();
+    let out = navdeck(&[
+        "world", "generate", "--seed", "7", "--style", "rooms", "-o", path,
+    ]);
+    let said = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert_eq!(said.lines().count(), 1, "{said}");
+    assert!(
+        said.contains(path) && said.contains("generated:rooms:7"),
+        "{said}"
+    );
+    assert!(
+        said.contains("3 blocks") && said.contains("red and blue"),
+        "{said}"
+    );
+    let world = World::load(&file).unwrap();
+    assert_eq!(world, generate(&options(7, Style::Rooms)).unwrap());
+
+    let out = navdeck(&["--headless", "--json", "--world", path, "--keys", "ww"]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let out = navdeck(&["mission", "--world", path, "--time-limit", "5", "--json"]);
+    let report: serde_json::Value = serde_json::from_slice(&out.stdout)
+        .unwrap_or_else(|e| panic!("{e}: {}", String::from_utf8_lossy(&out.stderr)));
+    assert_eq!(report["world"], "generated:rooms:7");
+    assert_eq!(report["total"], 3);
+
+    // The mission on a generated world without a file names it by style and seed.
+    let out = navdeck(&[
+        "mission",
+        "--generated",
+        "--style",
+        "corridors",
+        "--seed",
+        "4",
+        "--time-limit",
+        "5",
+        "--json",
+    ]);
+    let report: serde_json::Value = serde_json::from_slice(&out.stdout)
+        .unwrap_or_else(|e| panic!("{e}: {}", String::from_utf8_lossy(&out.stderr)));
+    assert_eq!(report["world"], "generated:corridors:4");
+    assert_eq!(report["seed"], 4);
+    std::fs::remove_dir_all(dir).unwrap();
+}
+
+#[test]
+fn bad_options_are_refused_naming_the_flag() {
+    let dir = scratch_dir();
+    let file = dir.join("bad.toml");
+    let path = file.to_str().unwrap();
+    for (args, flag, value) in [
+        (vec!["--size", "4x4"], "--size", "4x4"),
+        (vec!["--size", "1,1"], "--size", "1,1"),
+        (vec!["--size", "2,2", "--blocks", "9"], "--size", "2,2"),
+        (vec!["--blocks", "many"], "--blocks", "many"),
+        (vec!["--blocks", "40"], "--blocks", "40"),
+        (vec!["--obstacles", "-1"], "--obstacles", "-1"),
+        (vec!["--style", "maze"], "--style", "maze"),
+    ] {
+        let mut all = vec!["world", "generate", "--seed", "1", "-o", path];
+        all.extend(args.iter().copied());
+        let out = navdeck(&all);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+        assert!(err.contains(flag) && err.contains(value), "{args:?}: {err}");
+        assert!(!err.contains("panicked"), "{err}");
+        assert!(!file.exists(), "{args:?} wrote a file");
+    }
+    let out = navdeck(&["mission", "--style", "rooms"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(err.contains("--generated"), "{err}");
+    std::fs::remove_dir_all(dir).unwrap();
+}

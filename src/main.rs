@@ -457,6 +457,10 @@ fn run_mission(args: &MissionArgs) -> Result<ExitCode> {
         );
         if !summary.failed_seeds.is_empty() {
             sayln!("failed seeds: {:?}", summary.failed_seeds);
+            let causes: Vec<String> = (summary.causes.iter())
+                .map(|(cause, n)| format!("{cause} {n}"))
+                .collect();
+            sayln!("causes: {}", causes.join(", "));
         }
     }
     Ok(if summary.successes == summary.runs {

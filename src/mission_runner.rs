@@ -35,6 +35,11 @@ pub struct MissionReport {
     pub total: usize,
     /// "delivered all", "time limit" or "handed to manual".
     pub outcome: String,
+    /// Why a run that did not deliver everything ended: "time limit", "ended with blocks
+    /// left", or the mission's reason for handing over ("unreachable target", "lost",
+    /// "pickup failed", "delivery failed", "blocks left without a gate"); with a collision
+    /// on the way, "collision". None for a success.
+    pub cause: Option<String>,
     pub sim_time: f64,
     pub collisions: Option<u32>,
     pub replans: usize,
@@ -141,6 +146,21 @@ fn report(
             .count()
     });
     let accuracy = pilot.accuracy();
+    let collided = twin.is_some_and(|t| t.collisions() > 0);
+    let cause = match outcome {
+        "delivered all" => None,
+        _ if collided => Some("collision".to_string()),
+        "time limit" if mission.is_some_and(|m| m.is_done()) => {
+            Some("ended with blocks left".to_string())
+        }
+        "time limit" => Some("time limit".to_string()),
+        _ => Some(
+            mission
+                .and_then(|m| m.handover_cause())
+                .unwrap_or("handed to manual")
+                .to_string(),
+        ),
+    };
     MissionReport {
         world: twin.map_or("none".into(), |t| t.world().name.clone()),
         seed,
@@ -148,6 +168,7 @@ fn report(
         true_delivered,
         total,
         outcome: outcome.into(),
+        cause,
         sim_time,
         collisions: twin.map(|t| t.collisions()),
         replans: mission.map_or(0, |m| m.replans()) + pilot.replans(),
@@ -185,6 +206,8 @@ pub struct SweepSummary {
     pub worst_sim_time: f64,
     pub collisions: u32,
     pub failed_seeds: Vec<u64>,
+    /// Runs that did not deliver everything, by cause.
+    pub causes: std::collections::BTreeMap<String, usize>,
     pub runs_detail: Vec<MissionReport>,
 }
 
@@ -214,14 +237,22 @@ pub fn summarise(mut reports: Vec<MissionReport>) -> SweepSummary {
             .filter(|r| !r.success())
             .map(|r| r.seed)
             .collect(),
+        causes: reports.iter().filter_map(|r| r.cause.clone()).fold(
+            Default::default(),
+            |mut counts, cause| {
+                *counts.entry(cause).or_default() += 1;
+                counts
+            },
+        ),
         runs_detail: reports,
     }
 }
 
 /// A report as a person reads it.
 pub fn human(r: &MissionReport) -> String {
+    let cause = r.cause.as_ref().map_or(String::new(), |c| format!(", {c}"));
     let mut out = format!(
-        "mission on {} seed {}: {} ({} of {} blocks delivered) in {:.1} s simulated\n",
+        "mission on {} seed {}: {}{cause} ({} of {} blocks delivered) in {:.1} s simulated\n",
         r.world, r.seed, r.outcome, r.delivered, r.total, r.sim_time
     );
     out += &format!(

@@ -3,7 +3,7 @@
 
 mod mission_rig;
 
-use mission_rig::{DT, Rig, all_free, config, half_known, plan_to};
+use mission_rig::{DT, Rig, all_free, all_seeing, config, half_known, plan_to};
 use navdeck::data::GripperCommand;
 use navdeck::geometry::{Point2, wrap_angle};
 use navdeck::mission::step::{Motion, PathStatus};
@@ -177,31 +177,41 @@ fn the_mission_is_done_after_total_blocks_deliveries() {
 }
 
 #[test]
-fn the_marker_rule_visits_the_furthest_markers_and_either_rule_falls_back_to_the_other() {
-    for rule in [TargetRule::Markers, TargetRule::Frontiers] {
-        let config = MissionConfig {
-            target_rule: rule,
-            ..MissionConfig::default()
-        };
-        // No frontiers in a fully known map: the frontier rule falls back to markers.
-        let mut rig = Rig::new(config, all_free());
-        rig.landmarks.insert(1, Point2::new(1.5, 0.0));
-        rig.landmarks.insert(2, Point2::new(2.0, 0.5));
-        let out = rig.until(200, |out, _| plan_to(out).is_some());
-        let (goal, label) = plan_to(&out).unwrap();
-        assert_eq!(label, "marker 2", "{rule:?}");
-        let stop = Point2::new(2.0, 0.5);
-        assert!(
-            (goal.distance(stop) - 0.3).abs() < 1e-9,
-            "short of the wall"
-        );
-        rig.until(400, |out, _| plan_to(out).is_some());
-        assert_eq!(rig.plans.last().unwrap().2, "marker 1");
-        let out = rig.until(400, |out, _| out.to_manual);
-        assert!(rig.logged("Exploration complete"));
-        assert!(rig.logged("with 0/4 blocks delivered - switching to manual"));
-        assert!(out.to_manual && !rig.mission.is_done());
-    }
+fn the_marker_rule_visits_the_furthest_markers_and_the_frontier_rule_needs_no_markers() {
+    let config = MissionConfig {
+        target_rule: TargetRule::Markers,
+        total_blocks: 4,
+        ..all_seeing()
+    };
+    let mut rig = Rig::new(config, all_free());
+    rig.landmarks.insert(1, Point2::new(1.5, 0.0));
+    rig.landmarks.insert(2, Point2::new(2.0, 0.5));
+    let out = rig.until(200, |out, _| plan_to(out).is_some());
+    let (goal, label) = plan_to(&out).unwrap();
+    assert_eq!(label, "marker 2");
+    let stop = Point2::new(2.0, 0.5);
+    assert!(
+        (goal.distance(stop) - 0.3).abs() < 1e-9,
+        "short of the wall"
+    );
+    rig.until(400, |out, _| plan_to(out).is_some());
+    assert_eq!(rig.plans.last().unwrap().2, "marker 1");
+    let out = rig.until(400, |out, _| out.to_manual);
+    assert!(rig.logged("Exploration complete"));
+    assert!(rig.logged("with 0/4 blocks delivered - switching to manual"));
+    assert!(out.to_manual && !rig.mission.is_done());
+    // A known map the camera has taken in: the frontier rule has nowhere to go, and does
+    // not wander from marker to marker.
+    let config = MissionConfig {
+        total_blocks: 4,
+        ..all_seeing()
+    };
+    let mut rig = Rig::new(config, all_free());
+    rig.landmarks.insert(1, Point2::new(1.5, 0.0));
+    rig.landmarks.insert(2, Point2::new(2.0, 0.5));
+    rig.until(400, |out, _| out.to_manual);
+    assert!(rig.plans.is_empty(), "{:?}", rig.plans);
+    assert!(rig.logged("Exploration complete"));
 }
 
 #[test]

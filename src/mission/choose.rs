@@ -1,14 +1,17 @@
 //! Choosing what to do next (seed 001 "Operating Modes", `t` Thinking): a deliverable
 //! block first, else the next exploration target, else potential blocks, else finish.
 
-use super::config::{FRONTIER_MIN_CELLS, MAX_BLOCK_ATTEMPTS, TARGET_TOO_CLOSE, TargetRule};
-use super::drive::towards;
+use super::config::{
+    FRONTIER_MIN_CELLS, GIVE_UP_ROUNDS, MAX_BLOCK_ATTEMPTS, POTENTIAL_LOOKS, POTENTIAL_VIEW,
+    TARGET_TOO_CLOSE, TargetRule, UNSEEN_MIN_CELLS,
+};
+use super::drive::{Turn, towards};
 use super::leg::Leg;
-use super::machine::{Mission, Phase, Target};
+use super::machine::{Cause, Mission, Phase, Target};
 use super::objects::Block;
 use super::pickup::{Pickup, name};
 use super::step::{Inputs, Level};
-use super::targets::{frontiers, furthest_marker};
+use super::targets::{frontiers, furthest_marker, reachable};
 use crate::geometry::Point2;
 
 impl Mission {
@@ -34,33 +37,68 @@ impl Mission {
             ));
             return;
         }
-        let rule = self.config.target_rule;
-        for rule in [rule, rule.other()] {
-            if let Some((goal, target, label)) = self.explore_target(rule, inputs) {
-                self.phase = Phase::Explore {
-                    leg: Leg::new(goal, label),
-                    target,
-                };
-                return;
-            }
+        // One rule to the end: with frontiers, exploration is complete when no reachable
+        // frontier is left and the camera has looked at every free place the robot can
+        // reach; with markers, when every valid marker was visited.
+        let found = self
+            .explore_target(self.config.target_rule, inputs)
+            .or_else(|| self.unseen_target(inputs));
+        if let Some((goal, target, label)) = found {
+            self.phase = Phase::Explore {
+                leg: Leg::replaceable(goal, label),
+                target,
+            };
+            return;
         }
         // Nothing left to explore: go and look at blocks seen by one marker only.
         let potential = self
             .objects
             .blocks()
             .filter(|b| !b.confirmed && !b.delivered)
-            .filter(|b| !self.visited_potential.contains(&b.markers[0]))
+            .filter(|b| self.looks_at(b.markers[0]) < POTENTIAL_LOOKS)
             .min_by(|a, b| {
                 let (da, db) = (a.position.distance(robot), b.position.distance(robot));
                 da.total_cmp(&db)
             })
             .copied();
         if let Some(b) = potential {
-            let goal = towards(b.position, robot, self.config.staging_distance);
+            // First from the robot's side; then from the four diagonals, each showing two
+            // faces at 45°, until both markers have been seen (navdeck's).
+            let goal = match self.looks_at(b.markers[0]) {
+                0 => towards(b.position, robot, self.config.staging_distance),
+                k => {
+                    let a = std::f64::consts::FRAC_PI_4
+                        + f64::from(k - 1) * std::f64::consts::FRAC_PI_2;
+                    let d = POTENTIAL_VIEW * self.config.staging_distance;
+                    Point2::new(b.position.x + d * a.cos(), b.position.y + d * a.sin())
+                }
+            };
             let label = format!("potential {}", name(b.colour, b.markers[0]));
             self.phase = Phase::Explore {
-                leg: Leg::new(goal, label),
+                leg: Leg::replaceable(goal, label),
                 target: Target::Potential(b.markers[0]),
+            };
+            return;
+        }
+        // Seed 001 "Path Planning Failure": turn a little and try again. navdeck turns once
+        // for every target given up, then tries them all again, a few rounds at most.
+        if !self.given_up.is_empty() && self.retry_rounds < GIVE_UP_ROUNDS {
+            self.retry_rounds += 1;
+            self.ctx.recoveries += 1;
+            log.push((
+                Level::Warn,
+                format!(
+                    "No path to any of {} targets - turning {:.0}° and trying them again ({}/{GIVE_UP_ROUNDS})",
+                    self.given_up.len(),
+                    self.config.retry_turn_deg,
+                    self.retry_rounds
+                ),
+            ));
+            self.given_up.clear();
+            let angle = self.config.retry_turn_deg.to_radians();
+            self.phase = Phase::Scan {
+                turn: Turn::new(inputs.pose, inputs.t, angle, self.config.scan_speed),
+                initial: false,
             };
             return;
         }
@@ -88,6 +126,7 @@ impl Mission {
                     }
                 ),
             ));
+            self.handover = Some(Cause::BlocksLeft.label());
             self.phase = Phase::Manual;
         }
     }
@@ -115,13 +154,12 @@ impl Mission {
     ) -> Option<(Point2, Target, String)> {
         let robot = inputs.pose.position();
         match rule {
-            TargetRule::Frontiers => frontiers(inputs.map, FRONTIER_MIN_CELLS)
+            TargetRule::Frontiers => frontiers(inputs.map, robot, FRONTIER_MIN_CELLS)
                 .into_iter()
                 .map(|f| f.target)
                 .filter(|p| p.distance(robot) >= TARGET_TOO_CLOSE)
                 .filter(|p| {
-                    self.visited_goals
-                        .iter()
+                    (self.visited_goals.iter().chain(&self.given_up))
                         .all(|v| v.distance(*p) >= TARGET_TOO_CLOSE)
                 })
                 .min_by(|a, b| a.distance(robot).total_cmp(&b.distance(robot)))
@@ -130,23 +168,67 @@ impl Mission {
                     (p, Target::Frontier, label)
                 }),
             // Seed 001 "Marker Selection Heuristic"; the goal stops short of the wall.
-            TargetRule::Markers => furthest_marker(inputs.landmarks, robot, &self.visited_markers)
-                .map(|(id, p)| {
+            TargetRule::Markers => {
+                let mut skip = self.visited_markers.clone();
+                skip.extend(&self.given_up_markers);
+                furthest_marker(inputs.landmarks, robot, &skip).map(|(id, p)| {
                     let goal = towards(p, robot, TARGET_TOO_CLOSE);
                     (goal, Target::Marker(id), format!("marker {id}"))
-                }),
+                })
+            }
+        }
+    }
+
+    /// The nearest place, not given up, from which free space the camera has not looked
+    /// at can be seen (frontier rule only: the marker rule is the seed's, kept as it is).
+    fn unseen_target(&self, inputs: &Inputs) -> Option<(Point2, Target, String)> {
+        if self.config.target_rule != TargetRule::Frontiers {
+            return None;
+        }
+        let robot = inputs.pose.position();
+        let reach = reachable(inputs.map, robot);
+        let tried: Vec<Point2> = (self.visited_goals.iter().chain(&self.given_up))
+            .copied()
+            .collect();
+        let unseen = self.coverage.unseen(
+            inputs.map,
+            &reach,
+            UNSEEN_MIN_CELLS,
+            &tried,
+            TARGET_TOO_CLOSE,
+        );
+        (unseen.into_iter().map(|u| u.target))
+            .min_by(|a, b| a.distance(robot).total_cmp(&b.distance(robot)))
+            .map(|p| {
+                let label = format!("unseen space ({:.2}, {:.2})", p.x, p.y);
+                (p, Target::Unseen, label)
+            })
+    }
+
+    /// Looks taken so far at the potential block with odd marker `odd`.
+    fn looks_at(&self, odd: u32) -> u32 {
+        self.potential_looks.get(&odd).copied().unwrap_or(0)
+    }
+
+    /// Gives up an exploration goal the planner cannot reach, until the next retry round.
+    pub(super) fn give_up(&mut self, goal: Point2, target: &Target) {
+        match *target {
+            Target::Frontier | Target::Unseen => self.given_up.push(goal),
+            Target::Marker(id) => self.given_up_markers.push(id),
+            // A side that cannot be reached counts as a look: the next side is tried.
+            Target::Potential(odd) => *self.potential_looks.entry(odd).or_default() += 1,
         }
     }
 
     /// Remembers an exploration goal reached so it is not chosen again.
     pub(super) fn arrived(&mut self, goal: Point2, target: Target) {
         self.visited_goals.push(goal);
+        // Progress: targets given up may be reachable from here.
+        self.retry_rounds = 0;
         match target {
             Target::Marker(id) => self.visited_markers.push(id),
-            Target::Potential(odd) => {
-                self.visited_potential.insert(odd);
-            }
-            Target::Frontier => {}
+            Target::Potential(odd) => *self.potential_looks.entry(odd).or_default() += 1,
+            Target::Frontier | Target::Unseen => {}
         }
     }
 }

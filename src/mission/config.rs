@@ -17,6 +17,17 @@ pub const CAMERA_RANGE: f64 = 0.6;
 pub const CAMERA_HALF_FOV: f64 = 0.5;
 /// Smallest frontier cluster worth exploring, cells.
 pub const FRONTIER_MIN_CELLS: usize = 20;
+/// Rounds of turning and trying every given-up exploration target again before the
+/// mission calls exploration complete (navdeck's).
+pub const GIVE_UP_ROUNDS: u32 = 3;
+/// Unseen free space smaller than this many coverage cells (0.1 m square) is not worth a
+/// trip: a sliver along a wall (navdeck's).
+pub const UNSEEN_MIN_CELLS: usize = 3;
+/// Looks at a block seen by one marker only before leaving it: one from the robot's side
+/// and one from each diagonal (navdeck's).
+pub const POTENTIAL_LOOKS: u32 = 5;
+/// The diagonal looks stand this many staging distances from the block.
+pub const POTENTIAL_VIEW: f64 = 1.5;
 /// Targets closer to the robot than this are ignored, metres (seed 001
 /// `get_furthest_marker`, < 0.3 m).
 pub const TARGET_TOO_CLOSE: f64 = 0.3;
@@ -94,8 +105,14 @@ pub struct MissionConfig {
     pub stuck_timeout: f64,
     /// Least time between two plan requests, s.
     pub replan_cooldown: f64,
-    /// Blocks to deliver; 0 delivers every block found.
+    /// Blocks to deliver; 0 delivers every block found and ends when exploration is
+    /// complete (seed 001's arena has 4).
     pub total_blocks: u32,
+    /// How far and how wide the camera is taken to see markers for sure when exploration
+    /// judges what it has looked at, metres and degrees (navdeck's: half the twin's 3 m
+    /// range, and inside its 68° field of view).
+    pub view_range: f64,
+    pub view_fov_deg: f64,
 }
 
 impl Default for MissionConfig {
@@ -117,7 +134,9 @@ impl Default for MissionConfig {
             retry_turn_deg: 10.0,
             stuck_timeout: 30.0,
             replan_cooldown: 0.5,
-            total_blocks: 4,
+            total_blocks: 0,
+            view_range: 1.5,
+            view_fov_deg: 60.0,
         }
     }
 }
@@ -135,8 +154,12 @@ impl MissionConfig {
             ("drop_distance", self.drop_distance),
             ("retry_turn_deg", self.retry_turn_deg),
             ("stuck_timeout", self.stuck_timeout),
+            ("view_range", self.view_range),
         ];
         crate::data::check::all_positive(&positive)?;
+        if !(self.view_fov_deg > 0.0 && self.view_fov_deg <= 360.0) {
+            return Err(("view_fov_deg", self.view_fov_deg, "must lie in (0, 360]"));
+        }
         if let Some(blind) = self.blind_distance {
             crate::data::check::all_non_negative(&[("blind_distance", blind)])?;
         }

@@ -121,7 +121,7 @@ impl Delivery {
                     self.enter(Stage::Face, t);
                     stop
                 }
-                LegStep::GiveUp => DropEvent::GiveUp,
+                LegStep::GiveUp | LegStep::Unreachable(_) => DropEvent::GiveUp,
             },
             Stage::Face => {
                 if faces(error) {

@@ -26,6 +26,9 @@ pub(crate) enum LegStep {
     Arrived,
     /// Out of retries: hand over to manual.
     GiveUp,
+    /// An exploration goal the planner cannot reach (the reason): the mission gives it up
+    /// and tries the next one at once.
+    Unreachable(String),
 }
 
 /// A path to one goal.
@@ -44,6 +47,8 @@ pub(crate) struct Leg {
     turn: Option<Turn>,
     /// When a back-up out of a stuck spot began, while it lasts.
     backing: Option<f64>,
+    /// An exploration leg: its goal is one of many, so no path means the next one.
+    replaceable: bool,
 }
 
 impl Leg {
@@ -59,6 +64,16 @@ impl Leg {
             failures: 0,
             turn: None,
             backing: None,
+            replaceable: false,
+        }
+    }
+
+    /// A leg to one exploration goal among many: with no path it reports `Unreachable`
+    /// instead of turning and retrying the same goal.
+    pub fn replaceable(goal: Point2, label: String) -> Self {
+        Self {
+            replaceable: true,
+            ..Self::new(goal, label)
         }
     }
 
@@ -124,6 +139,7 @@ impl Leg {
                 LegStep::Move(Motion::Follow)
             }
             PathStatus::Arrived => LegStep::Arrived,
+            PathStatus::NoPath(reason) if self.replaceable => LegStep::Unreachable(reason.clone()),
             PathStatus::NoPath(reason) => {
                 self.failures += 1;
                 self.asked = None;

@@ -16,6 +16,8 @@ use std::collections::{BTreeMap, BTreeSet};
 #[derive(Clone, Debug, PartialEq)]
 pub(super) enum Target {
     Frontier,
+    /// Free space the camera has not looked at yet.
+    Unseen,
     Marker(u32),
     /// A block seen by one marker only (odd marker).
     Potential(u32),
@@ -42,6 +44,33 @@ pub(super) enum Phase {
     Manual,
 }
 
+/// Why a mission handed the robot to manual control.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum Cause {
+    /// A goal it needed had no path, after every retry.
+    Unreachable,
+    /// No landmarks for `lost_timeout`.
+    Lost,
+    /// A block could not be picked up (no path to it, or the gripper kept missing).
+    Pickup,
+    /// A held block could not be delivered (no path to its gate).
+    Delivery,
+    /// Exploration was complete with found blocks left (their gate never seen).
+    BlocksLeft,
+}
+
+impl Cause {
+    pub fn label(self) -> &'static str {
+        match self {
+            Cause::Unreachable => "unreachable target",
+            Cause::Lost => "lost",
+            Cause::Pickup => "pickup failed",
+            Cause::Delivery => "delivery failed",
+            Cause::BlocksLeft => "blocks left without a gate",
+        }
+    }
+}
+
 /// One block's story: odd marker, found, picked up, delivered (session times).
 pub type TimelineEntry = (u32, f64, Option<f64>, Option<f64>);
 
@@ -56,7 +85,17 @@ pub struct Mission {
     pub(super) last_marker: f64,
     pub(super) visited_markers: Vec<u32>,
     pub(super) visited_goals: Vec<Point2>,
-    pub(super) visited_potential: BTreeSet<u32>,
+    /// Looks taken at each potential block (odd marker), from different sides.
+    pub(super) potential_looks: BTreeMap<u32, u32>,
+    /// Exploration goals (frontier points, marker IDs) the planner could not reach, and
+    /// the rounds of turning and trying them again so far.
+    pub(super) given_up: Vec<Point2>,
+    pub(super) given_up_markers: Vec<u32>,
+    pub(super) retry_rounds: u32,
+    /// What the camera has looked at.
+    pub(super) coverage: super::coverage::Coverage,
+    /// Why the mission handed over to manual, once it has.
+    pub(super) handover: Option<&'static str>,
     /// Demoted blocks and when; attempts per block.
     pub(super) demoted: BTreeMap<u32, f64>,
     pub(super) attempts: BTreeMap<u32, u32>,
@@ -83,7 +122,12 @@ impl Mission {
             last_marker: t,
             visited_markers: Vec::new(),
             visited_goals: Vec::new(),
-            visited_potential: BTreeSet::new(),
+            potential_looks: BTreeMap::new(),
+            given_up: Vec::new(),
+            given_up_markers: Vec::new(),
+            retry_rounds: 0,
+            coverage: super::coverage::Coverage::default(),
+            handover: None,
             demoted: BTreeMap::new(),
             attempts: BTreeMap::new(),
             announced: BTreeSet::new(),
@@ -101,6 +145,8 @@ impl Mission {
             self.last_marker = inputs.t;
         }
         self.note_found(inputs, &mut log);
+        let fov = self.config.view_fov_deg.to_radians();
+        (self.coverage).look(inputs.map, inputs.pose, self.config.view_range, fov);
         let mut out = Outputs::new(Motion::Stop);
         for _ in 0..4 {
             if let Tick::Out(motion, gripper) = self.tick(inputs, &mut log) {
@@ -170,7 +216,19 @@ impl Mission {
                         };
                         Tick::Out(scan, None)
                     }
-                    LegStep::GiveUp => self.manual(),
+                    LegStep::Unreachable(reason) => {
+                        let (goal, target, label) = (leg.goal, target.clone(), leg.label.clone());
+                        self.give_up(goal, &target);
+                        log.push((
+                            Level::Warn,
+                            format!(
+                                "No path to {label} ({reason}) - giving it up for the next target"
+                            ),
+                        ));
+                        self.phase = Phase::Choose;
+                        Tick::Again
+                    }
+                    LegStep::GiveUp => self.manual(Cause::Unreachable),
                 }
             }
             Phase::Lost => {
@@ -187,7 +245,7 @@ impl Mission {
                             self.config.lost_timeout
                         ),
                     ));
-                    return self.manual();
+                    return self.manual(Cause::Lost);
                 }
                 Tick::Out(scan, None)
             }
@@ -225,7 +283,7 @@ impl Mission {
                         self.phase = Phase::Choose;
                         Tick::Again
                     }
-                    PickEvent::GiveUp => self.manual(),
+                    PickEvent::GiveUp => self.manual(Cause::Pickup),
                 }
             }
             Phase::Deliver(delivery) => {
@@ -252,7 +310,7 @@ impl Mission {
                         self.phase = Phase::Choose;
                         Tick::Again
                     }
-                    DropEvent::GiveUp => self.manual(),
+                    DropEvent::GiveUp => self.manual(Cause::Delivery),
                 }
             }
             Phase::Done => Tick::Out(Motion::Stop, None),
@@ -260,7 +318,8 @@ impl Mission {
         }
     }
 
-    pub(super) fn manual(&mut self) -> Tick {
+    pub(super) fn manual(&mut self, cause: Cause) -> Tick {
+        self.handover = Some(cause.label());
         self.phase = Phase::Manual;
         Tick::Out(Motion::Stop, None)
     }

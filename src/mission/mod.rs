@@ -3,6 +3,7 @@
 
 mod choose;
 pub mod config;
+pub mod coverage;
 mod delivery;
 mod drive;
 mod found;

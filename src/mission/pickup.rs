@@ -161,7 +161,7 @@ impl Pickup {
                     self.enter(Stage::Open, t);
                     PickEvent::Go(Motion::Stop, Some(GripperCommand::Open))
                 }
-                LegStep::GiveUp => PickEvent::GiveUp,
+                LegStep::GiveUp | LegStep::Unreachable(_) => PickEvent::GiveUp,
             },
             Stage::Open | Stage::Reopen => match opened(inputs.gripper, waited, config) {
                 Wait::Waiting => stop,

@@ -3,13 +3,16 @@
 //! autonomous exploration", CIRA 1997).
 
 use crate::geometry::Point2;
-use crate::map::costmap::{Costmap, INFLATED, NO_INFORMATION};
+use crate::map::costmap::{Costmap, INFLATED, NO_INFORMATION, is_lethal};
+use crate::map::reach::nearest_passable;
 use crate::perception::markers::MarkerCategory;
 use std::collections::{BTreeMap, VecDeque};
 
 /// Seed 001 "Marker Selection Heuristic": markers whose nearest neighbour is further than
 /// this are isolated and ignored, metres.
 pub const ISOLATED: f64 = 2.0;
+/// How far from a robot standing in a lethal cell its flood may start, metres.
+const START_REACH: f64 = 0.3;
 /// Seed 001: markers closer to the robot than this are ignored, metres.
 pub const TOO_CLOSE: f64 = 0.3;
 
@@ -54,14 +57,45 @@ pub struct Frontier {
     pub cells: usize,
 }
 
-/// Frontier clusters of at least `min_cells` cells: known cells below the 0.7 ring that
-/// touch an unknown cell, grouped 8-connected.
-pub fn frontiers(map: &Costmap, min_cells: usize) -> Vec<Frontier> {
+/// The cells the robot at `from` can reach through known, not lethal cells (4-connected),
+/// starting from the nearest such cell within `START_REACH` when it stands in a lethal one.
+pub fn reachable(map: &Costmap, from: Point2) -> Vec<bool> {
     let (w, h) = (map.width, map.height);
+    let mut reach = vec![false; w * h];
+    let open = |c: u8| c != NO_INFORMATION && !is_lethal(c);
+    let start = nearest_passable(map, from, START_REACH).and_then(|p| map.cell_of(p));
+    let Some((sx, sy)) = start.filter(|&(x, y)| open(map.get(x, y))) else {
+        return reach;
+    };
+    let mut queue = VecDeque::from([(sx, sy)]);
+    reach[sy * w + sx] = true;
+    while let Some((x, y)) = queue.pop_front() {
+        let next = [
+            (x.wrapping_sub(1), y),
+            (x + 1, y),
+            (x, y.wrapping_sub(1)),
+            (x, y + 1),
+        ];
+        for (nx, ny) in next {
+            if nx < w && ny < h && !reach[ny * w + nx] && open(map.get(nx, ny)) {
+                reach[ny * w + nx] = true;
+                queue.push_back((nx, ny));
+            }
+        }
+    }
+    reach
+}
+
+/// Frontier clusters of at least `min_cells` cells that the robot at `from` can reach:
+/// known cells below the 0.7 ring that touch an unknown cell, grouped 8-connected. A
+/// frontier beyond a wall, or one only unknown space leads to, is no place to go.
+pub fn frontiers(map: &Costmap, from: Point2, min_cells: usize) -> Vec<Frontier> {
+    let (w, h) = (map.width, map.height);
+    let reach = reachable(map, from);
     let passable = |c: u8| c < INFLATED;
     let is_frontier = |x: usize, y: usize| {
         let c = map.get(x, y);
-        if c == NO_INFORMATION || !passable(c) {
+        if c == NO_INFORMATION || !passable(c) || !reach[y * w + x] {
             return false;
         }
         let unknown = |nx: usize, ny: usize| map.get(nx, ny) == NO_INFORMATION;
@@ -152,10 +186,60 @@ mod tests {
             }
         }
         map.set(7, 0, LETHAL);
-        let found = frontiers(&map, 3);
+        let robot = Point2::new(0.25, 0.55);
+        let found = frontiers(&map, robot, 3);
         assert_eq!(found.len(), 1, "{found:?}");
         assert_eq!(found[0].cells, 9, "the lethal cell is no frontier");
         assert!((found[0].target.x - 0.75).abs() < 1e-9);
-        assert!(frontiers(&map, 10).is_empty(), "too small a cluster");
+        assert!(frontiers(&map, robot, 10).is_empty(), "too small a cluster");
+    }
+
+    /// A walled room of known free cells in unknown space, 30 x 30 cells at 0.1 m: walls
+    /// at x, y = 5 and 24; inside free, outside free in a strip beyond the east wall too.
+    fn walled_room() -> Costmap {
+        let mut map = Costmap::new(40, 30, 0.1, Point2::new(0.0, 0.0), NO_INFORMATION);
+        for y in 5..=24 {
+            for x in 5..=24 {
+                let wall = x == 5 || x == 24 || y == 5 || y == 24;
+                map.set(x, y, if wall { LETHAL } else { FREE });
+            }
+            // A strip seen through nothing: known free beyond the wall, next to unknown.
+            for x in 26..30 {
+                map.set(x, y, FREE);
+            }
+        }
+        map
+    }
+
+    #[test]
+    fn a_frontier_beyond_the_walls_is_no_target() {
+        let map = walled_room();
+        let inside = Point2::new(1.45, 1.45);
+        assert!(frontiers(&map, inside, 3).is_empty(), "the room is closed");
+        let reach = reachable(&map, inside);
+        assert!(!reach[map.index(27, 10)], "the strip is beyond the wall");
+        assert!(reach[map.index(10, 10)]);
+    }
+
+    #[test]
+    fn a_doorway_makes_the_space_beyond_reachable() {
+        let mut map = walled_room();
+        // A door in the east wall and a corridor to the strip.
+        for y in 12..16 {
+            map.set(24, y, FREE);
+            map.set(25, y, FREE);
+        }
+        let inside = Point2::new(1.45, 1.45);
+        let found = frontiers(&map, inside, 3);
+        assert!(!found.is_empty());
+        assert!(found.iter().all(|f| f.target.x > 2.5), "{found:?}");
+    }
+
+    #[test]
+    fn a_robot_standing_in_a_lethal_cell_still_floods_from_beside_it() {
+        let map = walled_room();
+        // On the wall itself (as a robot pressed against it appears on the map).
+        let reach = reachable(&map, Point2::new(0.55, 1.45));
+        assert!(reach[map.index(10, 10)]);
     }
 }

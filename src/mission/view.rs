@@ -64,6 +64,11 @@ impl Mission {
         matches!(self.phase, Phase::Done)
     }
 
+    /// Why the mission handed the robot to manual control, if it has.
+    pub fn handover_cause(&self) -> Option<&'static str> {
+        self.handover
+    }
+
     /// Whether the mission is working the gripper now (picking up or delivering): the
     /// gripper keys leave it alone then.
     pub fn holds_gripper(&self) -> bool {

@@ -203,9 +203,20 @@ pub fn all_free() -> Costmap {
     Costmap::new(40, 40, 0.1, Point2::new(-2.0, -2.0), FREE)
 }
 
+/// The mission's defaults, `total_blocks` blocks, and a camera that takes in the whole
+/// rig map from anywhere: the tests that use it are about other things than coverage.
 pub fn config(total_blocks: u32) -> MissionConfig {
     MissionConfig {
         total_blocks,
+        ..all_seeing()
+    }
+}
+
+/// The mission's defaults with a camera that sees the whole rig map at once.
+pub fn all_seeing() -> MissionConfig {
+    MissionConfig {
+        view_range: 10.0,
+        view_fov_deg: 360.0,
         ..MissionConfig::default()
     }
 }

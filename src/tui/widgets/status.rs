@@ -82,7 +82,8 @@ pub fn lines(app: &App, theme: Theme) -> Vec<Line<'static>> {
             format!(
                 "{:.3} m {:4.1}°",
                 (truth.x - est.x).hypot(truth.y - est.y),
-                dtheta.to_degrees()
+                // An error that rounds to zero shows no sign.
+                (dtheta.to_degrees() * 10.0).round() / 10.0 + 0.0
             ),
         ));
     }

@@ -80,6 +80,19 @@ fn a_block_unseen_in_view_for_3_s_during_the_approach_is_demoted() {
         0,
         "demoted to a potential block"
     );
+    // It stands in the block's ring, facing it: it backs away before planning anew.
+    let at = rig.pose.position();
+    let backed = rig.until(
+        5,
+        |out, _| matches!(out.motion, Motion::Drive(t) if t.linear < 0.0),
+    );
+    assert!(matches!(backed.motion, Motion::Drive(_)));
+    rig.until(
+        40,
+        |out, _| !matches!(out.motion, Motion::Drive(t) if t.linear < 0.0),
+    );
+    let away = rig.pose.position().distance(at);
+    assert!((0.15..0.25).contains(&away), "backed {away:.3} m");
 }
 
 #[test]

@@ -38,6 +38,9 @@ pub(super) enum Phase {
     },
     /// Seed 001 "Robot Lost": rotating until a marker comes into view.
     Lost,
+    /// Backing away from a block the approach lost sight of (the robot may stand in its
+    /// lethal ring, facing it), since the time given; then choosing again.
+    BackOff(f64),
     Pickup(Pickup),
     Deliver(Delivery),
     Done,
@@ -280,7 +283,7 @@ impl Mission {
                         self.objects.demote(odd);
                         self.ctx.recoveries += 1;
                         self.demoted.insert(odd, t);
-                        self.phase = Phase::Choose;
+                        self.phase = Phase::BackOff(t);
                         Tick::Again
                     }
                     PickEvent::GiveUp => self.manual(Cause::Pickup),
@@ -312,6 +315,19 @@ impl Mission {
                     }
                     DropEvent::GiveUp => self.manual(Cause::Delivery),
                 }
+            }
+            Phase::BackOff(since) => {
+                // A path planned from inside the block's ring would drive into it
+                // (navdeck's, as after a drop). The map behind is the block's ring too, so
+                // it is not asked: the robot crept in forwards from its staging point
+                // (`staging_distance` away), and backs `back_off_time` x 0.1 m/s along
+                // that way, no further than it came.
+                if t - *since < self.config.back_off_time {
+                    let back = Twist::new(-super::config::BACK_OFF_SPEED, 0.0);
+                    return Tick::Out(Motion::Drive(back), None);
+                }
+                self.phase = Phase::Choose;
+                Tick::Again
             }
             Phase::Done => Tick::Out(Motion::Stop, None),
             Phase::Manual => Tick::Out(Motion::Stop, None),

@@ -23,6 +23,7 @@ impl Mission {
                 }
             }
             Phase::Lost => "lost: scanning for landmarks".into(),
+            Phase::BackOff(_) => "backing away from a lost block".into(),
             Phase::Pickup(p) => p.label(),
             Phase::Deliver(d) => d.label(),
             Phase::Done => "done".into(),

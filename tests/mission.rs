@@ -116,3 +116,30 @@ fn gripper_keys_wait_while_the_mission_uses_the_gripper() {
             .any(|e| e.text.contains("the mission is using the gripper"))
     );
 }
+
+#[test]
+fn in_exploration_the_map_shows_the_places_weighed_and_the_one_it_heads_for() {
+    let mut app = default_app();
+    app.handle_key(key("e"), KeyKind::Press, 0.0);
+    let mut t = 0.0;
+    // Step until the mission heads for an exploration target.
+    while t < 120.0 {
+        t += 0.1;
+        app.update(t);
+        let heading = (app.pilot().mission())
+            .and_then(|m| m.exploration_targets().1)
+            .is_some();
+        if heading {
+            break;
+        }
+    }
+    let mission = app.pilot().mission().expect("a mission");
+    let (weighed, heading) = mission.exploration_targets();
+    assert!(heading.is_some(), "heading somewhere by {t:.1} s");
+    assert!(!weighed.is_empty());
+    let screen = common::render(&app);
+    assert!(screen.contains('!'), "{screen}");
+    // Out of exploration the marks go.
+    app.handle_key(key("m"), KeyKind::Press, t);
+    assert!(!common::render(&app).contains('!'));
+}

@@ -16,6 +16,7 @@ use crate::geometry::Point2;
 
 impl Mission {
     pub(super) fn choose(&mut self, inputs: &Inputs, log: &mut Vec<(Level, String)>) {
+        self.candidates.clear();
         let robot = inputs.pose.position();
         let total = self.config.total_blocks as usize;
         if total > 0 && self.objects.delivered() >= total {
@@ -148,25 +149,30 @@ impl Mission {
     }
 
     fn explore_target(
-        &self,
+        &mut self,
         rule: TargetRule,
         inputs: &Inputs,
     ) -> Option<(Point2, Target, String)> {
         let robot = inputs.pose.position();
         match rule {
-            TargetRule::Frontiers => frontiers(inputs.map, robot, FRONTIER_MIN_CELLS)
-                .into_iter()
-                .map(|f| f.target)
-                .filter(|p| p.distance(robot) >= TARGET_TOO_CLOSE)
-                .filter(|p| {
-                    (self.visited_goals.iter().chain(&self.given_up))
-                        .all(|v| v.distance(*p) >= TARGET_TOO_CLOSE)
-                })
-                .min_by(|a, b| a.distance(robot).total_cmp(&b.distance(robot)))
-                .map(|p| {
-                    let label = format!("frontier ({:.2}, {:.2})", p.x, p.y);
-                    (p, Target::Frontier, label)
-                }),
+            TargetRule::Frontiers => {
+                let found: Vec<Point2> = frontiers(inputs.map, robot, FRONTIER_MIN_CELLS)
+                    .into_iter()
+                    .map(|f| f.target)
+                    .filter(|p| p.distance(robot) >= TARGET_TOO_CLOSE)
+                    .filter(|p| {
+                        (self.visited_goals.iter().chain(&self.given_up))
+                            .all(|v| v.distance(*p) >= TARGET_TOO_CLOSE)
+                    })
+                    .collect();
+                self.candidates.extend(&found);
+                (found.into_iter())
+                    .min_by(|a, b| a.distance(robot).total_cmp(&b.distance(robot)))
+                    .map(|p| {
+                        let label = format!("frontier ({:.2}, {:.2})", p.x, p.y);
+                        (p, Target::Frontier, label)
+                    })
+            }
             // Seed 001 "Marker Selection Heuristic"; the goal stops short of the wall.
             TargetRule::Markers => {
                 let mut skip = self.visited_markers.clone();
@@ -181,7 +187,7 @@ impl Mission {
 
     /// The nearest place, not given up, from which free space the camera has not looked
     /// at can be seen (frontier rule only: the marker rule is the seed's, kept as it is).
-    fn unseen_target(&self, inputs: &Inputs) -> Option<(Point2, Target, String)> {
+    fn unseen_target(&mut self, inputs: &Inputs) -> Option<(Point2, Target, String)> {
         if self.config.target_rule != TargetRule::Frontiers {
             return None;
         }
@@ -197,6 +203,7 @@ impl Mission {
             &tried,
             TARGET_TOO_CLOSE,
         );
+        self.candidates.extend(unseen.iter().map(|u| u.target));
         (unseen.into_iter().map(|u| u.target))
             .min_by(|a, b| a.distance(robot).total_cmp(&b.distance(robot)))
             .map(|p| {

@@ -97,6 +97,9 @@ pub struct Mission {
     pub(super) retry_rounds: u32,
     /// What the camera has looked at.
     pub(super) coverage: super::coverage::Coverage,
+    /// The exploration targets the last choice weighed (frontiers, unseen space), for
+    /// the map.
+    pub(super) candidates: Vec<Point2>,
     /// Why the mission handed over to manual, once it has.
     pub(super) handover: Option<&'static str>,
     /// Demoted blocks and when; attempts per block.
@@ -130,6 +133,7 @@ impl Mission {
             given_up_markers: Vec::new(),
             retry_rounds: 0,
             coverage: super::coverage::Coverage::default(),
+            candidates: Vec::new(),
             handover: None,
             demoted: BTreeMap::new(),
             attempts: BTreeMap::new(),

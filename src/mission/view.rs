@@ -1,6 +1,7 @@
 //! Read-only views of the mission for the status panel.
 
 use super::machine::{Mission, Phase, Target, TimelineEntry};
+use crate::geometry::Point2;
 
 impl Mission {
     /// The sub-state and its target, e.g. "approach red block 421".
@@ -63,6 +64,15 @@ impl Mission {
     /// The mission finished with every block it had to deliver delivered.
     pub fn is_done(&self) -> bool {
         matches!(self.phase, Phase::Done)
+    }
+
+    /// The exploration targets the last choice weighed, and the one it is heading for.
+    pub fn exploration_targets(&self) -> (&[Point2], Option<Point2>) {
+        let heading = match &self.phase {
+            Phase::Explore { leg, .. } => Some(leg.goal),
+            _ => None,
+        };
+        (&self.candidates, heading)
     }
 
     /// Why the mission handed the robot to manual control, if it has.

@@ -63,6 +63,7 @@ pub fn render(app: &App, theme: Theme, area: Rect, buf: &mut Buffer) {
         draw_world_objects(app, &vp, theme, buf);
     }
     super::path::render(app, &vp, theme, buf);
+    super::explore::render(app, &vp, theme, buf);
     super::beliefs::render(app, &vp, theme, buf);
     if app.view().show_truth
         && let Some(truth) = app.true_pose()

@@ -2,6 +2,7 @@
 
 pub mod beliefs;
 pub mod camera;
+pub mod explore;
 pub mod help;
 pub mod landmarks;
 pub mod log;

@@ -234,3 +234,32 @@ fn with_other_targets_left_the_next_one_is_tried_at_once() {
         "no turn while other targets are left"
     );
 }
+
+#[test]
+fn a_robot_lost_for_30_s_drives_back_to_the_nearest_landmark_and_resumes_on_seeing_one() {
+    let mut rig = Rig::new(config(4), half_known());
+    rig.landmarks
+        .insert(7, navdeck::geometry::Point2::new(-1.5, 0.0));
+    rig.landmarks
+        .insert(8, navdeck::geometry::Point2::new(1.9, 1.9));
+    rig.auto = false;
+    rig.until(200, |out, _| plan_to(out).is_some());
+    rig.path = PathStatus::Following { remaining: 0.9 };
+    rig.seen.clear();
+    let out = rig.until(400, |out, _| plan_to(out).is_some() || out.to_manual);
+    assert!(!out.to_manual, "{:?}", rig.log);
+    assert!(rig.logged("going back to marker 7, the nearest seen"));
+    let (goal, label) = plan_to(&out).unwrap();
+    assert_eq!(label, "marker 7");
+    let robot = rig.pose.position();
+    let at = navdeck::geometry::Point2::new(-1.5, 0.0);
+    assert!(
+        (goal.distance(at) - 0.5).abs() < 1e-9,
+        "0.5 m in front of it"
+    );
+    assert!(goal.distance(robot) < at.distance(robot));
+    // A marker in view again: back to exploring.
+    rig.seen = vec![7];
+    rig.until(20, |_, r| r.logged("Landmarks back in view"));
+    assert!(!rig.mission.state_label().starts_with("lost"));
+}

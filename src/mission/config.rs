@@ -6,6 +6,9 @@ use serde::{Deserialize, Serialize};
 /// Rotate to scan after this long without any marker in view, s (navdeck's trigger for
 /// seed 001 "Robot Lost", whose only figure is the 30 s hand-over to manual).
 pub const LOST_SCAN_AFTER: f64 = 10.0;
+/// A lost robot drives back to this far in front of the nearest landmark it knows,
+/// metres (navdeck's: within any camera's range, clear of the wall's ring).
+pub const RELOCATE_STANDOFF: f64 = 0.5;
 /// Heading error accepted when turning to face a block or a gate, radians (3 degrees).
 pub const FACE_TOLERANCE: f64 = 3.0 * std::f64::consts::PI / 180.0;
 /// Seed 001 "Block Lost During Approach": markers unseen this long while in view, s
@@ -95,7 +98,8 @@ pub struct MissionConfig {
     pub drop_distance: f64,
     /// Backing off at 0.1 m/s after a drop, and out of a spot where the robot is stuck, s.
     pub back_off_time: f64,
-    /// No landmarks this long: hand over to manual, s.
+    /// No landmarks this long: drive back towards the nearest landmark known, and hand
+    /// over to manual if none is in view there (or none is known), s.
     pub lost_timeout: f64,
     /// Failed plans (each followed by a turn) before handing over to manual.
     pub no_path_retries: u32,

@@ -1,7 +1,7 @@
 //! The mission state machine (seed 001 sections 7-8): scan, choose, explore, pick up,
 //! deliver, recover. Driven only by `Inputs`; every time it keeps came in through them.
 
-use super::config::{LOST_SCAN_AFTER, MissionConfig};
+use super::config::{LOST_SCAN_AFTER, MissionConfig, RELOCATE_STANDOFF};
 use super::delivery::{Delivery, DropEvent};
 use super::drive::Turn;
 use super::leg::{Ctx, Leg, LegStep};
@@ -36,8 +36,9 @@ pub(super) enum Phase {
         leg: Leg,
         target: Target,
     },
-    /// Seed 001 "Robot Lost": rotating until a marker comes into view.
-    Lost,
+    /// Seed 001 "Robot Lost": rotating until a marker comes into view; after
+    /// `lost_timeout`, driving back towards the nearest landmark known (navdeck's).
+    Lost(Option<Leg>),
     /// Backing away from a block the approach lost sight of (the robot may stand in its
     /// lethal ring, facing it), since the time given; then choosing again.
     BackOff(f64),
@@ -187,7 +188,7 @@ impl Mission {
                 Level::Warn,
                 format!("No landmarks for {LOST_SCAN_AFTER:.0} s - rotating to scan"),
             ));
-            self.phase = Phase::Lost;
+            self.phase = Phase::Lost(None);
         }
         match &mut self.phase {
             Phase::Start => {
@@ -238,21 +239,53 @@ impl Mission {
                     LegStep::GiveUp => self.manual(Cause::Unreachable),
                 }
             }
-            Phase::Lost => {
+            Phase::Lost(relocating) => {
                 if t - self.last_marker < LOST_SCAN_AFTER {
                     log.push((Level::Success, "Landmarks back in view".into()));
                     self.phase = Phase::Choose;
                     return Tick::Again;
                 }
+                if let Some(leg) = relocating {
+                    return match leg.step(inputs, &self.config, &mut self.ctx, log) {
+                        LegStep::Move(motion) => Tick::Out(motion, None),
+                        _ => {
+                            let label = leg.label.clone();
+                            log.push((
+                                Level::Error,
+                                format!(
+                                    "Robot lost: no landmarks in view even at {label} - switching to manual"
+                                ),
+                            ));
+                            self.manual(Cause::Lost)
+                        }
+                    };
+                }
                 if t - self.last_marker >= self.config.lost_timeout {
+                    let robot = inputs.pose.position();
+                    let nearest = (inputs.landmarks.iter())
+                        .min_by(|a, b| a.1.distance(robot).total_cmp(&b.1.distance(robot)));
+                    let Some((&id, &at)) = nearest else {
+                        log.push((
+                            Level::Error,
+                            format!(
+                                "Robot lost: no landmarks for {:.0} s - switching to manual",
+                                self.config.lost_timeout
+                            ),
+                        ));
+                        return self.manual(Cause::Lost);
+                    };
+                    // Odometry still holds the pose roughly: go where landmarks were seen.
+                    let goal = super::drive::towards(at, robot, RELOCATE_STANDOFF);
+                    let label = format!("marker {id}");
                     log.push((
-                        Level::Error,
+                        Level::Warn,
                         format!(
-                            "Robot lost: no landmarks for {:.0} s - switching to manual",
+                            "No landmarks for {:.0} s - going back to {label}, the nearest seen",
                             self.config.lost_timeout
                         ),
                     ));
-                    return self.manual(Cause::Lost);
+                    *relocating = Some(Leg::new(goal, label));
+                    return Tick::Again;
                 }
                 Tick::Out(scan, None)
             }

@@ -23,7 +23,8 @@ impl Mission {
                     None => format!("{what} {}", leg.label),
                 }
             }
-            Phase::Lost => "lost: scanning for landmarks".into(),
+            Phase::Lost(None) => "lost: scanning for landmarks".into(),
+            Phase::Lost(Some(leg)) => format!("lost: going back to {}", leg.label),
             Phase::BackOff(_) => "backing away from a lost block".into(),
             Phase::Pickup(p) => p.label(),
             Phase::Deliver(d) => d.label(),

@@ -1,7 +1,8 @@
-//! Estimating where the robot is: wheel odometry now, EKF-SLAM later.
+//! Estimating where the robot is: wheel odometry and EKF-SLAM on marker landmarks.
 
 pub mod config;
 pub mod ekf;
 pub mod ellipse;
+mod joseph;
 pub mod motion;
 pub mod odometry;

@@ -41,9 +41,14 @@ impl Mission {
         // One rule to the end: with frontiers, exploration is complete when no reachable
         // frontier is left and the camera has looked at every free place the robot can
         // reach; with markers, when every valid marker was visited.
+        // One flood from the robot serves both kinds of frontier target.
+        let reach = match self.config.target_rule {
+            TargetRule::Frontiers => reachable(inputs.map, inputs.pose.position()),
+            TargetRule::Markers => Vec::new(),
+        };
         let found = self
-            .explore_target(self.config.target_rule, inputs)
-            .or_else(|| self.unseen_target(inputs));
+            .explore_target(self.config.target_rule, inputs, &reach)
+            .or_else(|| self.unseen_target(inputs, &reach));
         if let Some((goal, target, label)) = found {
             self.phase = Phase::Explore {
                 leg: Leg::replaceable(goal, label),
@@ -152,11 +157,12 @@ impl Mission {
         &mut self,
         rule: TargetRule,
         inputs: &Inputs,
+        reach: &[bool],
     ) -> Option<(Point2, Target, String)> {
         let robot = inputs.pose.position();
         match rule {
             TargetRule::Frontiers => {
-                let found: Vec<Point2> = frontiers(inputs.map, robot, FRONTIER_MIN_CELLS)
+                let found: Vec<Point2> = frontiers(inputs.map, reach, FRONTIER_MIN_CELLS)
                     .into_iter()
                     .map(|f| f.target)
                     .filter(|p| p.distance(robot) >= TARGET_TOO_CLOSE)
@@ -187,18 +193,21 @@ impl Mission {
 
     /// The nearest place, not given up, from which free space the camera has not looked
     /// at can be seen (frontier rule only: the marker rule is the seed's, kept as it is).
-    fn unseen_target(&mut self, inputs: &Inputs) -> Option<(Point2, Target, String)> {
+    fn unseen_target(
+        &mut self,
+        inputs: &Inputs,
+        reach: &[bool],
+    ) -> Option<(Point2, Target, String)> {
         if self.config.target_rule != TargetRule::Frontiers {
             return None;
         }
         let robot = inputs.pose.position();
-        let reach = reachable(inputs.map, robot);
         let tried: Vec<Point2> = (self.visited_goals.iter().chain(&self.given_up))
             .copied()
             .collect();
         let unseen = self.coverage.unseen(
             inputs.map,
-            &reach,
+            reach,
             UNSEEN_MIN_CELLS,
             &tried,
             TARGET_TOO_CLOSE,

@@ -4,9 +4,9 @@
 //! reach has been in view, not when the lidar map has no unknown cells left (a lidar maps
 //! a small room in seconds, long before the camera has looked everywhere).
 
+use super::clusters::{clusters, nearest_centroid};
 use crate::geometry::{Point2, Pose2, wrap_angle};
 use crate::map::costmap::{Costmap, INFLATED, NO_INFORMATION, is_lethal};
-use std::collections::VecDeque;
 
 /// Side of a coverage cell, metres: about a block's footprint with its staging margin.
 pub const CELL: f64 = 0.1;
@@ -59,8 +59,8 @@ impl Coverage {
     }
 
     /// Clusters (8-connected) of at least `min_cells` free cells (outside the 0.7 ring) not
-    /// yet seen that the robot
-    /// can reach (`reach`, from `targets::reachable` on the same map), each with the
+    /// yet seen that the robot can reach (`reach`, from `targets::reachable` on the same
+    /// map), each with the
     /// reachable cell nearest its centroid as the place to go and look, leaving out cells
     /// within `keep_off` of an `avoid` point (places already tried).
     pub fn unseen(
@@ -80,50 +80,20 @@ impl Coverage {
                 .is_some_and(|(mx, my)| reach[map.index(mx, my)] && map.get(mx, my) < INFLATED)
         };
         let open = |x: usize, y: usize| !self.seen[y * w + x] && reachable(x, y);
-        let mut done = vec![false; w * h];
-        let mut out = Vec::new();
-        for y in 0..h {
-            for x in 0..w {
-                if done[y * w + x] || !open(x, y) {
-                    continue;
-                }
-                done[y * w + x] = true;
-                let mut cluster = vec![(x, y)];
-                let mut queue = VecDeque::from([(x, y)]);
-                while let Some((qx, qy)) = queue.pop_front() {
-                    for (nx, ny) in neighbours(qx, qy, w, h) {
-                        if !done[ny * w + nx] && open(nx, ny) {
-                            done[ny * w + nx] = true;
-                            cluster.push((nx, ny));
-                            queue.push_back((nx, ny));
-                        }
-                    }
-                }
-                if cluster.len() < min_cells {
-                    continue;
-                }
-                let n = cluster.len() as f64;
-                let (sx, sy) = (cluster.iter())
-                    .fold((0.0, 0.0), |(a, b), &(x, y)| (a + x as f64, b + y as f64));
-                let (mx, my) = (sx / n, sy / n);
-                let allowed = |&&(x, y): &&(usize, usize)| {
-                    let c = self.center(x, y);
-                    avoid.iter().all(|a| a.distance(c) >= keep_off)
-                };
-                let Some(&(tx, ty)) = (cluster.iter()).filter(allowed).min_by(|a, b| {
-                    let da = (a.0 as f64 - mx).hypot(a.1 as f64 - my);
-                    let db = (b.0 as f64 - mx).hypot(b.1 as f64 - my);
-                    da.total_cmp(&db)
-                }) else {
-                    continue;
-                };
-                out.push(Unseen {
+        let allowed = |&(x, y): &(usize, usize)| {
+            let c = self.center(x, y);
+            avoid.iter().all(|a| a.distance(c) >= keep_off)
+        };
+        (clusters(w, h, open).into_iter())
+            .filter(|cluster| cluster.len() >= min_cells)
+            .filter_map(|cluster| {
+                let (tx, ty) = nearest_centroid(&cluster, allowed)?;
+                Some(Unseen {
                     target: self.center(tx, ty),
                     cells: cluster.len(),
-                });
-            }
-        }
-        out
+                })
+            })
+            .collect()
     }
 
     /// Whether the camera has looked at `p`.
@@ -159,15 +129,6 @@ impl Coverage {
             self.origin.y + (y as f64 + 0.5) * CELL,
         )
     }
-}
-
-fn neighbours(x: usize, y: usize, w: usize, h: usize) -> impl Iterator<Item = (usize, usize)> {
-    (-1i64..=1)
-        .flat_map(|dy| (-1i64..=1).map(move |dx| (dx, dy)))
-        .filter(|&d| d != (0, 0))
-        .map(move |(dx, dy)| (x as i64 + dx, y as i64 + dy))
-        .filter(move |&(a, b)| a >= 0 && b >= 0 && a < w as i64 && b < h as i64)
-        .map(|(a, b)| (a as usize, b as usize))
 }
 
 /// Whether the segment from `a` to `b` crosses no lethal map cell, sampled at half the

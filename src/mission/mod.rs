@@ -2,6 +2,7 @@
 //! each block up and deliver it. Pure state: landmarks and time in, commands out.
 
 mod choose;
+mod clusters;
 pub mod config;
 pub mod coverage;
 mod delivery;

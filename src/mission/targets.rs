@@ -2,6 +2,7 @@
 //! between known free space and unknown space (Yamauchi, "A frontier-based approach for
 //! autonomous exploration", CIRA 1997).
 
+use super::clusters::{clusters, nearest_centroid};
 use crate::geometry::Point2;
 use crate::map::costmap::{Costmap, INFLATED, NO_INFORMATION, is_lethal};
 use crate::map::reach::nearest_passable;
@@ -86,12 +87,12 @@ pub fn reachable(map: &Costmap, from: Point2) -> Vec<bool> {
     reach
 }
 
-/// Frontier clusters of at least `min_cells` cells that the robot at `from` can reach:
-/// known cells below the 0.7 ring that touch an unknown cell, grouped 8-connected. A
-/// frontier beyond a wall, or one only unknown space leads to, is no place to go.
-pub fn frontiers(map: &Costmap, from: Point2, min_cells: usize) -> Vec<Frontier> {
+/// Frontier clusters of at least `min_cells` cells among those `reach` marks (from
+/// `reachable`): known cells below the 0.7 ring that touch an unknown cell, grouped
+/// 8-connected. A frontier beyond a wall, or one only unknown space leads to, is no place
+/// to go.
+pub fn frontiers(map: &Costmap, reach: &[bool], min_cells: usize) -> Vec<Frontier> {
     let (w, h) = (map.width, map.height);
-    let reach = reachable(map, from);
     let passable = |c: u8| c < INFLATED;
     let is_frontier = |x: usize, y: usize| {
         let c = map.get(x, y);
@@ -104,55 +105,16 @@ pub fn frontiers(map: &Costmap, from: Point2, min_cells: usize) -> Vec<Frontier>
             || (y > 0 && unknown(x, y - 1))
             || (y + 1 < h && unknown(x, y + 1))
     };
-    let mut seen = vec![false; w * h];
-    let mut out = Vec::new();
-    let mut queue = VecDeque::new();
-    for y in 0..h {
-        for x in 0..w {
-            if seen[y * w + x] || !is_frontier(x, y) {
-                continue;
-            }
-            seen[y * w + x] = true;
-            queue.push_back((x, y));
-            let mut cluster = Vec::new();
-            while let Some((cx, cy)) = queue.pop_front() {
-                cluster.push((cx, cy));
-                for dy in -1i64..=1 {
-                    for dx in -1i64..=1 {
-                        let (nx, ny) = (cx as i64 + dx, cy as i64 + dy);
-                        if nx < 0 || ny < 0 || nx >= w as i64 || ny >= h as i64 {
-                            continue;
-                        }
-                        let (nx, ny) = (nx as usize, ny as usize);
-                        if !seen[ny * w + nx] && is_frontier(nx, ny) {
-                            seen[ny * w + nx] = true;
-                            queue.push_back((nx, ny));
-                        }
-                    }
-                }
-            }
-            if cluster.len() >= min_cells {
-                let n = cluster.len() as f64;
-                let (sx, sy) = cluster.iter().fold((0.0, 0.0), |(sx, sy), &(x, y)| {
-                    (sx + x as f64, sy + y as f64)
-                });
-                let (mx, my) = (sx / n, sy / n);
-                let &(tx, ty) = cluster
-                    .iter()
-                    .min_by(|a, b| {
-                        let da = (a.0 as f64 - mx).hypot(a.1 as f64 - my);
-                        let db = (b.0 as f64 - mx).hypot(b.1 as f64 - my);
-                        da.total_cmp(&db)
-                    })
-                    .expect("a cluster has cells");
-                out.push(Frontier {
-                    target: map.center_of(tx, ty),
-                    cells: cluster.len(),
-                });
-            }
-        }
-    }
-    out
+    (clusters(w, h, is_frontier).into_iter())
+        .filter(|cluster| cluster.len() >= min_cells)
+        .filter_map(|cluster| {
+            let (tx, ty) = nearest_centroid(&cluster, |_| true)?;
+            Some(Frontier {
+                target: map.center_of(tx, ty),
+                cells: cluster.len(),
+            })
+        })
+        .collect()
 }
 
 #[cfg(test)]
@@ -187,11 +149,14 @@ mod tests {
         }
         map.set(7, 0, LETHAL);
         let robot = Point2::new(0.25, 0.55);
-        let found = frontiers(&map, robot, 3);
+        let found = frontiers(&map, &reachable(&map, robot), 3);
         assert_eq!(found.len(), 1, "{found:?}");
         assert_eq!(found[0].cells, 9, "the lethal cell is no frontier");
         assert!((found[0].target.x - 0.75).abs() < 1e-9);
-        assert!(frontiers(&map, robot, 10).is_empty(), "too small a cluster");
+        assert!(
+            frontiers(&map, &reachable(&map, robot), 10).is_empty(),
+            "too small a cluster"
+        );
     }
 
     /// A walled room of known free cells in unknown space, 30 x 30 cells at 0.1 m: walls
@@ -215,7 +180,10 @@ mod tests {
     fn a_frontier_beyond_the_walls_is_no_target() {
         let map = walled_room();
         let inside = Point2::new(1.45, 1.45);
-        assert!(frontiers(&map, inside, 3).is_empty(), "the room is closed");
+        assert!(
+            frontiers(&map, &reachable(&map, inside), 3).is_empty(),
+            "the room is closed"
+        );
         let reach = reachable(&map, inside);
         assert!(!reach[map.index(27, 10)], "the strip is beyond the wall");
         assert!(reach[map.index(10, 10)]);
@@ -230,7 +198,7 @@ mod tests {
             map.set(25, y, FREE);
         }
         let inside = Point2::new(1.45, 1.45);
-        let found = frontiers(&map, inside, 3);
+        let found = frontiers(&map, &reachable(&map, inside), 3);
         assert!(!found.is_empty());
         assert!(found.iter().all(|f| f.target.x > 2.5), "{found:?}");
     }

@@ -3,7 +3,6 @@
 
 use crate::config::Config;
 use crate::data::Level;
-use crate::geometry::Pose2;
 use crate::link::RobotLink;
 use crate::link::drive;
 use crate::pilot::mode::Mode;
@@ -64,16 +63,10 @@ impl MissionReport {
 /// until it ends or `time_limit` simulated seconds pass. No console: the pilot is driven
 /// directly, a control step every period.
 pub fn run(config: &Config, link: &mut dyn RobotLink, seed: u64, time_limit: f64) -> MissionReport {
-    let truth = link.ground_truth();
-    let start = truth.map_or(Pose2::default(), |t| t.pose());
-    let extent = truth.map_or((0.0, 0.0), |t| (t.world().width, t.world().height));
-    let mut pilot = Pilot::new(config.pilot_settings(), start, extent, 0.0);
+    let mut pilot = drive::pilot_for(link, config.pilot_settings(), 0.0);
+    let truth = link.ground_truth().map(|t| t.pose());
     let mut run = Run::default();
-    let out = pilot.step(Input::intent(
-        0.0,
-        Intent::Mode(Mode::Exploration),
-        Some(start),
-    ));
+    let out = pilot.step(Input::intent(0.0, Intent::Mode(Mode::Exploration), truth));
     run.log.extend(out.log);
     if out.act_now {
         run.step(link, &mut pilot, 0.0, Due::Command);

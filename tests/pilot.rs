@@ -18,10 +18,9 @@ const PERIOD: f64 = 0.1;
 fn rig(seed: u64) -> (SimLink, Pilot) {
     let config = Config::default();
     let twin = Twin::new(World::default_arena(), &config.robot, &config.sim, seed);
-    let start = twin.pose();
-    let extent = (twin.world().width, twin.world().height);
-    let pilot = Pilot::new(config.pilot_settings(), start, extent, 0.0);
-    (SimLink::new(twin, 0.0), pilot)
+    let link = SimLink::new(twin, 0.0);
+    let pilot = drive::pilot_for(&link, config.pilot_settings(), 0.0);
+    (link, pilot)
 }
 
 /// Asks `intent` at `t` and runs the control step it calls for, as the console does;

@@ -79,11 +79,8 @@ impl App {
     /// A console on `link`, starting at session time `now`.
     pub fn new(config: Config, keymap: Keymap, link: Box<dyn RobotLink>, now: f64) -> Self {
         let truth = link.ground_truth();
-        let start = truth.map_or(Pose2::default(), |t| t.pose());
         let world_grid = truth.map(|t| t.world().rasterize(WORLD_RASTER));
-        // The planning map covers the twin's world when it is larger than the config's.
-        let extent = truth.map_or((0.0, 0.0), |t| (t.world().width, t.world().height));
-        let pilot = Pilot::new(config.pilot_settings(), start, extent, now);
+        let pilot = crate::link::drive::pilot_for(link.as_ref(), config.pilot_settings(), now);
         let mut app = Self {
             clock: control::ControlClock::new(now, config.robot.control_period),
             pilot,

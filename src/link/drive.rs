@@ -3,7 +3,19 @@
 
 use super::RobotLink;
 use crate::data::SensorFrame;
+use crate::geometry::Pose2;
+use crate::pilot::config::Settings;
 use crate::pilot::{Due, Input, LogLine, Pilot, Report};
+
+/// A pilot for the robot behind `link` at session time `now`. With a simulator behind
+/// the link it starts at the true pose and its planning map covers the simulated world
+/// when that is larger than the config's; otherwise it starts at the origin.
+pub fn pilot_for(link: &dyn RobotLink, settings: Settings, now: f64) -> Pilot {
+    let truth = link.ground_truth();
+    let start = truth.map_or(Pose2::default(), |t| t.pose());
+    let extent = truth.map_or((0.0, 0.0), |t| (t.world().width, t.world().height));
+    Pilot::new(settings, start, extent, now)
+}
 
 /// What one step brought: the frame the link reported (for the console's own panels) and
 /// the pilot's log lines.

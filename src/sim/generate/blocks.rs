@@ -21,15 +21,7 @@ pub fn place(d: &mut Draft, rng: &mut ChaCha8Rng, count: usize) -> Result<(), St
             (BlockColor::Blue, FIRST_BLUE)
         };
         let odd = first + 2 * (i / 2) as u32;
-        let spot = (0..TRIES).find_map(|_| {
-            let p = open_point(d, rng, WALL_CLEARANCE)?;
-            let spaced = d
-                .world
-                .blocks
-                .iter()
-                .all(|b| b.pose.position().distance(p) >= MIN_BLOCK_SPACING);
-            spaced.then_some(p)
-        });
+        let spot = open_spot(d, rng, WALL_CLEARANCE, MIN_BLOCK_SPACING);
         let Some(p) = spot else {
             return Err(format!(
                 "no place for block {} of {count} {WALL_CLEARANCE} m from every wall and box and {MIN_BLOCK_SPACING} m from the other blocks",
@@ -48,15 +40,7 @@ pub fn place(d: &mut Draft, rng: &mut ChaCha8Rng, count: usize) -> Result<(), St
 
 /// A start pose in open floor, clear of the blocks.
 pub fn start(d: &mut Draft, rng: &mut ChaCha8Rng) -> Result<(), String> {
-    let spot = (0..TRIES).find_map(|_| {
-        let p = open_point(d, rng, START_CLEARANCE)?;
-        let clear = d
-            .world
-            .blocks
-            .iter()
-            .all(|b| b.pose.position().distance(p) >= WALL_CLEARANCE);
-        clear.then_some(p)
-    });
+    let spot = open_spot(d, rng, START_CLEARANCE, WALL_CLEARANCE);
     let Some(p) = spot else {
         return Err(format!(
             "no start {START_CLEARANCE} m from every wall and box and {WALL_CLEARANCE} m from the blocks"
@@ -64,6 +48,19 @@ pub fn start(d: &mut Draft, rng: &mut ChaCha8Rng) -> Result<(), String> {
     };
     d.world.start = Pose2::new(p.x, p.y, heading(rng));
     Ok(())
+}
+
+/// Within `TRIES` draws, an open point (see `open_point`) at least `apart` from every
+/// block placed so far.
+fn open_spot(d: &Draft, rng: &mut ChaCha8Rng, clearance: f64, apart: f64) -> Option<Point2> {
+    (0..TRIES).find_map(|_| {
+        let p = open_point(d, rng, clearance)?;
+        let blocks = &d.world.blocks;
+        (blocks
+            .iter()
+            .all(|b| b.pose.position().distance(p) >= apart))
+        .then_some(p)
+    })
 }
 
 /// A point on a centimetre grid `clearance` from every wall and box, out of the gate lanes.

@@ -183,6 +183,9 @@ struct MissionArgs {
     /// The twin sees through a rendered camera and the ArUco detector (feature `vision`).
     #[arg(long)]
     sim_camera: bool,
+    /// Also print every line the mission logged (one run; in the JSON as "log").
+    #[arg(long, conflicts_with = "sweep")]
+    log: bool,
 }
 
 #[derive(Debug, clap::Args)]
@@ -401,7 +404,8 @@ fn run_mission(args: &MissionArgs) -> Result<ExitCode> {
     let one = |seed: u64| -> Result<mission_runner::MissionReport> {
         let (config, mut link) = load(seed)?.into_link();
         let started = Instant::now();
-        let mut report = mission_runner::run(&config, link.as_mut(), seed, args.time_limit);
+        let mut report =
+            mission_runner::run(&config, link.as_mut(), seed, args.time_limit, args.log);
         let wall = started.elapsed().as_secs_f64();
         report.wall_time_s = Some(wall);
         report.realtime_factor = Some(report.sim_time / wall.max(1e-9));

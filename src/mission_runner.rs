@@ -32,7 +32,8 @@ pub struct MissionReport {
     pub delivered: usize,
     pub true_delivered: Option<usize>,
     pub total: usize,
-    /// "delivered all", "time limit" or "handed to manual".
+    /// "delivered all", "finished" (exploration complete with blocks left), "time limit" or
+    /// "handed to manual".
     pub outcome: String,
     /// Why a run that did not deliver everything ended: "time limit", "ended with blocks
     /// left", or the mission's reason for handing over ("unreachable target", "lost",
@@ -51,6 +52,9 @@ pub struct MissionReport {
     /// Filled in by the caller, which owns the clock.
     pub wall_time_s: Option<f64>,
     pub realtime_factor: Option<f64>,
+    /// Every line the session logged, "time level text" (`navdeck mission --log`).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub log: Vec<String>,
 }
 
 impl MissionReport {
@@ -61,8 +65,15 @@ impl MissionReport {
 
 /// Runs the mission on `link` with a pilot of `config`'s settings, from session time 0
 /// until it ends or `time_limit` simulated seconds pass. No console: the pilot is driven
-/// directly, a control step every period.
-pub fn run(config: &Config, link: &mut dyn RobotLink, seed: u64, time_limit: f64) -> MissionReport {
+/// directly, a control step every period. With `keep_log`, the report carries every line
+/// the session logged.
+pub fn run(
+    config: &Config,
+    link: &mut dyn RobotLink,
+    seed: u64,
+    time_limit: f64,
+    keep_log: bool,
+) -> MissionReport {
     let mut pilot = drive::pilot_for(link, config.pilot_settings(), 0.0);
     let truth = link.ground_truth().map(|t| t.pose());
     let mut run = Run::default();
@@ -78,7 +89,13 @@ pub fn run(config: &Config, link: &mut dyn RobotLink, seed: u64, time_limit: f64
         t += STEP;
         run.step(link, &mut pilot, t, Due::Tick);
     }
-    report(&pilot, &*link, &run.log, config, seed, t)
+    let mut report = report(&pilot, &*link, &run.log, config, seed, t);
+    if keep_log {
+        report.log = (run.log.iter())
+            .map(|e| format!("{:7.1} s {} {}", e.time, e.level.tag(), e.text))
+            .collect();
+    }
+    report
 }
 
 /// What the run logged, and the contacts already logged.
@@ -117,8 +134,11 @@ fn report(
     let total = twin.map_or(config.mission.total_blocks as usize, |t| t.blocks().len());
     let mission = pilot.mission();
     let delivered = mission.map_or(0, |m| m.delivered());
-    let outcome = if mission.is_some_and(|m| m.is_done()) && delivered >= total {
+    let finished = mission.is_some_and(|m| m.is_done());
+    let outcome = if finished && delivered >= total {
         "delivered all"
+    } else if finished {
+        "finished"
     } else if pilot.mode() != Mode::Exploration {
         "handed to manual"
     } else {
@@ -143,9 +163,7 @@ fn report(
     let cause = match outcome {
         "delivered all" => None,
         _ if collided => Some("collision".to_string()),
-        "time limit" if mission.is_some_and(|m| m.is_done()) => {
-            Some("ended with blocks left".to_string())
-        }
+        "finished" => Some("ended with blocks left".to_string()),
         "time limit" => Some("time limit".to_string()),
         _ => Some(
             mission
@@ -185,6 +203,7 @@ fn report(
             .collect(),
         wall_time_s: None,
         realtime_factor: None,
+        log: Vec::new(),
     }
 }
 
@@ -244,7 +263,8 @@ pub fn summarise(mut reports: Vec<MissionReport>) -> SweepSummary {
 /// A report as a person reads it.
 pub fn human(r: &MissionReport) -> String {
     let cause = r.cause.as_ref().map_or(String::new(), |c| format!(", {c}"));
-    let mut out = format!(
+    let mut out: String = r.log.iter().map(|line| format!("{line}\n")).collect();
+    out += &format!(
         "mission on {} seed {}: {}{cause} ({} of {} blocks delivered) in {:.1} s simulated\n",
         r.world, r.seed, r.outcome, r.delivered, r.total, r.sim_time
     );

@@ -143,3 +143,16 @@ fn in_exploration_the_map_shows_the_places_weighed_and_the_one_it_heads_for() {
     app.handle_key(key("m"), KeyKind::Press, t);
     assert!(!common::render(&app).contains('!'));
 }
+
+#[test]
+fn log_prints_every_line_the_mission_logged() {
+    let out = navdeck(&["mission", "--seed", "2", "--time-limit", "20", "--log"]);
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(text.contains("INFO Initial rotation scan"), "{text}");
+    assert!(text.contains("mission on "), "the report follows: {text}");
+    let json = navdeck(&["mission", "--seed", "2", "--time-limit", "20", "--log", "--json"]);
+    let r: Value = serde_json::from_slice(&json.stdout).unwrap();
+    assert!(r["log"].as_array().is_some_and(|l| l.len() > 3), "{r}");
+    let sweep = navdeck(&["mission", "--sweep", "1..2", "--log"]);
+    assert_eq!(sweep.status.code(), Some(2), "one run only");
+}

@@ -255,3 +255,36 @@ fn without_feedback_a_block_still_in_view_is_a_missed_grip() {
     assert!(rig.logged("Gripper closed on nothing - reopening to retry red block 421"));
     assert!(!rig.logged("Picked up red block 421"));
 }
+
+#[test]
+fn a_small_object_no_marker_explains_is_looked_at_from_four_sides_before_the_end() {
+    let mut rig = Rig::new(all_seeing(), all_free());
+    // One occupied lidar cell at (1.05, 1.05) on a 0.1 m map.
+    rig.occupied = vec![false; rig.map.width * rig.map.height];
+    let (cx, cy) = rig.map.cell_of(Point2::new(1.05, 1.05)).unwrap();
+    rig.occupied[rig.map.index(cx, cy)] = true;
+    rig.until(3000, |_, r| r.mission.is_done());
+    let object = Point2::new(1.05, 1.05);
+    let looks: Vec<Point2> = (rig.plans.iter())
+        .filter(|(_, _, label)| label == "unexplained object (1.05, 1.05)")
+        .map(|(_, goal, _)| *goal)
+        .collect();
+    assert_eq!(looks.len(), 4, "{:?}", rig.plans);
+    let bearing = |p: Point2| (p.y - object.y).atan2(p.x - object.x);
+    for pair in looks.windows(2) {
+        let turn = wrap_angle(bearing(pair[1]) - bearing(pair[0]));
+        assert!((turn - PI / 2.0).abs() < 1e-9, "a quarter turn on: {turn}");
+    }
+    assert!(
+        (looks[0].distance(object) - 0.45).abs() < 1e-9,
+        "1.5 staging distances off"
+    );
+    assert!(rig.logged("Exploration complete"));
+    // A marker on it explains it: no looks.
+    let mut rig = Rig::new(all_seeing(), all_free());
+    rig.occupied = vec![false; rig.map.width * rig.map.height];
+    rig.occupied[rig.map.index(cx, cy)] = true;
+    rig.landmarks.insert(7, Point2::new(1.0, 1.05));
+    rig.until(3000, |_, r| r.mission.is_done());
+    assert!(rig.plans.is_empty(), "{:?}", rig.plans);
+}

@@ -62,6 +62,12 @@ impl BeliefMap {
         &self.costmap
     }
 
+    /// The cells the sensors found occupied (not the landmark layer), row-major over the
+    /// costmap.
+    pub fn sensed_occupied(&self) -> &[bool] {
+        self.evidence.occupied()
+    }
+
     /// Grows whenever any cell's cost changed.
     pub fn revision(&self) -> u64 {
         self.revision

@@ -54,6 +54,11 @@ impl Evidence {
         self.log_odds[i] != 0.0
     }
 
+    /// Every cell's occupied flag, row-major.
+    pub fn occupied(&self) -> &[bool] {
+        &self.occupied
+    }
+
     pub fn is_occupied(&self, i: usize) -> bool {
         self.occupied[i]
     }

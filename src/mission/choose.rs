@@ -2,16 +2,17 @@
 //! block first, else the next exploration target, else potential blocks, else finish.
 
 use super::config::{
-    FRONTIER_MIN_CELLS, GIVE_UP_ROUNDS, MAX_BLOCK_ATTEMPTS, POTENTIAL_LOOKS, POTENTIAL_VIEW,
-    TARGET_TOO_CLOSE, TargetRule, UNSEEN_MIN_CELLS,
+    EXPLAINED_WITHIN, FRONTIER_MIN_CELLS, GIVE_UP_ROUNDS, MAX_BLOCK_ATTEMPTS, OBJECT_LOOKS,
+    POTENTIAL_LOOKS, POTENTIAL_VIEW, TARGET_TOO_CLOSE, TargetRule, UNSEEN_MIN_CELLS,
 };
 use super::drive::{Turn, towards};
 use super::leg::Leg;
-use super::machine::{Cause, Mission, Phase, Target};
+use super::machine::{Cause, Mission, Phase, Target, Unexplained};
 use super::objects::Block;
 use super::pickup::{Pickup, name};
 use super::step::{Inputs, Level};
 use super::targets::{frontiers, furthest_marker, reachable};
+use super::unexplained::{GATHER, small_objects};
 use crate::geometry::Point2;
 
 impl Mission {
@@ -83,6 +84,15 @@ impl Mission {
             self.phase = Phase::Explore {
                 leg: Leg::replaceable(goal, label),
                 target: Target::Potential(b.markers[0]),
+            };
+            return;
+        }
+        if let Some((goal, i)) = self.object_look(inputs) {
+            let at = self.unexplained[i].at;
+            let label = format!("unexplained object ({:.2}, {:.2})", at.x, at.y);
+            self.phase = Phase::Explore {
+                leg: Leg::replaceable(goal, label),
+                target: Target::Object(i),
             };
             return;
         }
@@ -221,6 +231,43 @@ impl Mission {
             })
     }
 
+    /// Where to look next at the nearest small object the lidar mapped that neither a
+    /// landmark nor a block explains, and which one (index into `unexplained`); each is
+    /// looked at from four sides, the first from the robot's side.
+    fn object_look(&mut self, inputs: &Inputs) -> Option<(Point2, usize)> {
+        let robot = inputs.pose.position();
+        let explainers: Vec<Point2> = (inputs.landmarks.values().copied())
+            .chain(self.objects.blocks().map(|b| b.position))
+            .collect();
+        let present = small_objects(inputs.map, inputs.occupied, self.config.object_size);
+        let mut open = Vec::new();
+        for p in present {
+            if explainers.iter().any(|e| e.distance(p) < EXPLAINED_WITHIN) {
+                continue;
+            }
+            let known = (self.unexplained.iter()).position(|u| u.at.distance(p) < 2.0 * GATHER);
+            let i = known.unwrap_or_else(|| {
+                self.unexplained.push(Unexplained {
+                    at: p,
+                    first: (robot.y - p.y).atan2(robot.x - p.x),
+                    looks: 0,
+                });
+                self.unexplained.len() - 1
+            });
+            if self.unexplained[i].looks < OBJECT_LOOKS {
+                open.push(i);
+            }
+        }
+        let i = open.into_iter().min_by(|&a, &b| {
+            let d = |i: usize| self.unexplained[i].at.distance(robot);
+            d(a).total_cmp(&d(b))
+        })?;
+        let u = self.unexplained[i];
+        let a = u.first + f64::from(u.looks) * std::f64::consts::FRAC_PI_2;
+        let d = POTENTIAL_VIEW * self.config.staging_distance;
+        Some((Point2::new(u.at.x + d * a.cos(), u.at.y + d * a.sin()), i))
+    }
+
     /// Looks taken so far at the potential block with odd marker `odd`.
     fn looks_at(&self, odd: u32) -> u32 {
         self.potential_looks.get(&odd).copied().unwrap_or(0)
@@ -233,6 +280,7 @@ impl Mission {
             Target::Marker(id) => self.given_up_markers.push(id),
             // A side that cannot be reached counts as a look: the next side is tried.
             Target::Potential(odd) => *self.potential_looks.entry(odd).or_default() += 1,
+            Target::Object(i) => self.unexplained[i].looks += 1,
         }
     }
 
@@ -244,6 +292,7 @@ impl Mission {
         match target {
             Target::Marker(id) => self.visited_markers.push(id),
             Target::Potential(odd) => *self.potential_looks.entry(odd).or_default() += 1,
+            Target::Object(i) => self.unexplained[i].looks += 1,
             Target::Frontier | Target::Unseen => {}
         }
     }

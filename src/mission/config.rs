@@ -29,6 +29,12 @@ pub const UNSEEN_MIN_CELLS: usize = 3;
 /// Looks at a block seen by one marker only before leaving it: one from the robot's side
 /// and one from each diagonal (navdeck's).
 pub const POTENTIAL_LOOKS: u32 = 5;
+/// Looks at an unexplained small object, from four sides 90° apart: a block's two
+/// markers face two adjacent sides, so one of four looks faces a marker (navdeck's).
+pub const OBJECT_LOOKS: u32 = 4;
+/// An object the lidar maps this near a block or gate the markers placed is that block
+/// or gate (or a block delivered there), metres.
+pub const EXPLAINED_WITHIN: f64 = 0.25;
 /// The diagonal looks stand this many staging distances from the block.
 pub const POTENTIAL_VIEW: f64 = 1.5;
 /// Targets closer to the robot than this are ignored, metres (seed 001
@@ -117,6 +123,11 @@ pub struct MissionConfig {
     /// range, and inside its 68° field of view).
     pub view_range: f64,
     pub view_fov_deg: f64,
+    /// Something the lidar maps that fits in a square this size, metres, and that no
+    /// marker explains, is looked at from four sides before exploration ends: a block
+    /// whose markers were never turned towards the camera (navdeck's: more than a block's
+    /// diagonal, less than an obstacle). 0 turns the looks off.
+    pub object_size: f64,
 }
 
 impl Default for MissionConfig {
@@ -141,6 +152,7 @@ impl Default for MissionConfig {
             total_blocks: 0,
             view_range: 1.5,
             view_fov_deg: 60.0,
+            object_size: 0.15,
         }
     }
 }
@@ -171,6 +183,7 @@ impl MissionConfig {
             ("gripper_wait", self.gripper_wait),
             ("back_off_time", self.back_off_time),
             ("replan_cooldown", self.replan_cooldown),
+            ("object_size", self.object_size),
         ];
         crate::data::check::all_non_negative(&non_negative)?;
         if !(self.lost_timeout.is_finite() && self.lost_timeout > LOST_SCAN_AFTER) {

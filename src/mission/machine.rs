@@ -21,6 +21,17 @@ pub(super) enum Target {
     Marker(u32),
     /// A block seen by one marker only (odd marker).
     Potential(u32),
+    /// An unexplained small object (index into `Mission::unexplained`).
+    Object(usize),
+}
+
+/// A small object the lidar mapped and no marker explains, and the looks taken at it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(super) struct Unexplained {
+    pub at: Point2,
+    /// Direction of the first look, from the object, radians; later looks turn 90° on.
+    pub first: f64,
+    pub looks: u32,
 }
 
 #[derive(Clone, Debug)]
@@ -91,6 +102,8 @@ pub struct Mission {
     pub(super) visited_goals: Vec<Point2>,
     /// Looks taken at each potential block (odd marker), from different sides.
     pub(super) potential_looks: BTreeMap<u32, u32>,
+    /// Small objects the lidar mapped that no marker explained when first met.
+    pub(super) unexplained: Vec<Unexplained>,
     /// Exploration goals (frontier points, marker IDs) the planner could not reach, and
     /// the rounds of turning and trying them again so far.
     pub(super) given_up: Vec<Point2>,
@@ -130,6 +143,7 @@ impl Mission {
             visited_markers: Vec::new(),
             visited_goals: Vec::new(),
             potential_looks: BTreeMap::new(),
+            unexplained: Vec::new(),
             given_up: Vec::new(),
             given_up_markers: Vec::new(),
             retry_rounds: 0,

@@ -14,6 +14,7 @@ pub mod objects;
 mod pickup;
 pub mod step;
 pub mod targets;
+mod unexplained;
 mod view;
 
 pub use config::{MissionConfig, TargetRule};

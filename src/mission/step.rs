@@ -35,6 +35,9 @@ pub struct Inputs<'a> {
     pub gripper: Option<GripperState>,
     pub path: &'a PathStatus,
     pub map: &'a Costmap,
+    /// The cells of `map` the lidar found occupied (row-major, the same size), or empty
+    /// without a lidar.
+    pub occupied: &'a [bool],
 }
 
 /// How the robot should move this step.

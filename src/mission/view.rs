@@ -15,7 +15,7 @@ impl Mission {
             Phase::Choose => "thinking".into(),
             Phase::Explore { leg, target } => {
                 let what = match target {
-                    Target::Potential(_) => "look at",
+                    Target::Potential(_) | Target::Object(_) => "look at",
                     _ => "explore",
                 };
                 match leg.retrying() {

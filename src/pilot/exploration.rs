@@ -63,6 +63,7 @@ impl Pilot {
             gripper: self.hand.state,
             path: &path,
             map: self.belief.costmap(),
+            occupied: self.belief.sensed_occupied(),
         });
         self.exploring.mission = Some(mission);
         for (level, text) in outputs.log {

@@ -21,6 +21,8 @@ pub struct Rig {
     pub gripper: Option<GripperState>,
     pub path: PathStatus,
     pub map: Costmap,
+    /// The cells of `map` a lidar found occupied (empty: no lidar).
+    pub occupied: Vec<bool>,
     /// Follow planned paths in straight lines at 0.2 m/s and run the gripper.
     pub auto: bool,
     /// Block centres by odd marker (where they really are), for the gripper.
@@ -45,6 +47,7 @@ impl Rig {
             gripper: Some(GripperState::Closed),
             path: PathStatus::Idle,
             map,
+            occupied: Vec::new(),
             auto: true,
             blocks: Vec::new(),
             goal: None,
@@ -80,6 +83,7 @@ impl Rig {
             gripper: self.gripper,
             path: &self.path,
             map: &self.map,
+            occupied: &self.occupied,
         };
         let out = self.mission.step(&inputs);
         self.log.extend(out.log.iter().map(|(_, l)| l.clone()));

@@ -150,7 +150,15 @@ fn log_prints_every_line_the_mission_logged() {
     let text = String::from_utf8_lossy(&out.stdout);
     assert!(text.contains("INFO Initial rotation scan"), "{text}");
     assert!(text.contains("mission on "), "the report follows: {text}");
-    let json = navdeck(&["mission", "--seed", "2", "--time-limit", "20", "--log", "--json"]);
+    let json = navdeck(&[
+        "mission",
+        "--seed",
+        "2",
+        "--time-limit",
+        "20",
+        "--log",
+        "--json",
+    ]);
     let r: Value = serde_json::from_slice(&json.stdout).unwrap();
     assert!(r["log"].as_array().is_some_and(|l| l.len() > 3), "{r}");
     let sweep = navdeck(&["mission", "--sweep", "1..2", "--log"]);

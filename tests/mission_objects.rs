@@ -20,7 +20,8 @@ fn blocks_and_gates_from_a_drive_round_the_arena_match_the_twin() {
         .map(|l| (l.id, l.mean))
         .collect();
     let mut objects = Objects::default();
-    objects.update(&landmarks, app.pilot().estimated_pose().position(), 0.05);
+    let (robot, map) = (app.pilot().estimated_pose(), app.pilot().belief().costmap());
+    objects.update(&landmarks, robot.position(), 0.05, map);
     let twin = app.link().ground_truth().unwrap();
     let confirmed: Vec<_> = objects.blocks().filter(|b| b.confirmed).collect();
     assert!(

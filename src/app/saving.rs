@@ -123,7 +123,8 @@ impl App {
         let landmarks = slam.landmarks().map(|l| (l.id, l.mean)).collect();
         let mut objects = Objects::default();
         let here = slam.pose().position();
-        objects.update(&landmarks, here, self.config.mission.block_size);
+        let map = self.pilot.belief().costmap();
+        objects.update(&landmarks, here, self.config.mission.block_size, map);
         let blocks = objects
             .blocks()
             .map(|b| SavedBlock {

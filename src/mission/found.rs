@@ -11,9 +11,9 @@ impl Mission {
     /// Updates the objects from the landmarks and tells the log what is new.
     pub(super) fn note_found(&mut self, inputs: &Inputs, log: &mut Vec<(Level, String)>) {
         let robot = inputs.pose.position();
-        for found in self
-            .objects
-            .update(inputs.landmarks, robot, self.config.block_size)
+        for found in
+            self.objects
+                .update(inputs.landmarks, robot, self.config.block_size, inputs.map)
         {
             match found {
                 // Re-confirmed by the same landmarks: it stays demoted (below).

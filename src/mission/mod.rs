@@ -8,6 +8,7 @@ pub mod coverage;
 mod delivery;
 mod drive;
 mod found;
+mod gate_side;
 mod leg;
 pub mod machine;
 pub mod objects;

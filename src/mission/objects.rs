@@ -2,6 +2,7 @@
 //! (seed 001 section 7 "Block Detection" and section 8 "Delivery Sequence").
 
 use crate::geometry::Point2;
+use crate::map::costmap::Costmap;
 use crate::perception::markers::MarkerCategory;
 use std::collections::BTreeMap;
 
@@ -77,12 +78,14 @@ pub enum Found {
 
 impl Objects {
     /// Reads the landmark means; `robot` decides which side of a marker pair an object lies
-    /// on (the camera sees the faces turned towards it). `block_size` is the block's side.
+    /// on (the camera sees the faces turned towards it), and `map` which way a gate faces.
+    /// `block_size` is the block's side.
     pub fn update(
         &mut self,
         landmarks: &BTreeMap<u32, Point2>,
         robot: Point2,
         block_size: f64,
+        map: &Costmap,
     ) -> Vec<Found> {
         let mut found = Vec::new();
         for &id in landmarks.keys() {
@@ -105,7 +108,7 @@ impl Objects {
                     if let (Some(&a), Some(&b)) =
                         (landmarks.get(&first), landmarks.get(&(first + 1)))
                     {
-                        let gate = gate_from(colour, [first, first + 1], a, b, robot);
+                        let gate = gate_from(colour, [first, first + 1], (a, b), robot, map);
                         if self.gates.insert((colour, first), gate).is_none() {
                             found.push(Found::Gate(gate));
                         }
@@ -203,14 +206,15 @@ fn behind(p: Point2, robot: Point2, depth: f64) -> Point2 {
 }
 
 /// A gate from its two markers: centre between them, normal towards the robot's side.
-fn gate_from(colour: Colour, markers: [u32; 2], a: Point2, b: Point2, robot: Point2) -> Gate {
+fn gate_from(
+    colour: Colour,
+    markers: [u32; 2],
+    (a, b): (Point2, Point2),
+    robot: Point2,
+    map: &Costmap,
+) -> Gate {
     let center = Point2::new((a.x + b.x) / 2.0, (a.y + b.y) / 2.0);
-    let (dx, dy) = (b.x - a.x, b.y - a.y);
-    let len = dx.hypot(dy).max(1e-9);
-    let mut normal = (-dy / len, dx / len);
-    if normal.0 * (robot.x - center.x) + normal.1 * (robot.y - center.y) < 0.0 {
-        normal = (-normal.0, -normal.1);
-    }
+    let normal = super::gate_side::gate_normal(map, a, b, robot);
     Gate {
         colour,
         markers,
@@ -222,6 +226,16 @@ fn gate_from(colour: Colour, markers: [u32; 2], a: Point2, b: Point2, robot: Poi
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    fn unknown() -> Costmap {
+        Costmap::new(
+            1,
+            1,
+            1.0,
+            Point2::new(-50.0, -50.0),
+            crate::map::costmap::NO_INFORMATION,
+        )
+    }
 
     fn map(entries: &[(u32, f64, f64)]) -> BTreeMap<u32, Point2> {
         entries
@@ -237,18 +251,21 @@ mod tests {
         // A 0.05 m block at (1, 1), unturned: marker 421 on +x face, 422 on +y face.
         let one = map(&[(421, 1.025, 1.0)]);
         assert!(matches!(
-            o.update(&one, robot, 0.05)[..],
+            o.update(&one, robot, 0.05, &unknown())[..],
             [Found::PotentialBlock(_)]
         ));
         let both = map(&[(421, 1.025, 1.0), (422, 1.0, 1.025)]);
-        let found = o.update(&both, Point2::new(2.0, 2.0), 0.05);
+        let found = o.update(&both, Point2::new(2.0, 2.0), 0.05, &unknown());
         let [Found::Block(b)] = found[..] else {
             panic!("{found:?}")
         };
         assert!(b.position.distance(Point2::new(1.0, 1.0)) < 1e-9, "{b:?}");
         assert_eq!(b.colour, Colour::Red);
         // Seen again: nothing new to say.
-        assert!(o.update(&both, Point2::new(2.0, 2.0), 0.05).is_empty());
+        assert!(
+            o.update(&both, Point2::new(2.0, 2.0), 0.05, &unknown())
+                .is_empty()
+        );
     }
 
     #[test]
@@ -260,7 +277,7 @@ mod tests {
             (423, 0.5, 0.0),
             (424, 0.5, 0.1),
         ]);
-        let found = o.update(&marks, Point2::new(0.0, 0.0), 0.05);
+        let found = o.update(&marks, Point2::new(0.0, 0.0), 0.05, &unknown());
         assert_eq!(found.len(), 2);
         let gate = *o.gate_for(Colour::Red).unwrap();
         assert!((gate.normal.0 + 1.0).abs() < 1e-9, "{gate:?}");
@@ -269,7 +286,7 @@ mod tests {
         assert!(gate.facing().abs() < 1e-9, "faces +x, towards the wall");
         o.deliver(423);
         assert_eq!(o.delivered(), 1);
-        o.update(&marks, Point2::new(0.0, 0.0), 0.05);
+        o.update(&marks, Point2::new(0.0, 0.0), 0.05, &unknown());
         assert!(o.blocks().all(|b| b.delivered));
     }
 }

@@ -35,6 +35,9 @@ pub const OBJECT_LOOKS: u32 = 4;
 /// An object the lidar maps this near a block or gate the markers placed is that block
 /// or gate (or a block delivered there), metres.
 pub const EXPLAINED_WITHIN: f64 = 0.25;
+/// The lidar's outline of a block is looked for this far from where its markers put it,
+/// metres: a marker placed from a few sightings can be several centimetres off.
+pub const FIT_SEARCH: f64 = 0.1;
 /// The diagonal looks stand this many staging distances from the block.
 pub const POTENTIAL_VIEW: f64 = 1.5;
 /// Targets closer to the robot than this are ignored, metres (seed 001

@@ -1,6 +1,7 @@
 //! The autonomous mission of seed 001 sections 7-8: explore, find blocks and gates, pick
 //! each block up and deliver it. Pure state: landmarks and time in, commands out.
 
+mod block_fit;
 mod choose;
 mod clusters;
 pub mod config;

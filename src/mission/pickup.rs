@@ -1,7 +1,8 @@
 //! Picking a block up (seed 001 section 8 "Pickup Sequence"): path to a staging point,
 //! open, face the block, creep up to it, close, and check the gripper holds it.
 
-use super::config::{BLOCK_LOST_AFTER, CAMERA_HALF_FOV, CAMERA_RANGE, MissionConfig};
+use super::block_fit::lidar_centre;
+use super::config::{BLOCK_LOST_AFTER, CAMERA_HALF_FOV, CAMERA_RANGE, FIT_SEARCH, MissionConfig};
 use super::drive::{Wait, bearing, faces, opened, steer, towards, turn_towards};
 use super::leg::{Ctx, Leg, LegStep};
 use super::objects::{Block, Colour, Objects};
@@ -128,8 +129,19 @@ impl Pickup {
             return PickEvent::Demote;
         };
         let (t, pose) = (inputs.t, inputs.pose);
-        let distance = pose.position().distance(block.position);
-        let error = bearing(pose, block.position);
+        // The lidar's outline of the block, where it has one, places it more finely than
+        // its markers do.
+        let aim = lidar_centre(
+            inputs.map,
+            inputs.occupied,
+            block.position,
+            config.block_size,
+            FIT_SEARCH,
+            pose.position(),
+        )
+        .unwrap_or(block.position);
+        let distance = pose.position().distance(aim);
+        let error = bearing(pose, aim);
         let waited = t - self.since;
         let stop = PickEvent::Go(Motion::Stop, None);
         if matches!(self.stage, Stage::Face | Stage::Approach) {

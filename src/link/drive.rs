@@ -10,10 +10,16 @@ use crate::pilot::{Due, Input, LogLine, Pilot, Report};
 /// A pilot for the robot behind `link` at session time `now`. With a simulator behind
 /// the link it starts at the true pose and its planning map covers the simulated world
 /// when that is larger than the config's; otherwise it starts at the origin.
+/// The planning map reaches this far beyond a simulated world's walls, metres: a lidar hit
+/// on a wall at the map's very edge lands outside half the time, and the beam then clears
+/// the edge cells instead of mapping the wall there.
+const MAP_MARGIN: f64 = 0.25;
+
 pub fn pilot_for(link: &dyn RobotLink, settings: Settings, now: f64) -> Pilot {
     let truth = link.ground_truth();
     let start = truth.map_or(Pose2::default(), |t| t.pose());
-    let extent = truth.map_or((0.0, 0.0), |t| (t.world().width, t.world().height));
+    let m = 2.0 * MAP_MARGIN;
+    let extent = truth.map_or((0.0, 0.0), |t| (t.world().width + m, t.world().height + m));
     Pilot::new(settings, start, extent, now)
 }
 

@@ -1,6 +1,7 @@
 //! Delivering a held block (seed 001 section 8 "Delivery Sequence"): path to a point in
 //! front of its gate, face the gate, creep in, open, back off.
 
+use super::clearance::clear_ahead;
 use super::config::{BACK_OFF_SPEED, MissionConfig};
 use super::drive::{Wait, faces, opened, steer, turn_towards};
 use super::leg::{Ctx, Leg, LegStep};
@@ -133,7 +134,11 @@ impl Delivery {
             Stage::Forward => {
                 let distance = pose.position().distance(self.gate.center);
                 let creep = (config.drop_staging - config.drop_distance) / config.approach_speed;
-                if distance <= config.drop_distance + self.depth || waited >= 2.0 * creep + 2.0 {
+                let stop_at = config.drop_distance + self.depth;
+                // The wall (or a block delivered earlier) as the lidar mapped it stops the
+                // creep too, wherever the markers put the gate.
+                let blocked = clear_ahead(inputs.map, inputs.occupied, pose, stop_at).is_some();
+                if distance <= stop_at || blocked || waited >= 2.0 * creep + 2.0 {
                     self.enter(Stage::Open, t);
                     return DropEvent::Go(Motion::Stop, Some(GripperCommand::Open));
                 }

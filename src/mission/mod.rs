@@ -3,6 +3,7 @@
 
 mod block_fit;
 mod choose;
+mod clearance;
 mod clusters;
 pub mod config;
 pub mod coverage;

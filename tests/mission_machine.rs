@@ -263,7 +263,10 @@ fn a_small_object_no_marker_explains_is_looked_at_from_four_sides_before_the_end
     rig.occupied = vec![false; rig.map.width * rig.map.height];
     let (cx, cy) = rig.map.cell_of(Point2::new(1.05, 1.05)).unwrap();
     rig.occupied[rig.map.index(cx, cy)] = true;
+    rig.until(400, |out, _| plan_to(out).is_some());
+    assert_eq!(rig.mission.reason(), "lidar sees it, no marker; look 1/4");
     rig.until(3000, |_, r| r.mission.is_done());
+    assert_eq!(rig.mission.reason(), "all explored, every block delivered");
     let object = Point2::new(1.05, 1.05);
     let looks: Vec<Point2> = (rig.plans.iter())
         .filter(|(_, _, label)| label == "unexplained object (1.05, 1.05)")

@@ -42,7 +42,9 @@ pub fn lidar_centre(
     let near_edge = |p: &Point2| {
         (p.x - estimate.x).abs() > window - LINK || (p.y - estimate.y).abs() > window - LINK
     };
-    let span = object.iter().flat_map(|a| object.iter().map(move |b| a.distance(*b)));
+    let span = object
+        .iter()
+        .flat_map(|a| object.iter().map(move |b| a.distance(*b)));
     let too_big = span.fold(0.0, f64::max) > 1.6 * size;
     if object.iter().any(near_edge) || too_big {
         return None;
@@ -53,9 +55,8 @@ pub fn lidar_centre(
 
 /// The points linked (chains of steps under `LINK`) to the point nearest `to`.
 fn nearest_cluster(points: &[Point2], to: Point2) -> Option<Vec<Point2>> {
-    let seed = (0..points.len()).min_by(|&a, &b| {
-        points[a].distance(to).total_cmp(&points[b].distance(to))
-    })?;
+    let seed = (0..points.len())
+        .min_by(|&a, &b| points[a].distance(to).total_cmp(&points[b].distance(to)))?;
     let mut member = vec![false; points.len()];
     member[seed] = true;
     let mut queue = vec![seed];
@@ -67,7 +68,12 @@ fn nearest_cluster(points: &[Point2], to: Point2) -> Option<Vec<Point2>> {
             }
         }
     }
-    Some((0..points.len()).filter(|&i| member[i]).map(|i| points[i]).collect())
+    Some(
+        (0..points.len())
+            .filter(|&i| member[i])
+            .map(|i| points[i])
+            .collect(),
+    )
 }
 
 /// The centre of the square of side `size` whose outline lies closest (least squares) to
@@ -85,9 +91,11 @@ fn fit_square(points: &[Point2], size: f64, viewer: Point2) -> Point2 {
         let uv: Vec<(f64, f64)> = points.iter().map(|&p| local(p)).collect();
         let eye = local(viewer);
         let centre_along = |coords: &[f64], eye: f64| {
-            let (lo, hi) = coords.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &v| {
-                (lo.min(v), hi.max(v))
-            });
+            let (lo, hi) = coords
+                .iter()
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &v| {
+                    (lo.min(v), hi.max(v))
+                });
             if hi - lo >= 0.6 * size {
                 (lo + hi) / 2.0
             } else {
@@ -178,8 +186,14 @@ mod tests {
         for y in 0..100 {
             wall[y * 100 + 52] = true;
         }
-        assert!(lidar_centre(&map, &wall, at, 0.05, 0.1, viewer).is_none(), "a wall");
+        assert!(
+            lidar_centre(&map, &wall, at, 0.05, 0.1, viewer).is_none(),
+            "a wall"
+        );
         let (map, occupied) = block_map(Point2::new(0.8, 0.8), 0.0, &[0, 1, 2, 3]);
-        assert!(lidar_centre(&map, &occupied, at, 0.05, 0.1, viewer).is_none(), "too far");
+        assert!(
+            lidar_centre(&map, &occupied, at, 0.05, 0.1, viewer).is_none(),
+            "too far"
+        );
     }
 }

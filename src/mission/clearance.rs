@@ -28,7 +28,8 @@ pub fn clear_ahead(map: &Costmap, occupied: &[bool], pose: Pose2, max: f64) -> O
         (-across..=across).any(|j| {
             let side = j as f64 * step;
             let p = Point2::new(pose.x + d * c - side * s, pose.y + d * s + side * c);
-            map.cell_of(p).is_some_and(|(x, y)| occupied[map.index(x, y)])
+            map.cell_of(p)
+                .is_some_and(|(x, y)| occupied[map.index(x, y)])
         })
     })
 }
@@ -51,7 +52,10 @@ mod tests {
         let pose = Pose2::new(0.5, 0.5, 0.0);
         let d = clear_ahead(&map, &occupied, pose, 0.6).unwrap();
         assert!((d - 0.3).abs() < 0.01, "{d}");
-        assert!(clear_ahead(&map, &occupied, pose, 0.25).is_none(), "beyond max");
+        assert!(
+            clear_ahead(&map, &occupied, pose, 0.25).is_none(),
+            "beyond max"
+        );
         let facing_away = Pose2::new(0.5, 0.5, std::f64::consts::PI);
         assert!(clear_ahead(&map, &occupied, facing_away, 0.45).is_none());
         assert!(clear_ahead(&map, &[], pose, 0.6).is_none(), "no lidar");

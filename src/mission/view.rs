@@ -33,6 +33,37 @@ impl Mission {
         }
     }
 
+    /// Why the mission is doing what `state_label` says, in two status rows at most,
+    /// e.g. "camera has not looked there (4 left)".
+    pub fn reason(&self) -> String {
+        let left = self.candidates.len();
+        match &self.phase {
+            Phase::Start | Phase::Choose => String::new(),
+            Phase::Scan { initial: true, .. } => "a look round before choosing".into(),
+            Phase::Scan { .. } => "a look round from here".into(),
+            Phase::Explore { target, .. } => match target {
+                Target::Frontier => format!("reachable unknown space ({left} left)"),
+                Target::Unseen => format!("camera has not looked there ({left} left)"),
+                Target::Marker(_) => "furthest marker not yet visited".into(),
+                Target::Potential(odd) => format!(
+                    "1 marker seen; look {}/5 for the other",
+                    self.potential_looks.get(odd).copied().unwrap_or(0) + 1
+                ),
+                Target::Object(i) => format!(
+                    "lidar sees it, no marker; look {}/4",
+                    self.unexplained.get(*i).map_or(0, |u| u.looks) + 1
+                ),
+            },
+            Phase::Lost(None) => "no landmark in view for 10 s".into(),
+            Phase::Lost(Some(_)) => "no landmark even after a scan".into(),
+            Phase::BackOff(_) => "block lost from view in the approach".into(),
+            Phase::Pickup(_) => "block seen whole, its gate known".into(),
+            Phase::Deliver(_) => "holding the block, its gate known".into(),
+            Phase::Done => "all explored, every block delivered".into(),
+            Phase::Manual => self.handover.unwrap_or("taken over").to_string(),
+        }
+    }
+
     /// Blocks delivered so far.
     pub fn delivered(&self) -> usize {
         self.objects.delivered()

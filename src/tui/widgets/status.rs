@@ -164,6 +164,14 @@ fn navigation_rows(app: &App, theme: Theme) -> Vec<Line<'static>> {
         if !rest.is_empty() {
             rows.push(row(theme, "", rest));
         }
+        let reason = m.reason();
+        if !reason.is_empty() {
+            let (first, rest) = split_words(&reason, 21);
+            rows.push(row(theme, "Why", first));
+            if !rest.is_empty() {
+                rows.push(row(theme, "", rest));
+            }
+        }
         let total = match app.config().mission.total_blocks {
             0 => "?".to_string(),
             n => n.to_string(),

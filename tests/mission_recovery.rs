@@ -102,6 +102,7 @@ fn a_lost_robot_scans_after_10_s_and_hands_over_after_30_s() {
     rig.until(200, |out, _| plan_to(out).is_some());
     rig.path = PathStatus::Following { remaining: 0.9 };
     rig.seen.clear();
+    rig.position_std = 0.1;
     let dark = rig.t;
     let out = rig.until(200, |out, _| matches!(out.motion, Motion::Drive(_)));
     assert!(rig.logged("No landmarks for 10 s - rotating to scan"));
@@ -124,6 +125,7 @@ fn a_lost_robot_that_sees_a_marker_again_goes_back_to_choosing() {
     rig.until(200, |out, _| plan_to(out).is_some());
     rig.path = PathStatus::Following { remaining: 0.9 };
     rig.seen.clear();
+    rig.position_std = 0.1;
     rig.until(200, |_, r| r.mission.state_label().starts_with("lost"));
     rig.seen = vec![1];
     let out = rig.until(20, |out, _| plan_to(out).is_some());
@@ -246,6 +248,7 @@ fn a_robot_lost_for_30_s_drives_back_to_the_nearest_landmark_and_resumes_on_seei
     rig.until(200, |out, _| plan_to(out).is_some());
     rig.path = PathStatus::Following { remaining: 0.9 };
     rig.seen.clear();
+    rig.position_std = 0.1;
     let out = rig.until(400, |out, _| plan_to(out).is_some() || out.to_manual);
     assert!(!out.to_manual, "{:?}", rig.log);
     assert!(rig.logged("going back to marker 7, the nearest seen"));
@@ -262,4 +265,25 @@ fn a_robot_lost_for_30_s_drives_back_to_the_nearest_landmark_and_resumes_on_seei
     rig.seen = vec![7];
     rig.until(20, |_, r| r.logged("Landmarks back in view"));
     assert!(!rig.mission.state_label().starts_with("lost"));
+}
+
+#[test]
+fn no_marker_for_a_while_is_not_lost_while_the_filter_is_sure_of_the_position() {
+    let mut rig = Rig::new(config(4), half_known());
+    rig.auto = false;
+    rig.until(200, |out, _| plan_to(out).is_some());
+    rig.path = PathStatus::Following { remaining: 0.9 };
+    rig.seen.clear();
+    // Crossing open space: no marker, but odometry keeps the position within 3 cm.
+    rig.position_std = 0.03;
+    for _ in 0..300 {
+        rig.step();
+    }
+    assert!(!rig.logged("No landmarks"), "{:?}", rig.log);
+    assert!(!rig.mission.state_label().starts_with("lost"));
+    // The uncertainty grows past 7 cm: now it is lost, and scans.
+    rig.position_std = 0.08;
+    rig.until(20, |_, r| r.mission.state_label().starts_with("lost"));
+    assert!(rig.logged("No landmarks for 10 s - rotating to scan"));
+    assert!(rig.mission.reason().contains("position unsure"), "{}", rig.mission.reason());
 }

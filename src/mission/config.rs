@@ -110,6 +110,11 @@ pub struct MissionConfig {
     /// No landmarks this long: drive back towards the nearest landmark known, and hand
     /// over to manual if none is in view there (or none is known), s.
     pub lost_timeout: f64,
+    /// The robot counts as lost (after 10 s without a marker) only once the filter's
+    /// position standard deviation passes this, metres (navdeck's: the planning map's
+    /// lethal ring leaves 7 cm round the footprint). 0: lost whenever no marker was seen
+    /// for 10 s.
+    pub lost_position_std: f64,
     /// Failed plans (each followed by a turn) before handing over to manual.
     pub no_path_retries: u32,
     /// Turn before retrying a failed plan, degrees.
@@ -148,6 +153,7 @@ impl Default for MissionConfig {
             drop_distance: 0.18,
             back_off_time: 2.0,
             lost_timeout: 30.0,
+            lost_position_std: 0.07,
             no_path_retries: 36,
             retry_turn_deg: 10.0,
             stuck_timeout: 30.0,
@@ -187,6 +193,7 @@ impl MissionConfig {
             ("back_off_time", self.back_off_time),
             ("replan_cooldown", self.replan_cooldown),
             ("object_size", self.object_size),
+            ("lost_position_std", self.lost_position_std),
         ];
         crate::data::check::all_non_negative(&non_negative)?;
         if !(self.lost_timeout.is_finite() && self.lost_timeout > LOST_SCAN_AFTER) {

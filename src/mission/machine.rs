@@ -47,9 +47,10 @@ pub(super) enum Phase {
         leg: Leg,
         target: Target,
     },
-    /// Seed 001 "Robot Lost": rotating until a marker comes into view; after
-    /// `lost_timeout`, driving back towards the nearest landmark known (navdeck's).
-    Lost(Option<Leg>),
+    /// Seed 001 "Robot Lost": rotating until a marker comes into view, since the time
+    /// given; after `lost_timeout` without markers, driving back towards the nearest
+    /// landmark known (navdeck's).
+    Lost(f64, Option<Leg>),
     /// Backing away from a block the approach lost sight of (the robot may stand in its
     /// lethal ring, facing it), since the time given; then choosing again.
     BackOff(f64),
@@ -194,15 +195,17 @@ impl Mission {
             self.phase = Phase::Choose;
             return Tick::Again;
         }
-        // No marker for 10 s while exploring (navdeck's trigger): rotate to scan, as seed 001
-        // "Robot Lost" says.
-        if exploring && t - self.last_marker >= LOST_SCAN_AFTER {
+        // No marker for 10 s while exploring, and the filter no longer sure of the position
+        // (navdeck's trigger): rotate to scan, as seed 001 "Robot Lost" says. Crossing open
+        // space on odometry alone is not being lost.
+        let unsure = inputs.position_std > self.config.lost_position_std;
+        if exploring && t - self.last_marker >= LOST_SCAN_AFTER && unsure {
             self.ctx.recoveries += 1;
             log.push((
                 Level::Warn,
                 format!("No landmarks for {LOST_SCAN_AFTER:.0} s - rotating to scan"),
             ));
-            self.phase = Phase::Lost(None);
+            self.phase = Phase::Lost(t, None);
         }
         match &mut self.phase {
             Phase::Start => {
@@ -253,7 +256,7 @@ impl Mission {
                     LegStep::GiveUp => self.manual(Cause::Unreachable),
                 }
             }
-            Phase::Lost(relocating) => {
+            Phase::Lost(since, relocating) => {
                 if t - self.last_marker < LOST_SCAN_AFTER {
                     log.push((Level::Success, "Landmarks back in view".into()));
                     self.phase = Phase::Choose;
@@ -274,7 +277,10 @@ impl Mission {
                         }
                     };
                 }
-                if t - self.last_marker >= self.config.lost_timeout {
+                let scanned = t - *since;
+                if t - self.last_marker >= self.config.lost_timeout
+                    && scanned >= self.config.lost_timeout - LOST_SCAN_AFTER
+                {
                     let robot = inputs.pose.position();
                     let nearest = (inputs.landmarks.iter())
                         .min_by(|a, b| a.1.distance(robot).total_cmp(&b.1.distance(robot)));

@@ -38,6 +38,9 @@ pub struct Inputs<'a> {
     /// The cells of `map` the lidar found occupied (row-major, the same size), or empty
     /// without a lidar.
     pub occupied: &'a [bool],
+    /// The filter's position uncertainty: the standard deviation along its worst
+    /// direction, metres.
+    pub position_std: f64,
 }
 
 /// How the robot should move this step.

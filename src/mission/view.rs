@@ -23,8 +23,8 @@ impl Mission {
                     None => format!("{what} {}", leg.label),
                 }
             }
-            Phase::Lost(None) => "lost: scanning for landmarks".into(),
-            Phase::Lost(Some(leg)) => format!("lost: going back to {}", leg.label),
+            Phase::Lost(_, None) => "lost: scanning for landmarks".into(),
+            Phase::Lost(_, Some(leg)) => format!("lost: going back to {}", leg.label),
             Phase::BackOff(_) => "backing away from a lost block".into(),
             Phase::Pickup(p) => p.label(),
             Phase::Deliver(d) => d.label(),
@@ -54,8 +54,13 @@ impl Mission {
                     self.unexplained.get(*i).map_or(0, |u| u.looks) + 1
                 ),
             },
-            Phase::Lost(None) => "no landmark in view for 10 s".into(),
-            Phase::Lost(Some(_)) => "no landmark even after a scan".into(),
+            Phase::Lost(..) if self.config.lost_position_std > 0.0 => {
+                format!(
+                    "no landmark for 10 s, position unsure (σ > {:.0} cm)",
+                    self.config.lost_position_std * 100.0
+                )
+            }
+            Phase::Lost(..) => "no landmark in view for 10 s".into(),
             Phase::BackOff(_) => "block lost from view in the approach".into(),
             Phase::Pickup(_) => "block seen whole, its gate known".into(),
             Phase::Deliver(_) => "holding the block, its gate known".into(),

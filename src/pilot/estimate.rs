@@ -113,9 +113,14 @@ impl Pilot {
         }
     }
 
+    /// The position's standard deviation along its worst direction, metres.
+    pub(super) fn position_std(&self) -> f64 {
+        crate::slam::ellipse::axes(&self.ekf.position_covariance(), 1.0).0
+    }
+
     /// In race mode, warns once when the position's uncertainty passes the bound.
     pub(super) fn check_race_uncertainty(&mut self) {
-        let (major, _, _) = crate::slam::ellipse::axes(&self.ekf.position_covariance(), 1.0);
+        let major = self.position_std();
         let bound = self.settings.race.sigma_warning;
         if self.mode == Mode::Race && major > bound && !self.estimating.race_sigma_warned {
             self.estimating.race_sigma_warned = true;

@@ -64,6 +64,7 @@ impl Pilot {
             path: &path,
             map: self.belief.costmap(),
             occupied: self.belief.sensed_occupied(),
+            position_std: self.position_std(),
         });
         self.exploring.mission = Some(mission);
         for (level, text) in outputs.log {

@@ -23,6 +23,8 @@ pub struct Rig {
     pub map: Costmap,
     /// The cells of `map` a lidar found occupied (empty: no lidar).
     pub occupied: Vec<bool>,
+    /// The filter's position standard deviation the mission is told, metres.
+    pub position_std: f64,
     /// Follow planned paths in straight lines at 0.2 m/s and run the gripper.
     pub auto: bool,
     /// Block centres by odd marker (where they really are), for the gripper.
@@ -48,6 +50,7 @@ impl Rig {
             path: PathStatus::Idle,
             map,
             occupied: Vec::new(),
+            position_std: 0.0,
             auto: true,
             blocks: Vec::new(),
             goal: None,
@@ -84,6 +87,7 @@ impl Rig {
             path: &self.path,
             map: &self.map,
             occupied: &self.occupied,
+            position_std: self.position_std,
         };
         let out = self.mission.step(&inputs);
         self.log.extend(out.log.iter().map(|(_, l)| l.clone()));

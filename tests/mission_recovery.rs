@@ -285,5 +285,40 @@ fn no_marker_for_a_while_is_not_lost_while_the_filter_is_sure_of_the_position() 
     rig.position_std = 0.08;
     rig.until(20, |_, r| r.mission.state_label().starts_with("lost"));
     assert!(rig.logged("No landmarks for 10 s - rotating to scan"));
-    assert!(rig.mission.reason().contains("position unsure"), "{}", rig.mission.reason());
+    assert!(
+        rig.mission.reason().contains("position unsure"),
+        "{}",
+        rig.mission.reason()
+    );
+}
+
+#[test]
+fn a_lost_robot_goes_back_to_a_fixed_marker_not_a_block_and_scans_there_before_handing_over() {
+    let mut rig = Rig::new(config(4), half_known());
+    // A block marker (421) nearer than the wall marker (7).
+    rig.landmarks
+        .insert(7, navdeck::geometry::Point2::new(-1.5, 0.0));
+    rig.landmarks
+        .insert(421, navdeck::geometry::Point2::new(0.3, 0.0));
+    rig.until(200, |out, _| plan_to(out).is_some());
+    rig.seen.clear();
+    rig.position_std = 0.1;
+    rig.until(600, |out, _| {
+        plan_to(out).is_some_and(|(_, label)| label == "marker 7") || out.to_manual
+    });
+    assert!(
+        rig.logged("going back to marker 7, the nearest seen"),
+        "{:?}",
+        rig.log
+    );
+    // It gets there (the rig drives plans), sees nothing, scans, then hands over.
+    let arrived = rig.t;
+    let out = rig.until(900, |out, _| out.to_manual);
+    assert!(out.to_manual);
+    assert!(
+        rig.t - arrived >= 20.0,
+        "scanned there first: {:.1} s",
+        rig.t - arrived
+    );
+    assert!(rig.logged("no landmarks in view even after going back and scanning"));
 }

@@ -37,6 +37,7 @@ pub(crate) struct Delivery {
     gate: Gate,
     /// How much further out than `drop_distance` this slot stops, metres.
     depth: f64,
+    slot: usize,
     stage: Stage,
     since: f64,
 }
@@ -46,6 +47,9 @@ pub(crate) struct Delivery {
 /// few centimetres off its place, so 0.2 m apart keeps the next drop clear of the last.
 const SLOT_OFFSETS: [f64; 2] = [-0.10, 0.10];
 const ROW_DEPTH: f64 = 0.12;
+/// A gate estimate that moved or turned this much gets a new drop place (metres, radians).
+const REFRESH_MOVE: f64 = 0.05;
+const REFRESH_TURN: f64 = 20.0 * std::f64::consts::PI / 180.0;
 
 /// The gate shifted along its width to `slot`'s place, and the extra depth of its row.
 fn drop_place(gate: Gate, slot: usize) -> (Gate, f64) {
@@ -79,8 +83,26 @@ impl Delivery {
             colour,
             gate,
             depth,
+            slot,
             stage: Stage::Travel(Leg::new(goal, label)),
             since: t,
+        }
+    }
+
+    /// On the way, follows the gate as markers and map refine it: a drop place that
+    /// moved more than 5 cm or turned more than 20° is planned to afresh (navdeck's).
+    pub fn follow_gate(&mut self, gate: Gate, config: &MissionConfig) {
+        if !matches!(self.stage, Stage::Travel(_)) {
+            return;
+        }
+        let (place, depth) = drop_place(gate, self.slot);
+        let (a, b) = (place.normal, self.gate.normal);
+        let turned = a.0 * b.0 + a.1 * b.1 < REFRESH_TURN.cos();
+        if turned || place.center.distance(self.gate.center) > REFRESH_MOVE {
+            self.gate = place;
+            self.depth = depth;
+            let goal = place.in_front(config.drop_staging + depth);
+            self.stage = Stage::Travel(Leg::new(goal, format!("{} gate", self.colour.label())));
         }
     }
 
@@ -162,5 +184,45 @@ impl Delivery {
                 DropEvent::Go(Motion::Drive(Twist::new(-BACK_OFF_SPEED, 0.0)), None)
             }
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::Point2;
+
+    fn gate(normal: (f64, f64)) -> Gate {
+        Gate {
+            colour: Colour::Red,
+            markers: [401, 402],
+            center: Point2::new(0.0, 2.0),
+            normal,
+        }
+    }
+
+    fn goal(d: &Delivery) -> Point2 {
+        match &d.stage {
+            Stage::Travel(leg) => leg.goal,
+            _ => panic!("not travelling"),
+        }
+    }
+
+    #[test]
+    fn a_gate_that_turns_on_the_way_gets_a_new_drop_place_and_a_steady_one_does_not() {
+        let config = MissionConfig::default();
+        // First placed facing out of the arena (+y), then seen to face in (-y).
+        let mut d = Delivery::new(421, Colour::Red, gate((0.0, 1.0)), 0, &config, 0.0);
+        assert!(goal(&d).y > 2.0);
+        d.follow_gate(gate((0.0, -1.0)), &config);
+        let fixed = goal(&d);
+        assert!(
+            (fixed.y - (2.0 - config.drop_staging)).abs() < 1e-9,
+            "{fixed:?}"
+        );
+        // A turn of 10° is inside the estimate's wobble: the plan stands.
+        let (s, c) = (-100f64).to_radians().sin_cos();
+        d.follow_gate(gate((c, s)), &config);
+        assert_eq!(goal(&d), fixed);
     }
 }

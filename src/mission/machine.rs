@@ -10,6 +10,7 @@ use super::pickup::{PickEvent, Pickup, name};
 use super::step::{Inputs, Level, Motion, Outputs};
 use crate::data::GripperCommand;
 use crate::geometry::{Point2, Twist};
+use crate::perception::markers::MarkerCategory;
 use std::collections::{BTreeMap, BTreeSet};
 
 /// What exploration is heading for.
@@ -125,6 +126,8 @@ pub struct Mission {
     pub(super) held: Option<u32>,
     /// Markers of delivered blocks: ignored by the filter forever.
     pub(super) delivered_markers: Vec<u32>,
+    /// Lost, the robot already went back to a landmark and scanned there.
+    pub(super) relocated: bool,
 }
 
 pub(super) enum Tick {
@@ -157,6 +160,7 @@ impl Mission {
             timeline: Vec::new(),
             held: None,
             delivered_markers: Vec::new(),
+            relocated: false,
         }
     }
 
@@ -259,12 +263,19 @@ impl Mission {
             Phase::Lost(since, relocating) => {
                 if t - self.last_marker < LOST_SCAN_AFTER {
                     log.push((Level::Success, "Landmarks back in view".into()));
+                    self.relocated = false;
                     self.phase = Phase::Choose;
                     return Tick::Again;
                 }
                 if let Some(leg) = relocating {
                     return match leg.step(inputs, &self.config, &mut self.ctx, log) {
                         LegStep::Move(motion) => Tick::Out(motion, None),
+                        // There: scan again, facing every way, before giving up.
+                        LegStep::Arrived => {
+                            self.relocated = true;
+                            self.phase = Phase::Lost(t, None);
+                            Tick::Out(scan, None)
+                        }
                         _ => {
                             let label = leg.label.clone();
                             log.push((
@@ -281,9 +292,23 @@ impl Mission {
                 if t - self.last_marker >= self.config.lost_timeout
                     && scanned >= self.config.lost_timeout - LOST_SCAN_AFTER
                 {
+                    if self.relocated {
+                        log.push((
+                            Level::Error,
+                            "Robot lost: no landmarks in view even after going back and scanning - switching to manual".into(),
+                        ));
+                        return self.manual(Cause::Lost);
+                    }
                     let robot = inputs.pose.position();
-                    let nearest = (inputs.landmarks.iter())
-                        .min_by(|a, b| a.1.distance(robot).total_cmp(&b.1.distance(robot)));
+                    // A block's marker moves with it and faces any way: go back to a fixed one.
+                    let fixed = (inputs.landmarks.iter()).filter(|&(&id, _)| {
+                        !matches!(
+                            MarkerCategory::of(id),
+                            MarkerCategory::RedBlock | MarkerCategory::BlueBlock
+                        )
+                    });
+                    let nearest =
+                        fixed.min_by(|a, b| a.1.distance(robot).total_cmp(&b.1.distance(robot)));
                     let Some((&id, &at)) = nearest else {
                         log.push((
                             Level::Error,
@@ -348,6 +373,9 @@ impl Mission {
             }
             Phase::Deliver(delivery) => {
                 let (odd, colour) = (delivery.block, delivery.colour);
+                if let Some(gate) = self.objects.gate_for(colour) {
+                    delivery.follow_gate(*gate, &self.config);
+                }
                 match delivery.step(inputs, &self.config, &mut self.ctx, log) {
                     DropEvent::Go(motion, gripper) => Tick::Out(motion, gripper),
                     DropEvent::Delivered => {

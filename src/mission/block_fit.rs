@@ -10,6 +10,8 @@ use crate::map::costmap::Costmap;
 /// Occupied cells this close belong to one object, metres (beam spacing at 1 m with 360
 /// beams is 1.7 cm).
 const LINK: f64 = 0.03;
+/// Occupied cells needed to fit an outline.
+const MIN_CELLS: usize = 4;
 /// Orientations tried for the square, over its 90° symmetry.
 const TURNS: usize = 30;
 
@@ -45,8 +47,10 @@ pub fn lidar_centre(
     let span = object
         .iter()
         .flat_map(|a| object.iter().map(move |b| a.distance(*b)));
-    let too_big = span.fold(0.0, f64::max) > 1.6 * size;
-    if object.iter().any(near_edge) || too_big {
+    let span = span.fold(0.0, f64::max);
+    // Too big for a block, or too little of it mapped to say where its faces are.
+    let outline = object.len() >= MIN_CELLS && span >= size / 2.0;
+    if object.iter().any(near_edge) || span > 1.6 * size || !outline {
         return None;
     }
     let centre = fit_square(&object, size, viewer);
@@ -174,6 +178,18 @@ mod tests {
         let (map, occupied) = block_map(truth, 0.0, &[2]);
         let got = lidar_centre(&map, &occupied, truth, 0.05, 0.1, Point2::new(0.2, 0.5));
         assert!(got.unwrap().distance(truth) < 0.01, "{got:?}");
+    }
+
+    #[test]
+    fn a_cell_or_two_are_not_an_outline() {
+        let map = Costmap::new(100, 100, 0.01, Point2::new(0.0, 0.0), FREE);
+        let mut occupied = vec![false; 10_000];
+        occupied[50 * 100 + 50] = true;
+        let viewer = Point2::new(0.2, 0.2);
+        let at = Point2::new(0.5, 0.5);
+        assert!(lidar_centre(&map, &occupied, at, 0.05, 0.1, viewer).is_none());
+        occupied[51 * 100 + 50] = true;
+        assert!(lidar_centre(&map, &occupied, at, 0.05, 0.1, viewer).is_none());
     }
 
     #[test]

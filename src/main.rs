@@ -13,8 +13,8 @@ use navdeck::map_report;
 use navdeck::mission_runner;
 use navdeck::plan_report::{self, Terrain};
 use navdeck::session::{LinkChoice, Session, SessionSpec};
-use navdeck::sim::World;
 use navdeck::sim::generate::{self, GenerateOptions};
+use navdeck::sim::{CameraFrames, World};
 use navdeck::tui::events::WallClock;
 use navdeck::tui::signals::Signals;
 use std::io::Write;
@@ -261,7 +261,7 @@ fn real_main(cli: Cli) -> Result<ExitCode> {
     // One monotonic clock times planning and camera detection alike.
     let stopwatch: std::sync::Arc<dyn Clock> = std::sync::Arc::new(WallClock::start());
     if cli.sim_camera {
-        session.use_sim_camera(Some(stopwatch.clone()))?;
+        session.use_sim_camera(Some(stopwatch.clone()), CameraFrames::Whole)?;
     }
     if let Some(source) = &cli.camera {
         session = session.with_camera(source, stopwatch.clone())?;
@@ -395,7 +395,8 @@ fn run_mission(args: &MissionArgs) -> Result<ExitCode> {
             None => Session::load(&spec(seed))?,
         };
         if args.sim_camera {
-            session.use_sim_camera(None)?;
+            // No camera panel: only what the detector can read is drawn.
+            session.use_sim_camera(None, CameraFrames::Readable)?;
         }
         Ok(session)
     };

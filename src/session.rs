@@ -169,11 +169,12 @@ impl Session {
     }
 
     /// Makes the twin see through a rendered camera and the ArUco detector instead of
-    /// its ideal marker sensor (`--sim-camera`). Refused with a clear message when navdeck
-    /// was built without the `vision` feature or the link has no twin.
+    /// its ideal marker sensor (`--sim-camera`), drawing `frames`. Refused with a clear
+    /// message when navdeck was built without the `vision` feature or the link has no twin.
     pub fn use_sim_camera(
         &mut self,
         stopwatch: Option<std::sync::Arc<dyn crate::clock::Clock>>,
+        frames: crate::sim::CameraFrames,
     ) -> Result<()> {
         #[cfg(feature = "vision")]
         {
@@ -181,7 +182,7 @@ impl Session {
                 bail!("--sim-camera needs the twin (--link sim)");
             };
             let detector = twin
-                .use_rendered_camera(&self.config.vision, stopwatch)
+                .use_rendered_camera(&self.config.vision, stopwatch, frames)
                 .context("cannot start the rendered camera")?;
             let blind = camera_blind_distance(detector, &self.config);
             self.set_blind_distance(blind);
@@ -189,7 +190,7 @@ impl Session {
         }
         #[cfg(not(feature = "vision"))]
         {
-            let _ = stopwatch;
+            let _ = (stopwatch, frames);
             bail!("--sim-camera {NEEDS_VISION}")
         }
     }
@@ -334,7 +335,9 @@ mod tests {
         assert!((blind(&ideal) - 0.125).abs() < 1e-9);
         if cfg!(feature = "vision") {
             // The rendered camera loses a block marker 0.232 m ahead.
-            ideal.use_sim_camera(None).unwrap();
+            ideal
+                .use_sim_camera(None, crate::sim::CameraFrames::Whole)
+                .unwrap();
             assert!((blind(&ideal) - 0.232).abs() < 0.002, "{}", blind(&ideal));
         }
         let dir = std::env::temp_dir().join(format!("navdeck-blind-{}", std::process::id()));
@@ -343,7 +346,8 @@ mod tests {
         std::fs::write(&file, "[mission]\nblind_distance = 0.3\n").unwrap();
         let mut set = twin_session(Some(file));
         if cfg!(feature = "vision") {
-            set.use_sim_camera(None).unwrap();
+            set.use_sim_camera(None, crate::sim::CameraFrames::Whole)
+                .unwrap();
         }
         assert_eq!(set.config.mission.blind_distance, Some(0.3));
         std::fs::remove_dir_all(dir).unwrap();

@@ -266,7 +266,8 @@ fn the_twin_with_a_rendered_camera_reports_sightings_deterministically() {
             &Config::default().sim,
             3,
         );
-        twin.use_rendered_camera(&level(), None).unwrap();
+        twin.use_rendered_camera(&level(), None, navdeck::sim::CameraFrames::Whole)
+            .unwrap();
         twin.set_command(navdeck::geometry::Twist::new(0.0, 0.5));
         twin.step(1.0);
         twin.take_frame()

@@ -7,11 +7,12 @@
 
 use super::bit_check::{self, CELLS};
 use super::calibration;
-use super::config::{CornerRefinement, VisionConfig};
+use super::config::{CornerRefinement, DetectorConfig, VisionConfig};
 use super::edge_fit::{Refined, shortest_side};
-use super::frame::{CameraStatus, GrayFrame};
+use super::frame::{CameraStatus, GrayFrame, Thumbnail};
 use super::intrinsics::Intrinsics;
 use super::mount::{Mount, range_bearing};
+use super::region::Region;
 use crate::clock::Clock;
 use crate::data::MarkerSighting;
 use nalgebra::Vector3;
@@ -77,6 +78,18 @@ impl Detection {
     pub fn marker_sightings(&self) -> Vec<MarkerSighting> {
         self.sightings.iter().map(ArucoSighting::sighting).collect()
     }
+
+    /// What the camera panel shows of it, with a thumbnail of the frame if there is one.
+    pub fn status(self, thumbnail: Option<Thumbnail>) -> CameraStatus {
+        CameraStatus {
+            accepted: self.sightings.len(),
+            rejected: self.rejected,
+            ids: self.ids,
+            latency: self.latency,
+            thumbnail,
+            error: None,
+        }
+    }
 }
 
 /// Thumbnail size handed to the console, pixels.
@@ -124,23 +137,7 @@ impl Detector {
         let dictionary = aruco::get_predefined_dictionary(
             aruco::PREDEFINED_DICTIONARY_NAME::DICT_ARUCO_ORIGINAL,
         )?;
-        let mut parameters = aruco::DetectorParameters::create()?;
-        let d = &config.detector;
-        parameters.set_adaptive_thresh_win_size_min(d.adaptive_thresh_win_size_min);
-        parameters.set_adaptive_thresh_win_size_max(d.adaptive_thresh_win_size_max);
-        parameters.set_adaptive_thresh_win_size_step(d.adaptive_thresh_win_size_step);
-        parameters.set_min_marker_perimeter_rate(d.min_marker_perimeter_rate);
-        parameters.set_corner_refinement_win_size(d.corner_refinement_win_size);
-        parameters.set_corner_refinement_method(match d.corner_refinement {
-            CornerRefinement::None => aruco::CORNER_REFINE_NONE,
-            // Edge lines start from cornerSubPix's corners.
-            CornerRefinement::Subpix | CornerRefinement::Edges => aruco::CORNER_REFINE_SUBPIX,
-            CornerRefinement::Contour => aruco::CORNER_REFINE_CONTOUR,
-        });
-        parameters.set_perspective_remove_pixel_per_cell(d.perspective_remove_pixel_per_cell);
-        parameters.set_perspective_remove_ignored_margin_per_cell(
-            d.perspective_remove_ignored_margin_per_cell,
-        );
+        let parameters = parameters(&config.detector)?;
         Ok(Self {
             config: config.clone(),
             mount: Mount::new(&config.mount),
@@ -169,6 +166,11 @@ impl Detector {
         &self.dictionary
     }
 
+    /// OpenCV's detector parameters, as the config set them.
+    pub fn parameters(&self) -> &Ptr<aruco::DetectorParameters> {
+        &self.parameters
+    }
+
     /// Reads `frame` for the console: the sightings for the estimator, and the status
     /// (IDs, counts, latency, thumbnail) for the camera panel.
     pub fn read(
@@ -179,14 +181,7 @@ impl Detector {
         match self.detect(frame, stopwatch) {
             Ok(d) => (
                 d.marker_sightings(),
-                CameraStatus {
-                    accepted: d.sightings.len(),
-                    rejected: d.rejected,
-                    ids: d.ids,
-                    latency: d.latency,
-                    thumbnail: Some(frame.thumbnail(THUMBNAIL.0, THUMBNAIL.1)),
-                    error: None,
-                },
+                d.status(Some(frame.thumbnail(THUMBNAIL.0, THUMBNAIL.1))),
             ),
             Err(e) => (Vec::new(), CameraStatus::failed(e.to_string())),
         }
@@ -200,17 +195,7 @@ impl Detector {
         stopwatch: Option<&dyn Clock>,
     ) -> Result<Detection, VisionError> {
         let started = stopwatch.map(|s| s.now());
-        if frame.width != self.intrinsics.width as usize
-            || frame.height != self.intrinsics.height as usize
-            || frame.data.len() != frame.width * frame.height
-        {
-            return Err(VisionError::FrameSize {
-                got_w: frame.width,
-                got_h: frame.height,
-                want_w: self.intrinsics.width,
-                want_h: self.intrinsics.height,
-            });
-        }
+        self.check_size(frame)?;
         let image =
             Mat::new_rows_cols_with_data(frame.height as i32, frame.width as i32, &frame.data)?;
         let mut corners: Vector<Vector<Point2f>> = Vector::new();
@@ -224,8 +209,51 @@ impl Detector {
             &self.parameters,
             &mut refused,
         )?;
+        let mut out = self.read_quads(frame, corners.iter().zip(ids.iter()))?;
+        out.latency = stopwatch.zip(started).map(|(s, t0)| s.now() - t0);
+        Ok(out)
+    }
+
+    /// As `detect`, but looking only inside `regions` of the frame: the markers found are
+    /// those `detect` finds wholly inside a region, at least half the largest threshold
+    /// window and 3 px from its edges (`aruco_regions`).
+    pub fn detect_in(
+        &self,
+        frame: &GrayFrame,
+        regions: &[Region],
+        stopwatch: Option<&dyn Clock>,
+    ) -> Result<Detection, VisionError> {
+        let started = stopwatch.map(|s| s.now());
+        self.check_size(frame)?;
+        let quads = super::aruco_regions::find(self, frame, regions)?;
+        let mut out = self.read_quads(frame, quads.into_iter())?;
+        out.latency = stopwatch.zip(started).map(|(s, t0)| s.now() - t0);
+        Ok(out)
+    }
+
+    fn check_size(&self, frame: &GrayFrame) -> Result<(), VisionError> {
+        if frame.width != self.intrinsics.width as usize
+            || frame.height != self.intrinsics.height as usize
+            || frame.data.len() != frame.width * frame.height
+        {
+            return Err(VisionError::FrameSize {
+                got_w: frame.width,
+                got_h: frame.height,
+                want_w: self.intrinsics.width,
+                want_h: self.intrinsics.height,
+            });
+        }
+        Ok(())
+    }
+
+    /// Refines, checks and measures the decoded squares `quads` (corners and ID) of `frame`.
+    fn read_quads(
+        &self,
+        frame: &GrayFrame,
+        quads: impl Iterator<Item = (Vector<Point2f>, i32)>,
+    ) -> Result<Detection, VisionError> {
         let mut out = Detection::default();
-        for (mut quad, id) in corners.iter().zip(ids.iter()) {
+        for (mut quad, id) in quads {
             let id = id as u32;
             if self.config.detector.corner_refinement == CornerRefinement::Edges {
                 let start: [[f32; 2]; 4] = std::array::from_fn(|k| {
@@ -265,7 +293,6 @@ impl Detector {
         }
         out.ids.sort_unstable();
         out.sightings.sort_by_key(|s| s.id);
-        out.latency = stopwatch.zip(started).map(|(s, t0)| s.now() - t0);
         Ok(out)
     }
 
@@ -356,4 +383,25 @@ impl Detector {
             corners,
         }))
     }
+}
+
+/// OpenCV's detector parameters for `d`.
+pub(super) fn parameters(d: &DetectorConfig) -> opencv::Result<Ptr<aruco::DetectorParameters>> {
+    let mut parameters = aruco::DetectorParameters::create()?;
+    parameters.set_adaptive_thresh_win_size_min(d.adaptive_thresh_win_size_min);
+    parameters.set_adaptive_thresh_win_size_max(d.adaptive_thresh_win_size_max);
+    parameters.set_adaptive_thresh_win_size_step(d.adaptive_thresh_win_size_step);
+    parameters.set_min_marker_perimeter_rate(d.min_marker_perimeter_rate);
+    parameters.set_corner_refinement_win_size(d.corner_refinement_win_size);
+    parameters.set_corner_refinement_method(match d.corner_refinement {
+        CornerRefinement::None => aruco::CORNER_REFINE_NONE,
+        // Edge lines start from cornerSubPix's corners.
+        CornerRefinement::Subpix | CornerRefinement::Edges => aruco::CORNER_REFINE_SUBPIX,
+        CornerRefinement::Contour => aruco::CORNER_REFINE_CONTOUR,
+    });
+    parameters.set_perspective_remove_pixel_per_cell(d.perspective_remove_pixel_per_cell);
+    parameters.set_perspective_remove_ignored_margin_per_cell(
+        d.perspective_remove_ignored_margin_per_cell,
+    );
+    Ok(parameters)
 }

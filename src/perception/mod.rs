@@ -1,8 +1,12 @@
-//! What the robot perceives: marker ID conventions, camera frames, the camera's mount and
-//! intrinsics, and (feature `vision`) ArUco detection with OpenCV.
+//! What the robot perceives: marker ID conventions, camera frames and regions of them, the
+//! camera's mount and intrinsics, and (feature `vision`) ArUco detection with OpenCV.
 
 #[cfg(feature = "vision")]
 pub mod aruco;
+#[cfg(feature = "vision")]
+mod aruco_identify;
+#[cfg(feature = "vision")]
+mod aruco_regions;
 #[cfg(feature = "vision")]
 pub mod bit_check;
 #[cfg(feature = "vision")]
@@ -16,3 +20,4 @@ pub mod markers;
 pub mod mount;
 #[cfg(feature = "vision")]
 pub mod pipeline;
+pub mod region;

@@ -14,6 +14,7 @@
 mod blocks;
 mod build;
 mod camera;
+mod camera_frames;
 mod checks;
 mod clock;
 mod collision;
@@ -21,13 +22,21 @@ pub mod config;
 mod drive;
 mod encoders;
 mod error;
+#[cfg(feature = "vision")]
+mod frame_noise;
 pub mod generate;
 mod gripper;
 mod lidar;
 mod raster;
 #[cfg(feature = "vision")]
+mod readable;
+#[cfg(feature = "vision")]
+mod render;
+#[cfg(feature = "vision")]
 pub mod rendered_camera;
 mod shapes;
+#[cfg(feature = "vision")]
+mod sheet_paint;
 mod truth;
 mod twin;
 mod world;
@@ -36,6 +45,7 @@ mod world_toml;
 
 pub use blocks::BlockState;
 pub use camera::clear_line as line_of_sight;
+pub use camera_frames::CameraFrames;
 pub use error::WorldError;
 pub use truth::{GroundTruth, collision_note};
 pub use twin::Twin;

@@ -193,22 +193,23 @@ impl Twin {
     }
 
     /// Replaces the ideal marker sensor by a rendered camera read with the ArUco
-    /// detector (feature `vision`), which sees no further than the ideal sensor did; with
-    /// a stopwatch, detection latency is reported. Returns the camera's detector.
+    /// detector (feature `vision`), which sees no further than the ideal sensor did and
+    /// draws `frames`; with a stopwatch, detection latency is reported. Returns the
+    /// camera's detector.
     #[cfg(feature = "vision")]
     pub fn use_rendered_camera(
         &mut self,
         vision: &crate::perception::config::VisionConfig,
         stopwatch: Option<Arc<dyn crate::clock::Clock>>,
+        frames: super::CameraFrames,
     ) -> Result<&crate::perception::aruco::Detector, crate::perception::aruco::VisionError> {
-        let camera = self
-            .rendered
-            .insert(Box::new(super::rendered_camera::RenderedCamera::new(
-                vision,
-                self.camera.max_range(),
-                stopwatch,
-            )?));
-        Ok(camera.detector())
+        let mut camera = super::rendered_camera::RenderedCamera::new(
+            vision,
+            self.camera.max_range(),
+            stopwatch,
+        )?;
+        camera.set_frames(frames);
+        Ok(self.rendered.insert(Box::new(camera)).detector())
     }
 
     pub fn blocks(&self) -> &[BlockState] {

@@ -46,14 +46,12 @@ pub fn gate_normal(map: &Costmap, a: Point2, b: Point2, robot: Point2) -> (f64, 
     let (dx, dy) = (b.x - a.x, b.y - a.y);
     let len = dx.hypot(dy).max(1e-9);
     let mut normal = (-dy / len, dx / len);
-    let towards = match free_side(map, center) {
-        Some(free) => free,
-        None => (robot.x - center.x, robot.y - center.y),
-    };
+    let free = free_side(map, center);
+    let towards = free.unwrap_or((robot.x - center.x, robot.y - center.y));
     if normal.0 * towards.0 + normal.1 * towards.1 < 0.0 {
         normal = (-normal.0, -normal.1);
     }
-    match free_side(map, center) {
+    match free {
         Some(free) if normal.0 * free.0 + normal.1 * free.1 < AGREE.cos() => free,
         _ => normal,
     }

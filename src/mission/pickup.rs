@@ -130,16 +130,21 @@ impl Pickup {
         };
         let (t, pose) = (inputs.t, inputs.pose);
         // The lidar's outline of the block, where it has one, places it more finely than
-        // its markers do.
-        let aim = lidar_centre(
-            inputs.map,
-            inputs.occupied,
-            block.position,
-            config.block_size,
-            FIT_SEARCH,
-            pose.position(),
-        )
-        .unwrap_or(block.position);
+        // its markers do; only the stages near the block use where it is.
+        let near = !matches!(self.stage, Stage::Travel(_));
+        let fitted = near.then(|| {
+            let robot = pose.position();
+            let size = config.block_size;
+            lidar_centre(
+                inputs.map,
+                inputs.occupied,
+                block.position,
+                size,
+                FIT_SEARCH,
+                robot,
+            )
+        });
+        let aim = fitted.flatten().unwrap_or(block.position);
         let distance = pose.position().distance(aim);
         let error = bearing(pose, aim);
         let waited = t - self.since;

@@ -1,5 +1,6 @@
 //! Read-only views of the mission for the status panel.
 
+use super::config::{LOST_SCAN_AFTER, OBJECT_LOOKS, POTENTIAL_LOOKS};
 use super::machine::{Mission, Phase, Target, TimelineEntry};
 use crate::geometry::Point2;
 
@@ -46,21 +47,21 @@ impl Mission {
                 Target::Unseen => format!("camera has not looked there ({left} left)"),
                 Target::Marker(_) => "furthest marker not yet visited".into(),
                 Target::Potential(odd) => format!(
-                    "1 marker seen; look {}/5 for the other",
+                    "1 marker seen; look {}/{POTENTIAL_LOOKS} for the other",
                     self.potential_looks.get(odd).copied().unwrap_or(0) + 1
                 ),
                 Target::Object(i) => format!(
-                    "lidar sees it, no marker; look {}/4",
+                    "lidar sees it, no marker; look {}/{OBJECT_LOOKS}",
                     self.unexplained.get(*i).map_or(0, |u| u.looks) + 1
                 ),
             },
             Phase::Lost(..) if self.config.lost_position_std > 0.0 => {
                 format!(
-                    "no landmark for 10 s, position unsure (σ > {:.0} cm)",
+                    "no landmark for {LOST_SCAN_AFTER:.0} s, position unsure (σ > {:.0} cm)",
                     self.config.lost_position_std * 100.0
                 )
             }
-            Phase::Lost(..) => "no landmark in view for 10 s".into(),
+            Phase::Lost(..) => format!("no landmark in view for {LOST_SCAN_AFTER:.0} s"),
             Phase::BackOff(_) => "block lost from view in the approach".into(),
             Phase::Pickup(_) => "block seen whole, its gate known".into(),
             Phase::Deliver(_) => "holding the block, its gate known".into(),

@@ -10,6 +10,16 @@ pub struct Region {
 }
 
 impl Region {
+    /// All of a `width` x `height` frame.
+    pub fn whole(width: usize, height: usize) -> Region {
+        Region {
+            x0: 0,
+            y0: 0,
+            x1: width,
+            y1: height,
+        }
+    }
+
     pub fn width(&self) -> usize {
         self.x1.saturating_sub(self.x0)
     }

@@ -94,12 +94,7 @@ impl Renderer {
         let k = detector.intrinsics();
         let (w, h) = (k.width as usize, k.height as usize);
         let mut frame = GrayFrame::filled(w, h, self.background());
-        let whole = [Region {
-            x0: 0,
-            y0: 0,
-            x1: w,
-            y1: h,
-        }];
+        let whole = [Region::whole(w, h)];
         for p in &self.scene(detector, pose, markers, occluders) {
             self.paste(detector, p, &mut frame, &whole)?;
         }

@@ -353,12 +353,7 @@ mod tests {
     fn skipping_flat_cells_gives_what_sampling_every_pixel_gives() {
         let sheet = checker();
         let (w, h) = (200, 150);
-        let whole = Region {
-            x0: 0,
-            y0: 0,
-            x1: w,
-            y1: h,
-        };
+        let whole = Region::whole(w, h);
         for (scale, shear, persp, s) in [
             (3.1, 0.1, 0.0005, 4),
             (1.3, -0.3, 0.002, 4),
@@ -453,12 +448,7 @@ mod tests {
     fn painting_matches_opencvs_supersampled_warp_to_a_grey_level() {
         let sheet = checker();
         let (w, h) = (200, 150);
-        let whole = Region {
-            x0: 0,
-            y0: 0,
-            x1: w,
-            y1: h,
-        };
+        let whole = Region::whole(w, h);
         for (scale, shear, persp) in [(3.1, 0.1, 0.0005), (1.3, -0.3, 0.002), (0.7, 0.2, 0.0)] {
             let to_sheet = tilted(scale, shear, persp);
             let mut ours = vec![140u8; w * h];
@@ -511,12 +501,7 @@ mod tests {
         let sheet = Sheet::new(4, vec![200; 16]);
         let to_sheet = [1.0, 0.0, 0.0, 0.0, 1.0, 1.0, 0.0, 0.0, 1.0];
         let mut frame = vec![100u8; 4];
-        let bounds = Region {
-            x0: 0,
-            y0: 0,
-            x1: 4,
-            y1: 1,
-        };
+        let bounds = Region::whole(4, 1);
         paint(&mut frame, 4, bounds, &sheet, &to_sheet, 4);
         assert_eq!(frame, vec![150, 200, 200, 150]);
     }

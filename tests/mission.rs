@@ -164,3 +164,24 @@ fn log_prints_every_line_the_mission_logged() {
     let sweep = navdeck(&["mission", "--sweep", "1..2", "--log"]);
     assert_eq!(sweep.status.code(), Some(2), "one run only");
 }
+
+/// Generated worlds where the mission once touched something or gave up: seed 63's rooms
+/// (the robot swung off its path at a sharp corner into a block), seed 41's corridors
+/// (a block approached from its unmarked side, lost from view three times).
+#[test]
+fn generated_worlds_that_once_failed_deliver_without_a_touch() {
+    for (style, seed) in [("rooms", "63"), ("corridors", "41"), ("boxes", "18")] {
+        let out = navdeck(&[
+            "mission",
+            "--generated",
+            "--style",
+            style,
+            "--seed",
+            seed,
+            "--json",
+        ]);
+        let r: Value = serde_json::from_slice(&out.stdout).unwrap();
+        assert_eq!(r["outcome"], "delivered all", "{style} {seed}: {r}");
+        assert_eq!(r["collisions"], 0, "{style} {seed}");
+    }
+}

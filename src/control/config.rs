@@ -71,6 +71,12 @@ pub struct FollowConfig {
     pub goal_tolerance: f64,
     /// Floor on the reference speed, m/s: the profile ends at 0, the robot must still arrive.
     pub min_speed: f64,
+    /// While following, the forward command is cut when keeping it up until the robot
+    /// could brake would bring the footprint within this distance of a lidar-mapped
+    /// obstacle, metres: a 1 cm map cell's quantisation and the estimate's centimetre or
+    /// two (navdeck's; Nav2's collision monitor stops on a polygon a margin beyond the
+    /// footprint). 0 turns the guard off.
+    pub stop_margin: f64,
     pub pid: PidFollowConfig,
     pub pure_pursuit: PurePursuitConfig,
     pub hybrid: HybridConfig,
@@ -82,6 +88,7 @@ impl Default for FollowConfig {
             controller: ControllerKind::Hybrid,
             goal_tolerance: 0.05,
             min_speed: 0.03,
+            stop_margin: 0.03,
             pid: PidFollowConfig::default(),
             pure_pursuit: PurePursuitConfig::default(),
             hybrid: HybridConfig::default(),
@@ -211,6 +218,7 @@ impl FollowConfig {
         ];
         crate::data::check::all_positive(&positive)?;
         let non_negative = [
+            ("stop_margin", self.stop_margin),
             ("pid.kp", self.pid.kp),
             ("pid.ki", self.pid.ki),
             ("pid.kd", self.pid.kd),

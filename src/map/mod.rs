@@ -3,6 +3,7 @@
 
 pub mod belief;
 pub mod config;
+pub mod contact;
 pub mod costmap;
 pub mod evidence;
 pub mod grid;

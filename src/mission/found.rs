@@ -11,6 +11,9 @@ impl Mission {
     /// Updates the objects from the landmarks and tells the log what is new.
     pub(super) fn note_found(&mut self, inputs: &Inputs, log: &mut Vec<(Level, String)>) {
         let robot = inputs.pose.position();
+        if inputs.camera_frame {
+            self.objects.note_sightings(inputs.seen, robot);
+        }
         for found in
             self.objects
                 .update(inputs.landmarks, robot, self.config.block_size, inputs.map)

@@ -30,6 +30,9 @@ pub struct Block {
     pub markers: [u32; 2],
     /// Estimated centre.
     pub position: Point2,
+    /// Where the robot was when the camera last read one of the block's markers: a
+    /// marker is readable only from its own side, so an approach from there sees one.
+    pub seen_from: Option<Point2>,
     /// Both markers seen (seed 001: "register_block"); one only: a potential block.
     pub confirmed: bool,
     pub delivered: bool,
@@ -65,6 +68,8 @@ impl Gate {
 #[derive(Clone, Debug, Default)]
 pub struct Objects {
     blocks: BTreeMap<u32, Block>,
+    /// By a block's odd marker: where the robot was when one of its markers was last read.
+    seen_from: BTreeMap<u32, Point2>,
     gates: BTreeMap<(Colour, u32), Gate>,
 }
 
@@ -141,6 +146,7 @@ impl Objects {
             colour,
             markers: [odd, odd + 1],
             position,
+            seen_from: self.seen_from.get(&odd).copied(),
             confirmed,
             delivered: false,
         };
@@ -150,6 +156,22 @@ impl Objects {
             None => Some(Found::PotentialBlock(block)),
             Some(p) if confirmed && !p.confirmed => Some(Found::Block(block)),
             _ => None,
+        }
+    }
+
+    /// The camera read `seen` with the robot at `robot`: remembered for each block.
+    pub fn note_sightings(&mut self, seen: &[u32], robot: Point2) {
+        for &id in seen {
+            if matches!(
+                MarkerCategory::of(id),
+                MarkerCategory::RedBlock | MarkerCategory::BlueBlock
+            ) {
+                let odd = if id % 2 == 1 { id } else { id - 1 };
+                self.seen_from.insert(odd, robot);
+                if let Some(b) = self.blocks.get_mut(&odd) {
+                    b.seen_from = Some(robot);
+                }
+            }
         }
     }
 

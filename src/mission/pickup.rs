@@ -47,11 +47,16 @@ pub(crate) struct Pickup {
     last_seen: f64,
 }
 
-/// Where the path to a block ends: `staging_distance` from it on the robot's side, or, if
-/// that spot or the straight run in from it is blocked (a block by a wall or a box), the
-/// nearest direction round the block, in 30 degree steps, where both are clear.
-fn staging_point(block: Point2, robot: Point2, map: &Costmap, config: &MissionConfig) -> Point2 {
-    let toward = (robot.y - block.y).atan2(robot.x - block.x);
+/// Where the path to a block ends: `staging_distance` from it towards where the robot was
+/// when the camera last read one of its markers (a block's markers sit on two adjacent
+/// faces, readable only from their side; from the other two it cannot be told from a box),
+/// else towards the robot. If that spot or the straight run in from it is blocked (a block
+/// by a wall or a box), the nearest direction round the block, in 30 degree steps, where
+/// both are clear.
+fn staging_point(block: &Block, robot: Point2, map: &Costmap, config: &MissionConfig) -> Point2 {
+    let from = block.seen_from.unwrap_or(robot);
+    let block = block.position;
+    let toward = (from.y - block.y).atan2(from.x - block.x);
     let clear = |p: Point2| !is_lethal(map.at(p));
     // The last few centimetres are the block's own lethal ring: not checked.
     let inner = config.grip_distance + 0.08;
@@ -67,7 +72,7 @@ fn staging_point(block: Point2, robot: Point2, map: &Costmap, config: &MissionCo
             (0..=steps).all(|i| clear(at(inner + i as f64 * map.resolution)))
         })
         .map_or_else(
-            || towards(block, robot, config.staging_distance),
+            || towards(block, from, config.staging_distance),
             |(c, s)| {
                 Point2::new(
                     block.x + config.staging_distance * c,
@@ -85,7 +90,7 @@ impl Pickup {
         config: &MissionConfig,
         t: f64,
     ) -> Self {
-        let goal = staging_point(block.position, robot, map, config);
+        let goal = staging_point(block, robot, map, config);
         let label = name(block.colour, block.markers[0]);
         Self {
             block: block.markers[0],
@@ -261,4 +266,55 @@ impl Pickup {
 /// "red block 421".
 pub(crate) fn name(colour: Colour, odd: u32) -> String {
     format!("{} block {odd}", colour.label())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::map::costmap::{FREE, LETHAL};
+
+    fn block_at(p: Point2, seen_from: Option<Point2>) -> Block {
+        Block {
+            colour: Colour::Red,
+            markers: [421, 422],
+            position: p,
+            seen_from,
+            confirmed: true,
+            delivered: false,
+        }
+    }
+
+    #[test]
+    fn the_approach_comes_from_where_a_marker_was_read() {
+        let map = Costmap::new(200, 200, 0.01, Point2::new(0.0, 0.0), FREE);
+        let config = MissionConfig::default();
+        let centre = Point2::new(1.0, 1.0);
+        let robot = Point2::new(1.8, 1.0);
+        // Read from the west; the robot is now east: the camera would see blank faces.
+        let read = block_at(centre, Some(Point2::new(0.2, 1.0)));
+        let p = staging_point(&read, robot, &map, &config);
+        assert!(
+            (p.x - 0.7).abs() < 1e-9 && (p.y - 1.0).abs() < 1e-9,
+            "{p:?}"
+        );
+        // Never read (a potential block from the lidar): from the robot's side.
+        let p = staging_point(&block_at(centre, None), robot, &map, &config);
+        assert!((p.x - 1.3).abs() < 1e-9, "{p:?}");
+    }
+
+    #[test]
+    fn a_blocked_side_turns_the_approach_in_thirty_degree_steps() {
+        let mut map = Costmap::new(200, 200, 0.01, Point2::new(0.0, 0.0), FREE);
+        // A wall 0.2 m west of the block.
+        for y in 0..200 {
+            map.set(80, y, LETHAL);
+        }
+        let config = MissionConfig::default();
+        let read = block_at(Point2::new(1.0, 1.0), Some(Point2::new(0.2, 1.0)));
+        let p = staging_point(&read, Point2::new(1.8, 1.0), &map, &config);
+        assert!(p.x > 0.82, "clear of the wall: {p:?}");
+        // 30 degrees off west still ends 0.26 m out, behind the wall; 60 degrees does not.
+        let bearing = (p.y - 1.0).atan2(p.x - 1.0).to_degrees().abs();
+        assert!((bearing - 120.0).abs() < 1e-6, "{bearing}");
+    }
 }

@@ -4,8 +4,10 @@
 use super::Pilot;
 use super::mode::Mode;
 use crate::control::follower::FollowStatus;
+use crate::data::GripperState;
 use crate::data::Level;
 use crate::geometry::{Point2, Rms, Twist};
+use crate::map::contact::{JAWS, contact_ahead};
 use crate::map::costmap::is_lethal;
 use crate::map::reach::{approach_point, escape_map};
 use crate::perception::markers::MarkerCategory;
@@ -73,6 +75,8 @@ pub(super) struct Navigation {
     pub landmarks_checked: std::collections::BTreeSet<u32>,
     /// The last follower command and when it was computed.
     pub last_step: Option<(f64, Twist)>,
+    /// The contact guard stopped the robot at the last step.
+    pub in_contact: bool,
     /// Cross-track error of the twin's true pose, and of the estimated pose (the
     /// follower's own), over every path since following started.
     pub true_cross_track: Rms,
@@ -211,7 +215,8 @@ impl Pilot {
         };
         self.replan_if_blocked(t);
         let step = self.follower.step(self.ekf.pose(), dt);
-        self.nav.last_step = Some((t, step.twist));
+        let twist = self.guarded(t, step.twist);
+        self.nav.last_step = Some((t, twist));
         match step.status {
             FollowStatus::Following {
                 remaining,
@@ -244,7 +249,41 @@ impl Pilot {
             }
             FollowStatus::NoTrajectory => self.nav.following = None,
         }
-        step.twist
+        twist
+    }
+
+    /// The follower's command, with its forward speed cut to zero if keeping it up until
+    /// the robot could brake would put the footprint onto something the lidar mapped;
+    /// the path is then planned again from where the robot stands.
+    fn guarded(&mut self, t: f64, twist: Twist) -> Twist {
+        let robot = &self.settings.robot;
+        let margin = self.settings.follow.stop_margin;
+        if margin == 0.0 {
+            return twist;
+        }
+        let horizon = robot.control_period + twist.linear.abs() / robot.max_linear_accel;
+        let held = (self.hand.state == Some(GripperState::Holding)).then_some(JAWS);
+        let contact = contact_ahead(
+            self.belief.costmap(),
+            self.belief.sensed_occupied(),
+            self.ekf.pose(),
+            twist,
+            robot.footprint_radius + margin,
+            horizon,
+            held,
+        );
+        let Some(q) = contact else {
+            self.nav.in_contact = false;
+            return twist;
+        };
+        if !self.nav.in_contact {
+            self.nav.in_contact = true;
+            let reason = format!("obstacle ahead at ({:.2}, {:.2}), stopped", q.x, q.y);
+            self.replan(t, reason);
+        } else if t - self.nav.last_replan >= REPLAN_EVERY {
+            self.replan(t, "obstacle still ahead".to_string());
+        }
+        Twist::new(0.0, twist.angular)
     }
 
     /// Seed 001 section 7 "Path Recalculation": replan when the map shows the path ahead
@@ -289,6 +328,12 @@ impl Pilot {
             }
         }
         let Some(reason) = reason else { return };
+        self.replan(t, reason);
+    }
+
+    /// Plans the route again from where the robot is, saying why first.
+    fn replan(&mut self, t: f64, reason: String) {
+        let Some(route) = &self.nav.route else { return };
         let target = route.target;
         self.nav.last_replan = t;
         self.nav.replans += 1;

@@ -86,7 +86,7 @@ fn release_event_stops_at_once_in_kitty_terminals() {
 }
 
 #[test]
-fn space_is_an_emergency_stop_and_a_drive_key_releases_it() {
+fn space_is_an_emergency_stop_and_only_space_again_releases_it() {
     let mut app = default_app();
     for i in 0..10 {
         app.handle_key(Key::char('w'), KeyKind::Press, f64::from(i) * 0.05);
@@ -103,8 +103,33 @@ fn space_is_an_emergency_stop_and_a_drive_key_releases_it() {
             .iter()
             .any(|e| e.text.contains("EMERGENCY STOP"))
     );
+    // A drive key neither releases it nor drives.
     app.handle_key(Key::char('w'), KeyKind::Press, app.now());
-    assert!(!app.pilot().estop() && app.pilot().commanded().linear > 0.0);
+    assert!(app.pilot().estop() && app.pilot().commanded().linear == 0.0);
+    assert!(
+        app.log_book()
+            .iter()
+            .any(|e| e.text.contains("press it again (space) to release"))
+    );
+    // Space again releases it, and the robot stays still until driven.
+    app.handle_key(key("space"), KeyKind::Press, app.now());
+    assert!(!app.pilot().estop() && app.pilot().commanded().linear == 0.0);
+    app.handle_key(Key::char('w'), KeyKind::Press, app.now());
+    assert!(app.pilot().commanded().linear > 0.0);
+}
+
+#[test]
+fn a_key_that_closes_the_help_does_nothing_else() {
+    let mut app = default_app();
+    app.handle_key(key("?"), KeyKind::Press, 0.0);
+    app.handle_key(key("e"), KeyKind::Press, 0.1);
+    assert_eq!(
+        app.pilot().mode(),
+        navdeck::app::mode::Mode::Manual,
+        "e only closed the help"
+    );
+    app.handle_key(key("e"), KeyKind::Press, 0.2);
+    assert_eq!(app.pilot().mode(), navdeck::app::mode::Mode::Exploration);
 }
 
 #[test]

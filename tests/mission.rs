@@ -185,3 +185,99 @@ fn generated_worlds_that_once_failed_deliver_without_a_touch() {
         assert_eq!(r["collisions"], 0, "{style} {seed}");
     }
 }
+
+/// Seed 001's operator takes over mid-mission and hands back: `e` resumes the mission it
+/// paused, with its deliveries, the block in the gripper and the map kept.
+#[test]
+fn taking_over_with_a_block_held_and_pressing_e_resumes_the_mission() {
+    let mut app = default_app();
+    app.handle_key(key("e"), KeyKind::Press, 0.0);
+    let mut t = 0.0;
+    let holding = |app: &navdeck::app::App| {
+        app.pilot().gripper() == Some(navdeck::data::GripperState::Holding)
+    };
+    // Wait for the second block in the gripper, so one delivery is behind us.
+    while t < 400.0 && app.pilot().mission().unwrap().delivered() < 1 {
+        t += 0.1;
+        app.update(t);
+    }
+    while t < 600.0 && !holding(&app) {
+        t += 0.1;
+        app.update(t);
+    }
+    assert!(holding(&app), "a second block picked up by {t:.0} s");
+    let landmarks = app.pilot().slam().landmark_count();
+    // Take over: a drive key stops the mission and drives.
+    app.handle_key(key("a"), KeyKind::Press, t + 0.05);
+    assert_eq!(app.pilot().mode(), Mode::Manual);
+    for _ in 0..30 {
+        t += 0.1;
+        app.update(t);
+    }
+    let screen = common::render(&app);
+    assert!(screen.contains("paused: e resumes"), "{screen}");
+    // Hand back.
+    app.handle_key(key("e"), KeyKind::Press, t + 0.05);
+    assert_eq!(app.pilot().mode(), Mode::Exploration);
+    let mission = app.pilot().mission().unwrap();
+    assert_eq!(mission.delivered(), 1, "the first delivery is kept");
+    assert!(
+        app.pilot().slam().landmark_count() >= landmarks,
+        "the map is kept"
+    );
+    let said = |text: &str| app.log_book().iter().any(|e| e.text.contains(text));
+    assert!(said("Still holding"), "goes on with the held block");
+    assert!(said("Mission resumed: 1 delivered"));
+    let rejected = app.pilot().slam().rejected();
+    let mut least = 1;
+    while t < 1500.0 && !app.pilot().mission().unwrap().is_done() {
+        t += 0.1;
+        app.update(t);
+        let delivered = app.pilot().mission().unwrap().delivered();
+        assert!(delivered >= least, "deliveries never go back");
+        least = delivered;
+    }
+    let mission = app.pilot().mission().unwrap();
+    assert!(
+        mission.is_done(),
+        "finished by {t:.0} s: {}",
+        mission.state_label()
+    );
+    assert_eq!(mission.delivered(), 4);
+    let scans = (app.log_book().iter())
+        .filter(|e| e.text == "Initial rotation scan")
+        .count();
+    assert_eq!(scans, 1, "no fresh start");
+    assert!(
+        app.pilot().slam().rejected() < rejected + 20,
+        "sightings are not rejected wholesale after the resume"
+    );
+}
+
+/// A block put down during a takeover is looked for again, not chased where it was.
+#[test]
+fn a_block_let_go_during_a_takeover_is_found_again() {
+    let mut app = default_app();
+    app.handle_key(key("e"), KeyKind::Press, 0.0);
+    let mut t = 0.0;
+    while t < 400.0 && app.pilot().gripper() != Some(navdeck::data::GripperState::Holding) {
+        t += 0.1;
+        app.update(t);
+    }
+    app.handle_key(key("a"), KeyKind::Press, t + 0.05);
+    // Open the gripper by hand and back away from the block.
+    app.handle_key(key("o"), KeyKind::Press, t + 0.1);
+    for _ in 0..30 {
+        t += 0.1;
+        app.update(t);
+    }
+    app.handle_key(key("e"), KeyKind::Press, t + 0.05);
+    let said = |text: &str| app.log_book().iter().any(|e| e.text.contains(text));
+    assert!(said("no longer in the gripper - looking for it again"));
+    while t < 1500.0 && !app.pilot().mission().unwrap().is_done() {
+        t += 0.1;
+        app.update(t);
+    }
+    let mission = app.pilot().mission().unwrap();
+    assert_eq!(mission.delivered(), 4, "{}", mission.state_label());
+}

@@ -86,8 +86,13 @@ fn the_emergency_stop_holds_the_mission_still_until_a_drive_key() {
         key: DriveKey::TurnLeft,
         repeat: false,
     };
-    ask(&mut link, &mut pilot, 8.0, down);
-    assert!(!pilot.estop(), "a drive key releases the e-stop");
+    ask(&mut link, &mut pilot, 8.0, down.clone());
+    assert!(pilot.estop(), "a drive key does not release the e-stop");
+    assert_eq!(pilot.commanded().angular, 0.0);
+    ask(&mut link, &mut pilot, 8.1, Intent::EmergencyStop);
+    assert!(!pilot.estop(), "the e-stop key again releases it");
+    assert_eq!(pilot.commanded().angular, 0.0, "releasing moves nothing");
+    ask(&mut link, &mut pilot, 8.2, down);
     assert!(pilot.commanded().angular > 0.0);
 }
 

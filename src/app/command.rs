@@ -16,6 +16,8 @@ pub enum Typed {
     Controller(ControllerKind),
     /// `save NAME`: save the map as NAME.yaml + NAME.pgm in the maps folder.
     Save(String),
+    /// `mission restart`: forget the paused mission and start a fresh one.
+    RestartMission,
 }
 
 /// Everything that changes the console's state, through one door (`App::apply`): a key's
@@ -38,8 +40,7 @@ impl From<Typed> for Intent {
     }
 }
 
-pub const USAGE: &str =
-    "goto X Y | goto marker ID | controller pid|pure_pursuit|hybrid | clear | save NAME";
+pub const USAGE: &str = "goto X Y | goto marker ID | controller pid|pure_pursuit|hybrid | clear | save NAME | mission restart";
 
 /// Reads one command line, or says what is wrong with it.
 pub fn parse(line: &str) -> Result<Intent, String> {
@@ -66,6 +67,8 @@ pub fn parse(line: &str) -> Result<Intent, String> {
             .map_err(|e: crate::control::config::UnknownController| e.to_string()),
         // The same as the key that clears the route.
         ["clear"] => Ok(Action::ClearRoute.into()),
+        ["mission", "restart"] => Ok(Typed::RestartMission.into()),
+        ["mission", ..] => Err("mission wants `restart` (e resumes a paused mission)".to_string()),
         ["save", name] => Ok(Typed::Save(name.to_string()).into()),
         ["save", ..] => Err("save wants one NAME (letters, digits, - and _)".to_string()),
         [] => Err(format!("empty command; try {USAGE}")),

@@ -148,11 +148,14 @@ impl App {
             self.edit_prompt(key);
             return;
         }
-        let Some(action) = action else {
-            if kind == KeyKind::Press && self.view.help {
-                // Any unbound key closes the help overlay.
+        if self.view.help {
+            // A key that closes the help overlay does nothing else.
+            if drive.is_none() {
                 self.view.help = false;
             }
+            return;
+        }
+        let Some(action) = action else {
             return;
         };
         match drive {
@@ -292,6 +295,7 @@ impl App {
             }
             Typed::GotoMarker(id) => self.run_intent(pilot::Intent::Goto(Target::Marker(id))),
             Typed::Controller(kind) => self.run_intent(pilot::Intent::Controller(kind)),
+            Typed::RestartMission => self.run_intent(pilot::Intent::RestartMission),
             Typed::Save(name) => {
                 self.save_map(&name);
             }

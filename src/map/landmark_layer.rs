@@ -19,15 +19,20 @@ impl LandmarkLayer {
         &self.stamps
     }
 
-    /// Takes the filter's landmark means; returns the stamps that appeared or went away,
-    /// whose areas need recomputing. A landmark that moved less than `min_move` is left.
+    /// Takes every landmark mean the filter holds; returns the stamps that appeared or
+    /// went away, whose areas need recomputing. A landmark that moved less than `min_move`
+    /// is left; one the filter no longer holds (a block put down elsewhere) goes.
     pub fn update(
         &mut self,
         estimates: impl IntoIterator<Item = (u32, Point2)>,
         config: &MapConfig,
         min_move: f64,
     ) -> Vec<Stamp> {
-        let mut changed = false;
+        let estimates: Vec<(u32, Point2)> = estimates.into_iter().collect();
+        let held: std::collections::BTreeSet<u32> = estimates.iter().map(|e| e.0).collect();
+        let before = self.positions.len();
+        self.positions.retain(|id, _| held.contains(id));
+        let mut changed = self.positions.len() != before;
         for (id, p) in estimates {
             match self.positions.get_mut(&id) {
                 Some(old) if old.distance(p) < min_move => {}
@@ -142,5 +147,12 @@ mod tests {
         );
         let dirty = layer.update([(301, Point2::new(0.2, 0.0))], &config, 0.01);
         assert_eq!(dirty.len(), 2, "old and new disc");
+        let dirty = layer.update([], &config, 0.01);
+        assert_eq!(
+            dirty.len(),
+            1,
+            "a landmark the filter dropped takes its disc away"
+        );
+        assert!(layer.stamps().is_empty());
     }
 }

@@ -152,7 +152,7 @@ impl Mission {
     pub(super) fn deliverable(&self, robot: Point2) -> Option<Block> {
         self.objects
             .blocks()
-            .filter(|b| b.confirmed && !b.delivered)
+            .filter(|b| b.confirmed && !b.delivered && self.held != Some(b.markers[0]))
             .filter(|b| self.objects.gate_for(b.colour).is_some())
             .filter(|b| !self.demoted.contains_key(&b.markers[0]))
             .filter(|b| self.attempts.get(&b.markers[0]).copied().unwrap_or(0) < MAX_BLOCK_ATTEMPTS)

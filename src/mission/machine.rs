@@ -8,7 +8,7 @@ use super::leg::{Ctx, Leg, LegStep};
 use super::objects::{Colour, Objects};
 use super::pickup::{PickEvent, Pickup, name};
 use super::step::{Inputs, Level, Motion, Outputs};
-use crate::data::GripperCommand;
+use crate::data::{GripperCommand, GripperState};
 use crate::geometry::{Point2, Twist};
 use crate::perception::markers::MarkerCategory;
 use std::collections::{BTreeMap, BTreeSet};
@@ -128,6 +128,13 @@ pub struct Mission {
     pub(super) delivered_markers: Vec<u32>,
     /// Lost, the robot already went back to a landmark and scanned there.
     pub(super) relocated: bool,
+}
+
+/// What resuming says, and the markers whose landmarks the filter should drop.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Resumed {
+    pub log: Vec<(Level, String)>,
+    pub forget: Vec<u32>,
 }
 
 pub(super) enum Tick {
@@ -342,23 +349,7 @@ impl Mission {
                         log.push((Level::Success, format!("Picked up {}", name(colour, odd))));
                         self.held = Some(odd);
                         self.stamp(odd, t, 2);
-                        let gate = self.objects.gate_for(colour).copied();
-                        let slot = self
-                            .objects
-                            .blocks()
-                            .filter(|b| b.delivered && b.colour == colour)
-                            .count();
-                        self.phase = match gate {
-                            Some(gate) => Phase::Deliver(Delivery::new(
-                                odd,
-                                colour,
-                                gate,
-                                slot,
-                                &self.config,
-                                t,
-                            )),
-                            None => Phase::Choose,
-                        };
+                        self.phase = self.delivering(odd, colour, t);
                         Tick::Again
                     }
                     PickEvent::Demote => {
@@ -417,6 +408,69 @@ impl Mission {
             Phase::Done => Tick::Out(Motion::Stop, None),
             Phase::Manual => Tick::Out(Motion::Stop, None),
         }
+    }
+
+    /// Off to the gate with held block `odd`, or exploring on while its gate is unknown.
+    fn delivering(&self, odd: u32, colour: Colour, t: f64) -> Phase {
+        let Some(&gate) = self.objects.gate_for(colour) else {
+            return Phase::Choose;
+        };
+        let slot = (self.objects.blocks())
+            .filter(|b| b.delivered && b.colour == colour)
+            .count();
+        Phase::Deliver(Delivery::new(odd, colour, gate, slot, &self.config, t))
+    }
+
+    /// Takes the mission up again at `t` after the user drove the robot: the blocks and
+    /// gates found and the deliveries stand; what to do next is chosen afresh from where
+    /// the robot now is (a handover's cause and the targets given up are cleared: the user
+    /// may have fixed what stopped it). A block held when the user took over goes on to
+    /// its gate if the gripper still holds it (or cannot tell); otherwise it was put down
+    /// somewhere and is forgotten, to be found again: its markers are returned so the
+    /// filter can drop their old places.
+    pub fn resume(&mut self, t: f64, gripper: Option<GripperState>) -> Resumed {
+        let mut log = Vec::new();
+        let mut forget = Vec::new();
+        self.handover = None;
+        self.relocated = false;
+        self.retry_rounds = 0;
+        self.given_up.clear();
+        self.given_up_markers.clear();
+        self.last_marker = t;
+        self.phase = Phase::Choose;
+        if let Some(odd) = self.held {
+            let block = self.objects.blocks().find(|b| b.markers[0] == odd).copied();
+            let holding = matches!(gripper, None | Some(GripperState::Holding));
+            match block {
+                Some(b) if holding => {
+                    log.push((
+                        Level::Info,
+                        format!("Still holding {} - on to its gate", name(b.colour, odd)),
+                    ));
+                    self.phase = self.delivering(odd, b.colour, t);
+                }
+                _ => {
+                    let what = block.map_or(format!("block {odd}"), |b| name(b.colour, odd));
+                    log.push((
+                        Level::Warn,
+                        format!("{what} is no longer in the gripper - looking for it again"),
+                    ));
+                    self.held = None;
+                    self.objects.forget(odd);
+                    self.demoted.remove(&odd);
+                    forget = vec![odd, odd + 1];
+                }
+            }
+        }
+        log.push((
+            Level::Info,
+            format!(
+                "Mission resumed: {} delivered, {} more known",
+                self.objects.delivered(),
+                self.objects.blocks().filter(|b| !b.delivered).count()
+            ),
+        ));
+        Resumed { log, forget }
     }
 
     pub(super) fn manual(&mut self, cause: Cause) -> Tick {

@@ -175,6 +175,12 @@ impl Objects {
         }
     }
 
+    /// Forgets a block (it was put down somewhere unknown): it is found again like a new one.
+    pub fn forget(&mut self, odd: u32) {
+        self.blocks.remove(&odd);
+        self.seen_from.remove(&odd);
+    }
+
     /// Marks a block delivered: it is no longer a target, wherever its markers turn up.
     pub fn deliver(&mut self, odd: u32) {
         if let Some(b) = self.blocks.get_mut(&odd) {

@@ -28,7 +28,34 @@ pub(super) struct Exploring {
 }
 
 impl Pilot {
-    /// Starts the mission afresh on entering exploration mode.
+    /// On entering exploration mode: the mission kept since a takeover resumes, else one
+    /// starts.
+    pub(super) fn enter_mission(&mut self) {
+        if self.exploring.mission.is_none() {
+            return self.start_mission();
+        }
+        self.drop_route();
+        self.exploring.last_step = None;
+        self.exploring.no_path = None;
+        let (now, gripper) = (self.now, self.hand.state);
+        let Some(mission) = self.exploring.mission.as_mut() else {
+            return;
+        };
+        let resumed = mission.resume(now, gripper);
+        for id in &resumed.forget {
+            self.ekf.forget(*id);
+            self.estimating.ignored_markers.retain(|m| m != id);
+        }
+        if !resumed.forget.is_empty() {
+            let estimates: Vec<_> = self.ekf.landmarks().map(|l| (l.id, l.mean)).collect();
+            self.belief.update_landmarks(estimates);
+        }
+        for (level, text) in resumed.log {
+            self.log(level, text);
+        }
+    }
+
+    /// Starts a fresh mission.
     pub(super) fn start_mission(&mut self) {
         self.drop_route();
         self.exploring.mission = Some(Mission::new(self.settings.mission.clone(), self.now));

@@ -35,6 +35,8 @@ pub enum Intent {
     ClearRoute,
     /// Control back after the link returned.
     Resume,
+    /// Drop the mission kept since the last takeover and start a fresh one.
+    RestartMission,
     /// Stop for good: the console is ending.
     Halt,
     /// Take a saved map's grid and landmarks; `source` names it in the log.
@@ -107,6 +109,15 @@ impl Pilot {
                 self.resume();
                 false
             }
+            Intent::RestartMission => {
+                self.exploring.mission = None;
+                if self.mode == Mode::Exploration {
+                    self.start_mission();
+                    true
+                } else {
+                    self.set_mode(Mode::Exploration)
+                }
+            }
             Intent::Halt => {
                 self.teleop.clear();
                 self.commanded = Twist::ZERO;
@@ -144,7 +155,7 @@ impl Pilot {
         self.mode = mode;
         self.log(Level::Info, format!("mode {}", mode.label()));
         if mode == Mode::Exploration {
-            self.start_mission();
+            self.enter_mission();
         }
         true
     }
@@ -179,14 +190,27 @@ impl Pilot {
             self.set_mode(Mode::Manual);
         }
         if self.gate.estop {
-            self.gate.estop = false;
-            self.log(Level::Info, "emergency stop released by a drive key");
+            // Leaving an emergency stop is its own deliberate key, never a side effect.
+            if !repeat {
+                self.log(
+                    Level::Warn,
+                    "emergency stop is on: press it again (space) to release, then drive",
+                );
+            }
+            return;
         }
         self.teleop.press(key, self.now, repeat);
     }
 
     /// Queues a gripper command; false when the mission holds the gripper.
     fn gripper_command(&mut self, cmd: GripperCommand) -> bool {
+        if self.mode == Mode::PathFollowing && self.is_busy() {
+            self.log(
+                Level::Warn,
+                "gripper key ignored while following a path (space stops, m takes control)",
+            );
+            return false;
+        }
         if self.mode == Mode::Exploration && self.mission().is_some_and(|m| m.holds_gripper()) {
             self.log(
                 Level::Warn,
@@ -203,7 +227,16 @@ impl Pilot {
         true
     }
 
+    /// The emergency stop key: on, or off again when it is on (the robot stays still).
     fn emergency_stop(&mut self) {
+        if self.gate.estop {
+            self.gate.estop = false;
+            self.log(
+                Level::Success,
+                "emergency stop released: the robot stays still until driven",
+            );
+            return;
+        }
         self.teleop.clear();
         self.gate.estop = true;
         if self.mode != Mode::Manual {
@@ -213,7 +246,7 @@ impl Pilot {
         }
         self.log(
             Level::Error,
-            "EMERGENCY STOP: robot halted; drive keys release it",
+            "EMERGENCY STOP: robot halted; press it again (space) to release",
         );
     }
 

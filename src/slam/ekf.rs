@@ -130,6 +130,27 @@ impl EkfSlam {
         self.slots.get(&id).map(|&slot| self.estimate(slot))
     }
 
+    /// Drops landmark `id` from the state, as when the thing it marks was moved: the
+    /// marginal of a Gaussian over the other variables is its mean and covariance with the
+    /// dropped variables' rows and columns struck out. A later sighting starts it afresh.
+    pub fn forget(&mut self, id: u32) -> bool {
+        self.pending.remove(&id);
+        let Some(slot) = self.slots.remove(&id) else {
+            return false;
+        };
+        let i = 3 + 2 * slot;
+        self.mu = std::mem::take(&mut self.mu).remove_rows(i, 2);
+        self.sigma = std::mem::take(&mut self.sigma)
+            .remove_rows(i, 2)
+            .remove_columns(i, 2);
+        self.ids.remove(slot);
+        self.sightings.remove(slot);
+        for (k, &other) in self.ids.iter().enumerate().skip(slot) {
+            self.slots.insert(other, k);
+        }
+        true
+    }
+
     fn estimate(&self, slot: usize) -> LandmarkEstimate {
         let i = 3 + 2 * slot;
         LandmarkEstimate {
@@ -489,5 +510,24 @@ mod tests {
         assert_eq!(f.correct(sighting(1, 1.0, 0.0)), Outcome::Pending);
         assert_eq!(f.correct(sighting(1, 1.0, 0.0)), Outcome::Added);
         assert_eq!(f.landmark_count(), 1);
+    }
+
+    #[test]
+    fn a_forgotten_landmark_leaves_the_others_as_they_were_and_comes_back_afresh() {
+        let mut f = filter(0.0);
+        f.correct(sighting(1, 1.0, 0.0));
+        f.correct(sighting(2, 2.0, 0.5));
+        f.correct(sighting(3, 1.5, -0.5));
+        let (before2, before3) = (f.landmark(2).unwrap(), f.landmark(3).unwrap());
+        assert!(f.forget(2));
+        assert!(!f.forget(2), "already gone");
+        assert_eq!(f.landmark_count(), 2);
+        assert!(f.landmark(2).is_none());
+        assert_eq!(f.landmark(3), Some(before3));
+        assert_eq!(f.covariance().nrows(), 3 + 2 * 2);
+        // Seen somewhere else now: a new landmark, not a rejected sighting.
+        assert_eq!(f.correct(sighting(2, 1.0, 2.5)), Outcome::Added);
+        assert!(f.landmark(2).unwrap().mean.distance(before2.mean) > 1.0);
+        assert_eq!(f.rejected(), 0);
     }
 }

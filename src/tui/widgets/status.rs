@@ -2,6 +2,7 @@
 
 use crate::app::{App, LinkStatus};
 use crate::geometry::Pose2;
+use crate::pilot::mode::Mode;
 use crate::tui::theme::Theme;
 use ratatui::text::{Line, Span};
 
@@ -158,13 +159,20 @@ pub fn lines(app: &App, theme: Theme) -> Vec<Line<'static>> {
 fn navigation_rows(app: &App, theme: Theme) -> Vec<Line<'static>> {
     let mut rows = Vec::new();
     if let Some(m) = app.pilot().mission() {
+        // Out of exploration the mission is paused, not running: `e` takes it up again.
+        let paused = app.pilot().mode() != Mode::Exploration;
+        let state = if paused {
+            "paused: e resumes".to_string()
+        } else {
+            m.state_label()
+        };
         // The state and its target can be long: two rows, broken between words.
-        let (first, rest) = split_words(&m.state_label(), 21);
+        let (first, rest) = split_words(&state, 21);
         rows.push(row(theme, "Mission", first));
         if !rest.is_empty() {
             rows.push(row(theme, "", rest));
         }
-        let reason = m.reason();
+        let reason = if paused { String::new() } else { m.reason() };
         if !reason.is_empty() {
             let (first, rest) = split_words(&reason, 21);
             rows.push(row(theme, "Why", first));

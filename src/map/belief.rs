@@ -90,6 +90,14 @@ impl BeliefMap {
         }
     }
 
+    /// Drops the landmarks `ids` (the filter forgot them) and recomputes their cells.
+    pub fn drop_landmarks(&mut self, ids: &[u32]) {
+        let dirty = self.landmarks.remove(ids, &self.config);
+        for rect in merged(dirty.iter().map(|s| self.cell_rect(s.bounds()))) {
+            self.restamp_area(rect);
+        }
+    }
+
     /// The cells overlapping a world rectangle (x0, y0, x1, y1), clamped to the map.
     fn cell_rect(&self, (x0, y0, x1, y1): (f64, f64, f64, f64)) -> CellRect {
         let map = &self.costmap;

@@ -19,20 +19,15 @@ impl LandmarkLayer {
         &self.stamps
     }
 
-    /// Takes every landmark mean the filter holds; returns the stamps that appeared or
-    /// went away, whose areas need recomputing. A landmark that moved less than `min_move`
-    /// is left; one the filter no longer holds (a block put down elsewhere) goes.
+    /// Takes the filter's landmark means; returns the stamps that appeared or went away,
+    /// whose areas need recomputing. A landmark that moved less than `min_move` is left.
     pub fn update(
         &mut self,
         estimates: impl IntoIterator<Item = (u32, Point2)>,
         config: &MapConfig,
         min_move: f64,
     ) -> Vec<Stamp> {
-        let estimates: Vec<(u32, Point2)> = estimates.into_iter().collect();
-        let held: std::collections::BTreeSet<u32> = estimates.iter().map(|e| e.0).collect();
-        let before = self.positions.len();
-        self.positions.retain(|id, _| held.contains(id));
-        let mut changed = self.positions.len() != before;
+        let mut changed = false;
         for (id, p) in estimates {
             match self.positions.get_mut(&id) {
                 Some(old) if old.distance(p) < min_move => {}
@@ -49,6 +44,22 @@ impl LandmarkLayer {
         if !changed {
             return Vec::new();
         }
+        self.restamp(config)
+    }
+
+    /// Drops landmarks the filter no longer holds (a block put down elsewhere); returns
+    /// the stamps that went away.
+    pub fn remove(&mut self, ids: &[u32], config: &MapConfig) -> Vec<Stamp> {
+        let before = self.positions.len();
+        self.positions.retain(|id, _| !ids.contains(id));
+        if self.positions.len() == before {
+            return Vec::new();
+        }
+        self.restamp(config)
+    }
+
+    /// The stamps for the positions now held; returns those that appeared or went away.
+    fn restamp(&mut self, config: &MapConfig) -> Vec<Stamp> {
         let fresh = stamps_for(&self.positions, config);
         let mut dirty: Vec<Stamp> = self
             .stamps
@@ -147,7 +158,7 @@ mod tests {
         );
         let dirty = layer.update([(301, Point2::new(0.2, 0.0))], &config, 0.01);
         assert_eq!(dirty.len(), 2, "old and new disc");
-        let dirty = layer.update([], &config, 0.01);
+        let dirty = layer.remove(&[301], &config);
         assert_eq!(
             dirty.len(),
             1,

@@ -46,10 +46,7 @@ impl Pilot {
             self.ekf.forget(*id);
             self.estimating.ignored_markers.retain(|m| m != id);
         }
-        if !resumed.forget.is_empty() {
-            let estimates: Vec<_> = self.ekf.landmarks().map(|l| (l.id, l.mean)).collect();
-            self.belief.update_landmarks(estimates);
-        }
+        self.belief.drop_landmarks(&resumed.forget);
         for (level, text) in resumed.log {
             self.log(level, text);
         }

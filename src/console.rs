@@ -32,8 +32,25 @@ pub fn exit_deadline() -> std::time::Duration {
 pub struct ConsoleOptions {
     /// Where maps are saved; `maps` when not given.
     pub maps_dir: Option<PathBuf>,
+    /// Where the session's log file goes; `logs` when not given.
+    pub log_dir: Option<PathBuf>,
     /// Start with the braille map.
     pub braille: bool,
+}
+
+/// Opens `dir/navdeck-STAMP.log` (STAMP the local start time, RFC 3339 with `:` left out
+/// so the name works everywhere), making `dir` if needed.
+fn open_log_file(dir: &std::path::Path) -> std::io::Result<(PathBuf, std::fs::File)> {
+    std::fs::create_dir_all(dir)?;
+    let stamp = humantime::format_rfc3339_seconds(std::time::SystemTime::now())
+        .to_string()
+        .replace(':', "");
+    let path = dir.join(format!("navdeck-{stamp}.log"));
+    let file = std::fs::OpenOptions::new()
+        .create(true)
+        .append(true)
+        .open(&path)?;
+    Ok((path, file))
 }
 
 /// Runs the console on the real terminal until quit, a signal, a hang-up or a terminal
@@ -60,6 +77,20 @@ pub fn run_console(
     if options.braille {
         app.apply(crate::keymap::Action::ToggleBraille);
     }
+    let log_dir = (options.log_dir.clone()).unwrap_or_else(|| PathBuf::from("logs"));
+    let log_file = match open_log_file(&log_dir) {
+        Ok((path, file)) => match app.log_to(Box::new(file)) {
+            Ok(()) => Some(path),
+            Err(e) => {
+                app.warn(format!("no log file: cannot write {}: {e}", path.display()));
+                None
+            }
+        },
+        Err(e) => {
+            app.warn(format!("no log file in {}: {e}", log_dir.display()));
+            None
+        }
+    };
     let mut stats = RunStats::default();
     let outcome = {
         let mut guard = TerminalGuard::enter().context("cannot set up the terminal")?;
@@ -93,6 +124,13 @@ pub fn run_console(
         std::io::stderr(),
         "navdeck: robot on {label} stopped; {why}"
     );
+    if let Some(path) = log_file {
+        let _ = writeln!(
+            std::io::stderr(),
+            "navdeck: session log in {}",
+            path.display()
+        );
+    }
     Ok(exit_status(&outcome) as u8)
 }
 

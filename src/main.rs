@@ -119,6 +119,10 @@ struct Cli {
     #[arg(long, value_name = "DIR")]
     maps_dir: Option<PathBuf>,
 
+    /// Where the console writes each session's log (navdeck-DATE.log); default `logs`.
+    #[arg(long, value_name = "DIR")]
+    log_dir: Option<PathBuf>,
+
     #[command(subcommand)]
     command: Option<Subcommand>,
 }
@@ -271,6 +275,7 @@ fn real_main(cli: Cli) -> Result<ExitCode> {
     }
     let options = ConsoleOptions {
         maps_dir: cli.maps_dir.clone(),
+        log_dir: cli.log_dir.clone(),
         braille: cli.braille,
     };
     Ok(ExitCode::from(run_console(session, &options, stopwatch)?))

@@ -474,3 +474,61 @@ fn after_a_link_loss_the_robot_stays_still_until_a_key_is_pressed() {
         "driving again after the resume"
     );
 }
+
+/// The log pane as a user reads it back: page back and forward, filter, search.
+#[test]
+fn the_log_pages_back_filters_by_level_and_searches() {
+    let mut app = default_app();
+    app.resize(100, 30);
+    app.handle_key(key("e"), KeyKind::Press, 0.0);
+    for k in 1..=600 {
+        app.update(0.1 * f64::from(k));
+    }
+    app.handle_key(key("m"), KeyKind::Press, 60.05);
+    let log_rows = |app: &navdeck::app::App| -> Vec<String> {
+        let screen = common::render(app);
+        let rows: Vec<String> = screen.lines().map(str::to_string).collect();
+        let top = rows
+            .iter()
+            .position(|r| r.contains("┌ Log") || r.contains("┌ Log ·"));
+        let top = top.unwrap_or_else(|| panic!("{screen}"));
+        rows[top..].to_vec()
+    };
+    let newest = log_rows(&app);
+    assert!(
+        newest[0].contains("┌ Log ─"),
+        "follows the newest: {}",
+        newest[0]
+    );
+    app.handle_key(key("pageup"), KeyKind::Press, 60.1);
+    let older = log_rows(&app);
+    assert!(older[0].contains("newer below (PgDn)"), "{}", older[0]);
+    assert_ne!(older[1..], newest[1..], "older lines shown");
+    app.handle_key(key("pagedown"), KeyKind::Press, 60.2);
+    assert_eq!(log_rows(&app)[1..], newest[1..], "back to the newest");
+    // Warnings and worse only.
+    app.handle_key(key("f"), KeyKind::Press, 60.3);
+    let warnings = log_rows(&app);
+    assert!(warnings[0].contains("warnings+"));
+    for row in warnings[1..].iter().filter(|r| r.contains(':')) {
+        assert!(row.contains("WARN") || row.contains("ERR"), "{row}");
+    }
+    app.handle_key(key("f"), KeyKind::Press, 60.4);
+    app.handle_key(key("f"), KeyKind::Press, 60.5);
+    // Lines containing a text, any case.
+    app.handle_key(key("/"), KeyKind::Press, 60.6);
+    for c in "found".chars() {
+        app.handle_key(key(&c.to_string()), KeyKind::Press, 60.7);
+    }
+    app.handle_key(key("enter"), KeyKind::Press, 60.8);
+    let found = log_rows(&app);
+    assert!(found[0].contains("/found"), "{}", found[0]);
+    let matching: Vec<_> = found[1..].iter().filter(|r| r.contains(':')).collect();
+    assert!(!matching.is_empty());
+    assert!(
+        matching.iter().all(|r| r.to_lowercase().contains("found")),
+        "{matching:?}"
+    );
+    // Routine lines of one shape are one line with a count.
+    assert!(app.log_book().iter().any(|e| e.repeats > 1));
+}

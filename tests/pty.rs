@@ -27,6 +27,24 @@ fn console_draws_drives_and_quits_restoring_the_terminal() {
         "{}",
         end.output
     );
+    // The session's log is on disk, named at exit, with what the screen's log showed.
+    let named = end
+        .output
+        .split("session log in ")
+        .nth(1)
+        .and_then(|rest| rest.split_whitespace().next())
+        .unwrap_or_else(|| panic!("no log file named: {}", end.output));
+    let path = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join(named);
+    let text = std::fs::read_to_string(&path).expect("the log file");
+    assert!(
+        text.contains("INFO mode MANUAL") || text.contains("keymap"),
+        "{text}"
+    );
+    assert!(
+        text.lines()
+            .all(|l| l.len() > 13 && l.as_bytes()[2] == b':'),
+        "{text}"
+    );
 }
 
 #[test]

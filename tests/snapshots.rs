@@ -124,3 +124,31 @@ fn exploration_mission_100x30() {
     let steps = vec![press('e'), Step::Wait(40.0)];
     insta::assert_snapshot!(snapshot_after(100, 30, steps));
 }
+
+fn key_step(name: &str) -> Step {
+    Step::Event(navdeck::tui::events::Event::Key(
+        name.parse().unwrap(),
+        navdeck::app::KeyKind::Press,
+    ))
+}
+
+/// The mission's log paged back once: older lines, and the title says how to come back.
+#[test]
+fn log_paged_back_during_the_mission_80x24() {
+    let steps = vec![press('e'), Step::Wait(30.0), key_step("pageup")];
+    insta::assert_snapshot!(snapshot_after(80, 24, steps));
+}
+
+/// Only warnings and worse, then only lines about the gripper.
+#[test]
+fn log_filtered_by_level_and_by_text_120x40() {
+    let mut steps = vec![press('e'), Step::Wait(60.0), press('m'), press('f')];
+    steps.push(Step::Wait(0.1));
+    let mut by_text = vec![press('e'), Step::Wait(60.0), press('m'), press('/')];
+    by_text.extend(typed("gripper"));
+    by_text.push(enter());
+    by_text.push(Step::Wait(0.1));
+    let warnings = snapshot_after(120, 40, steps);
+    let gripper = snapshot_after(120, 40, by_text);
+    insta::assert_snapshot!(format!("{warnings}\n{gripper}"));
+}

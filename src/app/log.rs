@@ -9,36 +9,105 @@ pub struct Entry {
     pub time: f64,
     pub level: Level,
     pub text: String,
+    /// How many lines of the same shape in a row this one stands for (routine lines such
+    /// as "new landmark 25 (boundary)" collapse into the last of them); 1 for most.
+    pub repeats: u32,
 }
 
-/// A bounded log; the oldest lines fall off.
-#[derive(Clone, Debug)]
+/// Where every line also goes as it is written: the session's log file.
+pub type Sink = Box<dyn std::io::Write + Send>;
+
+/// A bounded log. When full, the oldest routine (info) line falls off first, so mission
+/// events and warnings outlive the chatter around them.
 pub struct LogBook {
     entries: VecDeque<Entry>,
     capacity: usize,
     /// Lines ever written, so a view can tell something new arrived.
     written: u64,
+    sink: Option<Sink>,
+}
+
+impl std::fmt::Debug for LogBook {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("LogBook")
+            .field("entries", &self.entries.len())
+            .field("written", &self.written)
+            .field("sink", &self.sink.is_some())
+            .finish()
+    }
+}
+
+/// A line's shape: its text with every run of digits (and a sign or decimal point in
+/// it) replaced by `#`, so "new landmark 25" and "new landmark 26" are alike.
+fn shape(text: &str) -> String {
+    let mut out = String::with_capacity(text.len());
+    let mut in_number = false;
+    for c in text.chars() {
+        let numeric = c.is_ascii_digit() || (in_number && c == '.');
+        if numeric {
+            if !in_number {
+                out.push('#');
+            }
+        } else {
+            out.push(c);
+        }
+        in_number = numeric;
+    }
+    out
 }
 
 impl LogBook {
     pub fn new(capacity: usize) -> Self {
         Self {
             entries: VecDeque::with_capacity(capacity),
-            capacity,
+            capacity: capacity.max(1),
             written: 0,
+            sink: None,
         }
     }
 
-    pub fn push(&mut self, time: f64, level: Level, text: impl Into<String>) {
-        if self.entries.len() == self.capacity {
-            self.entries.pop_front();
+    /// Every line from now on is also written to `sink`, one `mm:ss.d TAG text` a line;
+    /// the lines already in the book go first.
+    pub fn set_sink(&mut self, mut sink: Sink) -> std::io::Result<()> {
+        for e in &self.entries {
+            for _ in 0..e.repeats {
+                writeln!(sink, "{}", file_line(e))?;
+            }
         }
-        self.entries.push_back(Entry {
+        sink.flush()?;
+        self.sink = Some(sink);
+        Ok(())
+    }
+
+    pub fn push(&mut self, time: f64, level: Level, text: impl Into<String>) {
+        let entry = Entry {
             time,
             level,
             text: text.into(),
-        });
+            repeats: 1,
+        };
         self.written += 1;
+        if let Some(sink) = self.sink.as_mut() {
+            let written = writeln!(sink, "{}", file_line(&entry)).and_then(|()| sink.flush());
+            if written.is_err() {
+                // A full disk or a closed file must not stop the console: the file ends.
+                self.sink = None;
+            }
+        }
+        if let Some(last) = self.entries.back_mut()
+            && level == Level::Info
+            && last.level == Level::Info
+            && shape(&last.text) == shape(&entry.text)
+        {
+            let repeats = last.repeats + 1;
+            *last = Entry { repeats, ..entry };
+            return;
+        }
+        if self.entries.len() == self.capacity {
+            let routine = self.entries.iter().position(|e| e.level == Level::Info);
+            self.entries.remove(routine.unwrap_or(0));
+        }
+        self.entries.push_back(entry);
     }
 
     /// The newest `n` entries, oldest first.
@@ -66,6 +135,11 @@ impl LogBook {
     }
 }
 
+/// One line of the log file.
+fn file_line(e: &Entry) -> String {
+    format!("{} {} {}", format_time(e.time), e.level.tag(), e.text)
+}
+
 /// Session time as `mm:ss.d`, the log's timestamp.
 pub fn format_time(t: f64) -> String {
     let tenths = (t.max(0.0) * 10.0).floor() as u64;
@@ -90,6 +164,71 @@ mod tests {
         let texts: Vec<_> = log.tail(5).map(|e| e.text.as_str()).collect();
         assert_eq!(texts, ["b", "c"]);
         assert_eq!(log.written(), 3);
+    }
+
+    #[test]
+    fn routine_lines_of_one_shape_collapse_and_events_do_not() {
+        let mut log = LogBook::new(10);
+        for id in 25..37 {
+            log.push(1.0, Level::Info, format!("new landmark {id} (boundary)"));
+        }
+        log.push(2.0, Level::Success, "Found red block 421");
+        log.push(2.1, Level::Success, "Found red block 423");
+        let lines: Vec<_> = log.iter().map(|e| (e.text.as_str(), e.repeats)).collect();
+        assert_eq!(
+            lines,
+            [
+                ("new landmark 36 (boundary)", 12),
+                ("Found red block 421", 1),
+                ("Found red block 423", 1)
+            ]
+        );
+        assert_eq!(log.written(), 14);
+    }
+
+    #[test]
+    fn when_full_routine_lines_go_before_events() {
+        let mut log = LogBook::new(3);
+        log.push(0.0, Level::Success, "Picked up red block 421");
+        log.push(1.0, Level::Info, "following path");
+        log.push(2.0, Level::Warn, "path blocked");
+        log.push(3.0, Level::Info, "mode MANUAL");
+        let texts: Vec<_> = log.iter().map(|e| e.text.as_str()).collect();
+        assert_eq!(
+            texts,
+            ["Picked up red block 421", "path blocked", "mode MANUAL"]
+        );
+    }
+
+    /// A sink that keeps what it was given.
+    #[derive(Clone, Default)]
+    struct Shared(std::sync::Arc<std::sync::Mutex<Vec<u8>>>);
+
+    impl std::io::Write for Shared {
+        fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+            self.0.lock().unwrap().extend_from_slice(buf);
+            Ok(buf.len())
+        }
+        fn flush(&mut self) -> std::io::Result<()> {
+            Ok(())
+        }
+    }
+
+    #[test]
+    fn the_file_gets_every_line_uncollapsed_earlier_ones_first() {
+        let mut log = LogBook::new(10);
+        log.push(0.0, Level::Info, "new landmark 1 (boundary)");
+        let file = Shared::default();
+        log.set_sink(Box::new(file.clone())).unwrap();
+        log.push(0.5, Level::Info, "new landmark 2 (boundary)");
+        log.push(75.34, Level::Warn, "gripper opened by the user");
+        let text = String::from_utf8(file.0.lock().unwrap().clone()).unwrap();
+        assert_eq!(
+            text,
+            "00:00.0 INFO new landmark 1 (boundary)\n\
+             00:00.5 INFO new landmark 2 (boundary)\n\
+             01:15.3 WARN gripper opened by the user\n"
+        );
     }
 
     #[test]

@@ -119,6 +119,17 @@ impl App {
         self.log.push(self.now, level, text);
     }
 
+    /// A warning from outside the core (the console's own set-up) into the log.
+    pub fn warn(&mut self, text: impl Into<String>) {
+        self.log(Level::Warn, text);
+        self.refresh_revision();
+    }
+
+    /// Every log line, those so far first, also goes to `sink` (the session's log file).
+    pub fn log_to(&mut self, sink: log::Sink) -> std::io::Result<()> {
+        self.log.set_sink(sink)
+    }
+
     /// Resolves a key through the active mode's keymap and acts on it.
     pub fn handle_key(&mut self, key: Key, kind: KeyKind, now: f64) {
         self.advance_to(now);
@@ -176,11 +187,25 @@ impl App {
         match key.code {
             KeyCode::Enter => {
                 let line = self.prompt.take().unwrap_or_default();
-                self.run_command(line.trim());
+                match line.strip_prefix('/') {
+                    // A search: only matching lines, from the newest; empty shows all.
+                    Some(text) => {
+                        let text = text.trim();
+                        self.view.log.search = (!text.is_empty()).then(|| text.to_string());
+                        self.view.log.back = 0;
+                    }
+                    None => self.run_command(line.trim()),
+                }
             }
             KeyCode::Esc => self.prompt = None,
-            // Backspace deletes a character; on an empty line it closes the prompt, as in vim.
-            KeyCode::Backspace if text.pop().is_none() => self.prompt = None,
+            // Backspace deletes a character; on an empty line (or a bare `/`) it closes
+            // the prompt, as in vim.
+            KeyCode::Backspace => {
+                let search = text.starts_with('/');
+                if text.pop().is_none() || (search && text.is_empty()) {
+                    self.prompt = None;
+                }
+            }
             KeyCode::Char(c) if !key.ctrl && !key.alt => text.push(c),
             KeyCode::Char('c') if key.ctrl => self.prompt = None,
             _ => {}
@@ -264,6 +289,17 @@ impl App {
             Action::ToggleBraille => self.view.braille = !self.view.braille,
             Action::ToggleLandmarks => self.view.landmarks = !self.view.landmarks,
             Action::ToggleCamera => self.view.camera = self.view.camera.next(),
+            Action::LogOlder => {
+                let shown = self.log.iter().filter(|e| self.view.log.shows(e)).count();
+                let page = self.log_page();
+                let back = self.view.log.back + page;
+                self.view.log.back = back.min(shown.saturating_sub(page));
+            }
+            Action::LogNewer => {
+                self.view.log.back = self.view.log.back.saturating_sub(self.log_page());
+            }
+            Action::LogFilter => self.view.log.next_level(),
+            Action::LogSearch => self.prompt = Some("/".to_string()),
             Action::ToggleTruth => {
                 if self.link.ground_truth().is_some() {
                     self.view.show_truth = !self.view.show_truth;
@@ -406,6 +442,12 @@ impl App {
     }
 
     /// Tells the console the terminal's size (the map scale depends on it).
+    /// Log lines a page-back key moves: the pane's rows less one kept for context.
+    fn log_page(&self) -> usize {
+        let (_, _, _, h) = screen::layout(self.screen).log;
+        usize::from(h.saturating_sub(3)).max(1)
+    }
+
     pub fn resize(&mut self, width: u16, height: u16) {
         self.screen = (width, height);
         self.refresh_revision();

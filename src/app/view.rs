@@ -18,6 +18,41 @@ pub struct ViewState {
     pub landmarks: bool,
     /// The camera panel over the map, and how its thumbnail is drawn.
     pub camera: CameraPanel,
+    /// What the log pane shows.
+    pub log: LogView,
+}
+
+/// The log pane's scrollback and filters.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct LogView {
+    /// Lines scrolled back from the newest; 0 follows new lines.
+    pub back: usize,
+    /// Only lines at or above this level.
+    pub min_level: Option<crate::data::Level>,
+    /// Only lines containing this text (any case).
+    pub search: Option<String>,
+}
+
+impl LogView {
+    /// The next level filter: all, warnings and errors, errors only, all.
+    pub fn next_level(&mut self) {
+        use crate::data::Level;
+        self.min_level = match self.min_level {
+            None => Some(Level::Warn),
+            Some(Level::Warn) => Some(Level::Error),
+            _ => None,
+        };
+        self.back = 0;
+    }
+
+    /// Whether the pane shows `entry`.
+    pub fn shows(&self, entry: &crate::app::log::Entry) -> bool {
+        self.min_level.is_none_or(|l| entry.level >= l)
+            && self
+                .search
+                .as_ref()
+                .is_none_or(|s| entry.text.to_lowercase().contains(&s.to_lowercase()))
+    }
 }
 
 /// The camera panel: hidden, or shown with its thumbnail in half blocks or braille.
@@ -50,6 +85,7 @@ impl Default for ViewState {
             help: false,
             landmarks: false,
             camera: CameraPanel::Off,
+            log: LogView::default(),
         }
     }
 }

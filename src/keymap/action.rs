@@ -45,6 +45,11 @@ pub enum Action {
     ToggleTruth,
     ToggleLandmarks,
     ToggleCamera,
+    // The log.
+    LogOlder,
+    LogNewer,
+    LogFilter,
+    LogSearch,
     // Planning and following.
     CursorLeft,
     CursorRight,
@@ -61,7 +66,7 @@ pub enum Action {
 
 impl Action {
     /// Every action, in the order the help overlay lists them.
-    pub const ALL: [Action; 47] = [
+    pub const ALL: [Action; 51] = [
         Action::ModeManual,
         Action::ModeExplore,
         Action::ModeThink,
@@ -99,6 +104,10 @@ impl Action {
         Action::ToggleTruth,
         Action::ToggleLandmarks,
         Action::ToggleCamera,
+        Action::LogOlder,
+        Action::LogNewer,
+        Action::LogFilter,
+        Action::LogSearch,
         Action::CursorLeft,
         Action::CursorRight,
         Action::CursorUp,
@@ -151,6 +160,10 @@ impl Action {
             Action::ToggleTruth => "toggle_truth",
             Action::ToggleLandmarks => "toggle_landmarks",
             Action::ToggleCamera => "toggle_camera",
+            Action::LogOlder => "log_older",
+            Action::LogNewer => "log_newer",
+            Action::LogFilter => "log_filter",
+            Action::LogSearch => "log_search",
             Action::CursorLeft => "cursor_left",
             Action::CursorRight => "cursor_right",
             Action::CursorUp => "cursor_up",
@@ -209,6 +222,10 @@ impl Action {
             Action::ToggleTruth => "show the twin's truth",
             Action::ToggleLandmarks => "landmark table on/off",
             Action::ToggleCamera => "camera panel, braille, off",
+            Action::LogOlder => "log: page back",
+            Action::LogNewer => "log: page forward",
+            Action::LogFilter => "log: all, warnings, errors",
+            Action::LogSearch => "log: lines containing …",
             Action::CursorLeft => "goal cursor left",
             Action::CursorRight => "goal cursor right",
             Action::CursorUp => "goal cursor up",

@@ -38,10 +38,11 @@ pub fn draw(frame: &mut Frame, app: &App, theme: Theme) {
     {
         let bar = Rect::new(inner.x, inner.y + inner.height - 1, inner.width, 1);
         frame.render_widget(Clear, bar);
-        frame.render_widget(
-            Paragraph::new(format!(":{text}█  (enter runs, esc cancels)")).style(theme.value()),
-            bar,
-        );
+        let line = match text.strip_prefix('/') {
+            Some(_) => format!("{text}█  (enter shows the log lines containing it, esc cancels)"),
+            None => format!(":{text}█  (enter runs, esc cancels)"),
+        };
+        frame.render_widget(Paragraph::new(line).style(theme.value()), bar);
     }
 
     let status_block = Block::bordered()
@@ -54,11 +55,12 @@ pub fn draw(frame: &mut Frame, app: &App, theme: Theme) {
 
     let log_rect = rect(parts.log);
     let log_block = Block::bordered()
-        .title(" Log ")
+        .title(log::title(app))
         .border_style(theme.border());
     let rows = usize::from(log_rect.height.saturating_sub(2));
+    let width = usize::from(log_rect.width.saturating_sub(2));
     frame.render_widget(
-        Paragraph::new(log::lines(app, theme, rows)).block(log_block),
+        Paragraph::new(log::lines(app, theme, rows, width)).block(log_block),
         log_rect,
     );
 

@@ -38,17 +38,18 @@ pub struct ConsoleOptions {
     pub braille: bool,
 }
 
-/// Opens `dir/navdeck-STAMP.log` (STAMP the local start time, RFC 3339 with `:` left out
-/// so the name works everywhere), making `dir` if needed.
+/// Opens a new `dir/navdeck-STAMP-PID.log` (STAMP the start time in UTC, RFC 3339 with
+/// the `:` left out so the name works everywhere; the process ID keeps two consoles
+/// started in the same second apart), making `dir` if needed.
 fn open_log_file(dir: &std::path::Path) -> std::io::Result<(PathBuf, std::fs::File)> {
     std::fs::create_dir_all(dir)?;
     let stamp = humantime::format_rfc3339_seconds(std::time::SystemTime::now())
         .to_string()
         .replace(':', "");
-    let path = dir.join(format!("navdeck-{stamp}.log"));
+    let path = dir.join(format!("navdeck-{stamp}-{}.log", std::process::id()));
     let file = std::fs::OpenOptions::new()
-        .create(true)
-        .append(true)
+        .write(true)
+        .create_new(true)
         .open(&path)?;
     Ok((path, file))
 }

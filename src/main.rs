@@ -119,7 +119,7 @@ struct Cli {
     #[arg(long, value_name = "DIR")]
     maps_dir: Option<PathBuf>,
 
-    /// Where the console writes each session's log (navdeck-DATE.log); default `logs`.
+    /// Where the console writes each session's log (navdeck-DATE-PID.log); default `logs`.
     #[arg(long, value_name = "DIR")]
     log_dir: Option<PathBuf>,
 

@@ -532,3 +532,65 @@ fn the_log_pages_back_filters_by_level_and_searches() {
     // Routine lines of one shape are one line with a count.
     assert!(app.log_book().iter().any(|e| e.repeats > 1));
 }
+
+/// Esc and q leave the map picker for manual mode; neither quits the console.
+#[test]
+fn esc_and_q_leave_the_map_picker_without_quitting() {
+    for leave in ["esc", "q"] {
+        let mut app = default_app();
+        app.handle_key(key("l"), KeyKind::Press, 0.0);
+        assert_eq!(app.pilot().mode(), navdeck::app::mode::Mode::Load);
+        app.handle_key(key(leave), KeyKind::Press, 0.1);
+        assert_eq!(
+            app.pilot().mode(),
+            navdeck::app::mode::Mode::Manual,
+            "{leave}"
+        );
+        assert!(!app.should_quit(), "{leave}");
+    }
+}
+
+/// `:controller` alone names the controller instead of being an unknown command.
+#[test]
+fn a_bare_controller_command_names_the_controller() {
+    let mut app = default_app();
+    for c in ":controller".chars() {
+        app.handle_key(key(&c.to_string()), KeyKind::Press, 0.0);
+    }
+    app.handle_key(key("enter"), KeyKind::Press, 0.1);
+    let last = app.log_book().last().unwrap().text.clone();
+    assert!(last.starts_with("path controller: Hybrid"), "{last}");
+}
+
+/// A fresh plan is never shown as "arrived", and a mission's path goes with a takeover.
+#[test]
+fn stale_path_state_goes_when_it_no_longer_applies() {
+    let mut app = default_app();
+    let typed = |app: &mut navdeck::app::App, text: &str, t: f64| {
+        for c in text.chars() {
+            app.handle_key(key(&c.to_string()), KeyKind::Press, t);
+        }
+        app.handle_key(key("enter"), KeyKind::Press, t);
+    };
+    typed(&mut app, ":goto 1.2 1.2", 0.5);
+    app.handle_key(key("p"), KeyKind::Press, 0.6);
+    let mut t = 0.6;
+    while !app.pilot().arrived() && t < 60.0 {
+        t += 0.1;
+        app.update(t);
+    }
+    assert!(app.pilot().arrived(), "arrived by {t:.0} s");
+    app.handle_key(key("t"), KeyKind::Press, t + 0.1);
+    typed(&mut app, ":goto 0.9 1.2", t + 0.2);
+    assert!(app.pilot().route().is_some());
+    assert!(!app.pilot().arrived(), "a plan not yet driven");
+    assert!(!common::render(&app).contains("arrived at"));
+    // The mission's path does not outlive a takeover.
+    app.handle_key(key("e"), KeyKind::Press, t + 0.3);
+    for _ in 0..100 {
+        t += 0.1;
+        app.update(t + 0.3);
+    }
+    app.handle_key(key("w"), KeyKind::Press, t + 0.5);
+    assert!(app.pilot().route().is_none());
+}

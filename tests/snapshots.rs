@@ -152,3 +152,20 @@ fn log_filtered_by_level_and_by_text_120x40() {
     let gripper = snapshot_after(120, 40, by_text);
     insta::assert_snapshot!(format!("{warnings}\n{gripper}"));
 }
+
+#[test]
+fn a_40x12_terminal_is_too_small_and_says_what_it_needs() {
+    let screen = snapshot_after(40, 12, vec![Step::Wait(0.5)]);
+    assert!(
+        screen.contains("terminal too small (need 60x16"),
+        "{screen}"
+    );
+    insta::assert_snapshot!(screen);
+}
+
+/// At 200 x 60 the status panel is wide enough for the mission's state on one row.
+#[test]
+fn wide_terminal_grows_the_status_panel_200x60() {
+    let steps = vec![press('e'), Step::Wait(30.0)];
+    insta::assert_snapshot!(snapshot_after(200, 60, steps));
+}

@@ -14,6 +14,8 @@ pub enum Typed {
     GotoMarker(u32),
     /// `controller NAME`.
     Controller(ControllerKind),
+    /// `controller` alone: say which one drives and what the others are.
+    WhichController,
     /// `save NAME`: save the map as NAME.yaml + NAME.pgm in the maps folder.
     Save(String),
     /// `mission restart`: forget the paused mission and start a fresh one.
@@ -61,6 +63,7 @@ pub fn parse(line: &str) -> Result<Intent, String> {
             Ok(Typed::GotoPoint(Point2::new(coord(x)?, coord(y)?)).into())
         }
         ["goto", ..] => Err("goto wants X Y in metres, or marker ID".to_string()),
+        ["controller"] => Ok(Typed::WhichController.into()),
         ["controller", name] => name
             .parse()
             .map(|kind| Typed::Controller(kind).into())
@@ -70,6 +73,8 @@ pub fn parse(line: &str) -> Result<Intent, String> {
         ["mission", "restart"] => Ok(Typed::RestartMission.into()),
         ["mission", ..] => Err("mission wants `restart` (e resumes a paused mission)".to_string()),
         ["save", name] => Ok(Typed::Save(name.to_string()).into()),
+        // The same as the save key: maps/saved.
+        ["save"] => Ok(Action::SaveMap.into()),
         ["save", ..] => Err("save wants one NAME (letters, digits, - and _)".to_string()),
         [] => Err(format!("empty command; try {USAGE}")),
         [other, ..] => Err(format!("unknown command `{other}`; try {USAGE}")),
@@ -92,6 +97,9 @@ mod tests {
             Ok(Typed::Controller(ControllerKind::Pid).into())
         );
         assert_eq!(parse("clear"), Ok(Intent::Action(Action::ClearRoute)));
+        assert_eq!(parse("controller"), Ok(Typed::WhichController.into()));
+        assert_eq!(parse("save"), Ok(Intent::Action(Action::SaveMap)));
+        assert_eq!(parse("mission restart"), Ok(Typed::RestartMission.into()));
     }
 
     #[test]

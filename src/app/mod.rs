@@ -332,6 +332,13 @@ impl App {
             Typed::GotoMarker(id) => self.run_intent(pilot::Intent::Goto(Target::Marker(id))),
             Typed::Controller(kind) => self.run_intent(pilot::Intent::Controller(kind)),
             Typed::RestartMission => self.run_intent(pilot::Intent::RestartMission),
+            Typed::WhichController => {
+                let now = self.pilot.follower().controller().label();
+                self.log(
+                    Level::Info,
+                    format!("path controller: {now} (:controller pid|pure_pursuit|hybrid)"),
+                );
+            }
             Typed::Save(name) => {
                 self.save_map(&name);
             }

@@ -3,12 +3,16 @@
 
 pub type Area = (u16, u16, u16, u16);
 
-/// Smallest terminal the console draws into; smaller ones get a notice.
-pub const MIN_SIZE: (u16, u16) = (40, 12);
+/// Smallest terminal the console draws into; smaller ones get a notice. At 60 x 16 the
+/// map keeps 10 rows and the status panel its first rows under it.
+pub const MIN_SIZE: (u16, u16) = (60, 16);
 /// Below this width the status panel moves under the map.
 pub const WIDE: u16 = 70;
-/// Width of the status panel beside the map.
-pub const STATUS_WIDTH: u16 = 32;
+/// Width of the status panel beside the map: 32 columns, growing with the terminal to
+/// three tenths of it (56 at most), so long states and targets fit on wide screens.
+pub fn status_width(width: u16) -> u16 {
+    (width * 3 / 10).clamp(32, 56).min(width / 2)
+}
 
 /// Where each part of the screen goes.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -32,7 +36,7 @@ pub fn layout((width, height): (u16, u16)) -> Layout {
     let log = (0, body_y + body_h, width, log_h);
     let title = (0, 0, width, 1);
     if width >= WIDE {
-        let status_w = STATUS_WIDTH.min(width / 2);
+        let status_w = status_width(width);
         Layout {
             title,
             map: (0, body_y, width - status_w, body_h),
@@ -67,6 +71,13 @@ mod tests {
         assert_eq!(l.map.2 + l.status.2, 80);
         assert_eq!(l.map.1 + l.map.3, l.log.1);
         assert_eq!(l.log.1 + l.log.3, 24);
+    }
+
+    #[test]
+    fn the_status_panel_grows_with_the_terminal() {
+        assert_eq!(layout((80, 24)).status.2, 32);
+        assert_eq!(layout((120, 40)).status.2, 36);
+        assert_eq!(layout((200, 60)).status.2, 56);
     }
 
     #[test]

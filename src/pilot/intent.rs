@@ -152,6 +152,10 @@ impl Pilot {
             // Leaving an autonomous mode stops it at once.
             self.leave_autonomy();
         }
+        if self.mode == Mode::Exploration {
+            // The mission's path is its own: it plans afresh when it resumes.
+            self.drop_route();
+        }
         self.mode = mode;
         self.log(Level::Info, format!("mode {}", mode.label()));
         if mode == Mode::Exploration {

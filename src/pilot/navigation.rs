@@ -124,9 +124,10 @@ impl Pilot {
                         plan.waypoints.len()
                     ),
                 );
+                // A new plan has not been driven: whatever "arrived" said was the old one's.
+                self.nav.arrived = false;
                 if self.mode == Mode::PathFollowing {
                     self.follower.set_trajectory(plan.trajectory.clone());
-                    self.nav.arrived = false;
                 }
                 self.nav.route = Some(Route {
                     target,

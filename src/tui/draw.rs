@@ -9,6 +9,11 @@ use ratatui::layout::Rect;
 use ratatui::text::Line;
 use ratatui::widgets::{Block, Clear, Paragraph};
 
+/// Columns inside the status panel's border.
+fn status_inner_width((_, _, w, _): Area) -> usize {
+    usize::from(w.saturating_sub(2))
+}
+
 fn rect((x, y, w, h): Area) -> Rect {
     Rect::new(x, y, w, h)
 }
@@ -17,7 +22,7 @@ pub fn draw(frame: &mut Frame, app: &App, theme: Theme) {
     let size = frame.area();
     if size.width < MIN_SIZE.0 || size.height < MIN_SIZE.1 {
         let text = format!(
-            "navdeck needs {}x{}; this terminal is {}x{}. q quits.",
+            "terminal too small (need {}x{}, this one is {}x{}): make it larger, or q quits.",
             MIN_SIZE.0, MIN_SIZE.1, size.width, size.height
         );
         frame.render_widget(Paragraph::new(text).wrap(Default::default()), size);
@@ -49,7 +54,8 @@ pub fn draw(frame: &mut Frame, app: &App, theme: Theme) {
         .title(" Status ")
         .border_style(theme.border());
     frame.render_widget(
-        Paragraph::new(status::lines(app, theme)).block(status_block),
+        Paragraph::new(status::lines(app, theme, status_inner_width(parts.status)))
+            .block(status_block),
         rect(parts.status),
     );
 

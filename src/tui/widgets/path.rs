@@ -11,7 +11,9 @@ use ratatui::style::Style;
 const DOTS_PER_COLUMN: f64 = 2.0;
 
 pub fn render(app: &App, vp: &Viewport, theme: Theme, buf: &mut Buffer) {
-    if let Some(route) = app.pilot().route() {
+    // Racing is driving by hand: a path planned before is not what the robot follows.
+    let racing = app.pilot().mode() == crate::pilot::mode::Mode::Race;
+    if let Some(route) = app.pilot().route().filter(|_| !racing) {
         let points: Vec<Point2> = route
             .plan
             .trajectory

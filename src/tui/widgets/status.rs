@@ -8,13 +8,19 @@ use ratatui::text::{Line, Span};
 
 fn row(theme: Theme, label: &str, value: String) -> Line<'static> {
     Line::from(vec![
-        Span::styled(format!("{label:<8}"), theme.label()),
+        Span::styled(format!("{label:<LABEL$}"), theme.label()),
         Span::styled(value, theme.value()),
     ])
 }
 
 fn pose_text(p: Pose2) -> String {
-    format!("{:6.2} {:6.2} {:4.0}°", p.x, p.y, p.theta.to_degrees())
+    // Rounded first, then + 0.0: a heading that rounds to zero shows no sign ("-0°").
+    let (x, y) = (
+        (p.x * 100.0).round() / 100.0 + 0.0,
+        (p.y * 100.0).round() / 100.0 + 0.0,
+    );
+    let degrees = p.theta.to_degrees().round() + 0.0;
+    format!("{x:6.2} {y:6.2} {degrees:4.0}°")
 }
 
 /// Session time as h:mm:ss.
@@ -51,8 +57,40 @@ fn dash_if_empty<T>(items: &[T], text: String) -> String {
     if items.is_empty() { "-".into() } else { text }
 }
 
-/// Status rows, most important first (a short panel shows the top ones).
-pub fn lines(app: &App, theme: Theme) -> Vec<Line<'static>> {
+/// Columns a row's label takes.
+const LABEL: usize = 8;
+
+/// `line` cut to `width` columns, its last column `…` when anything was cut.
+fn fitted(line: Line<'static>, width: usize) -> Line<'static> {
+    if line.width() <= width {
+        return line;
+    }
+    let mut spans = Vec::new();
+    let mut room = width;
+    for span in line.spans {
+        let n = span.content.chars().count();
+        if n < room {
+            room -= n;
+            spans.push(span);
+            continue;
+        }
+        let cut: String = span.content.chars().take(room.saturating_sub(1)).collect();
+        spans.push(Span::styled(format!("{cut}…"), span.style));
+        break;
+    }
+    Line::from(spans)
+}
+
+/// Status rows, most important first (a short panel shows the top ones), each fitted to
+/// `width` columns.
+pub fn lines(app: &App, theme: Theme, width: usize) -> Vec<Line<'static>> {
+    rows(app, theme, width)
+        .into_iter()
+        .map(|l| fitted(l, width))
+        .collect()
+}
+
+fn rows(app: &App, theme: Theme, width: usize) -> Vec<Line<'static>> {
     let link = match app.pilot().link_status() {
         LinkStatus::Ok => "ok".to_string(),
         LinkStatus::Lost(_) => "LOST".to_string(),
@@ -62,7 +100,7 @@ pub fn lines(app: &App, theme: Theme) -> Vec<Line<'static>> {
     let t = app.pilot().teleop();
     let (max_v, max_w) = t.limits();
     let mut rows = vec![row(theme, "Mode", app.pilot().mode().label().to_string())];
-    rows.extend(navigation_rows(app, theme));
+    rows.extend(navigation_rows(app, theme, width.saturating_sub(LABEL)));
     rows.extend([
         row(theme, "Link", format!("{} {link}", app.link().label())),
         row(theme, "Pose", pose_text(app.pilot().estimated_pose())),
@@ -156,7 +194,7 @@ pub fn lines(app: &App, theme: Theme) -> Vec<Line<'static>> {
 }
 
 /// The path and its progress, right under the mode: what an autonomous mode is doing.
-fn navigation_rows(app: &App, theme: Theme) -> Vec<Line<'static>> {
+fn navigation_rows(app: &App, theme: Theme, room: usize) -> Vec<Line<'static>> {
     let mut rows = Vec::new();
     if let Some(m) = app.pilot().mission() {
         // Out of exploration the mission is paused, not running: `e` takes it up again.
@@ -167,14 +205,14 @@ fn navigation_rows(app: &App, theme: Theme) -> Vec<Line<'static>> {
             m.state_label()
         };
         // The state and its target can be long: two rows, broken between words.
-        let (first, rest) = split_words(&state, 21);
+        let (first, rest) = split_words(&state, room);
         rows.push(row(theme, "Mission", first));
         if !rest.is_empty() {
             rows.push(row(theme, "", rest));
         }
         let reason = if paused { String::new() } else { m.reason() };
         if !reason.is_empty() {
-            let (first, rest) = split_words(&reason, 21);
+            let (first, rest) = split_words(&reason, room);
             rows.push(row(theme, "Why", first));
             if !rest.is_empty() {
                 rows.push(row(theme, "", rest));
@@ -246,5 +284,23 @@ mod tests {
     #[test]
     fn clock_reads_hours_minutes_seconds() {
         assert_eq!(clock_text(3725.9), "1:02:05");
+    }
+
+    #[test]
+    fn a_row_too_long_ends_in_an_ellipsis_and_one_that_fits_is_kept() {
+        let theme = Theme::from_env(None);
+        let long = row(theme, "Path", "1.72 m arrived at (1.62, -0.53)".into());
+        let cut = fitted(long, 30);
+        let text: String = cut.spans.iter().map(|s| s.content.as_ref()).collect();
+        assert_eq!(text, "Path    1.72 m arrived at (1.…");
+        assert_eq!(cut.width(), 30);
+        let short = fitted(row(theme, "Mode", "MANUAL".into()), 30);
+        assert_eq!(short.width(), 14);
+    }
+
+    #[test]
+    fn a_heading_that_rounds_to_zero_has_no_sign() {
+        let text = pose_text(Pose2::new(-0.001, 0.5, -0.004));
+        assert!(!text.contains('-'), "{text}");
     }
 }

@@ -594,3 +594,41 @@ fn stale_path_state_goes_when_it_no_longer_applies() {
     app.handle_key(key("w"), KeyKind::Press, t + 0.5);
     assert!(app.pilot().route().is_none());
 }
+
+/// The landmark table lists gates and blocks first, takes the arrows while open, and
+/// enter plans to the chosen landmark as `:goto marker ID` does.
+#[test]
+fn the_landmark_table_chooses_a_gate_or_block_and_enter_plans_to_it() {
+    let mut app = default_app();
+    app.resize(120, 40);
+    for k in 1..=30 {
+        app.update(0.1 * f64::from(k));
+    }
+    app.handle_key(key("tab"), KeyKind::Press, 3.05);
+    let all = app.listed_landmarks();
+    assert!(all.len() > 5);
+    let first_wall = all.iter().position(|l| l.id <= 300).unwrap();
+    assert!(all[first_wall..].iter().all(|l| l.id <= 300), "walls last");
+    app.handle_key(key("tab"), KeyKind::Press, 3.1);
+    let targets = app.listed_landmarks();
+    assert!(
+        !targets.is_empty() && targets.iter().all(|l| l.id > 400),
+        "gates & blocks only"
+    );
+    let screen = common::render(&app);
+    assert!(screen.contains("Landmarks 1/"), "{screen}");
+    let centre = app.view().center;
+    app.handle_key(key("down"), KeyKind::Press, 3.2);
+    assert_eq!(app.view().table.selected, 1.min(targets.len() - 1));
+    assert_eq!(
+        app.view().center,
+        centre,
+        "the arrow chose a row, it did not pan"
+    );
+    let chosen = targets[app.view().table.selected].id;
+    app.handle_key(key("enter"), KeyKind::Press, 3.3);
+    let route = app.pilot().route().expect("a plan to the chosen landmark");
+    assert_eq!(route.label, format!("marker {chosen}"));
+    app.handle_key(key("tab"), KeyKind::Press, 3.4);
+    assert!(!app.view().landmarks, "a third tab closes it");
+}

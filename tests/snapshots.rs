@@ -169,3 +169,11 @@ fn wide_terminal_grows_the_status_panel_200x60() {
     let steps = vec![press('e'), Step::Wait(30.0)];
     insta::assert_snapshot!(snapshot_after(200, 60, steps));
 }
+
+/// Gates and blocks only, the second row chosen: what `enter` would plan to.
+#[test]
+fn landmark_table_gates_and_blocks_80x24() {
+    let mut steps = hold('a', 1.5);
+    steps.extend([tab(), tab(), key_step("down"), Step::Wait(0.1)]);
+    insta::assert_snapshot!(snapshot_after(80, 24, steps));
+}

@@ -14,6 +14,7 @@ mod picture;
 mod revision;
 mod saving;
 pub mod screen;
+mod table;
 pub mod view;
 
 use crate::config::Config;
@@ -166,6 +167,10 @@ impl App {
             }
             return;
         }
+        if self.view.landmarks && self.table_key(key) {
+            self.refresh_revision();
+            return;
+        }
         let Some(action) = action else {
             return;
         };
@@ -287,7 +292,19 @@ impl App {
                 self.view.zoom = None;
             }
             Action::ToggleBraille => self.view.braille = !self.view.braille,
-            Action::ToggleLandmarks => self.view.landmarks = !self.view.landmarks,
+            // Off, all landmarks, gates and blocks only, off.
+            Action::ToggleLandmarks => {
+                let table = &mut self.view.table;
+                match (self.view.landmarks, table.targets_only) {
+                    (false, _) => {
+                        self.view.landmarks = true;
+                        table.targets_only = false;
+                    }
+                    (true, false) => table.targets_only = true,
+                    (true, true) => self.view.landmarks = false,
+                }
+                table.selected = 0;
+            }
             Action::ToggleCamera => self.view.camera = self.view.camera.next(),
             Action::LogOlder => {
                 let shown = self.log.iter().filter(|e| self.view.log.shows(e)).count();

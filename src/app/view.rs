@@ -16,10 +16,20 @@ pub struct ViewState {
     pub help: bool,
     /// The landmark table over the map.
     pub landmarks: bool,
+    /// What the landmark table lists and which row is chosen.
+    pub table: LandmarkTable,
     /// The camera panel over the map, and how its thumbnail is drawn.
     pub camera: CameraPanel,
     /// What the log pane shows.
     pub log: LogView,
+}
+
+/// The landmark table's filter and chosen row (an index into the rows it lists).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct LandmarkTable {
+    /// Only gates and blocks: what `:goto marker ID` is mostly wanted for.
+    pub targets_only: bool,
+    pub selected: usize,
 }
 
 /// The log pane's scrollback and filters.
@@ -84,6 +94,7 @@ impl Default for ViewState {
             show_truth: true,
             help: false,
             landmarks: false,
+            table: LandmarkTable::default(),
             camera: CameraPanel::Off,
             log: LogView::default(),
         }

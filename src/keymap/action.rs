@@ -220,7 +220,7 @@ impl Action {
             Action::CenterView => "centre the map on the robot",
             Action::ToggleBraille => "braille / ASCII map",
             Action::ToggleTruth => "show the twin's truth",
-            Action::ToggleLandmarks => "landmark table on/off",
+            Action::ToggleLandmarks => "landmarks: all/targets/off",
             Action::ToggleCamera => "camera panel, braille, off",
             Action::LogOlder => "log: page back",
             Action::LogNewer => "log: page forward",

@@ -134,7 +134,7 @@ fn draw_picker(
 
 /// The landmark table in the lower right of the map.
 fn draw_landmarks(frame: &mut Frame, app: &App, theme: Theme, map: Rect) {
-    let width = 50.min(map.width);
+    let width = 48.min(map.width);
     let height = (map.height / 2).max(5).min(map.height);
     let area = Rect::new(
         map.x + map.width - width,
@@ -144,7 +144,7 @@ fn draw_landmarks(frame: &mut Frame, app: &App, theme: Theme, map: Rect) {
     );
     let rows = usize::from(height.saturating_sub(2));
     let block = Block::bordered()
-        .title(" Landmarks (tab) ")
+        .title(landmarks::title(app))
         .border_style(theme.border());
     frame.render_widget(Clear, area);
     frame.render_widget(

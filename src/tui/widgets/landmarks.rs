@@ -1,46 +1,67 @@
-//! The landmark table: what the filter holds, one row per landmark.
+//! The landmark table: what the filter holds, one row per landmark (ID, category, mean,
+//! the larger standard deviation, sightings), gates and blocks first; a chosen row to
+//! plan to, scrolled into view.
 
 use crate::app::App;
 use crate::perception::markers::MarkerCategory;
 use crate::tui::theme::Theme;
 use ratatui::text::Line;
 
-/// Header and rows, sorted by ID; `rows` limits the count (the rest is summarised).
+/// The table's title: what it lists and how to use it.
+pub fn title(app: &App) -> String {
+    let listed = app.listed_landmarks().len();
+    let what = if app.view().table.targets_only {
+        "gates & blocks"
+    } else {
+        "all"
+    };
+    let at = if listed == 0 {
+        0
+    } else {
+        app.view().table.selected.min(listed - 1) + 1
+    };
+    format!(" Landmarks {at}/{listed} {what} · ↑↓ enter plans · tab ")
+}
+
+/// Header and `rows` rows at most, the chosen one highlighted and in view.
 pub fn lines(app: &App, theme: Theme, rows: usize) -> Vec<Line<'static>> {
-    let mut landmarks: Vec<_> = app.pilot().slam().landmarks().collect();
-    landmarks.sort_by_key(|l| l.id);
+    let landmarks = app.listed_landmarks();
     let mut out = vec![Line::styled(
-        "  ID category      x      y    σx    σy   seen",
+        "  ID category      x      y     σ  seen",
         theme.title(),
     )];
-    let shown = rows.saturating_sub(1);
-    for l in landmarks.iter().take(if landmarks.len() > shown {
-        shown.saturating_sub(1)
-    } else {
-        shown
-    }) {
+    if landmarks.is_empty() {
+        out.push(Line::styled("  no landmarks yet", theme.label()));
+        return out;
+    }
+    let shown = rows.saturating_sub(1).max(1);
+    let selected = app.view().table.selected.min(landmarks.len() - 1);
+    // The window of rows that keeps the chosen one in view.
+    let first = selected
+        .saturating_sub(shown - 1)
+        .min(landmarks.len().saturating_sub(shown));
+    for (i, l) in landmarks.iter().enumerate().skip(first).take(shown) {
+        let style = if i == selected {
+            theme.cursor()
+        } else {
+            theme.value()
+        };
         out.push(Line::styled(
             format!(
-                "{:>4} {:<10} {:6.2} {:6.2} {:5.3} {:5.3} {:6}",
+                "{:>4} {:<10} {:6.2} {:6.2} {:5.3} {:>5}",
                 l.id,
                 MarkerCategory::of(l.id).label(),
                 l.mean.x,
                 l.mean.y,
-                l.covariance[(0, 0)].max(0.0).sqrt(),
-                l.covariance[(1, 1)].max(0.0).sqrt(),
+                // The larger of the two standard deviations: one column fits 80 columns.
+                l.covariance[(0, 0)]
+                    .max(l.covariance[(1, 1)])
+                    .max(0.0)
+                    .sqrt(),
                 l.sightings
             ),
-            theme.value(),
+            style,
         ));
-    }
-    if landmarks.len() > shown {
-        out.push(Line::styled(
-            format!("  ... {} more", landmarks.len() - (shown.saturating_sub(1))),
-            theme.label(),
-        ));
-    }
-    if landmarks.is_empty() {
-        out.push(Line::styled("  no landmarks yet", theme.label()));
     }
     out
 }

@@ -632,3 +632,42 @@ fn the_landmark_table_chooses_a_gate_or_block_and_enter_plans_to_it() {
     app.handle_key(key("tab"), KeyKind::Press, 3.4);
     assert!(!app.view().landmarks, "a third tab closes it");
 }
+
+/// A link with no robot behind it: drive keys say why nothing moves, and the autonomous
+/// modes refuse to start until the robot answers; the status shows the link's reason.
+#[test]
+fn with_the_link_down_keys_say_why_and_autonomy_waits_for_the_robot() {
+    use navdeck::app::LinkStatus;
+    let alive = std::sync::Arc::new(std::sync::atomic::AtomicBool::new(false));
+    let sent = std::sync::Arc::new(std::sync::Mutex::new(Vec::new()));
+    let mut app = App::new(
+        navdeck::config::Config::default(),
+        navdeck::keymap::Keymap::default_map(),
+        Box::new(FlakyLink {
+            alive: alive.clone(),
+            sent,
+        }),
+        0.0,
+    );
+    app.update(0.2);
+    assert!(matches!(app.pilot().link_status(), LinkStatus::Lost(_)));
+    app.handle_key(Key::char('w'), KeyKind::Press, 0.3);
+    let said = |app: &App, text: &str| app.log_book().iter().any(|e| e.text.contains(text));
+    let log: Vec<String> = app.log_book().iter().map(|e| e.text.clone()).collect();
+    assert!(
+        said(&app, "forward: nothing moves (link lost: no odometry"),
+        "{log:?}"
+    );
+    app.handle_key(key("e"), KeyKind::Press, 0.4);
+    assert_eq!(app.pilot().mode(), navdeck::app::mode::Mode::Manual);
+    assert!(said(
+        &app,
+        "exploration mode needs the robot to answer first"
+    ));
+    assert!(render(&app).contains("no odometry for"), "{}", render(&app));
+    // Once the robot answers, the mission starts.
+    alive.store(true, std::sync::atomic::Ordering::SeqCst);
+    app.update(0.5);
+    app.handle_key(key("e"), KeyKind::Press, 0.6);
+    assert_eq!(app.pilot().mode(), navdeck::app::mode::Mode::Exploration);
+}

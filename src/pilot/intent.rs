@@ -3,6 +3,7 @@
 use super::Pilot;
 use super::mode::Mode;
 use super::navigation::Target;
+use super::safety::LinkStatus;
 use super::teleop::{DriveKey, SpeedChange};
 use crate::control::config::ControllerKind;
 use crate::data::{GripperCommand, Level};
@@ -143,6 +144,17 @@ impl Pilot {
         if mode == self.mode {
             return false;
         }
+        if let (Mode::PathFollowing | Mode::Exploration, LinkStatus::Lost(reason)) =
+            (mode, &self.gate.link)
+        {
+            // Autonomy needs the robot's odometry to start from.
+            let text = format!(
+                "{} mode needs the robot to answer first ({reason})",
+                mode.label().to_lowercase()
+            );
+            self.log(Level::Error, text);
+            return false;
+        }
         if mode == Mode::PathFollowing && !self.start_following() {
             return false;
         }
@@ -192,6 +204,15 @@ impl Pilot {
                 ),
             );
             self.set_mode(Mode::Manual);
+        }
+        if let LinkStatus::Lost(reason) = &self.gate.link {
+            // Nothing can move: say why rather than ignore the key.
+            if !repeat {
+                let what = key.name().replace('_', " ");
+                let text = format!("{what}: nothing moves ({reason})");
+                self.log(Level::Warn, text);
+            }
+            return;
         }
         if self.gate.estop {
             // Leaving an emergency stop is its own deliberate key, never a side effect.

@@ -101,10 +101,16 @@ fn rows(app: &App, theme: Theme, width: usize) -> Vec<Line<'static>> {
     let (max_v, max_w) = t.limits();
     let mut rows = vec![row(theme, "Mode", app.pilot().mode().label().to_string())];
     rows.extend(navigation_rows(app, theme, width.saturating_sub(LABEL)));
-    rows.extend([
-        row(theme, "Link", format!("{} {link}", app.link().label())),
-        row(theme, "Pose", pose_text(app.pilot().estimated_pose())),
-    ]);
+    rows.push(row(theme, "Link", format!("{} {link}", app.link().label())));
+    if let LinkStatus::Lost(reason) = app.pilot().link_status() {
+        // Why, as the link says it now (its waiting time counts up), over two rows.
+        let (first, rest) = split_words(reason, width.saturating_sub(LABEL));
+        rows.push(row(theme, "", first));
+        if !rest.is_empty() {
+            rows.push(row(theme, "", rest));
+        }
+    }
+    rows.push(row(theme, "Pose", pose_text(app.pilot().estimated_pose())));
     let (sx, sy, st) = app.pilot().pose_sigma();
     rows.push(row(
         theme,

@@ -426,24 +426,23 @@ impl navdeck::link::RobotLink for FlakyLink {
 
 type Sent = std::sync::Arc<std::sync::Mutex<Vec<navdeck::link::Command>>>;
 
-/// The console on a link that answers while `alive` says so; what it sent.
-fn flaky_app(up: bool) -> (App, std::sync::Arc<std::sync::atomic::AtomicBool>, Sent) {
+/// The console on a link that answers while the returned flag says so.
+fn flaky_app(up: bool) -> (App, std::sync::Arc<std::sync::atomic::AtomicBool>) {
     let alive = std::sync::Arc::new(std::sync::atomic::AtomicBool::new(up));
-    let sent = Sent::default();
     let link = FlakyLink {
         alive: alive.clone(),
-        sent: sent.clone(),
+        sent: Sent::default(),
     };
     let config = navdeck::config::Config::default();
     let keymap = navdeck::keymap::Keymap::default_map();
-    (App::new(config, keymap, Box::new(link), 0.0), alive, sent)
+    (App::new(config, keymap, Box::new(link), 0.0), alive)
 }
 
 #[test]
 fn after_a_link_loss_the_robot_stays_still_until_a_key_is_pressed() {
     use navdeck::app::LinkStatus;
     use std::sync::atomic::Ordering;
-    let (mut app, alive, sent) = flaky_app(true);
+    let (mut app, alive) = flaky_app(true);
     app.handle_key(Key::char('w'), KeyKind::Press, 0.1);
     app.update(0.2);
     assert!(
@@ -643,7 +642,7 @@ fn the_landmark_table_chooses_a_gate_or_block_and_enter_plans_to_it() {
 #[test]
 fn with_the_link_down_keys_say_why_and_autonomy_waits_for_the_robot() {
     use navdeck::app::LinkStatus;
-    let (mut app, alive, _) = flaky_app(false);
+    let (mut app, alive) = flaky_app(false);
     app.update(0.2);
     assert!(matches!(app.pilot().link_status(), LinkStatus::Lost(_)));
     app.handle_key(Key::char('w'), KeyKind::Press, 0.3);

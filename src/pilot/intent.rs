@@ -80,7 +80,8 @@ impl Pilot {
                     let (v, w) = (self.teleop.linear_speed, self.teleop.angular_speed);
                     self.log(Level::Info, format!("speed {v:.2} m/s, turn {w:.2} rad/s"));
                 } else {
-                    self.log(Level::Warn, "speeds already at their limit");
+                    // Routine, not a warning: repeated presses collapse in the log.
+                    self.log(Level::Info, "speeds already at their limit");
                 }
                 false
             }

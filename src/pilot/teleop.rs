@@ -68,6 +68,10 @@ pub enum SpeedChange {
     AngularDown,
 }
 
+/// Floors that keep a slowed robot able to move: 1 cm/s and 0.05 rad/s.
+const LINEAR_FLOOR: f64 = 0.01;
+const ANGULAR_FLOOR: f64 = 0.05;
+
 #[derive(Clone, Copy, Debug, PartialEq)]
 struct Held {
     key: DriveKey,
@@ -190,18 +194,38 @@ impl Teleop {
 
     /// Applies a speed key; returns false when the speeds were already at their limit.
     pub fn adjust(&mut self, change: SpeedChange) -> bool {
+        // Both speeds scale by one factor, stopped short by whichever reaches its limit
+        // first, so their ratio (the turn a forward-left key drives) stays.
+        let (v, w) = (self.linear_speed, self.angular_speed);
+        let both_up = self
+            .step
+            .min(self.max_linear / v)
+            .min(self.max_angular / w)
+            .max(1.0);
+        let both_down = (1.0 / self.step)
+            .max(LINEAR_FLOOR / v)
+            .max(ANGULAR_FLOOR / w)
+            .min(1.0);
         let (lin, ang) = match change {
-            SpeedChange::SpeedUp => (self.step, self.step),
-            SpeedChange::SpeedDown => (1.0 / self.step, 1.0 / self.step),
+            SpeedChange::SpeedUp => (both_up, both_up),
+            SpeedChange::SpeedDown => (both_down, both_down),
             SpeedChange::LinearUp => (self.step, 1.0),
             SpeedChange::LinearDown => (1.0 / self.step, 1.0),
             SpeedChange::AngularUp => (1.0, self.step),
             SpeedChange::AngularDown => (1.0, 1.0 / self.step),
         };
         let before = (self.linear_speed, self.angular_speed);
-        // Floors keep a slowed robot able to move: 1 cm/s and 0.05 rad/s.
-        self.linear_speed = (self.linear_speed * lin).clamp(0.01, self.max_linear);
-        self.angular_speed = (self.angular_speed * ang).clamp(0.05, self.max_angular);
+        // A speed a rounding error short of its limit is at it (v * (max / v) may not
+        // give max back exactly).
+        let at_limit = |x: f64, max: f64| if max - x < 1e-9 * max { max } else { x };
+        self.linear_speed = at_limit(
+            (v * lin).clamp(LINEAR_FLOOR, self.max_linear),
+            self.max_linear,
+        );
+        self.angular_speed = at_limit(
+            (w * ang).clamp(ANGULAR_FLOOR, self.max_angular),
+            self.max_angular,
+        );
         before != (self.linear_speed, self.angular_speed)
     }
 }
@@ -212,6 +236,25 @@ mod tests {
 
     fn teleop() -> Teleop {
         Teleop::new(&TeleopConfig::default(), 0.4, 4.0)
+    }
+
+    #[test]
+    fn speed_keys_keep_the_ratio_at_a_limit_and_say_when_nothing_changes() {
+        // Limits 0.4 m/s and 4 rad/s: the turn rate reaches its limit first.
+        let mut t = Teleop::new(&TeleopConfig::default(), 0.4, 2.0);
+        let ratio = t.linear_speed / t.angular_speed;
+        while t.adjust(SpeedChange::SpeedUp) {}
+        assert!((t.linear_speed / t.angular_speed - ratio).abs() < 1e-12);
+        assert!(
+            (t.angular_speed - 2.0).abs() < 1e-12,
+            "stopped at the turn limit"
+        );
+        assert!(t.linear_speed < 0.4);
+        assert!(!t.adjust(SpeedChange::SpeedUp), "nothing left to raise");
+        while t.adjust(SpeedChange::SpeedDown) {}
+        assert!((t.linear_speed / t.angular_speed - ratio).abs() < 1e-9);
+        // One speed on its own still goes to its own limit.
+        assert!(t.adjust(SpeedChange::LinearUp));
     }
 
     #[test]

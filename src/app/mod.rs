@@ -465,13 +465,14 @@ impl App {
         keys.into_iter().filter_map(name).collect()
     }
 
-    /// Tells the console the terminal's size (the map scale depends on it).
-    /// Log lines a page-back key moves: the pane's rows less one kept for context.
+    /// Log lines a page-back key moves: the pane's rows (its height less the two border
+    /// rows) less one kept for context.
     fn log_page(&self) -> usize {
         let (_, _, _, h) = screen::layout(self.screen).log;
         usize::from(h.saturating_sub(3)).max(1)
     }
 
+    /// Tells the console the terminal's size (the map scale depends on it).
     pub fn resize(&mut self, width: u16, height: u16) {
         self.screen = (width, height);
         self.refresh_revision();

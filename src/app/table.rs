@@ -33,11 +33,9 @@ impl App {
     /// choose a row, and enter to plan to it (as `:goto marker ID`); true when the key
     /// was its.
     pub(super) fn table_key(&mut self, key: Key) -> bool {
-        let last = self.listed_landmarks().len().saturating_sub(1);
-        let chosen = self
-            .listed_landmarks()
-            .get(self.view.table.selected)
-            .map(|l| l.id);
+        let listed = self.listed_landmarks();
+        let last = listed.len().saturating_sub(1);
+        let chosen = listed.get(self.view.table.selected).map(|l| l.id);
         let table = &mut self.view.table;
         match key.code {
             KeyCode::Up | KeyCode::Char('k') => table.selected = table.selected.saturating_sub(1),

@@ -32,6 +32,7 @@ impl Mission {
             *self.attempts.entry(block.markers[0]).or_default() += 1;
             self.phase = Phase::Pickup(Pickup::new(
                 &block,
+                self.objects.seen_from(block.markers[0]),
                 robot,
                 inputs.map,
                 &self.config,

@@ -30,9 +30,6 @@ pub struct Block {
     pub markers: [u32; 2],
     /// Estimated centre.
     pub position: Point2,
-    /// Where the robot was when the camera last read one of the block's markers: a
-    /// marker is readable only from its own side, so an approach from there sees one.
-    pub seen_from: Option<Point2>,
     /// Both markers seen (seed 001: "register_block"); one only: a potential block.
     pub confirmed: bool,
     pub delivered: bool,
@@ -146,7 +143,6 @@ impl Objects {
             colour,
             markers: [odd, odd + 1],
             position,
-            seen_from: self.seen_from.get(&odd).copied(),
             confirmed,
             delivered: false,
         };
@@ -168,11 +164,14 @@ impl Objects {
             ) {
                 let odd = if id % 2 == 1 { id } else { id - 1 };
                 self.seen_from.insert(odd, robot);
-                if let Some(b) = self.blocks.get_mut(&odd) {
-                    b.seen_from = Some(robot);
-                }
             }
         }
+    }
+
+    /// Where the robot was when the camera last read one of block `odd`'s markers: a
+    /// marker is readable only from its own side, so an approach from there sees one.
+    pub fn seen_from(&self, odd: u32) -> Option<Point2> {
+        self.seen_from.get(&odd).copied()
     }
 
     /// Forgets a block (it was put down somewhere unknown): it is found again like a new one.

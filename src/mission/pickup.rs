@@ -53,9 +53,14 @@ pub(crate) struct Pickup {
 /// else towards the robot. If that spot or the straight run in from it is blocked (a block
 /// by a wall or a box), the nearest direction round the block, in 30 degree steps, where
 /// both are clear.
-fn staging_point(block: &Block, robot: Point2, map: &Costmap, config: &MissionConfig) -> Point2 {
-    let from = block.seen_from.unwrap_or(robot);
-    let block = block.position;
+fn staging_point(
+    block: Point2,
+    seen_from: Option<Point2>,
+    robot: Point2,
+    map: &Costmap,
+    config: &MissionConfig,
+) -> Point2 {
+    let from = seen_from.unwrap_or(robot);
     let toward = (from.y - block.y).atan2(from.x - block.x);
     let clear = |p: Point2| !is_lethal(map.at(p));
     // The last few centimetres are the block's own lethal ring: not checked.
@@ -83,14 +88,17 @@ fn staging_point(block: &Block, robot: Point2, map: &Costmap, config: &MissionCo
 }
 
 impl Pickup {
+    /// A pick-up of `block`, whose markers the camera last read with the robot at
+    /// `seen_from` (if it has), starting with the robot at `robot`.
     pub fn new(
         block: &Block,
+        seen_from: Option<Point2>,
         robot: Point2,
         map: &Costmap,
         config: &MissionConfig,
         t: f64,
     ) -> Self {
-        let goal = staging_point(block, robot, map, config);
+        let goal = staging_point(block.position, seen_from, robot, map, config);
         let label = name(block.colour, block.markers[0]);
         Self {
             block: block.markers[0],
@@ -273,17 +281,6 @@ mod tests {
     use super::*;
     use crate::map::costmap::{FREE, LETHAL};
 
-    fn block_at(p: Point2, seen_from: Option<Point2>) -> Block {
-        Block {
-            colour: Colour::Red,
-            markers: [421, 422],
-            position: p,
-            seen_from,
-            confirmed: true,
-            delivered: false,
-        }
-    }
-
     #[test]
     fn the_approach_comes_from_where_a_marker_was_read() {
         let map = Costmap::new(200, 200, 0.01, Point2::new(0.0, 0.0), FREE);
@@ -291,14 +288,14 @@ mod tests {
         let centre = Point2::new(1.0, 1.0);
         let robot = Point2::new(1.8, 1.0);
         // Read from the west; the robot is now east: the camera would see blank faces.
-        let read = block_at(centre, Some(Point2::new(0.2, 1.0)));
-        let p = staging_point(&read, robot, &map, &config);
+        let read = Some(Point2::new(0.2, 1.0));
+        let p = staging_point(centre, read, robot, &map, &config);
         assert!(
             (p.x - 0.7).abs() < 1e-9 && (p.y - 1.0).abs() < 1e-9,
             "{p:?}"
         );
         // Never read (a potential block from the lidar): from the robot's side.
-        let p = staging_point(&block_at(centre, None), robot, &map, &config);
+        let p = staging_point(centre, None, robot, &map, &config);
         assert!((p.x - 1.3).abs() < 1e-9, "{p:?}");
     }
 
@@ -310,8 +307,8 @@ mod tests {
             map.set(80, y, LETHAL);
         }
         let config = MissionConfig::default();
-        let read = block_at(Point2::new(1.0, 1.0), Some(Point2::new(0.2, 1.0)));
-        let p = staging_point(&read, Point2::new(1.8, 1.0), &map, &config);
+        let (centre, read) = (Point2::new(1.0, 1.0), Some(Point2::new(0.2, 1.0)));
+        let p = staging_point(centre, read, Point2::new(1.8, 1.0), &map, &config);
         assert!(p.x > 0.82, "clear of the wall: {p:?}");
         // 30 degrees off west still ends 0.26 m out, behind the wall; 60 degrees does not.
         let bearing = (p.y - 1.0).atan2(p.x - 1.0).to_degrees().abs();

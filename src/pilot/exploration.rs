@@ -31,17 +31,14 @@ impl Pilot {
     /// On entering exploration mode: the mission kept since a takeover resumes, else one
     /// starts.
     pub(super) fn enter_mission(&mut self) {
-        if self.exploring.mission.is_none() {
+        let (now, gripper) = (self.now, self.hand.state);
+        let Some(mission) = self.exploring.mission.as_mut() else {
             return self.start_mission();
-        }
+        };
+        let resumed = mission.resume(now, gripper);
         self.drop_route();
         self.exploring.last_step = None;
         self.exploring.no_path = None;
-        let (now, gripper) = (self.now, self.hand.state);
-        let Some(mission) = self.exploring.mission.as_mut() else {
-            return;
-        };
-        let resumed = mission.resume(now, gripper);
         for id in &resumed.forget {
             self.ekf.forget(*id);
             self.estimating.ignored_markers.retain(|m| m != id);

@@ -143,12 +143,13 @@ fn draw_landmarks(frame: &mut Frame, app: &App, theme: Theme, map: Rect) {
         height,
     );
     let rows = usize::from(height.saturating_sub(2));
+    let listed = app.listed_landmarks();
     let block = Block::bordered()
-        .title(landmarks::title(app))
+        .title(landmarks::title(app, &listed))
         .border_style(theme.border());
     frame.render_widget(Clear, area);
     frame.render_widget(
-        Paragraph::new(landmarks::lines(app, theme, rows)).block(block),
+        Paragraph::new(landmarks::lines(app, &listed, theme, rows)).block(block),
         area,
     );
 }

@@ -4,12 +4,14 @@
 
 use crate::app::App;
 use crate::perception::markers::MarkerCategory;
+use crate::slam::ekf::LandmarkEstimate;
 use crate::tui::theme::Theme;
 use ratatui::text::Line;
 
-/// The table's title: what it lists and how to use it.
-pub fn title(app: &App) -> String {
-    let listed = app.listed_landmarks().len();
+/// The table's title: what it lists (`landmarks`, as `App::listed_landmarks` gives them)
+/// and how to use it.
+pub fn title(app: &App, landmarks: &[LandmarkEstimate]) -> String {
+    let listed = landmarks.len();
     let what = if app.view().table.targets_only {
         "gates & blocks"
     } else {
@@ -23,9 +25,13 @@ pub fn title(app: &App) -> String {
     format!(" Landmarks {at}/{listed} {what} · ↑↓ enter plans · tab ")
 }
 
-/// Header and `rows` rows at most, the chosen one highlighted and in view.
-pub fn lines(app: &App, theme: Theme, rows: usize) -> Vec<Line<'static>> {
-    let landmarks = app.listed_landmarks();
+/// Header and `rows` rows of `landmarks` at most, the chosen one highlighted and in view.
+pub fn lines(
+    app: &App,
+    landmarks: &[LandmarkEstimate],
+    theme: Theme,
+    rows: usize,
+) -> Vec<Line<'static>> {
     let mut out = vec![Line::styled(
         "  ID category      x      y     σ  seen",
         theme.title(),

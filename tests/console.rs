@@ -249,8 +249,9 @@ fn help_overlay_lists_the_active_modes_bindings() {
     let s = run_script(default_app(), 120, 40, vec![press('?'), Step::Wait(0.2)]);
     let text = screen(&s.terminal);
     assert!(text.contains("Keys in manual mode"), "{text}");
-    assert!(text.contains("drive forward"), "{text}");
+    assert!(text.contains("w s a d  drive, while held"), "{text}");
     assert!(text.contains("emergency stop"), "{text}");
+    assert!(text.contains("(the deadman)"), "{text}");
 }
 
 #[test]
@@ -664,4 +665,57 @@ fn with_the_link_down_keys_say_why_and_autonomy_waits_for_the_robot() {
     app.update(0.5);
     app.handle_key(key("e"), KeyKind::Press, 0.6);
     assert_eq!(app.pilot().mode(), navdeck::app::mode::Mode::Exploration);
+}
+
+/// `x` is the stop key in every mode: following a path, it stops the robot and hands it
+/// to manual mode with the path kept; `p` follows it again.
+#[test]
+fn the_stop_key_stops_path_following_and_p_takes_it_up_again() {
+    let mut app = default_app();
+    for c in ":goto 1.2 1.2".chars() {
+        app.handle_key(key(&c.to_string()), KeyKind::Press, 0.5);
+    }
+    app.handle_key(key("enter"), KeyKind::Press, 0.5);
+    app.handle_key(key("p"), KeyKind::Press, 0.6);
+    let mut t = 0.6;
+    while app.pilot().commanded().linear < 0.05 && t < 10.0 {
+        t += 0.1;
+        app.update(t);
+    }
+    assert!(app.pilot().commanded().linear >= 0.05, "under way");
+    app.handle_key(key("x"), KeyKind::Press, t + 0.05);
+    app.update(t + 0.1);
+    assert_eq!(app.pilot().mode(), Mode::Manual);
+    assert_eq!(app.pilot().commanded().linear, 0.0, "stopped");
+    assert!(app.pilot().route().is_some(), "the path is kept");
+    let said = app.log_book().iter().any(|e| {
+        e.text == "stop: path following paused, manual control (p follows the path again)"
+    });
+    assert!(said);
+    app.handle_key(key("p"), KeyKind::Press, t + 0.2);
+    assert_eq!(app.pilot().mode(), Mode::PathFollowing);
+    // In manual mode x stops the keys held, as c does.
+    app.handle_key(key("m"), KeyKind::Press, t + 0.3);
+    app.handle_key(key("w"), KeyKind::Press, t + 0.4);
+    app.handle_key(key("x"), KeyKind::Press, t + 0.45);
+    app.update(t + 0.5);
+    assert_eq!(app.pilot().commanded().linear, 0.0);
+    assert!(app.held_keys().is_empty());
+}
+
+/// With no robot answering, the screen says why: the link's reason under the Link row,
+/// and the keys' refusals in the log.
+#[test]
+fn link_down_screens_say_why() {
+    let (mut app, _alive) = flaky_app(false);
+    app.update(0.2);
+    app.handle_key(Key::char('w'), KeyKind::Press, 0.3);
+    app.handle_key(key("e"), KeyKind::Press, 0.4);
+    app.update(0.5);
+    for (w, h) in [(80, 24), (120, 40)] {
+        app.resize(w, h);
+        let screen = common::render_at(&app, w, h);
+        assert!(screen.contains("forward: nothing moves"), "{screen}");
+        insta::assert_snapshot!(format!("link_down_{w}x{h}"), screen);
+    }
 }

@@ -110,7 +110,12 @@ fn defaults_have_the_seed_keys() {
         assert_eq!(map.lookup(Mode::Manual, key(name)), Some(action), "{name}");
         assert_eq!(map.lookup(Mode::Exploration, key(name)), None, "{name}");
     }
-    assert_eq!(map.lookup(Mode::Manual, key("x")), None);
+    // One stop key in every mode.
+    for mode in Mode::ALL.into_iter().filter(|m| *m != Mode::Load) {
+        assert_eq!(map.lookup(mode, key("x")), Some(Action::Stop), "{mode:?}");
+    }
+    assert_eq!(map.lookup(Mode::Manual, key("L")), Some(Action::ToggleScan));
+    assert_eq!(map.lookup(Mode::Manual, key("T")), Some(Action::ToggleTrail));
 }
 
 #[test]

@@ -281,3 +281,31 @@ fn a_block_let_go_during_a_takeover_is_found_again() {
     let mission = app.pilot().mission().unwrap();
     assert_eq!(mission.delivered(), 4, "{}", mission.state_label());
 }
+
+/// Picking a block up takes it off the map: the path on to its gate is not reported
+/// blocked by the block now in the jaws (it once was, with an identical new path).
+#[test]
+fn after_a_pick_up_the_held_block_does_not_block_the_path_on() {
+    let out = navdeck(&["mission", "--seed", "1", "--log", "--json"]);
+    let r: Value = serde_json::from_slice(&out.stdout).unwrap();
+    let log: Vec<&str> = r["log"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|l| l.as_str().unwrap())
+        .collect();
+    let time = |line: &str| -> f64 { line.split_whitespace().next().unwrap().parse().unwrap() };
+    let picks: Vec<f64> = log
+        .iter()
+        .filter(|l| l.contains("Picked up"))
+        .map(|l| time(l))
+        .collect();
+    assert_eq!(picks.len(), 4, "{log:#?}");
+    for line in log.iter().filter(|l| l.contains("path blocked at")) {
+        let t = time(line);
+        assert!(
+            picks.iter().all(|&p| !(p..p + 2.0).contains(&t)),
+            "right after a pick-up: {line}"
+        );
+    }
+}

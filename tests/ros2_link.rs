@@ -337,3 +337,68 @@ fn gripper_keys_publish_the_configured_positions_and_quit_stops_the_robot() {
         log_text(&c.app)
     );
 }
+
+/// The console drawn once at `width` x `height`, as text.
+fn drawn(app: &App, width: u16, height: u16) -> String {
+    use ratatui::Terminal;
+    use ratatui::backend::TestBackend;
+    let mut terminal = Terminal::new(TestBackend::new(width, height)).unwrap();
+    terminal
+        .draw(|f| navdeck::tui::draw::draw(f, app, navdeck::tui::theme::Theme { color: false }))
+        .unwrap();
+    let buf = terminal.backend().buffer();
+    (0..height)
+        .map(|y| (0..width).map(|x| buf[(x, y)].symbol()).collect::<String>())
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
+/// The link's status-panel value for `label`.
+fn detail(app: &App, label: &str) -> String {
+    app.link()
+        .details(app.now())
+        .into_iter()
+        .find(|(l, _)| *l == label)
+        .map(|(_, v)| v)
+        .unwrap_or_else(|| panic!("no {label} detail"))
+}
+
+#[test]
+fn the_status_panel_says_what_discovery_found_with_a_waiting_time_that_counts() {
+    // No robot on the domain yet: the panel says why nothing moves, and the wait counts.
+    let mut c = Console::open(68, |_| {});
+    c.run_for(0.3, None);
+    let reason = |app: &App| match app.pilot().link_status() {
+        LinkStatus::Lost(why) => why.clone(),
+        other => panic!("link {other:?}"),
+    };
+    let first = reason(&c.app);
+    assert!(
+        first.contains("nothing publishes it in domain 68"),
+        "{first}"
+    );
+    c.run_for(0.3, None);
+    assert_ne!(reason(&c.app), first, "the waiting time counts up");
+    assert_eq!(detail(&c.app, "cmd_vel"), "no subscriber");
+    assert_eq!(detail(&c.app, "Odom"), "odom no publisher");
+    assert_eq!(detail(&c.app, "DDS"), "domain 68 · 0 peers");
+    let screen = drawn(&c.app, 120, 40);
+    assert!(screen.contains("cmd_vel no subscriber"), "{screen}");
+    // The robot joins: its participant, topics, rates and cmd_vel reader show up.
+    let _robot = FakeRobot::start(FakeOptions::new(68));
+    c.until("the robot to be discovered and measured", |a| {
+        let odom = detail(a, "Odom");
+        let hz: f64 = odom
+            .split_whitespace()
+            .rev()
+            .nth(1)
+            .and_then(|v| v.parse().ok())
+            .unwrap_or(0.0);
+        hz > 5.0
+            && detail(a, "Scan").ends_with(" Hz")
+            && detail(a, "cmd_vel") == "1 reader (Twist)"
+            && !detail(a, "DDS").ends_with(" 0 peers")
+    });
+    let screen = drawn(&c.app, 120, 40);
+    assert!(screen.contains("Odom    odom "), "{screen}");
+}

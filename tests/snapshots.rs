@@ -177,3 +177,133 @@ fn landmark_table_gates_and_blocks_80x24() {
     steps.extend([tab(), tab(), key_step("down"), Step::Wait(0.1)]);
     insta::assert_snapshot!(snapshot_after(80, 24, steps));
 }
+
+/// After a drive: the scan's hits (on by default), the trail (T) and, zoomed in until the
+/// robot spans several columns, its footprint.
+fn scan_trail_and_footprint_steps() -> Vec<Step> {
+    let mut steps = hold('w', 2.0);
+    steps.extend(hold('a', 0.6));
+    steps.extend(hold('w', 1.0));
+    steps.extend([press('T'), press('+'), press('+'), press('+'), press('+')]);
+    steps.push(Step::Wait(0.2));
+    steps
+}
+
+#[test]
+fn scan_trail_and_footprint_zoomed_in_80x24() {
+    let screen = snapshot_after(80, 24, scan_trail_and_footprint_steps());
+    assert!(screen.contains('%') && screen.contains('·'), "{screen}");
+    insta::assert_snapshot!(screen);
+}
+
+#[test]
+fn scan_trail_and_footprint_zoomed_in_120x40() {
+    let screen = snapshot_after(120, 40, scan_trail_and_footprint_steps());
+    assert!(screen.contains('%') && screen.contains('·'), "{screen}");
+    insta::assert_snapshot!(screen);
+}
+
+/// The stop key in exploration: the robot stops, the mission pauses, manual mode.
+fn stop_during_exploration_steps() -> Vec<Step> {
+    vec![press('e'), Step::Wait(20.0), press('x'), Step::Wait(1.0)]
+}
+
+#[test]
+fn stop_key_pauses_exploration_80x24() {
+    let screen = snapshot_after(80, 24, stop_during_exploration_steps());
+    assert!(screen.contains("exploration paused"), "{screen}");
+    insta::assert_snapshot!(screen);
+}
+
+#[test]
+fn stop_key_pauses_exploration_120x40() {
+    let screen = snapshot_after(120, 40, stop_during_exploration_steps());
+    assert!(screen.contains("exploration paused"), "{screen}");
+    insta::assert_snapshot!(screen);
+}
+
+/// `g` hides the twin's truth: no true pose on the map, no Truth and Error rows.
+#[test]
+fn truth_hidden_80x24() {
+    let mut steps = hold('w', 1.0);
+    steps.extend([press('g'), Step::Wait(0.2)]);
+    let screen = snapshot_after(80, 24, steps);
+    assert!(
+        !screen.contains("Truth") && !screen.contains("Error"),
+        "{screen}"
+    );
+    insta::assert_snapshot!(screen);
+}
+
+#[test]
+fn truth_hidden_120x40() {
+    let mut steps = hold('w', 1.0);
+    steps.extend([press('g'), Step::Wait(0.2)]);
+    let screen = snapshot_after(120, 40, steps);
+    assert!(
+        !screen.contains("Truth") && !screen.contains("Error"),
+        "{screen}"
+    );
+    insta::assert_snapshot!(screen);
+}
+
+/// A log line longer than the pane wraps under its text instead of being cut.
+fn long_line_steps() -> Vec<Step> {
+    let mut steps = vec![Step::Wait(0.5), press(':')];
+    steps.extend(typed("controller nonsense-that-is-not-a-controller"));
+    steps.extend([enter(), Step::Wait(0.05)]);
+    steps
+}
+
+#[test]
+fn a_long_log_line_wraps_80x24() {
+    insta::assert_snapshot!(snapshot_after(80, 24, long_line_steps()));
+}
+
+#[test]
+fn a_long_log_line_wraps_120x40() {
+    insta::assert_snapshot!(snapshot_after(120, 40, long_line_steps()));
+}
+
+/// The camera panel sits inside the map's border.
+#[test]
+fn camera_panel_inside_the_map_border_80x24() {
+    let screen = snapshot_after(80, 24, vec![press('v'), Step::Wait(0.5)]);
+    let second = screen.lines().nth(1).unwrap();
+    assert!(second.starts_with("┌ Map"), "{second}");
+    insta::assert_snapshot!(screen);
+}
+
+#[test]
+fn log_paged_back_during_the_mission_120x40() {
+    let steps = vec![press('e'), Step::Wait(30.0), key_step("pageup")];
+    insta::assert_snapshot!(snapshot_after(120, 40, steps));
+}
+
+#[test]
+fn log_filtered_by_level_80x24() {
+    let steps = vec![press('e'), Step::Wait(60.0), press('m'), press('f'), Step::Wait(0.1)];
+    insta::assert_snapshot!(snapshot_after(80, 24, steps));
+}
+
+/// A plan not yet driven: the path and its goal, no "arrived".
+fn planned_steps() -> Vec<Step> {
+    let mut steps = vec![Step::Wait(1.0), press('t'), press(':')];
+    steps.extend(typed("goto 1.2 1.2"));
+    steps.extend([enter(), Step::Wait(0.2)]);
+    steps
+}
+
+#[test]
+fn a_fresh_plan_is_not_arrived_80x24() {
+    let screen = snapshot_after(80, 24, planned_steps());
+    assert!(!screen.contains("arrived"), "{screen}");
+    insta::assert_snapshot!(screen);
+}
+
+#[test]
+fn a_fresh_plan_is_not_arrived_120x40() {
+    let screen = snapshot_after(120, 40, planned_steps());
+    assert!(!screen.contains("arrived"), "{screen}");
+    insta::assert_snapshot!(screen);
+}

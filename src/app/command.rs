@@ -42,7 +42,7 @@ impl From<Typed> for Intent {
     }
 }
 
-pub const USAGE: &str = "goto X Y | goto marker ID | controller pid|pure_pursuit|hybrid | clear | save NAME | mission restart";
+pub const USAGE: &str = "goto X Y | goto marker ID | controller [pid|pure_pursuit|hybrid] | clear | save [NAME] | mission restart";
 
 /// Reads one command line, or says what is wrong with it.
 pub fn parse(line: &str) -> Result<Intent, String> {

@@ -306,6 +306,8 @@ impl App {
                 table.selected = 0;
             }
             Action::ToggleCamera => self.view.camera = self.view.camera.next(),
+            Action::ToggleScan => self.view.scan = !self.view.scan,
+            Action::ToggleTrail => self.view.trail = !self.view.trail,
             Action::LogOlder => {
                 let shown = self.log.iter().filter(|e| self.view.log.shows(e)).count();
                 let page = self.log_page();

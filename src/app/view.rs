@@ -20,6 +20,10 @@ pub struct ViewState {
     pub table: LandmarkTable,
     /// The camera panel over the map, and how its thumbnail is drawn.
     pub camera: CameraPanel,
+    /// The newest lidar scan over the map.
+    pub scan: bool,
+    /// Where the robot has driven, over the map.
+    pub trail: bool,
     /// What the log pane shows.
     pub log: LogView,
 }
@@ -96,6 +100,8 @@ impl Default for ViewState {
             landmarks: false,
             table: LandmarkTable::default(),
             camera: CameraPanel::Off,
+            scan: true,
+            trail: false,
             log: LogView::default(),
         }
     }

@@ -56,6 +56,22 @@ pub struct LaserScan {
     pub ranges: Vec<f32>,
 }
 
+impl LaserScan {
+    /// Where the beams that hit something ended, in the frame of `pose` (the robot's).
+    pub fn hits(
+        &self,
+        pose: crate::geometry::Pose2,
+    ) -> impl Iterator<Item = crate::geometry::Point2> {
+        self.ranges.iter().enumerate().filter_map(move |(k, &r)| {
+            let r = f64::from(r);
+            // Beam k points along angle_min + k * angle_increment (sensor_msgs/LaserScan).
+            let a = pose.theta + self.angle_min + k as f64 * self.angle_increment;
+            (r >= self.range_min && r <= self.range_max)
+                .then(|| crate::geometry::Point2::new(pose.x + r * a.cos(), pose.y + r * a.sin()))
+        })
+    }
+}
+
 /// Everything the robot reported since the previous poll.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct SensorFrame {

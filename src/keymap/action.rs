@@ -45,6 +45,8 @@ pub enum Action {
     ToggleTruth,
     ToggleLandmarks,
     ToggleCamera,
+    ToggleScan,
+    ToggleTrail,
     // The log.
     LogOlder,
     LogNewer,
@@ -66,7 +68,7 @@ pub enum Action {
 
 impl Action {
     /// Every action, in the order the help overlay lists them.
-    pub const ALL: [Action; 51] = [
+    pub const ALL: [Action; 53] = [
         Action::ModeManual,
         Action::ModeExplore,
         Action::ModeThink,
@@ -104,6 +106,8 @@ impl Action {
         Action::ToggleTruth,
         Action::ToggleLandmarks,
         Action::ToggleCamera,
+        Action::ToggleScan,
+        Action::ToggleTrail,
         Action::LogOlder,
         Action::LogNewer,
         Action::LogFilter,
@@ -160,6 +164,8 @@ impl Action {
             Action::ToggleTruth => "toggle_truth",
             Action::ToggleLandmarks => "toggle_landmarks",
             Action::ToggleCamera => "toggle_camera",
+            Action::ToggleScan => "toggle_scan",
+            Action::ToggleTrail => "toggle_trail",
             Action::LogOlder => "log_older",
             Action::LogNewer => "log_newer",
             Action::LogFilter => "log_filter",
@@ -202,7 +208,7 @@ impl Action {
             Action::ForwardRight => "forward, turning right",
             Action::BackwardLeft => "backward, turning left",
             Action::BackwardRight => "backward, turning right",
-            Action::Stop => "stop",
+            Action::Stop => "stop (autonomy: pause)",
             Action::EmergencyStop => "emergency stop (any mode)",
             Action::SpeedUp => "all speeds +10 %",
             Action::SpeedDown => "all speeds -10 %",
@@ -217,11 +223,13 @@ impl Action {
             Action::PanRight => "pan the map right",
             Action::PanUp => "pan the map up",
             Action::PanDown => "pan the map down",
-            Action::CenterView => "centre the map on the robot",
+            Action::CenterView => "fit the whole world",
             Action::ToggleBraille => "braille / ASCII map",
-            Action::ToggleTruth => "show the twin's truth",
+            Action::ToggleTruth => "show/hide the twin's truth",
             Action::ToggleLandmarks => "landmarks: all/targets/off",
             Action::ToggleCamera => "camera panel, braille, off",
+            Action::ToggleScan => "lidar scan on the map",
+            Action::ToggleTrail => "driven trail on the map",
             Action::LogOlder => "log: page back",
             Action::LogNewer => "log: page forward",
             Action::LogFilter => "log: all, warnings, errors",

@@ -4,6 +4,7 @@
 #[cfg(feature = "vision")]
 pub mod camera;
 pub mod drive;
+pub mod rate;
 pub mod ros2;
 pub mod serial;
 pub mod sim;
@@ -84,6 +85,11 @@ pub trait RobotLink: Send {
     /// Ground truth, when a simulator stands behind this link (for display and scoring).
     fn ground_truth(&self) -> Option<&dyn crate::sim::GroundTruth> {
         None
+    }
+    /// What the link knows of its peer, for the status panel: short labels (at most
+    /// seven characters) and values, e.g. the DDS domain and the rates topics arrive at.
+    fn details(&self, _now: f64) -> Vec<(&'static str, String)> {
+        Vec::new()
     }
     /// What the link noticed since the last call (retries, bad replies, dropped messages,
     /// a type mismatch), one line each, for the console's log.

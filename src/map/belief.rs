@@ -2,6 +2,7 @@
 //! costmap, updated cell by cell as landmarks move and scans arrive — never rebuilt.
 
 use super::config::MapConfig;
+use super::contact::HeldZone;
 use super::costmap::{Costmap, INFLATED, LETHAL, NO_INFORMATION};
 use super::evidence::{Evidence, line_cells};
 use super::grid::{OCCUPIED, OccupancyGrid};
@@ -142,6 +143,12 @@ impl BeliefMap {
     /// Folds a lidar scan taken at `pose` into the sensor layer: the cells a beam crossed
     /// are more likely free, the cell it ended in more likely occupied.
     pub fn observe_scan(&mut self, pose: Pose2, scan: &LaserScan) {
+        self.observe_scan_holding(pose, scan, None);
+    }
+
+    /// `observe_scan`, leaving out the beams that end in `held`: what the gripper holds
+    /// moves with the robot and is not part of the world.
+    pub fn observe_scan_holding(&mut self, pose: Pose2, scan: &LaserScan, held: Option<HeldZone>) {
         for (k, &range) in scan.ranges.iter().enumerate() {
             let range = f64::from(range);
             if range.is_nan() || range < scan.range_min {
@@ -151,6 +158,9 @@ impl BeliefMap {
             let length = range.min(scan.range_max);
             let angle = pose.theta + scan.angle_min + k as f64 * scan.angle_increment;
             let end = Point2::new(pose.x + length * angle.cos(), pose.y + length * angle.sin());
+            if hit && held.is_some_and(|z| z.contains(pose, end)) {
+                continue;
+            }
             self.observe_ray(pose.position(), end, hit);
         }
     }
@@ -178,6 +188,32 @@ impl BeliefMap {
                     self.add_evidence(cx as i64 + dx, cy as i64 + dy, self.config.miss_log_odds);
                 }
             }
+        }
+        self.flush();
+    }
+
+    /// The gripper took hold of what lay in `held` of a robot at `pose`: the cells the
+    /// sensors found occupied there are free now (the block left with the robot).
+    pub fn clear_held(&mut self, pose: Pose2, held: HeldZone) {
+        let map = &self.costmap;
+        let reach = held.ahead.hypot(held.half_width);
+        let (c0, r0, c1, r1) = self.cell_rect((
+            pose.x - reach,
+            pose.y - reach,
+            pose.x + reach,
+            pose.y + reach,
+        ));
+        let mut cells = Vec::new();
+        for cy in r0..=r1 {
+            for cx in c0..=c1 {
+                let i = map.index(cx, cy);
+                if self.evidence.is_occupied(i) && held.contains(pose, map.center_of(cx, cy)) {
+                    cells.push((cx as i64, cy as i64));
+                }
+            }
+        }
+        for (cx, cy) in cells {
+            self.add_evidence(cx, cy, f32::NEG_INFINITY);
         }
         self.flush();
     }

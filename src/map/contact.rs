@@ -18,6 +18,16 @@ pub struct HeldZone {
     pub half_width: f64,
 }
 
+impl HeldZone {
+    /// Whether world point `q` lies in the zone of a robot at `pose`.
+    pub fn contains(&self, pose: Pose2, q: Point2) -> bool {
+        let (s, c) = pose.theta.sin_cos();
+        let (dx, dy) = (q.x - pose.x, q.y - pose.y);
+        let (along, across) = (dx * c + dy * s, -dx * s + dy * c);
+        (0.0..=self.ahead).contains(&along) && across.abs() <= self.half_width
+    }
+}
+
 /// The jaws hold a block's far face 0.14 m ahead of the robot centre; a 5 cm block,
 /// turned, reaches 3.5 cm either side (navdeck's gripper).
 pub const JAWS: HeldZone = HeldZone {
@@ -41,14 +51,7 @@ pub fn contact_ahead(
     if occupied.len() != map.width * map.height || twist.linear == 0.0 {
         return None;
     }
-    let ignored = |q: Point2| {
-        held.is_some_and(|z| {
-            let (s, c) = pose.theta.sin_cos();
-            let (dx, dy) = (q.x - pose.x, q.y - pose.y);
-            let (along, across) = (dx * c + dy * s, -dx * s + dy * c);
-            (0.0..=z.ahead).contains(&along) && across.abs() <= z.half_width
-        })
-    };
+    let ignored = |q: Point2| held.is_some_and(|z| z.contains(pose, q));
     let steps = (horizon / STEP).ceil().max(1.0) as usize;
     let mut p = pose;
     for _ in 0..steps {

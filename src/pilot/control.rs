@@ -2,8 +2,9 @@
 
 use super::Pilot;
 use super::mode::Mode;
-use crate::data::{Command, Level, SensorFrame, WheelTravel};
+use crate::data::{Command, GripperState, Level, SensorFrame, WheelTravel};
 use crate::geometry::Twist;
+use crate::map::contact::JAWS;
 use crate::slam::odometry::twist_from_wheels;
 
 /// The measured twist, and the wheel travel and time since it was last worked out.
@@ -35,6 +36,10 @@ impl Pilot {
         if let Some(g) = frame.gripper {
             if self.hand.state.is_some() && self.hand.state != Some(g) {
                 self.log_at(t, Level::Info, format!("gripper {}", g.label()));
+            }
+            if g == GripperState::Holding && self.hand.state != Some(g) {
+                // What the lidar mapped in the jaws is the block, gone from that spot.
+                self.belief.clear_held(self.ekf.pose(), JAWS);
             }
             self.hand.state = Some(g);
         }

@@ -67,8 +67,7 @@ impl Pilot {
             }
             Intent::Gripper(cmd) => self.gripper_command(cmd),
             Intent::Stop => {
-                self.teleop.clear();
-                self.log(Level::Info, "stop");
+                self.stop_key();
                 true
             }
             Intent::EmergencyStop => {
@@ -228,19 +227,39 @@ impl Pilot {
         self.teleop.press(key, self.now, repeat);
     }
 
+    /// The stop key, the same in every mode: keys are let go, and an autonomous mode
+    /// hands the robot back to manual mode, paused where it stands.
+    fn stop_key(&mut self) {
+        self.teleop.clear();
+        let again = match self.mode {
+            Mode::Exploration => "e resumes the mission",
+            Mode::PathFollowing => "p follows the path again",
+            _ => {
+                self.log(Level::Info, "stop");
+                return;
+            }
+        };
+        let from = self.mode.label().to_lowercase();
+        self.set_mode(Mode::Manual);
+        self.log(
+            Level::Info,
+            format!("stop: {from} paused, manual control ({again})"),
+        );
+    }
+
     /// Queues a gripper command; false when the mission holds the gripper.
     fn gripper_command(&mut self, cmd: GripperCommand) -> bool {
         if self.mode == Mode::PathFollowing && self.is_busy() {
             self.log(
                 Level::Warn,
-                "gripper key ignored while following a path (space stops, m takes control)",
+                "gripper key ignored while following a path (x stops, m takes control)",
             );
             return false;
         }
         if self.mode == Mode::Exploration && self.mission().is_some_and(|m| m.holds_gripper()) {
             self.log(
                 Level::Warn,
-                "gripper key ignored: the mission is using the gripper (m takes control)",
+                "gripper key ignored: the mission is using the gripper (x stops, m takes control)",
             );
             return false;
         }

@@ -2,8 +2,9 @@
 //! and the robot's own footprint, all placed with the filter's pose.
 
 use super::Pilot;
-use crate::data::{LaserScan, MarkerSighting};
+use crate::data::{GripperState, LaserScan, MarkerSighting};
 use crate::geometry::{Point2, Pose2};
+use crate::map::contact::JAWS;
 
 /// The footprint is marked free again after the robot moved this far, metres.
 const FOOTPRINT_STEP: f64 = 0.02;
@@ -21,6 +22,10 @@ pub(super) struct Upkeep {
     last_footprint: Option<Point2>,
     /// Where and when the last scan was folded into the map.
     last_scan_pose: Option<(Pose2, f64)>,
+    /// The newest scan and the estimated pose it was taken from, for the map view.
+    pub newest_scan: Option<(Pose2, LaserScan)>,
+    /// Where the robot has driven.
+    pub trail: super::trail::Trail,
 }
 
 impl Pilot {
@@ -40,6 +45,7 @@ impl Pilot {
     /// overconfidence (gmapping's linearUpdate / angularUpdate / temporalUpdate).
     pub(super) fn map_scan(&mut self, t: f64, scan: &LaserScan) {
         let pose = self.ekf.pose();
+        self.upkeep.newest_scan = Some((pose, scan.clone()));
         if let Some((last, at)) = self.upkeep.last_scan_pose {
             let moved = last.position().distance(pose.position());
             let turned = crate::geometry::wrap_angle(pose.theta - last.theta).abs();
@@ -48,11 +54,13 @@ impl Pilot {
             }
         }
         self.upkeep.last_scan_pose = Some((pose, t));
-        self.belief.observe_scan(pose, scan);
+        let held = (self.hand.state == Some(GripperState::Holding)).then_some(JAWS);
+        self.belief.observe_scan_holding(pose, scan, held);
     }
 
     pub(super) fn map_footprint(&mut self) {
         let here = self.ekf.pose().position();
+        self.upkeep.trail.note(here);
         if self
             .upkeep
             .last_footprint

@@ -19,9 +19,10 @@ pub mod mode;
 pub mod navigation;
 mod safety;
 pub mod teleop;
+mod trail;
 
 use crate::clock::Clock;
-use crate::data::{Command, GripperCommand, GripperState, Level, SensorFrame};
+use crate::data::{Command, GripperCommand, GripperState, LaserScan, Level, SensorFrame};
 use crate::geometry::{Point2, Pose2, Twist};
 use crate::map::belief::BeliefMap;
 use crate::slam::ekf::EkfSlam;
@@ -267,6 +268,14 @@ impl Pilot {
     /// The robot's planning map.
     pub fn belief(&self) -> &BeliefMap {
         &self.belief
+    }
+    /// The newest lidar scan and the estimated pose it was taken from.
+    pub fn newest_scan(&self) -> Option<(Pose2, &LaserScan)> {
+        self.upkeep.newest_scan.as_ref().map(|(p, s)| (*p, s))
+    }
+    /// Where the robot has driven (estimated positions, oldest first).
+    pub fn trail(&self) -> &[Point2] {
+        self.upkeep.trail.points()
     }
     /// Drive keys still held at `now`, for the status panel.
     pub fn held_keys(&self, now: f64) -> Vec<DriveKey> {

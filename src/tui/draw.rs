@@ -1,7 +1,7 @@
 //! Composes one frame from the panels; reads the app, never changes it.
 
 use super::theme::Theme;
-use super::widgets::{camera, help, landmarks, log, map, status, title};
+use super::widgets::{camera, help, landmarks, log, map, status, text, title};
 use crate::app::App;
 use crate::app::screen::{Area, MIN_SIZE, layout};
 use ratatui::Frame;
@@ -70,11 +70,12 @@ pub fn draw(frame: &mut Frame, app: &App, theme: Theme) {
         log_rect,
     );
 
+    // Panels over the map sit inside its border, which stays whole.
     if app.view().landmarks {
-        draw_landmarks(frame, app, theme, map_rect);
+        draw_landmarks(frame, app, theme, inner);
     }
     if app.view().camera != crate::app::view::CameraPanel::Off {
-        draw_camera(frame, app, theme, map_rect);
+        draw_camera(frame, app, theme, inner);
     }
     if let Some((entries, selected)) = app.map_picker() {
         draw_picker(frame, entries, selected, theme, map_rect);
@@ -144,9 +145,11 @@ fn draw_landmarks(frame: &mut Frame, app: &App, theme: Theme, map: Rect) {
     );
     let rows = usize::from(height.saturating_sub(2));
     let listed = app.listed_landmarks();
-    let block = Block::bordered()
-        .title(landmarks::title(app, &listed))
-        .border_style(theme.border());
+    let title = text::fit(
+        &landmarks::title(app, &listed),
+        usize::from(width.saturating_sub(2)),
+    );
+    let block = Block::bordered().title(title).border_style(theme.border());
     frame.render_widget(Clear, area);
     frame.render_widget(
         Paragraph::new(landmarks::lines(app, &listed, theme, rows)).block(block),
@@ -165,7 +168,8 @@ fn draw_camera(frame: &mut Frame, app: &App, theme: Theme, map: Rect) {
         .border_style(theme.border());
     let inner = block.inner(area);
     frame.render_widget(Clear, area);
-    frame.render_widget(Paragraph::new(camera::lines(app, theme)).block(block), area);
+    let text = camera::lines(app, theme, usize::from(inner.width));
+    frame.render_widget(Paragraph::new(text).block(block), area);
     let thumb_area = Rect::new(
         inner.x,
         inner.y + camera::TEXT_ROWS.min(inner.height),
@@ -198,22 +202,21 @@ fn map_title(app: &App) -> String {
     format!(" Map {:.0} cm/col {style} ", scale * 100.0)
 }
 
-/// The help popup: bindings in as many columns as fit, the legend underneath.
+/// The help popup over the whole screen: bindings in as many columns as fit, how driving
+/// works and the map's legend underneath.
 fn draw_help(frame: &mut Frame, app: &App, theme: Theme, size: Rect) {
     let entries = help::entries(app, theme);
-    let width = size.width.saturating_sub(4).min(100);
-    let height = size.height.saturating_sub(2);
-    let area = Rect::new(
-        (size.width - width) / 2,
-        (size.height - height) / 2,
-        width,
-        height,
-    );
+    let width = size.width.min(100);
     let inner_w = usize::from(width.saturating_sub(2));
-    let rows = usize::from(height.saturating_sub(4)).max(1);
-    // Keys take 9 characters and descriptions at most 27: 37 a column fits two at 80 wide.
-    let col_w = 37;
+    let mut notes = text::wrap(&help::driving(app), inner_w);
+    notes.extend(text::wrap(help::LEGEND, inner_w));
+    let col_w = help::ENTRY_WIDTH + 1;
     let columns = (inner_w / col_w).max(1);
+    // The keys take what the borders, a blank line and the notes leave.
+    let room = usize::from(size.height.saturating_sub(3))
+        .saturating_sub(notes.len())
+        .max(4);
+    let rows = entries.len().div_ceil(columns).clamp(1, room);
     let mut lines: Vec<Line> = Vec::new();
     for r in 0..rows {
         let mut spans = Vec::new();
@@ -236,7 +239,15 @@ fn draw_help(frame: &mut Frame, app: &App, theme: Theme, size: Rect) {
     } else {
         lines.push(Line::default());
     }
-    lines.push(Line::styled(help::LEGEND, theme.label()));
+    lines.extend(notes.into_iter().map(|n| Line::styled(n, theme.label())));
+    // As tall as what it holds, centred; the whole screen when that is more.
+    let height = (lines.len() as u16 + 2).min(size.height);
+    let area = Rect::new(
+        (size.width - width) / 2,
+        (size.height - height) / 2,
+        width,
+        height,
+    );
     let block = Block::bordered()
         .title(format!(
             " Keys in {} mode ({}): any other key closes ",

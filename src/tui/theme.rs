@@ -60,6 +60,14 @@ impl Theme {
             Style::new().add_modifier(Modifier::BOLD | Modifier::REVERSED)
         }
     }
+    /// The newest lidar scan's hits (red, as laser scans are commonly drawn).
+    pub fn scan(self) -> Style {
+        self.fg(Color::LightRed)
+    }
+    /// Where the robot has driven.
+    pub fn trail(self) -> Style {
+        self.fg(Color::Blue)
+    }
     pub fn robot(self) -> Style {
         self.fg(Color::Cyan).add_modifier(Modifier::BOLD)
     }

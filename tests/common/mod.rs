@@ -127,7 +127,12 @@ pub fn screen(terminal: &Terminal<TestBackend>) -> String {
 
 /// The console drawn once on a 100x30 test terminal, as text.
 pub fn render(app: &App) -> String {
-    let mut terminal = Terminal::new(TestBackend::new(100, 30)).unwrap();
+    render_at(app, 100, 30)
+}
+
+/// The console drawn once on a `width` x `height` test terminal, as text.
+pub fn render_at(app: &App, width: u16, height: u16) -> String {
+    let mut terminal = Terminal::new(TestBackend::new(width, height)).unwrap();
     terminal
         .draw(|frame| {
             navdeck::tui::draw::draw(frame, app, navdeck::tui::theme::Theme::from_env(None))

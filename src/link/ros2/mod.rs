@@ -19,6 +19,7 @@ use super::{
     Command, GripperCommand, LinkError, Notice, Picture, RobotLink, SensorFrame, WheelTravel,
 };
 use crate::geometry::Pose2;
+use crate::link::rate::RateMeter;
 use cmd_vel::CmdVelPolicy;
 use config::{CmdVelType, Ros2Config};
 use inbound::Refusal;
@@ -46,6 +47,16 @@ pub struct Ros2Options {
     pub max_wheel_speed: f64,
 }
 
+/// What discovery showed of the robot's side: other participants, and the endpoints on
+/// the topics navdeck needs.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+struct Discovered {
+    participants: usize,
+    cmd_vel_readers: usize,
+    odom_writers: usize,
+    scan_writers: usize,
+}
+
 /// What cmd_vel's subscribers were seen to read.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 enum Peer {
@@ -70,6 +81,13 @@ pub struct Ros2Link {
     gripper: Publisher<msgs::Float64>,
     rviz: RvizPublishers,
     cmd_vel_dds: String,
+    odom_dds: String,
+    scan_dds: String,
+    domain: u16,
+    /// What discovery last showed of the other participants.
+    discovered: Discovered,
+    odom_rate: RateMeter,
+    scan_rate: RateMeter,
     policy: CmdVelPolicy,
     peer: Peer,
     warned_no_peer: bool,
@@ -149,11 +167,13 @@ impl Ros2Link {
             qos.clone(),
         )?;
         let rviz = RvizPublishers::open(&mut f, qos.clone(), latched)?;
-        let cmd_vel_dds = topic_name(&namespace, "cmd_vel_topic", &c.cmd_vel_topic)?.to_dds_name(
-            "rt",
-            &NodeName::new(&namespace, "navdeck").expect("checked above"),
-            "",
-        );
+        let node_name = NodeName::new(&namespace, "navdeck").expect("checked above");
+        let dds_name = |field: &str, topic: &str| {
+            topic_name(&namespace, field, topic).map(|t| t.to_dds_name("rt", &node_name, ""))
+        };
+        let cmd_vel_dds = dds_name("cmd_vel_topic", &c.cmd_vel_topic)?;
+        let odom_dds = dds_name("odom_topic", &c.odom_topic)?;
+        let scan_dds = dds_name("scan_topic", &c.scan_topic)?;
         let label = format!(
             "ros2 d{}{}",
             options.domain,
@@ -177,6 +197,12 @@ impl Ros2Link {
             gripper,
             rviz,
             cmd_vel_dds,
+            odom_dds,
+            scan_dds,
+            domain: options.domain,
+            discovered: Discovered::default(),
+            odom_rate: RateMeter::default(),
+            scan_rate: RateMeter::default(),
             policy: CmdVelPolicy::default(),
             peer: Peer::Unknown,
             warned_no_peer: false,
@@ -226,6 +252,7 @@ impl Ros2Link {
             }
             self.odom_pose = Some((pose, stamp));
             self.odom_at = Some(now);
+            self.odom_rate.note(now);
         }
     }
 
@@ -272,9 +299,10 @@ impl Ros2Link {
         self.elapsed += dt;
     }
 
-    fn take_scan(&mut self) -> Option<crate::link::LaserScan> {
+    fn take_scan(&mut self, now: f64) -> Option<crate::link::LaserScan> {
         let mut newest = None;
         for msg in take_all(&self.scan, "scan", &mut self.notices) {
+            self.scan_rate.note(now);
             match inbound::scan(&msg) {
                 Ok(s) => newest = Some(s),
                 Err(why) => self.refuse("scan", why),
@@ -299,7 +327,39 @@ impl Ros2Link {
             .as_ref()
             .map(|p| p.guid().prefix)
             .or_else(|| self.stamped.as_ref().map(|p| p.guid().prefix));
-        let readers = self.context.domain_participant().discovered_readers();
+        let participant = self.context.domain_participant();
+        let readers = participant.discovered_readers();
+        let writers = participant.discovered_writers();
+        let mut peers: Vec<_> = readers
+            .iter()
+            .map(|r| r.reader_proxy.remote_reader_guid.prefix)
+            .chain(
+                writers
+                    .iter()
+                    .map(|w| w.writer_proxy.remote_writer_guid.prefix),
+            )
+            .filter(|p| Some(*p) != own)
+            .collect();
+        peers.sort();
+        peers.dedup();
+        let writing = |topic: &str| {
+            writers
+                .iter()
+                .filter(|w| w.publication_topic_data.topic_name == topic)
+                .count()
+        };
+        self.discovered = Discovered {
+            participants: peers.len(),
+            cmd_vel_readers: readers
+                .iter()
+                .filter(|r| {
+                    r.subscription_topic_data.topic_name == self.cmd_vel_dds
+                        && Some(r.reader_proxy.remote_reader_guid.prefix) != own
+                })
+                .count(),
+            odom_writers: writing(&self.odom_dds),
+            scan_writers: writing(&self.scan_dds),
+        };
         let twist_type = dds_type("geometry_msgs", "Twist");
         let stamped_type = dds_type("geometry_msgs", "TwistStamped");
         let mut seen = Peer::Unknown;
@@ -413,13 +473,21 @@ impl RobotLink for Ros2Link {
         let opened = *self.opened_at.get_or_insert(now);
         self.take_joints(now);
         self.take_odometry(now);
-        let scan = self.take_scan();
+        let scan = self.take_scan(now);
         self.check_peer(now);
         let topic = &self.config.odom_topic;
         match self.odom_at {
             None => {
+                // Whether anything publishes it tells a wrong domain or topic from QoS.
+                let hint = match self.discovered.odom_writers {
+                    0 => format!(
+                        "nothing publishes it in domain {} ({} other participants)",
+                        self.domain, self.discovered.participants
+                    ),
+                    n => format!("{n} publisher found, nothing received: check [ros2.qos]"),
+                };
                 return Err(LinkError::Lost(format!(
-                    "waiting for odometry on {topic} ({:.1} s)",
+                    "waiting for odometry on {topic} ({:.1} s): {hint}",
                     now - opened
                 )));
             }
@@ -443,6 +511,47 @@ impl RobotLink for Ros2Link {
             gripper: None,
             camera: None,
         })
+    }
+
+    fn details(&self, now: f64) -> Vec<(&'static str, String)> {
+        let d = &self.discovered;
+        let rate = |meter: &RateMeter, writers: usize| match meter.rate(now) {
+            Some(hz) => format!("{hz:.1} Hz"),
+            None if writers == 0 => "no publisher".to_string(),
+            None => format!("silent, {writers} pub"),
+        };
+        let c = &self.config;
+        let plural = |n: usize, what: &str| format!("{n} {what}{}", if n == 1 { "" } else { "s" });
+        let namespace = if c.namespace.is_empty() {
+            String::new()
+        } else {
+            format!(" {}", c.namespace)
+        };
+        let readers = match (d.cmd_vel_readers, self.peer) {
+            (0, _) => "no subscriber".to_string(),
+            (n, Peer::Stamped) => format!("{} (TwistStamped)", plural(n, "reader")),
+            (n, Peer::Twist) => format!("{} (Twist)", plural(n, "reader")),
+            (n, Peer::Unknown) => plural(n, "reader"),
+        };
+        vec![
+            (
+                "DDS",
+                format!(
+                    "domain {}{namespace} · {}",
+                    self.domain,
+                    plural(d.participants, "peer")
+                ),
+            ),
+            (
+                "Odom",
+                format!("{} {}", c.odom_topic, rate(&self.odom_rate, d.odom_writers)),
+            ),
+            (
+                "Scan",
+                format!("{} {}", c.scan_topic, rate(&self.scan_rate, d.scan_writers)),
+            ),
+            ("cmd_vel", readers),
+        ]
     }
 
     fn take_notes(&mut self) -> Vec<Notice> {

@@ -66,7 +66,7 @@ fn draw_ellipse(
 }
 
 /// Sets the braille dot under `p`, keeping the dots already in its cell.
-fn set_dot(p: Point2, vp: &Viewport, style: Style, buf: &mut Buffer) {
+pub(super) fn set_dot(p: Point2, vp: &Viewport, style: Style, buf: &mut Buffer) {
     let Some(cell) = vp.cell(p) else { return };
     let col = ((p.x - vp.left) / (vp.scale / 2.0)).floor() as i64;
     let row = ((vp.top - p.y) / (vp.scale / 2.0)).floor() as i64;

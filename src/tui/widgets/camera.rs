@@ -13,13 +13,14 @@ use ratatui::text::Line;
 /// Text rows above the thumbnail.
 pub const TEXT_ROWS: u16 = 2;
 
-/// The panel's text: rate and latency, then the IDs.
-pub fn lines(app: &App, theme: Theme) -> Vec<Line<'static>> {
+/// The panel's text, `width` columns at most: rate and latency, then the IDs.
+pub fn lines(app: &App, theme: Theme, width: usize) -> Vec<Line<'static>> {
     let feed = app.camera();
+    let fitted = |text: String, style| Line::styled(super::text::fit(&text, width), style);
     let Some(status) = &feed.status else {
         return vec![
-            Line::styled("no camera frames", theme.label()),
-            Line::styled("(--sim-camera or a camera source)", theme.label()),
+            fitted("no camera frames".into(), theme.label()),
+            fitted("(--sim-camera or --camera SRC)".into(), theme.label()),
         ];
     };
     let latency = status
@@ -45,8 +46,8 @@ pub fn lines(app: &App, theme: Theme) -> Vec<Line<'static>> {
         None => format!("{:.1} Hz  detect {latency}", feed.rate),
     };
     vec![
-        Line::styled(first, theme.value()),
-        Line::styled(format!("IDs {ids}{refused}"), theme.value()),
+        fitted(first, theme.value()),
+        fitted(format!("IDs {ids}{refused}"), theme.value()),
     ]
 }
 

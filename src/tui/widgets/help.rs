@@ -1,24 +1,145 @@
 //! The help overlay: the active mode's bindings, generated from the keymap, and a legend.
 
 use crate::app::App;
+use crate::keymap::{Action, Key, KeyCode};
 use crate::tui::theme::Theme;
 use ratatui::text::{Line, Span};
 
-/// Lines of `key(s)  description`, one per bound action.
+/// Columns of a help entry: keys in 9 (or more, for a family), then the description.
+pub const ENTRY_WIDTH: usize = 36;
+const KEY_WIDTH: usize = 9;
+
+/// Actions the help shows as one entry when every one of them is bound: their keys in
+/// this order, one description.
+const FAMILIES: [(&[Action], &str); 9] = [
+    (
+        &[
+            Action::Forward,
+            Action::Backward,
+            Action::TurnLeft,
+            Action::TurnRight,
+        ],
+        "drive, while held",
+    ),
+    (
+        &[
+            Action::ForwardLeft,
+            Action::ForwardRight,
+            Action::BackwardLeft,
+            Action::BackwardRight,
+        ],
+        "drive and turn, while held",
+    ),
+    (&[Action::SpeedUp, Action::SpeedDown], "all speeds +/-10 %"),
+    (
+        &[Action::LinearUp, Action::LinearDown],
+        "linear speed +/-10 %",
+    ),
+    (
+        &[Action::AngularUp, Action::AngularDown],
+        "turn rate +/-10 %",
+    ),
+    (&[Action::ZoomIn, Action::ZoomOut], "zoom in / out"),
+    (
+        &[
+            Action::PanLeft,
+            Action::PanRight,
+            Action::PanUp,
+            Action::PanDown,
+        ],
+        "pan the map",
+    ),
+    (
+        &[Action::LogOlder, Action::LogNewer],
+        "log: page back / forward",
+    ),
+    (
+        &[
+            Action::CursorLeft,
+            Action::CursorRight,
+            Action::CursorUp,
+            Action::CursorDown,
+        ],
+        "move the goal cursor",
+    ),
+];
+
+/// A key as the help writes it: arrows and page keys as their symbols, else its name.
+fn short(key: &Key) -> String {
+    let plain = !key.ctrl && !key.alt;
+    match (plain, key.code) {
+        (true, KeyCode::Left) => "←".into(),
+        (true, KeyCode::Right) => "→".into(),
+        (true, KeyCode::Up) => "↑".into(),
+        (true, KeyCode::Down) => "↓".into(),
+        (true, KeyCode::PageUp) => "PgUp".into(),
+        (true, KeyCode::PageDown) => "PgDn".into(),
+        _ => key.to_string(),
+    }
+}
+
+/// The help's entries for the active mode, as (keys, description), in `Action::ALL`
+/// order; a family whose keys and description fit in one entry is shown as one.
+pub fn entry_texts(app: &App) -> Vec<(String, String)> {
+    let bindings = app.keymap().bindings(app.pilot().mode());
+    let keys_of = |action: Action| {
+        bindings
+            .iter()
+            .find(|(a, _)| *a == action)
+            .map(|(_, keys)| keys.iter().map(short).collect::<Vec<_>>().join(" "))
+    };
+    let mut entries = Vec::new();
+    let mut done: Vec<Action> = Vec::new();
+    for (action, keys) in &bindings {
+        if done.contains(action) {
+            continue;
+        }
+        let family = FAMILIES
+            .iter()
+            .find(|(members, _)| members.contains(action));
+        if let Some((members, text)) = family {
+            let keys: Option<Vec<String>> = members.iter().map(|&m| keys_of(m)).collect();
+            if let Some(keys) = keys {
+                let keys = keys.join(" ");
+                let width = keys.chars().count().max(KEY_WIDTH - 1) + 1 + text.chars().count();
+                if width <= ENTRY_WIDTH {
+                    done.extend(members.iter());
+                    entries.push((keys, text.to_string()));
+                    continue;
+                }
+            }
+        }
+        let names: Vec<String> = keys.iter().map(short).collect();
+        entries.push((names.join(" "), action.description().to_string()));
+    }
+    entries
+}
+
+/// Lines of `key(s)  description`, one per entry.
 pub fn entries(app: &App, theme: Theme) -> Vec<Line<'static>> {
-    app.keymap()
-        .bindings(app.pilot().mode())
+    entry_texts(app)
         .into_iter()
-        .map(|(action, keys)| {
-            let names: Vec<String> = keys.iter().map(|k| k.to_string()).collect();
+        .map(|(keys, text)| {
             Line::from(vec![
-                Span::styled(format!("{:<9}", names.join(" ")), theme.title()),
-                Span::styled(action.description().to_string(), theme.value()),
+                Span::styled(format!("{keys:<w$} ", w = KEY_WIDTH - 1), theme.title()),
+                Span::styled(text, theme.value()),
             ])
         })
         .collect()
 }
 
 /// What the map's glyphs mean.
-pub const LEGEND: &str =
-    "@ robot  o truth  + 95% ellipse  # wall  * boundary  x obstacle  R/B gate  r/b block";
+pub const LEGEND: &str = "Map: @ robot (% its footprint, zoomed in)  o true pose  + 95% ellipse  \
+     # wall  : near a wall  . free  * boundary  x obstacle  R/B gate  r/b block  \
+     ' lidar hit  · trail  • path  G goal  X goal cursor  ? frontier  ! exploring to";
+
+/// How driving by keys works, for users of teleop_twist_keyboard and the like, where a
+/// key press sets a speed that holds until the next key.
+pub fn driving(app: &App) -> String {
+    format!(
+        "Driving: the robot moves only while a drive key is held; let go, or no key repeat \
+         for {:.1} s, and it stops (the deadman). x stops in every mode and pauses \
+         autonomy; space is the emergency stop, and only space again releases it.",
+        app.config().teleop.deadman_timeout
+    )
+}

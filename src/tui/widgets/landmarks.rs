@@ -13,7 +13,7 @@ use ratatui::text::Line;
 pub fn title(app: &App, landmarks: &[LandmarkEstimate]) -> String {
     let listed = landmarks.len();
     let what = if app.view().table.targets_only {
-        "gates & blocks"
+        "gates+blocks"
     } else {
         "all"
     };
@@ -22,7 +22,7 @@ pub fn title(app: &App, landmarks: &[LandmarkEstimate]) -> String {
     } else {
         app.view().table.selected.min(listed - 1) + 1
     };
-    format!(" Landmarks {at}/{listed} {what} · ↑↓ enter plans · tab ")
+    format!(" Landmarks {at}/{listed} {what} · ↑↓ enter · tab ")
 }
 
 /// Header and `rows` rows of `landmarks` at most, the chosen one highlighted and in view.

@@ -1,6 +1,7 @@
 //! The log pane: newest lines at the bottom, coloured by level; paged back, filtered by
-//! level or text, and a line too long for the pane ends in `…`.
+//! level or text; a line too long for the pane wraps under its text.
 
+use super::text::{fit, wrap};
 use crate::app::App;
 use crate::app::log::{Entry, format_time};
 use crate::data::Level;
@@ -25,43 +26,60 @@ pub fn title(app: &App) -> String {
     format!(" {} ", parts.join(" · "))
 }
 
-/// The `rows` lines the pane shows, each at most `width` columns.
+/// Rows one entry may take; the rest of a longer one is cut with `…` (the session's log
+/// file has it whole).
+const MAX_ROWS: usize = 3;
+
+/// The `rows` lines the pane shows, each at most `width` columns: the newest entries,
+/// each wrapped under its text, and the end of the one before when only part fits.
 pub fn lines(app: &App, theme: Theme, rows: usize, width: usize) -> Vec<Line<'static>> {
     let view = &app.view().log;
     let shown: Vec<&Entry> = app.log_book().iter().filter(|e| view.shows(e)).collect();
     let end = shown.len().saturating_sub(view.back);
-    let start = end.saturating_sub(rows);
-    shown[start..end]
-        .iter()
-        .map(|e| line(e, theme, width))
-        .collect()
+    let mut out: Vec<Line<'static>> = Vec::new();
+    for e in shown[..end].iter().rev() {
+        let mut entry = entry_lines(e, theme, width);
+        let room = rows - out.len();
+        if entry.len() > room {
+            entry.drain(..entry.len() - room);
+        }
+        out.splice(0..0, entry);
+        if out.len() == rows {
+            break;
+        }
+    }
+    out
 }
 
-fn line(e: &Entry, theme: Theme, width: usize) -> Line<'static> {
+/// One entry: time and level, then its text wrapped in the columns left, at most
+/// `MAX_ROWS` rows.
+fn entry_lines(e: &Entry, theme: Theme, width: usize) -> Vec<Line<'static>> {
     let style = theme.level(e.level);
-    let head = format!("{} {} ", format_time(e.time), e.level.tag());
+    let time = format_time(e.time);
+    let head = time.chars().count() + e.level.tag().chars().count() + 2;
     let mut text = e.text.clone();
     if e.repeats > 1 {
         text.push_str(&format!("  ×{}", e.repeats));
     }
-    let room = width.saturating_sub(head.chars().count());
-    Line::from(vec![
-        Span::styled(format_time(e.time), theme.label()),
-        Span::raw(" "),
-        Span::styled(e.level.tag(), style),
-        Span::raw(" "),
-        Span::styled(fit(&text, room), style),
-    ])
-}
-
-/// `text` as it fits in `room` columns: cut with `…` as its last column when too long.
-pub fn fit(text: &str, room: usize) -> String {
-    if text.chars().count() <= room {
-        return text.to_string();
+    let room = width.saturating_sub(head).max(1);
+    let mut parts = wrap(&text, room);
+    if parts.len() > MAX_ROWS {
+        let rest = parts.split_off(MAX_ROWS - 1).join(" ");
+        parts.push(fit(&rest, room));
     }
-    let mut out: String = text.chars().take(room.saturating_sub(1)).collect();
-    if room > 0 {
-        out.push('…');
+    let mut lines = Vec::new();
+    for (k, part) in parts.into_iter().enumerate() {
+        lines.push(if k == 0 {
+            Line::from(vec![
+                Span::styled(time.clone(), theme.label()),
+                Span::raw(" "),
+                Span::styled(e.level.tag(), style),
+                Span::raw(" "),
+                Span::styled(part, style),
+            ])
+        } else {
+            Line::from(vec![Span::raw(" ".repeat(head)), Span::styled(part, style)])
+        });
     }
-    out
+    lines
 }

@@ -62,6 +62,7 @@ pub fn render(app: &App, theme: Theme, area: Rect, buf: &mut Buffer) {
     if app.view().show_truth {
         draw_world_objects(app, &vp, theme, buf);
     }
+    super::sensing::render(app, &vp, theme, buf);
     super::path::render(app, &vp, theme, buf);
     super::explore::render(app, &vp, theme, buf);
     super::beliefs::render(app, &vp, theme, buf);
@@ -70,6 +71,7 @@ pub fn render(app: &App, theme: Theme, area: Rect, buf: &mut Buffer) {
     {
         draw_robot(truth, 'o', &vp, theme.truth(), buf);
     }
+    super::sensing::footprint(app, &vp, theme, buf);
     draw_robot(app.pilot().estimated_pose(), '@', &vp, theme.robot(), buf);
 }
 

@@ -8,6 +8,8 @@ pub mod landmarks;
 pub mod log;
 pub mod map;
 pub mod path;
+pub mod sensing;
 pub mod status;
+pub mod text;
 pub mod title;
 pub mod viewport;

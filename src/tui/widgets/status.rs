@@ -35,21 +35,11 @@ fn minutes_text(t: f64) -> String {
     format!("{}:{:02}", s / 60, s % 60)
 }
 
-/// `text` cut at the last space that keeps the first part within `width` characters.
+/// `text` as a first line within `width` columns, broken between words, and the rest.
 fn split_words(text: &str, width: usize) -> (String, String) {
-    if text.chars().count() <= width {
-        return (text.to_string(), String::new());
-    }
-    let cut = text
-        .char_indices()
-        .filter(|&(i, c)| c == ' ' && text[..i].chars().count() <= width)
-        .map(|(i, _)| i)
-        .next_back()
-        .unwrap_or(width.min(text.len()));
-    (
-        text[..cut].to_string(),
-        text[cut..].trim_start().to_string(),
-    )
+    let mut lines = super::text::wrap(text, width).into_iter();
+    let first = lines.next().unwrap_or_default();
+    (first, lines.collect::<Vec<_>>().join(" "))
 }
 
 /// `text`, or a dash when there is nothing to list.
@@ -103,12 +93,18 @@ fn rows(app: &App, theme: Theme, width: usize) -> Vec<Line<'static>> {
     rows.extend(navigation_rows(app, theme, width.saturating_sub(LABEL)));
     rows.push(row(theme, "Link", format!("{} {link}", app.link().label())));
     if let LinkStatus::Lost(reason) = app.pilot().link_status() {
-        // Why, as the link says it now (its waiting time counts up), over two rows.
-        let (first, rest) = split_words(reason, width.saturating_sub(LABEL));
-        rows.push(row(theme, "", first));
-        if !rest.is_empty() {
-            rows.push(row(theme, "", rest));
+        // Why, as the link says it now (its waiting time counts up), over up to three
+        // rows; the Link row already says it is lost.
+        let reason = reason.strip_prefix("link lost: ").unwrap_or(reason);
+        let mut parts = super::text::wrap(reason, width.saturating_sub(LABEL));
+        if parts.len() > 3 {
+            let rest = parts.split_off(2).join(" ");
+            parts.push(rest);
         }
+        rows.extend(parts.into_iter().map(|p| row(theme, "", p)));
+    }
+    for (label, value) in app.link().details(app.now()) {
+        rows.push(row(theme, label, value));
     }
     rows.push(row(theme, "Pose", pose_text(app.pilot().estimated_pose())));
     let (sx, sy, st) = app.pilot().pose_sigma();
@@ -117,7 +113,7 @@ fn rows(app: &App, theme: Theme, width: usize) -> Vec<Line<'static>> {
         "Sigma",
         format!("{sx:6.3} {sy:6.3} {:4.1}°", st.to_degrees()),
     ));
-    if let Some(truth) = app.true_pose() {
+    if let Some(truth) = app.true_pose().filter(|_| app.view().show_truth) {
         rows.push(row(theme, "Truth", pose_text(truth)));
         let est = app.pilot().estimated_pose();
         let dtheta = crate::geometry::wrap_angle(truth.theta - est.theta);
@@ -188,8 +184,17 @@ fn rows(app: &App, theme: Theme, width: usize) -> Vec<Line<'static>> {
             format!("{} collisions", twin.collisions()),
         ));
     }
-    let held: Vec<&str> = app.held_keys().iter().map(|a| a.name()).collect();
-    rows.push(row(theme, "Driving", dash_if_empty(&held, held.join("+"))));
+    // In words, as the help says them: "forward + turn left".
+    let held: Vec<String> = app
+        .held_keys()
+        .iter()
+        .map(|a| a.name().replace('_', " "))
+        .collect();
+    rows.push(row(
+        theme,
+        "Driving",
+        dash_if_empty(&held, held.join(" + ")),
+    ));
     let seen: Vec<String> = app.in_view().iter().map(|id| id.to_string()).collect();
     rows.push(row(
         theme,

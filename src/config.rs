@@ -28,12 +28,14 @@ pub enum ConfigError {
     },
     #[error("config {path}: {message}")]
     Parse { path: PathBuf, message: String },
-    #[error("config {path}: field `{field}` = {value}: {reason}")]
+    #[error("config {path}{}: field `{field}` = {value}: {reason}", line.map(|l| format!(":{l}")).unwrap_or_default())]
     Invalid {
         path: PathBuf,
+        /// The line that sets the field, when the file sets it.
+        line: Option<usize>,
         field: String,
         value: String,
-        reason: &'static str,
+        reason: std::borrow::Cow<'static, str>,
     },
 }
 
@@ -73,10 +75,11 @@ impl Config {
 
     /// Reads and validates a config file.
     pub fn load(path: &Path) -> Result<Config, ConfigError> {
-        let text = std::fs::read_to_string(path).map_err(|source| ConfigError::Read {
-            path: path.to_path_buf(),
-            error: source,
-        })?;
+        let text = crate::data::files::read_text_limited(path, crate::data::files::TEXT_LIMIT)
+            .map_err(|source| ConfigError::Read {
+                path: path.to_path_buf(),
+                error: source,
+            })?;
         Self::parse(&text, path)
     }
 
@@ -86,7 +89,22 @@ impl Config {
             path: path.to_path_buf(),
             message: e.to_string().trim_end().to_string(),
         })?;
-        config.validate(path)?;
+        config.validate(path).map_err(|e| match e {
+            ConfigError::Invalid {
+                path,
+                field,
+                value,
+                reason,
+                ..
+            } => ConfigError::Invalid {
+                line: line_of(text, &field),
+                path,
+                field,
+                value,
+                reason,
+            },
+            other => other,
+        })?;
         Ok(config)
     }
 
@@ -111,14 +129,47 @@ impl Config {
             if let Err((field, value, reason)) = result {
                 return Err(ConfigError::Invalid {
                     path: path.to_path_buf(),
+                    line: None,
                     field: format!("{section}.{field}"),
-                    value: value.to_string(),
+                    value: format!("{value:?}"),
                     reason,
                 });
             }
         }
         Ok(())
     }
+}
+
+/// The line (from 1) of TOML `text` that sets the dotted `field` ("sim.camera.min_range";
+/// an index such as "[0]" is dropped), looked for under its table header or as a dotted
+/// key under a parent table.
+fn line_of(text: &str, field: &str) -> Option<usize> {
+    let field = field.split('[').next().unwrap_or(field);
+    let mut table = String::new();
+    for (n, line) in text.lines().enumerate() {
+        let line = line.trim();
+        if let Some(header) = line.strip_prefix('[') {
+            table = header.trim_end_matches(']').trim().to_string();
+            continue;
+        }
+        let Some((key, _)) = line.split_once('=') else {
+            continue;
+        };
+        let key: String = key
+            .split('.')
+            .map(|k| k.trim().trim_matches('"'))
+            .collect::<Vec<_>>()
+            .join(".");
+        let full = if table.is_empty() {
+            key
+        } else {
+            format!("{table}.{key}")
+        };
+        if full == field {
+            return Some(n + 1);
+        }
+    }
+    None
 }
 
 #[cfg(test)]
@@ -158,24 +209,39 @@ mod tests {
     #[test]
     fn every_section_names_its_bad_field_the_same_way() {
         let cases = [
-            ("[robot]\ncontrol_period = 0.0", "robot.control_period", "0"),
+            (
+                "[robot]\ncontrol_period = 0.0",
+                "robot.control_period",
+                "0.0",
+            ),
             ("[teleop]\nspeed_step = 0.9", "teleop.speed_step", "0.9"),
-            ("[race]\ncorrect_every = 0", "race.correct_every", "0"),
-            ("[slam]\ngate_chi2 = -1.0", "slam.gate_chi2", "-1"),
-            ("[sim.camera]\nfov_deg = 400.0", "sim.camera.fov_deg", "400"),
+            ("[race]\ncorrect_every = 0", "race.correct_every", "0.0"),
+            ("[slam]\ngate_chi2 = -1.0", "slam.gate_chi2", "-1.0"),
+            (
+                "[sim.camera]\nfov_deg = 400.0",
+                "sim.camera.fov_deg",
+                "400.0",
+            ),
             (
                 "[sim.encoders]\nslip_probability = 1.5",
                 "sim.encoders.slip_probability",
                 "1.5",
             ),
-            ("[sim.lidar]\nbeams = 0", "sim.lidar.beams", "0"),
+            ("[sim.lidar]\nbeams = 0", "sim.lidar.beams", "0.0"),
             ("[map]\nresolution = -0.05", "map.resolution", "-0.05"),
+            ("[slam]\nmotor_std_deg = nan", "slam.motor_std_deg", "NaN"),
+            (
+                "[robot]\ncontrol_period = 1e-300",
+                "robot.control_period",
+                "1e-300",
+            ),
         ];
         for (text, field, value) in cases {
             let err = Config::parse(text, Path::new("bad.toml"))
                 .unwrap_err()
                 .to_string();
-            let expected = format!("config bad.toml: field `{field}` = {value}:");
+            // The line that sets it, too.
+            let expected = format!("config bad.toml:2: field `{field}` = {value}:");
             assert!(err.starts_with(&expected), "{text}: {err}");
         }
     }

@@ -22,3 +22,4 @@ pub mod session;
 pub mod sim;
 pub mod slam;
 pub mod tui;
+pub mod world_fit;

@@ -26,26 +26,34 @@ use world_command::{ShapeArgs, WorldCommand, generate_error};
 mod world_command;
 
 /// Writes to standard output. A reader that has gone (`navdeck map show ... | head`, a
-/// dropped SSH session) is no reason to panic: what it no longer reads is lost, nothing else.
+/// dropped SSH session) is no reason to panic: what it no longer reads is lost, nothing
+/// else. Control characters (from a world's name, say) reach the terminal escaped.
 macro_rules! say {
     ($($arg:tt)*) => {{
-        let _ = write!(std::io::stdout(), $($arg)*);
+        let text = navdeck::data::printable::printable(&format!($($arg)*), None);
+        let _ = write!(std::io::stdout(), "{text}");
     }};
 }
 
 /// `say!` with a newline.
 macro_rules! sayln {
     ($($arg:tt)*) => {{
-        let _ = writeln!(std::io::stdout(), $($arg)*);
+        let text = navdeck::data::printable::printable(&format!($($arg)*), None);
+        let _ = writeln!(std::io::stdout(), "{text}");
     }};
 }
 
-/// A line on standard error, which may have gone with the terminal.
+/// A line on standard error, which may have gone with the terminal: escaped as `say!`
+/// is, and each line cut to `ERROR_LINE` characters (an error may quote a whole input).
 macro_rules! say_err {
     ($($arg:tt)*) => {{
-        let _ = writeln!(std::io::stderr(), $($arg)*);
+        let text = navdeck::data::printable::printable(&format!($($arg)*), Some(ERROR_LINE));
+        let _ = writeln!(std::io::stderr(), "{text}");
     }};
 }
+
+/// Characters of an error line shown.
+const ERROR_LINE: usize = 400;
 
 /// A terminal teleop-and-autonomy console for small differential-drive robots.
 ///
@@ -72,7 +80,12 @@ struct Cli {
     world: Option<PathBuf>,
 
     /// Seed for the twin's sensor noise: the same seed replays the same run.
-    #[arg(long, default_value_t = 1, value_name = "N")]
+    #[arg(
+        long,
+        default_value_t = 1,
+        value_name = "N",
+        allow_negative_numbers = true
+    )]
     seed: u64,
 
     /// Robot, teleop and twin parameters (TOML); unset fields keep seed 001's values.
@@ -107,7 +120,8 @@ struct Cli {
     keys: Option<String>,
 
     /// Headless: keys per second of simulated time.
-    #[arg(long, default_value_t = 10.0, value_name = "HZ", requires = "headless")]
+    #[arg(long, default_value_t = 10.0, value_name = "HZ", requires = "headless",
+          value_parser = parse_key_rate, allow_negative_numbers = true)]
     key_rate: f64,
 
     /// Headless: print the report as one JSON object.
@@ -162,7 +176,12 @@ enum MapCommand {
 #[derive(Debug, clap::Args)]
 struct MissionArgs {
     /// The twin's noise seed.
-    #[arg(long, default_value_t = 1, value_name = "N")]
+    #[arg(
+        long,
+        default_value_t = 1,
+        value_name = "N",
+        allow_negative_numbers = true
+    )]
     seed: u64,
     /// Run every seed of a range, e.g. 1..50, on all cores, and print the summary.
     #[arg(long, value_name = "A..B", conflicts_with = "seed")]
@@ -179,7 +198,8 @@ struct MissionArgs {
     #[arg(long, value_name = "FILE")]
     config: Option<PathBuf>,
     /// Give up after this many simulated seconds.
-    #[arg(long, default_value_t = 1200.0, value_name = "S")]
+    #[arg(long, default_value_t = 1200.0, value_name = "S", value_parser = parse_time_limit,
+          allow_negative_numbers = true)]
     time_limit: f64,
     /// Print one JSON object.
     #[arg(long)]
@@ -214,6 +234,29 @@ struct PlanArgs {
     json: bool,
 }
 
+/// A number within lo..=hi, or why not.
+fn bounded(s: &str, lo: f64, hi: f64, unit: &str) -> Result<f64, String> {
+    let v: f64 = s
+        .trim()
+        .parse()
+        .map_err(|_| format!("`{s}` is not a number"))?;
+    if (lo..=hi).contains(&v) {
+        Ok(v)
+    } else {
+        Err(format!("{v:?} {unit} is outside {lo}..={hi}"))
+    }
+}
+
+/// Headless keys per second of simulated time: 0.1 to 1000.
+fn parse_key_rate(s: &str) -> Result<f64, String> {
+    bounded(s, 0.1, 1000.0, "keys a second")
+}
+
+/// A mission's time limit: up to a simulated day.
+fn parse_time_limit(s: &str) -> Result<f64, String> {
+    bounded(s, 1.0, 86_400.0, "s")
+}
+
 fn parse_point(s: &str) -> Result<Point2, String> {
     let parts: Vec<&str> = s.split(',').map(str::trim).collect();
     let [x, y] = parts.as_slice() else {
@@ -240,6 +283,28 @@ fn main() -> ExitCode {
 }
 
 fn real_main(cli: Cli) -> Result<ExitCode> {
+    if let Some(command) = &cli.command {
+        // The console's own options do nothing for a subcommand: say so, never ignore.
+        let given = [
+            ("--config", cli.config.is_some()),
+            ("--world", cli.world.is_some()),
+            ("--keymap", cli.keymap.is_some()),
+            ("--sim-camera", cli.sim_camera),
+            ("--headless", cli.headless),
+            ("--camera", cli.camera.is_some()),
+        ];
+        if let Some((option, _)) = given.iter().find(|(_, on)| *on) {
+            let name = match command {
+                Subcommand::Plan(_) => "plan",
+                Subcommand::Mission(_) => "mission",
+                Subcommand::Map(_) => "map",
+                Subcommand::World(_) => "world",
+            };
+            anyhow::bail!(
+                "{option} before `{name}` is the console's option: give the subcommand's own after it (navdeck {name} --help lists them)"
+            );
+        }
+    }
     match &cli.command {
         Some(Subcommand::Plan(args)) => return run_plan(args),
         Some(Subcommand::Mission(args)) => return run_mission(args),
@@ -332,6 +397,12 @@ fn run_headless(
     } else {
         say!("{}", headless::human(&report));
     }
+    // A save that was asked for and failed fails the run (the log says why).
+    let status = if status == 0 && app.failed_saves() > 0 {
+        1
+    } else {
+        status
+    };
     drop(app);
     Ok(ExitCode::from(status as u8))
 }

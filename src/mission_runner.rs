@@ -303,7 +303,9 @@ pub fn parse_seeds(text: &str) -> Result<Vec<u64>, String> {
                 .parse()
                 .map_err(|_| bad())?;
             if a > b {
-                return Err(bad());
+                return Err(format!(
+                    "`{text}` runs backwards: the first seed must not be above the last ({b}..{a}?)"
+                ));
             }
             Ok((a..=b).collect())
         }

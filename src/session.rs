@@ -119,6 +119,15 @@ impl Session {
                         .with_context(|| format!("cannot use world {}", path.display()))?,
                     (None, None) => World::default_arena(),
                 };
+                crate::world_fit::world_fits(&world, &config).map_err(|why| {
+                    let name = spec
+                        .world
+                        .as_ref()
+                        .map_or("the built-in arena".into(), |p| {
+                            format!("world {}", p.display())
+                        });
+                    anyhow::anyhow!("{name}: {why}")
+                })?;
                 let twin = Twin::new(world, &config.robot, &config.sim, spec.seed);
                 Robot::Twin(Box::new(twin))
             }

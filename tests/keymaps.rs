@@ -115,7 +115,10 @@ fn defaults_have_the_seed_keys() {
         assert_eq!(map.lookup(mode, key("x")), Some(Action::Stop), "{mode:?}");
     }
     assert_eq!(map.lookup(Mode::Manual, key("L")), Some(Action::ToggleScan));
-    assert_eq!(map.lookup(Mode::Manual, key("T")), Some(Action::ToggleTrail));
+    assert_eq!(
+        map.lookup(Mode::Manual, key("T")),
+        Some(Action::ToggleTrail)
+    );
 }
 
 #[test]

@@ -406,8 +406,51 @@ fn a_tiny_plain_pgm_cannot_make_the_reader_reserve_gigabytes() {
     let e = io::decode(
         "image: m.pgm\nresolution: 0.05\norigin: [0, 0, 0]\noccupied_thresh: 0.65\nfree_thresh: 0.196\n",
         Path::new("m.yaml"),
-        &mut |_| Ok(b"P2 20000 20000 255\n1 2 3".to_vec()),
+        &mut |_| Ok(b"P2 8000 8000 255\n1 2 3".to_vec()),
     )
     .unwrap_err();
     assert!(e.to_string().contains("truncated"), "{e}");
+}
+
+/// A symbolic link planted at the save's temporary name makes the save fail with a
+/// message; the link's target is never written.
+#[test]
+fn a_save_never_writes_through_a_planted_link() {
+    let dir = scratch("planted-link");
+    let target = dir.join("elsewhere.txt");
+    std::fs::write(&target, "keep me").unwrap();
+    let path = dir.join("saved.yaml");
+    std::os::unix::fs::symlink(&target, dir.join("saved.yaml.tmp")).unwrap();
+    let err = io::save(&path, &sample()).unwrap_err().to_string();
+    assert!(err.contains("saved.yaml.tmp"), "{err}");
+    assert_eq!(std::fs::read_to_string(&target).unwrap(), "keep me");
+    // A file an interrupted save left behind is no obstacle.
+    let dir = scratch("stale-tmp");
+    let path = dir.join("saved.yaml");
+    std::fs::write(dir.join("saved.yaml.tmp"), "half a save").unwrap();
+    io::save(&path, &sample()).unwrap();
+    assert!(io::load(&path).is_ok());
+}
+
+/// Hostile headers: a map nested ever deeper, a resolution of 1e308, a device as the
+/// image; each refused at once, naming what is wrong.
+#[test]
+fn hostile_map_headers_are_refused_quickly() {
+    let dir = scratch("hostile-headers");
+    let deep = format!(
+        "image: m.pgm\nresolution: {}0.05{}\n",
+        "[".repeat(5000),
+        "]".repeat(5000)
+    );
+    std::fs::write(dir.join("deep.yaml"), deep).unwrap();
+    let err = io::load(&dir.join("deep.yaml")).unwrap_err().to_string();
+    assert!(err.contains("nested"), "{err}");
+    let huge = "image: m.pgm\nresolution: 1e308\norigin: [0, 0, 0]\nnegate: 0\noccupied_thresh: 0.65\nfree_thresh: 0.196\n";
+    std::fs::write(dir.join("huge.yaml"), huge).unwrap();
+    let err = io::load(&dir.join("huge.yaml")).unwrap_err().to_string();
+    assert!(err.contains("resolution") && err.contains("1e308"), "{err}");
+    let device = "image: /dev/zero\nresolution: 0.05\norigin: [0, 0, 0]\nnegate: 0\noccupied_thresh: 0.65\nfree_thresh: 0.196\n";
+    std::fs::write(dir.join("device.yaml"), device).unwrap();
+    let err = io::load(&dir.join("device.yaml")).unwrap_err().to_string();
+    assert!(err.contains("not a regular file"), "{err}");
 }

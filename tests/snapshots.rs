@@ -282,7 +282,13 @@ fn log_paged_back_during_the_mission_120x40() {
 
 #[test]
 fn log_filtered_by_level_80x24() {
-    let steps = vec![press('e'), Step::Wait(60.0), press('m'), press('f'), Step::Wait(0.1)];
+    let steps = vec![
+        press('e'),
+        Step::Wait(60.0),
+        press('m'),
+        press('f'),
+        Step::Wait(0.1),
+    ];
     insta::assert_snapshot!(snapshot_after(80, 24, steps));
 }
 

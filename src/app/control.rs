@@ -46,6 +46,7 @@ impl App {
         self.advance_to(now);
         // Between control steps, still bring what the robot reports up to date.
         self.sense(now);
+        self.poll_picker(false);
         self.refresh_revision();
     }
 

@@ -5,7 +5,8 @@ use super::App;
 use super::log::Level;
 use crate::map::io;
 use crate::pilot::{self, mode::Mode};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
+use std::sync::mpsc::{Receiver, RecvTimeoutError, TryRecvError, channel};
 
 /// One map file in the picker.
 #[derive(Clone, Debug, PartialEq)]
@@ -16,62 +17,116 @@ pub struct MapEntry {
     pub summary: Result<(f64, f64, usize, String), String>,
 }
 
-/// The picker's state.
-#[derive(Clone, Debug, Default)]
+/// The picker's state. The folder is listed on a worker thread (a slow disk or a hostile
+/// file never stalls the console); its list arrives through `pending`.
+#[derive(Debug, Default)]
 pub(super) struct Picker {
     pub entries: Vec<MapEntry>,
     pub selected: usize,
+    pending: Option<(PathBuf, Receiver<Vec<MapEntry>>)>,
+}
+
+/// How long a key that needs the list waits for it, seconds.
+const LIST_WAIT: f64 = 1.0;
+
+/// The maps folder's map files in name order, each summed up from its header.
+fn list_maps(dir: &Path) -> Vec<MapEntry> {
+    let mut entries: Vec<MapEntry> = std::fs::read_dir(dir)
+        .map(|rd| {
+            rd.filter_map(Result::ok)
+                .map(|e| e.path())
+                .filter(|p| p.extension().is_some_and(|x| x == "yaml"))
+                .map(|path| MapEntry {
+                    name: path
+                        .file_stem()
+                        .map_or(String::new(), |s| s.to_string_lossy().into_owned()),
+                    summary: io::summary(&path).map_err(|e| e.to_string()),
+                    path,
+                })
+                .collect()
+        })
+        .unwrap_or_default();
+    entries.sort_by(|a, b| a.name.cmp(&b.name));
+    entries
 }
 
 impl App {
-    /// Lists the maps folder's map files, newest name order, for the picker.
+    /// Starts listing the maps folder for the picker.
     pub(super) fn open_picker(&mut self) {
         let Some(dir) = self.files.maps_dir.clone() else {
             self.picker = Picker::default();
             self.log(Level::Warn, "no maps folder in this session (--maps-dir)");
             return;
         };
-        let mut entries: Vec<MapEntry> = std::fs::read_dir(&dir)
-            .map(|rd| {
-                rd.filter_map(Result::ok)
-                    .map(|e| e.path())
-                    .filter(|p| p.extension().is_some_and(|x| x == "yaml"))
-                    .map(|path| {
-                        let name = path
-                            .file_stem()
-                            .map_or(String::new(), |s| s.to_string_lossy().into_owned());
-                        let summary = io::load(&path)
-                            .map(|m| {
-                                let (w, h) = m.grid.extent();
-                                let extras = m.extras.unwrap_or_default();
-                                (w, h, extras.landmarks.len(), extras.created)
-                            })
-                            .map_err(|e| e.to_string());
-                        MapEntry {
-                            name,
-                            path,
-                            summary,
-                        }
-                    })
-                    .collect()
-            })
-            .unwrap_or_default();
-        entries.sort_by(|a, b| a.name.cmp(&b.name));
-        let count = entries.len();
+        let (send, receive) = channel();
+        let listed = dir.clone();
+        let spawned = std::thread::Builder::new()
+            .name("navdeck-maps".into())
+            .spawn(move || {
+                let _ = send.send(list_maps(&listed));
+            });
+        if let Err(e) = spawned {
+            self.log(
+                Level::Error,
+                format!("load: cannot list {}: {e}", dir.display()),
+            );
+            return;
+        }
         self.picker = Picker {
-            entries,
-            selected: 0,
+            pending: Some((dir, receive)),
+            ..Picker::default()
         };
-        self.log(
-            Level::Info,
-            format!(
-                "load: {count} maps in {}; up/down choose, enter loads, m leaves",
-                dir.display()
-            ),
-        );
+    }
+
+    /// Takes the list once it has arrived; with `wait`, waits up to `LIST_WAIT` for it
+    /// (a key that needs the list).
+    pub(super) fn poll_picker(&mut self, wait: bool) {
+        let Some((dir, receive)) = &self.picker.pending else {
+            return;
+        };
+        let got = if wait {
+            receive.recv_timeout(std::time::Duration::from_secs_f64(LIST_WAIT))
+        } else {
+            receive.try_recv().map_err(|e| match e {
+                TryRecvError::Empty => RecvTimeoutError::Timeout,
+                TryRecvError::Disconnected => RecvTimeoutError::Disconnected,
+            })
+        };
+        let dir = dir.clone();
+        match got {
+            Ok(entries) => {
+                let count = entries.len();
+                self.picker = Picker {
+                    entries,
+                    ..Picker::default()
+                };
+                self.log(
+                    Level::Info,
+                    format!(
+                        "load: {count} maps in {}; up/down choose, enter loads, m leaves",
+                        dir.display()
+                    ),
+                );
+            }
+            Err(RecvTimeoutError::Timeout) if wait => {
+                self.log(
+                    Level::Warn,
+                    format!("load: still listing {}", dir.display()),
+                );
+            }
+            Err(RecvTimeoutError::Timeout) => {}
+            Err(RecvTimeoutError::Disconnected) => {
+                self.picker.pending = None;
+                self.log(
+                    Level::Error,
+                    format!("load: listing {} failed", dir.display()),
+                );
+            }
+        }
     }
 
     pub(super) fn pick(&mut self, step: isize) {
+        self.poll_picker(true);
         let n = self.picker.entries.len();
         if n > 0 {
             self.picker.selected =
@@ -81,6 +136,7 @@ impl App {
 
     /// Loads the chosen map; a file that cannot be read leaves the current map as it is.
     pub(super) fn load_selected(&mut self) {
+        self.poll_picker(true);
         let Some(entry) = self.picker.entries.get(self.picker.selected).cloned() else {
             self.log(Level::Warn, "no map to load");
             return;
@@ -99,6 +155,11 @@ impl App {
             map: Box::new(map),
             source: entry.path.display().to_string(),
         });
+    }
+
+    /// Whether the picker's list is still being made.
+    pub fn picker_listing(&self) -> bool {
+        self.picker.pending.is_some()
     }
 
     /// The picker's maps and the chosen one, in load mode.

@@ -17,6 +17,8 @@ pub(super) struct Files {
     pub maps_dir: Option<PathBuf>,
     date_source: Option<Box<dyn Fn() -> String + Send>>,
     last_autosave: f64,
+    /// Saves asked for that did not happen: a headless run with one fails.
+    pub failed: u32,
 }
 
 impl Files {
@@ -43,6 +45,19 @@ impl App {
 
     /// Saves the map as `NAME.yaml` + `NAME.pgm` in the maps folder; logs the outcome.
     pub(super) fn save_map(&mut self, name: &str) -> bool {
+        let saved = self.write_map(name);
+        if !saved {
+            self.files.failed += 1;
+        }
+        saved
+    }
+
+    /// Saves asked for this session that failed.
+    pub fn failed_saves(&self) -> u32 {
+        self.files.failed
+    }
+
+    fn write_map(&mut self, name: &str) -> bool {
         if name.is_empty()
             || !name
                 .chars()

@@ -199,42 +199,36 @@ pub use crate::data::check::Invalid;
 impl FollowConfig {
     /// Checks signs and ranges a parser cannot.
     pub fn validate(&self) -> Result<(), Invalid> {
-        let positive = [
-            ("goal_tolerance", self.goal_tolerance),
-            ("min_speed", self.min_speed),
-            ("pid.integral_limit", self.pid.integral_limit),
-            ("pid.waypoint_radius", self.pid.waypoint_radius),
-            ("pid.waypoint_spacing", self.pid.waypoint_spacing),
-            (
-                "pure_pursuit.min_lookahead",
-                self.pure_pursuit.min_lookahead,
-            ),
-            ("pure_pursuit.gain", self.pure_pursuit.gain),
-            ("pure_pursuit.max_angular", self.pure_pursuit.max_angular),
-            ("pure_pursuit.slow_radius", self.pure_pursuit.slow_radius),
-            ("hybrid.lookahead", self.hybrid.lookahead),
-            ("hybrid.heading_exponent", self.hybrid.heading_exponent),
-            ("hybrid.max_accel", self.hybrid.max_accel),
-        ];
-        crate::data::check::all_positive(&positive)?;
-        let non_negative = [
-            ("stop_margin", self.stop_margin),
-            ("pid.kp", self.pid.kp),
-            ("pid.ki", self.pid.ki),
-            ("pid.kd", self.pid.kd),
-            ("pure_pursuit.deadband", self.pure_pursuit.deadband),
-            ("hybrid.kp", self.hybrid.kp),
-            ("hybrid.ki", self.hybrid.ki),
-            ("hybrid.kd", self.hybrid.kd),
-        ];
-        crate::data::check::all_non_negative(&non_negative)?;
+        let (pid, pp, hy) = (&self.pid, &self.pure_pursuit, &self.hybrid);
+        crate::data::check::within(&[
+            ("goal_tolerance", self.goal_tolerance, 0.001, 2.0),
+            ("min_speed", self.min_speed, 0.001, 5.0),
+            ("stop_margin", self.stop_margin, 0.0, 1.0),
+            ("pid.kp", pid.kp, 0.0, 100.0),
+            ("pid.ki", pid.ki, 0.0, 100.0),
+            ("pid.kd", pid.kd, 0.0, 100.0),
+            ("pid.integral_limit", pid.integral_limit, 0.001, 100.0),
+            ("pid.waypoint_radius", pid.waypoint_radius, 0.001, 2.0),
+            ("pid.waypoint_spacing", pid.waypoint_spacing, 0.001, 5.0),
+            ("pure_pursuit.min_lookahead", pp.min_lookahead, 0.01, 5.0),
+            ("pure_pursuit.gain", pp.gain, 0.01, 100.0),
+            ("pure_pursuit.deadband", pp.deadband, 0.0, 1.0),
+            ("pure_pursuit.max_angular", pp.max_angular, 0.01, 20.0),
+            ("pure_pursuit.slow_radius", pp.slow_radius, 0.001, 5.0),
+            ("hybrid.lookahead", hy.lookahead, 0.01, 5.0),
+            ("hybrid.kp", hy.kp, 0.0, 100.0),
+            ("hybrid.ki", hy.ki, 0.0, 100.0),
+            ("hybrid.kd", hy.kd, 0.0, 100.0),
+            ("hybrid.heading_exponent", hy.heading_exponent, 0.01, 10.0),
+            ("hybrid.max_accel", hy.max_accel, 0.01, 20.0),
+        ])?;
         let turn = self.pid.stop_turn_deg;
         if !(turn > 0.0 && turn <= 180.0) {
-            return Err(("pid.stop_turn_deg", turn, "must lie in (0, 180]"));
+            return Err(("pid.stop_turn_deg", turn, "must lie in (0, 180]".into()));
         }
         let smoothing = self.hybrid.smoothing;
         if !(smoothing > 0.0 && smoothing <= 1.0) {
-            return Err(("hybrid.smoothing", smoothing, "must lie in (0, 1]"));
+            return Err(("hybrid.smoothing", smoothing, "must lie in (0, 1]".into()));
         }
         Ok(())
     }
@@ -278,7 +272,7 @@ mod tests {
         c.pid.kd = -0.3;
         assert_eq!(
             c.validate().unwrap_err(),
-            ("pid.kd", -0.3, "must be zero or more")
+            ("pid.kd", -0.3, "must lie in 0..=100".into())
         );
     }
 }

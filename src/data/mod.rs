@@ -6,7 +6,9 @@
 pub mod camera;
 pub mod check;
 pub mod command;
+pub mod files;
 pub mod level;
+pub mod printable;
 pub mod robot;
 pub mod sensors;
 

@@ -40,15 +40,16 @@ impl Default for RobotConfig {
 impl RobotConfig {
     /// Checks what the parser cannot: every size, period and limit positive.
     pub fn validate(&self) -> Result<(), super::check::Invalid> {
-        super::check::all_positive(&[
-            ("wheel_radius", self.wheel_radius),
-            ("track", self.track),
-            ("control_period", self.control_period),
-            ("footprint_radius", self.footprint_radius),
-            ("max_linear", self.max_linear),
-            ("max_angular", self.max_angular),
-            ("max_linear_accel", self.max_linear_accel),
-            ("max_angular_accel", self.max_angular_accel),
+        // Bounds: a small wheeled robot, from a 1 cm toy to a 2 m cart.
+        super::check::within(&[
+            ("wheel_radius", self.wheel_radius, 0.005, 0.5),
+            ("track", self.track, 0.02, 2.0),
+            ("control_period", self.control_period, 0.005, 1.0),
+            ("footprint_radius", self.footprint_radius, 0.01, 2.0),
+            ("max_linear", self.max_linear, 0.01, 5.0),
+            ("max_angular", self.max_angular, 0.1, 20.0),
+            ("max_linear_accel", self.max_linear_accel, 0.01, 20.0),
+            ("max_angular_accel", self.max_angular_accel, 0.1, 100.0),
         ])
     }
 

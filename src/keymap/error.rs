@@ -36,6 +36,12 @@ pub enum KeymapError {
         line: usize,
         name: String,
     },
+    /// The file leaves a mode with no key that quits (and stops the robot).
+    #[error(
+        "{}: no key quits in {mode} mode: keep q or ctrl-c bound to \"quit\" there",
+        path.display()
+    )]
+    NoQuit { path: PathBuf, mode: String },
     #[error("{}:{line}: in [{section}]: {reason}", path.display())]
     BadKey {
         path: PathBuf,

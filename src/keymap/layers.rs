@@ -39,10 +39,11 @@ impl Keymap {
 
     /// The defaults overlaid by the keymap file at `path`.
     pub fn load(path: &Path) -> Result<Keymap, KeymapError> {
-        let text = std::fs::read_to_string(path).map_err(|source| KeymapError::Read {
-            path: path.to_path_buf(),
-            error: source,
-        })?;
+        let text = crate::data::files::read_text_limited(path, crate::data::files::TEXT_LIMIT)
+            .map_err(|source| KeymapError::Read {
+                path: path.to_path_buf(),
+                error: source,
+            })?;
         Keymap::parse_overlay(&text, path)
     }
 
@@ -51,6 +52,15 @@ impl Keymap {
         let mut map = Keymap::default_map();
         map.overlay(text, source)?;
         map.source = source.display().to_string();
+        // Quitting stops the robot: every mode keeps a way out.
+        for mode in Mode::ALL {
+            if !map.bindings(mode).iter().any(|(a, _)| *a == Action::Quit) {
+                return Err(KeymapError::NoQuit {
+                    path: source.to_path_buf(),
+                    mode: mode.label().to_lowercase(),
+                });
+            }
+        }
         Ok(map)
     }
 

@@ -56,34 +56,27 @@ impl Default for MapConfig {
 
 impl MapConfig {
     /// The first field that is out of range: (name in the section, value, reason).
-    pub fn validate(&self) -> Result<(), (&'static str, f64, &'static str)> {
-        let positive = [
-            ("resolution", self.resolution),
-            ("width", self.width),
-            ("height", self.height),
-            ("obstacle_inflation", self.obstacle_inflation),
-            ("block_inflation", self.block_inflation),
-            ("hit_log_odds", f64::from(self.hit_log_odds)),
-        ];
-        crate::data::check::all_positive(&positive)?;
-        let non_negative = [
-            ("lethal_radius", self.lethal_radius),
-            ("block_lethal_radius", self.block_lethal_radius),
-            ("gradient", self.gradient),
-            ("wall_join", self.wall_join),
-            ("autosave_every", self.autosave_every),
-        ];
-        crate::data::check::all_non_negative(&non_negative)?;
-        let miss = f64::from(self.miss_log_odds);
-        if !(miss.is_finite() && miss < 0.0) {
-            return Err(("miss_log_odds", miss, "must be negative"));
-        }
+    pub fn validate(&self) -> Result<(), crate::data::check::Invalid> {
+        crate::data::check::within(&[
+            ("resolution", self.resolution, 0.005, 1.0),
+            ("width", self.width, 0.1, 200.0),
+            ("height", self.height, 0.1, 200.0),
+            ("obstacle_inflation", self.obstacle_inflation, 0.001, 5.0),
+            ("block_inflation", self.block_inflation, 0.001, 5.0),
+            ("hit_log_odds", f64::from(self.hit_log_odds), 0.01, 10.0),
+            ("miss_log_odds", f64::from(self.miss_log_odds), -10.0, -0.01),
+            ("lethal_radius", self.lethal_radius, 0.0, 5.0),
+            ("block_lethal_radius", self.block_lethal_radius, 0.0, 5.0),
+            ("gradient", self.gradient, 0.0, 5.0),
+            ("wall_join", self.wall_join, 0.0, 10.0),
+            ("autosave_every", self.autosave_every, 0.0, 86_400.0),
+        ])?;
         let cells = (self.width / self.resolution) * (self.height / self.resolution);
         if cells > 16.0e6 {
             return Err((
                 "resolution",
                 self.resolution,
-                "makes more than 16 million cells",
+                "makes more than 16 million cells".into(),
             ));
         }
         Ok(())

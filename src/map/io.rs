@@ -113,16 +113,51 @@ const UNKNOWN_PIXEL: u8 = 205;
 
 /// Reads `path` (the YAML) and the image it names.
 pub fn load(path: &Path) -> Result<MapFile, MapFileError> {
-    let text = std::fs::read_to_string(path).map_err(|source| MapFileError::Read {
-        path: path.to_path_buf(),
-        error: source,
-    })?;
+    let text = crate::data::files::read_text_limited(path, crate::data::files::MAP_YAML_LIMIT)
+        .map_err(|source| MapFileError::Read {
+            path: path.to_path_buf(),
+            error: source,
+        })?;
     decode(&text, path, &mut |image_path| {
-        std::fs::read(image_path).map_err(|source| MapFileError::Read {
+        crate::data::files::read_limited(image_path, crate::data::files::MAP_IMAGE_LIMIT).map_err(
+            |source| MapFileError::Read {
+                path: image_path.to_path_buf(),
+                error: source,
+            },
+        )
+    })
+}
+
+/// What the picker lists of a map: its size in metres, landmarks and when it was made,
+/// from the YAML and the image's header alone (no pixels are read).
+pub fn summary(path: &Path) -> Result<(f64, f64, usize, String), MapFileError> {
+    let read = |p: &Path, e| MapFileError::Read {
+        path: p.to_path_buf(),
+        error: e,
+    };
+    let text = crate::data::files::read_text_limited(path, crate::data::files::MAP_YAML_LIMIT)
+        .map_err(|e| read(path, e))?;
+    let mut size = None;
+    let map = decode(&text, path, &mut |image_path| {
+        let head =
+            crate::data::files::read_head(image_path, 4096).map_err(|e| read(image_path, e))?;
+        let (w, h) = pgm::dimensions(&head).map_err(|source| MapFileError::Image {
             path: image_path.to_path_buf(),
             error: source,
-        })
-    })
+        })?;
+        size = Some((w, h));
+        // A one-pixel stand-in: the summary needs no pixels.
+        Ok(pgm::encode(1, 1, &[FREE_PIXEL]))
+    })?;
+    let (w, h) = size.unwrap_or((1, 1));
+    let res = map.grid.resolution;
+    let extras = map.extras.unwrap_or_default();
+    Ok((
+        w as f64 * res,
+        h as f64 * res,
+        extras.landmarks.len(),
+        extras.created,
+    ))
 }
 
 /// Reads a map from its YAML `text` (named `path` in errors), fetching the image it names
@@ -133,6 +168,14 @@ pub fn decode(
     path: &Path,
     read_image: &mut dyn FnMut(&Path) -> Result<Vec<u8>, MapFileError>,
 ) -> Result<MapFile, MapFileError> {
+    if let Some(depth) = too_deep(text) {
+        return Err(MapFileError::Yaml {
+            path: path.to_path_buf(),
+            message: format!(
+                "nested {depth} deep or more: a map YAML is flat (at most {MAX_NESTING})"
+            ),
+        });
+    }
     let yaml: MapYaml = serde_norway::from_str(text).map_err(|e| MapFileError::Yaml {
         path: path.to_path_buf(),
         message: e.to_string(),
@@ -174,10 +217,43 @@ pub fn decode(
         // Image rows run top to bottom; grid rows bottom to top.
         grid.set(k % w, h - 1 - k / w, value);
     }
-    Ok(MapFile {
-        grid,
-        extras: yaml.navdeck,
-    })
+    // What the file says of itself reaches the terminal: made printable.
+    let extras = yaml.navdeck.map(|mut e| {
+        e.created = crate::data::printable::printable(&e.created, Some(64));
+        e
+    });
+    Ok(MapFile { grid, extras })
+}
+
+/// Deepest nesting a map YAML may have (it has two levels: the header and `navdeck`).
+const MAX_NESTING: usize = 16;
+
+/// How deep `text` nests, when deeper than `MAX_NESTING`: brackets and braces outside
+/// quotes, and indentation (two spaces a level), counted before the parser sees them
+/// (a parser's time can grow with the square of the depth).
+fn too_deep(text: &str) -> Option<usize> {
+    let (mut depth, mut quote) = (0usize, None);
+    for c in text.chars() {
+        match (quote, c) {
+            (Some(q), c) if c == q => quote = None,
+            (Some(_), _) => {}
+            (None, '"' | '\'') => quote = Some(c),
+            (None, '[' | '{') => {
+                depth += 1;
+                if depth > MAX_NESTING {
+                    return Some(depth);
+                }
+            }
+            (None, ']' | '}') => depth = depth.saturating_sub(1),
+            _ => {}
+        }
+    }
+    let indent = text
+        .lines()
+        .map(|l| l.len() - l.trim_start_matches([' ', '-']).len())
+        .max()
+        .unwrap_or(0);
+    (indent / 2 > MAX_NESTING).then_some(indent / 2)
 }
 
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -194,18 +270,19 @@ fn check(yaml: &MapYaml, path: &Path) -> Result<Mode, MapFileError> {
         value,
         reason,
     };
-    if !(yaml.resolution.is_finite() && yaml.resolution > 0.0) {
+    // Bounds: a millimetre to ten metres a cell; the origin within 100 km.
+    if !(0.001..=10.0).contains(&yaml.resolution) {
         return Err(field(
             "resolution",
-            yaml.resolution.to_string(),
-            "must be a positive number of metres",
+            format!("{:?}", yaml.resolution),
+            "must lie in 0.001..=10 metres",
         ));
     }
-    if yaml.origin.len() != 3 || yaml.origin.iter().any(|v| !v.is_finite()) {
+    if yaml.origin.len() != 3 || yaml.origin.iter().any(|v| !(-1.0e5..=1.0e5).contains(v)) {
         return Err(field(
             "origin",
             format!("{:?}", yaml.origin),
-            "must be [x, y, yaw], finite numbers",
+            "must be [x, y, yaw], each within -100000..=100000",
         ));
     }
     for (name, value) in [
@@ -312,9 +389,31 @@ fn with_suffix(path: &Path, suffix: &str) -> PathBuf {
     PathBuf::from(name)
 }
 
-/// Writes and syncs a file.
+/// Writes a new file at `path` (a temporary name), never through what is already there:
+/// a regular file left by an interrupted save is removed first; anything else (a symbolic
+/// link planted to redirect the save, a folder, a pipe) is refused. The file is created
+/// exclusively, so nothing put there meanwhile is followed either.
 fn write_synced(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
-    let mut file = std::fs::File::create(path)?;
+    match std::fs::symlink_metadata(path) {
+        Ok(meta) if meta.file_type().is_file() => std::fs::remove_file(path)?,
+        Ok(meta) => {
+            let what = if meta.file_type().is_symlink() {
+                "a symbolic link"
+            } else {
+                "not a regular file"
+            };
+            return Err(std::io::Error::new(
+                std::io::ErrorKind::AlreadyExists,
+                format!("{} is {what}: not writing through it", path.display()),
+            ));
+        }
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => {}
+        Err(e) => return Err(e),
+    }
+    let mut file = std::fs::OpenOptions::new()
+        .write(true)
+        .create_new(true)
+        .open(path)?;
     file.write_all(bytes)?;
     file.sync_all()
 }

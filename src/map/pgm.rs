@@ -2,8 +2,9 @@
 //! because a map file's errors must name what is wrong (a truncated file, a bad maxval, a
 //! size beyond the limit, checked before anything is allocated), and the format is small.
 
-/// The largest side navdeck reads, pixels: 20 000 x 20 000 at 5 cm is a square kilometre.
-pub const MAX_SIDE: usize = 20_000;
+/// The largest side navdeck reads, pixels: 8192 x 8192 at 5 cm is 410 m square, and its
+/// grid stays within a few hundred megabytes.
+pub const MAX_SIDE: usize = 8192;
 
 /// A greyscale image, rows top to bottom.
 #[derive(Clone, Debug, PartialEq)]
@@ -42,17 +43,16 @@ pub enum PgmError {
     },
 }
 
-/// Reads a P5 or P2 image.
-pub fn decode(bytes: &[u8]) -> Result<Pgm, PgmError> {
-    let mut at = 0;
-    let magic = token(bytes, &mut at).unwrap_or_default();
+/// The header: binary or plain, width, height and maxval, checked; `at` ends after it.
+fn header(bytes: &[u8], at: &mut usize) -> Result<(bool, usize, usize, u16), PgmError> {
+    let magic = token(bytes, at).unwrap_or_default();
     let binary = match magic.as_str() {
         "P5" => true,
         "P2" => false,
         _ => return Err(PgmError::Magic(magic)),
     };
     let mut number = |field| {
-        token(bytes, &mut at)
+        token(bytes, at)
             .and_then(|t| t.parse::<u64>().ok())
             .ok_or(PgmError::Header { field })
     };
@@ -62,7 +62,7 @@ pub fn decode(bytes: &[u8]) -> Result<Pgm, PgmError> {
             return Err(PgmError::Value {
                 field,
                 value,
-                reason: "must lie in 1..=20000",
+                reason: "must lie in 1..=8192",
             });
         }
     }
@@ -73,7 +73,18 @@ pub fn decode(bytes: &[u8]) -> Result<Pgm, PgmError> {
             reason: "must lie in 1..=65535",
         });
     }
-    let (width, height, maxval) = (width as usize, height as usize, maxval as u16);
+    Ok((binary, width as usize, height as usize, maxval as u16))
+}
+
+/// The width and height a P5 or P2 image's header gives, from its first bytes alone.
+pub fn dimensions(bytes: &[u8]) -> Result<(usize, usize), PgmError> {
+    header(bytes, &mut 0).map(|(_, w, h, _)| (w, h))
+}
+
+/// Reads a P5 or P2 image.
+pub fn decode(bytes: &[u8]) -> Result<Pgm, PgmError> {
+    let mut at = 0;
+    let (binary, width, height, maxval) = header(bytes, &mut at)?;
     let needed = width * height;
     let pixels = if binary {
         // Exactly one whitespace byte separates the header from the raster.

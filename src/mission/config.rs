@@ -168,25 +168,38 @@ impl Default for MissionConfig {
 
 impl MissionConfig {
     /// Checks values a parser cannot: (field, value, reason) for the first bad one.
-    pub fn validate(&self) -> Result<(), (&'static str, f64, &'static str)> {
-        let positive = [
-            ("block_size", self.block_size),
-            ("scan_speed", self.scan_speed),
-            ("staging_distance", self.staging_distance),
-            ("grip_distance", self.grip_distance),
-            ("approach_speed", self.approach_speed),
-            ("drop_staging", self.drop_staging),
-            ("drop_distance", self.drop_distance),
-            ("retry_turn_deg", self.retry_turn_deg),
-            ("stuck_timeout", self.stuck_timeout),
-            ("view_range", self.view_range),
-        ];
-        crate::data::check::all_positive(&positive)?;
+    pub fn validate(&self) -> Result<(), crate::data::check::Invalid> {
+        crate::data::check::within(&[
+            ("block_size", self.block_size, 0.01, 1.0),
+            ("scan_speed", self.scan_speed, 0.01, 20.0),
+            ("staging_distance", self.staging_distance, 0.01, 5.0),
+            ("grip_distance", self.grip_distance, 0.01, 5.0),
+            ("approach_speed", self.approach_speed, 0.001, 5.0),
+            ("gripper_wait", self.gripper_wait, 0.0, 60.0),
+            ("drop_staging", self.drop_staging, 0.01, 5.0),
+            ("drop_distance", self.drop_distance, 0.01, 5.0),
+            ("back_off_time", self.back_off_time, 0.0, 60.0),
+            ("lost_timeout", self.lost_timeout, 0.0, 3600.0),
+            ("lost_position_std", self.lost_position_std, 0.0, 10.0),
+            ("retry_turn_deg", self.retry_turn_deg, 0.1, 360.0),
+            ("stuck_timeout", self.stuck_timeout, 0.1, 3600.0),
+            ("replan_cooldown", self.replan_cooldown, 0.0, 60.0),
+            ("view_range", self.view_range, 0.01, 100.0),
+            ("object_size", self.object_size, 0.0, 10.0),
+        ])?;
+        crate::data::check::counts_within(&[
+            ("no_path_retries", u64::from(self.no_path_retries), 0, 1000),
+            ("total_blocks", u64::from(self.total_blocks), 0, 1000),
+        ])?;
         if !(self.view_fov_deg > 0.0 && self.view_fov_deg <= 360.0) {
-            return Err(("view_fov_deg", self.view_fov_deg, "must lie in (0, 360]"));
+            return Err((
+                "view_fov_deg",
+                self.view_fov_deg,
+                "must lie in (0, 360]".into(),
+            ));
         }
         if let Some(blind) = self.blind_distance {
-            crate::data::check::all_non_negative(&[("blind_distance", blind)])?;
+            crate::data::check::within(&[("blind_distance", blind, 0.0, 5.0)])?;
         }
         let non_negative = [
             ("gripper_wait", self.gripper_wait),
@@ -200,21 +213,21 @@ impl MissionConfig {
             return Err((
                 "lost_timeout",
                 self.lost_timeout,
-                "must be more than the 10 s after which a lost robot scans",
+                "must be more than the 10 s after which a lost robot scans".into(),
             ));
         }
         if self.grip_distance >= self.staging_distance {
             return Err((
                 "grip_distance",
                 self.grip_distance,
-                "must be less than staging_distance",
+                "must be less than staging_distance".into(),
             ));
         }
         if self.drop_distance >= self.drop_staging {
             return Err((
                 "drop_distance",
                 self.drop_distance,
-                "must be less than drop_staging",
+                "must be less than drop_staging".into(),
             ));
         }
         Ok(())

@@ -16,9 +16,9 @@ pub fn load(path: &Path) -> Result<Intrinsics, CalibrationError> {
         path: path.to_path_buf(),
         message,
     };
-    if !path.is_file() {
-        return Err(read("no such file".into()));
-    }
+    // Checked as every input file is (a regular file, not too large) before OpenCV opens it.
+    crate::data::files::read_limited(path, crate::data::files::TEXT_LIMIT)
+        .map_err(|e| read(e.to_string()))?;
     let name = path
         .to_str()
         .ok_or_else(|| read("the path is not UTF-8".into()))?;
@@ -37,7 +37,9 @@ pub fn load(path: &Path) -> Result<Intrinsics, CalibrationError> {
         if node.empty().unwrap_or(true) {
             return Err(field(key, "is missing".into()));
         }
-        let m = node.mat().map_err(|e| field(key, e.message))?;
+        let m = node
+            .mat()
+            .map_err(|_| field(key, "is not an OpenCV matrix (!!opencv-matrix)".into()))?;
         let mut d = Mat::default();
         m.convert_to(&mut d, opencv::core::CV_64F, 1.0, 0.0)
             .map_err(|e| field(key, e.message))?;
@@ -48,7 +50,13 @@ pub fn load(path: &Path) -> Result<Intrinsics, CalibrationError> {
         if node.empty().unwrap_or(true) {
             return Err(field(key, "is missing".into()));
         }
-        let v = node.to_i32().map_err(|e| field(key, e.message))?;
+        // OpenCV's own text is an assertion dump: say what is wrong instead.
+        if !node.is_int().unwrap_or(false) {
+            return Err(field(key, "is not a whole number".into()));
+        }
+        let v = node
+            .to_i32()
+            .map_err(|_| field(key, "is not a whole number".into()))?;
         u32::try_from(v).map_err(|_| field(key, format!("= {v}: must be positive")))
     };
     let k = matrix("camera_matrix")?;

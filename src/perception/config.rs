@@ -210,61 +210,122 @@ impl Default for RenderConfig {
 
 impl VisionConfig {
     /// The first field that is out of range: (name in the section, value, reason).
-    pub fn validate(&self) -> Result<(), (&'static str, f64, &'static str)> {
+    pub fn validate(&self) -> Result<(), crate::data::check::Invalid> {
         let m = &self.markers;
         let d = &self.detector;
         let r = &self.render;
-        let positive = [
-            ("markers.boundary_side", m.boundary_side),
-            ("markers.obstacle_side", m.obstacle_side),
-            ("markers.gate_side", m.gate_side),
-            ("markers.block_side", m.block_side),
+        let (mount, rm) = (&self.mount, &r.mount);
+        crate::data::check::within(&[
+            ("markers.boundary_side", m.boundary_side, 0.005, 2.0),
+            ("markers.obstacle_side", m.obstacle_side, 0.005, 2.0),
+            ("markers.gate_side", m.gate_side, 0.005, 2.0),
+            ("markers.block_side", m.block_side, 0.005, 2.0),
+            ("markers.wall_height", m.wall_height, 0.0, 5.0),
+            ("markers.block_height", m.block_height, 0.0, 5.0),
             (
                 "detector.min_marker_perimeter_rate",
                 d.min_marker_perimeter_rate,
+                0.001,
+                4.0,
             ),
             (
                 "detector.max_reprojection_error_px",
                 d.max_reprojection_error_px,
+                0.01,
+                100.0,
             ),
-            ("detector.max_range", d.max_range),
-            ("render.brightness", r.brightness),
-        ];
-        crate::data::check::all_positive(&positive)?;
-        let non_negative = [
-            ("markers.wall_height", m.wall_height),
-            ("markers.block_height", m.block_height),
-            ("render.noise_std", r.noise_std),
-            ("detector.min_side_px", d.min_side_px),
-        ];
-        crate::data::check::all_non_negative(&non_negative)?;
-        let finite = [
-            ("mount.rotation_deg[0]", self.mount.rotation_deg[0]),
-            ("mount.rotation_deg[1]", self.mount.rotation_deg[1]),
-            ("mount.rotation_deg[2]", self.mount.rotation_deg[2]),
-            ("mount.translation[0]", self.mount.translation[0]),
-            ("mount.translation[1]", self.mount.translation[1]),
-            ("mount.translation[2]", self.mount.translation[2]),
-            ("render.mount.rotation_deg[0]", r.mount.rotation_deg[0]),
-            ("render.mount.rotation_deg[1]", r.mount.rotation_deg[1]),
-            ("render.mount.rotation_deg[2]", r.mount.rotation_deg[2]),
-            ("render.mount.translation[0]", r.mount.translation[0]),
-            ("render.mount.translation[1]", r.mount.translation[1]),
-            ("render.mount.translation[2]", r.mount.translation[2]),
-        ];
-        if let Some((field, value)) = finite.into_iter().find(|(_, v)| !v.is_finite()) {
-            return Err((field, value, "must be a finite number"));
-        }
+            ("detector.max_range", d.max_range, 0.01, 100.0),
+            ("detector.min_side_px", d.min_side_px, 0.0, 10_000.0),
+            ("render.brightness", r.brightness, 0.01, 10.0),
+            ("render.noise_std", r.noise_std, 0.0, 100.0),
+            (
+                "mount.rotation_deg[0]",
+                mount.rotation_deg[0],
+                -360.0,
+                360.0,
+            ),
+            (
+                "mount.rotation_deg[1]",
+                mount.rotation_deg[1],
+                -360.0,
+                360.0,
+            ),
+            (
+                "mount.rotation_deg[2]",
+                mount.rotation_deg[2],
+                -360.0,
+                360.0,
+            ),
+            ("mount.translation[0]", mount.translation[0], -10.0, 10.0),
+            ("mount.translation[1]", mount.translation[1], -10.0, 10.0),
+            ("mount.translation[2]", mount.translation[2], -10.0, 10.0),
+            (
+                "render.mount.rotation_deg[0]",
+                rm.rotation_deg[0],
+                -360.0,
+                360.0,
+            ),
+            (
+                "render.mount.rotation_deg[1]",
+                rm.rotation_deg[1],
+                -360.0,
+                360.0,
+            ),
+            (
+                "render.mount.rotation_deg[2]",
+                rm.rotation_deg[2],
+                -360.0,
+                360.0,
+            ),
+            (
+                "render.mount.translation[0]",
+                rm.translation[0],
+                -10.0,
+                10.0,
+            ),
+            (
+                "render.mount.translation[1]",
+                rm.translation[1],
+                -10.0,
+                10.0,
+            ),
+            (
+                "render.mount.translation[2]",
+                rm.translation[2],
+                -10.0,
+                10.0,
+            ),
+        ])?;
+        crate::data::check::counts_within(&[
+            (
+                "detector.adaptive_thresh_win_size_max",
+                u64::try_from(d.adaptive_thresh_win_size_max).unwrap_or(0),
+                3,
+                1001,
+            ),
+            (
+                "detector.corner_refinement_win_size",
+                u64::try_from(d.corner_refinement_win_size).unwrap_or(0),
+                1,
+                100,
+            ),
+            (
+                "detector.perspective_remove_pixel_per_cell",
+                u64::try_from(d.perspective_remove_pixel_per_cell).unwrap_or(0),
+                1,
+                100,
+            ),
+        ])?;
         let grey = [
             ("render.background", r.background),
             ("render.black", r.black),
             ("render.white", r.white),
         ];
         if let Some((field, value)) = grey.into_iter().find(|(_, v)| !(0.0..=255.0).contains(v)) {
-            return Err((field, value, "must lie in 0..=255"));
+            return Err((field, value, "must lie in 0..=255".into()));
         }
         if r.white <= r.black {
-            return Err(("render.white", r.white, "must be above render.black"));
+            return Err(("render.white", r.white, "must be above render.black".into()));
         }
         let windows = [
             (
@@ -277,13 +338,13 @@ impl VisionConfig {
             ),
         ];
         if let Some((field, value)) = windows.into_iter().find(|(_, v)| *v < 3) {
-            return Err((field, f64::from(value), "must be at least 3 pixels"));
+            return Err((field, f64::from(value), "must be at least 3 pixels".into()));
         }
         if d.adaptive_thresh_win_size_max < d.adaptive_thresh_win_size_min {
             return Err((
                 "detector.adaptive_thresh_win_size_max",
                 f64::from(d.adaptive_thresh_win_size_max),
-                "must not be below adaptive_thresh_win_size_min",
+                "must not be below adaptive_thresh_win_size_min".into(),
             ));
         }
         let counts = [
@@ -301,14 +362,14 @@ impl VisionConfig {
             ),
         ];
         if let Some((field, value)) = counts.into_iter().find(|(_, v)| *v < 1) {
-            return Err((field, f64::from(value), "must be at least 1"));
+            return Err((field, f64::from(value), "must be at least 1".into()));
         }
         let margin = d.perspective_remove_ignored_margin_per_cell;
         if !(0.0..0.5).contains(&margin) {
             return Err((
                 "detector.perspective_remove_ignored_margin_per_cell",
                 margin,
-                "must be from 0 to under 0.5 (of a cell, on each side)",
+                "must be from 0 to under 0.5 (of a cell, on each side)".into(),
             ));
         }
         Ok(())

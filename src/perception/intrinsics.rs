@@ -45,6 +45,9 @@ pub enum CalibrationError {
     },
 }
 
+/// Most pixels along either side of a calibrated image.
+const MAX_SIDE: u32 = 16_384;
+
 impl Intrinsics {
     /// Pixel of a camera-frame point (ideal pinhole, no distortion):
     /// u = fx x / z + cx, v = fy y / z + cy (Hartley & Zisserman, eq. 6.4).
@@ -59,18 +62,37 @@ impl Intrinsics {
             field,
             reason,
         };
-        for (field, v) in [("camera_matrix fx", self.fx), ("camera_matrix fy", self.fy)] {
-            if !(v.is_finite() && v > 0.0) {
-                return Err(bad(
-                    field,
-                    format!("= {v}: must be a positive focal length"),
-                ));
-            }
-        }
-        if self.width == 0 || self.height == 0 {
+        // Bounds: a camera of at most 16384 pixels a side, its focal lengths from a
+        // fish-eye's (a tenth of the width) to a long lens's (a hundred widths), its
+        // principal point inside the image.
+        if !(1..=MAX_SIDE).contains(&self.width) || !(1..=MAX_SIDE).contains(&self.height) {
             return Err(bad(
                 "image_width/image_height",
-                format!("= {}x{}: must be positive", self.width, self.height),
+                format!(
+                    "= {}x{}: each must lie in 1..={MAX_SIDE}",
+                    self.width, self.height
+                ),
+            ));
+        }
+        let (w, h) = (f64::from(self.width), f64::from(self.height));
+        for (field, v, lo, hi) in [
+            ("camera_matrix fx", self.fx, 0.1 * w, 100.0 * w),
+            ("camera_matrix fy", self.fy, 0.1 * h, 100.0 * h),
+            ("camera_matrix cx", self.cx, 0.0, w),
+            ("camera_matrix cy", self.cy, 0.0, h),
+        ] {
+            if !(lo..=hi).contains(&v) {
+                return Err(bad(field, format!("= {v:?}: must lie in {lo}..={hi}")));
+            }
+        }
+        if let Some(v) = self
+            .distortion
+            .iter()
+            .find(|v| !(-1000.0..=1000.0).contains(*v))
+        {
+            return Err(bad(
+                "distortion_coefficients",
+                format!("hold {v:?}: each must lie in -1000..=1000"),
             ));
         }
         if ![4, 5, 8, 12, 14].contains(&self.distortion.len()) {

@@ -83,28 +83,29 @@ impl Default for TeleopConfig {
 impl RaceConfig {
     /// Checks what the parser cannot.
     pub fn validate(&self) -> Result<(), Invalid> {
-        check::all_positive(&[
-            ("linear_speed", self.linear_speed),
-            ("angular_speed", self.angular_speed),
-            ("sigma_warning", self.sigma_warning),
+        check::within(&[
+            ("linear_speed", self.linear_speed, 0.001, 5.0),
+            ("angular_speed", self.angular_speed, 0.01, 20.0),
+            ("sigma_warning", self.sigma_warning, 0.0001, 10.0),
         ])?;
-        check::all_at_least_one(&[("correct_every", self.correct_every)])
+        check::counts_within(&[
+            ("correct_every", u64::from(self.correct_every), 1, 1_000_000),
+            ("nearest", u64::from(self.nearest), 0, 1000),
+        ])
     }
 }
 
 impl TeleopConfig {
     /// Checks what the parser cannot.
     pub fn validate(&self) -> Result<(), Invalid> {
-        check::all_positive(&[
-            ("linear_speed", self.linear_speed),
-            ("angular_speed", self.angular_speed),
-            ("deadman_timeout", self.deadman_timeout),
-            ("max_linear", self.max_linear),
-            ("max_angular", self.max_angular),
-        ])?;
-        if !(self.speed_step.is_finite() && self.speed_step > 1.0) {
-            return Err(("speed_step", self.speed_step, "must be a factor above 1"));
-        }
-        Ok(())
+        check::within(&[
+            ("linear_speed", self.linear_speed, 0.001, 5.0),
+            ("angular_speed", self.angular_speed, 0.01, 20.0),
+            // A factor above 1, at most quadrupling per press.
+            ("speed_step", self.speed_step, 1.001, 4.0),
+            ("deadman_timeout", self.deadman_timeout, 0.05, 10.0),
+            ("max_linear", self.max_linear, 0.001, 5.0),
+            ("max_angular", self.max_angular, 0.01, 20.0),
+        ])
     }
 }

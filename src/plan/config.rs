@@ -48,20 +48,19 @@ impl Default for PlanConfig {
 
 impl PlanConfig {
     /// Checks values a parser cannot: (field, value, reason) for the first bad one.
-    pub fn validate(&self) -> Result<(), (&'static str, f64, &'static str)> {
-        let positive = [
-            ("control_spacing", self.control_spacing),
-            ("sample_spacing", self.sample_spacing),
-            ("max_speed", self.max_speed),
-            ("max_accel", self.max_accel),
-            ("max_lateral_accel", self.max_lateral_accel),
-        ];
-        crate::data::check::all_positive(&positive)?;
+    pub fn validate(&self) -> Result<(), crate::data::check::Invalid> {
+        crate::data::check::within(&[
+            ("control_spacing", self.control_spacing, 0.01, 5.0),
+            ("sample_spacing", self.sample_spacing, 0.001, 1.0),
+            ("max_speed", self.max_speed, 0.001, 5.0),
+            ("max_accel", self.max_accel, 0.01, 20.0),
+            ("max_lateral_accel", self.max_lateral_accel, 0.01, 20.0),
+        ])?;
         if self.unknown_cost >= LETHAL {
             return Err((
                 "unknown_cost",
                 f64::from(self.unknown_cost),
-                "must be below 100 (lethal)",
+                "must be below 100 (lethal)".into(),
             ));
         }
         Ok(())
@@ -81,7 +80,7 @@ mod tests {
         };
         assert_eq!(
             c.validate(),
-            Err(("max_accel", -1.0, "must be a positive number"))
+            Err(("max_accel", -1.0, "must lie in 0.01..=20".into()))
         );
         let c = PlanConfig {
             unknown_cost: 100,

@@ -15,6 +15,6 @@ pub enum PlanError {
     InvalidConfig {
         field: &'static str,
         value: f64,
-        reason: &'static str,
+        reason: std::borrow::Cow<'static, str>,
     },
 }

@@ -1,7 +1,7 @@
 //! Turns a parsed world file into a `World`, refusing content that breaks the rules.
 
 use super::checks::{Checker, MAX_WORLD_SIDE, fmt_list, fmt_point};
-use super::shapes::{rect_contains, rect_corners, rect_edges, rect_faces};
+use super::shapes::{rect_contains, rect_corners, rect_edges, rect_faces, segments_cross};
 use super::world_file::{
     BlockSpec, GateSpec, ObstacleSpec, Side, WallMarkers, WallSpec, WorldFile,
 };
@@ -22,16 +22,23 @@ pub fn build(file: WorldFile, text: &str, path: &Path) -> Result<World, WorldErr
     if name.trim().is_empty() {
         return Err(ck.err(name_line, "name", "\"\"", "must not be empty"));
     }
+    if name.chars().any(char::is_control) || name.chars().count() > MAX_NAME {
+        let shown = crate::data::printable::printable(&name, Some(40));
+        let reason = format!(
+            "must be at most {MAX_NAME} characters, none of them control characters (it is shown in the terminal)"
+        );
+        return Err(ck.err(name_line, "name", format!("{shown:?}"), reason));
+    }
     let size_line = ck.line(file.size.span());
     let [width, height] = *file.size.get_ref();
     for (field, v) in [("size[0]", width), ("size[1]", height)] {
         ck.positive(size_line, field, v)?;
-        if v > MAX_WORLD_SIDE {
+        if !(MIN_WORLD_SIDE..=MAX_WORLD_SIDE).contains(&v) {
             return Err(ck.err(
                 size_line,
                 field,
                 v,
-                format!("must be at most {MAX_WORLD_SIDE} m"),
+                format!("must lie in {MIN_WORLD_SIDE}..={MAX_WORLD_SIDE} m"),
             ));
         }
     }
@@ -93,7 +100,110 @@ pub fn build(file: WorldFile, text: &str, path: &Path) -> Result<World, WorldErr
             return Err(ck.err(start_line, "start", fmt_list(&[sx, sy, sdeg]), reason));
         }
     }
+    for (i, b) in world.blocks.iter().enumerate() {
+        if rect_contains(b.pose, b.size, b.size, start.position()) {
+            let reason = format!("the robot would start inside blocks[{i}]");
+            return Err(ck.err(start_line, "start", fmt_list(&[sx, sy, sdeg]), reason));
+        }
+    }
+    if let Some(d) = world
+        .walls
+        .iter()
+        .map(|w| w.distance_to(start.position()))
+        .find(|&d| d < START_CLEARANCE)
+    {
+        let reason = format!("the robot would start {d:.3} m from a wall (on it)");
+        return Err(ck.err(start_line, "start", fmt_list(&[sx, sy, sdeg]), reason));
+    }
+    check_blocks_apart(&ck, &world, &file.blocks)?;
+    check_gates_on_walls(&ck, &world, &file.gates)?;
     Ok(world)
+}
+
+/// Most characters of a world's name.
+const MAX_NAME: usize = 80;
+/// Least distance from the start point to any wall, metres: the robot's centre cannot
+/// stand on one (the config's footprint is checked against the world at session start).
+const START_CLEARANCE: f64 = 0.01;
+/// Smallest world side accepted, metres: no robot fits in less.
+const MIN_WORLD_SIDE: f64 = 0.5;
+/// How far a gate's centre may be from the wall it sits on, metres.
+const GATE_ON_WALL: f64 = 0.1;
+
+/// Blocks stand free: none inside an obstacle, through a wall, or overlapping another.
+fn check_blocks_apart(
+    ck: &Checker,
+    world: &World,
+    specs: &[toml::Spanned<BlockSpec>],
+) -> Result<(), WorldError> {
+    for (i, b) in world.blocks.iter().enumerate() {
+        let line = specs.get(i).and_then(|s| ck.line(s.span()));
+        let field = format!("blocks[{i}]");
+        let at = fmt_point(b.pose.position());
+        let corners = rect_corners(b.pose, b.size, b.size);
+        for (k, o) in world.obstacles.iter().enumerate() {
+            if corners
+                .iter()
+                .chain([&b.pose.position()])
+                .any(|&c| rect_contains(o.pose, o.width, o.height, c))
+            {
+                return Err(ck.err(line, &field, &at, format!("lies inside obstacles[{k}]")));
+            }
+        }
+        let edges = rect_edges(b.pose, b.size, b.size);
+        if world
+            .walls
+            .iter()
+            .any(|w| edges.iter().any(|e| segments_cross(e.a, e.b, w.a, w.b)))
+        {
+            return Err(ck.err(line, &field, &at, "crosses a wall"));
+        }
+        for (j, other) in world.blocks.iter().enumerate().take(i) {
+            let overlap = rect_corners(other.pose, other.size, other.size)
+                .iter()
+                .chain([&other.pose.position()])
+                .any(|&c| rect_contains(b.pose, b.size, b.size, c))
+                || corners
+                    .iter()
+                    .chain([&b.pose.position()])
+                    .any(|&c| rect_contains(other.pose, other.size, other.size, c));
+            if overlap {
+                return Err(ck.err(line, &field, &at, format!("overlaps blocks[{j}]")));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// A gate's markers are on a wall: its centre within `GATE_ON_WALL` of one.
+fn check_gates_on_walls(
+    ck: &Checker,
+    world: &World,
+    specs: &[toml::Spanned<GateSpec>],
+) -> Result<(), WorldError> {
+    for (i, gate) in world.gates.iter().enumerate() {
+        let Some(pose) = world.gate_pose(gate) else {
+            continue;
+        };
+        let nearest = world
+            .walls
+            .iter()
+            .map(|w| w.distance_to(pose.position()))
+            .fold(f64::INFINITY, f64::min);
+        if nearest > GATE_ON_WALL {
+            let line = specs.get(i).and_then(|s| ck.line(s.span()));
+            let reason = format!(
+                "is {nearest:.2} m from the nearest wall: a gate's markers hang on a wall (within {GATE_ON_WALL} m)"
+            );
+            return Err(ck.err(
+                line,
+                &format!("gates[{i}].center"),
+                fmt_point(pose.position()),
+                reason,
+            ));
+        }
+    }
+    Ok(())
 }
 
 /// A polyline wall: its segments join `world.walls`, its generated markers `world.markers`.

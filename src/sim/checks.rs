@@ -9,7 +9,7 @@ use std::ops::Range;
 use std::path::Path;
 
 /// Largest world side accepted, metres: beyond this a file is surely a typo (mm for m).
-pub const MAX_WORLD_SIDE: f64 = 1000.0;
+pub const MAX_WORLD_SIDE: f64 = 100.0;
 /// Slack when testing points against the world bounds, metres.
 const BOUNDS_SLACK: f64 = 1e-9;
 

@@ -135,30 +135,75 @@ impl SimConfig {
     pub fn validate(&self) -> Result<(), crate::data::check::Invalid> {
         use crate::data::check;
         let (camera, lidar, encoders) = (&self.camera, &self.lidar, &self.encoders);
-        check::all_positive(&[
-            ("physics.step", self.physics.step),
-            ("camera.max_range", camera.max_range),
-            ("camera.rate_hz", camera.rate_hz),
-            ("lidar.max_range", lidar.max_range),
-            ("lidar.rate_hz", lidar.rate_hz),
+        let gripper = &self.gripper;
+        check::within(&[
+            ("physics.step", self.physics.step, 0.0001, 0.1),
+            ("camera.min_range", camera.min_range, 0.0, 100.0),
+            ("camera.max_range", camera.max_range, 0.01, 100.0),
+            (
+                "camera.max_view_angle_deg",
+                camera.max_view_angle_deg,
+                0.0,
+                90.0,
+            ),
+            ("camera.rate_hz", camera.rate_hz, 0.1, 1000.0),
+            ("camera.dist_std", camera.dist_std, 0.0, 10.0),
+            ("camera.angle_std_deg", camera.angle_std_deg, 0.0, 90.0),
+            ("encoders.noise_std", encoders.noise_std, 0.0, 1.0),
+            ("lidar.min_range", lidar.min_range, 0.0, 100.0),
+            ("lidar.max_range", lidar.max_range, 0.01, 100.0),
+            ("lidar.rate_hz", lidar.rate_hz, 0.1, 100.0),
+            ("lidar.range_std", lidar.range_std, 0.0, 1.0),
+            ("gripper.actuation_time", gripper.actuation_time, 0.0, 60.0),
+            ("gripper.reach_near", gripper.reach_near, 0.0, 1.0),
+            ("gripper.reach_far", gripper.reach_far, 0.001, 1.0),
+            ("gripper.half_width", gripper.half_width, 0.001, 0.5),
+        ])?;
+        for (near, far, a, b) in [
+            (
+                "camera.min_range",
+                "camera.max_range",
+                camera.min_range,
+                camera.max_range,
+            ),
+            (
+                "lidar.min_range",
+                "lidar.max_range",
+                lidar.min_range,
+                lidar.max_range,
+            ),
+            (
+                "gripper.reach_near",
+                "gripper.reach_far",
+                gripper.reach_near,
+                gripper.reach_far,
+            ),
+        ] {
+            if a >= b {
+                return Err((near, a, format!("must be less than {far} ({b})").into()));
+            }
+        }
+        check::counts_within(&[
+            ("lidar.beams", u64::from(lidar.beams), 1, 10_000),
+            (
+                "encoders.ticks_per_rev",
+                u64::from(encoders.ticks_per_rev),
+                1,
+                1_000_000,
+            ),
         ])?;
         check::all_probabilities(&[
             ("encoders.slip_probability", encoders.slip_probability),
             ("encoders.slip_fraction", encoders.slip_fraction),
             ("camera.miss_probability", camera.miss_probability),
         ])?;
-        check::all_non_negative(&[
-            ("encoders.noise_std", encoders.noise_std),
-            ("camera.dist_std", camera.dist_std),
-            ("camera.angle_std_deg", camera.angle_std_deg),
-            ("lidar.range_std", lidar.range_std),
-        ])?;
         if !(camera.fov_deg > 0.0 && camera.fov_deg < 360.0) {
-            return Err(("camera.fov_deg", camera.fov_deg, "must lie in (0, 360)"));
+            return Err((
+                "camera.fov_deg",
+                camera.fov_deg,
+                "must lie in (0, 360)".into(),
+            ));
         }
-        check::all_at_least_one(&[
-            ("lidar.beams", lidar.beams),
-            ("encoders.ticks_per_rev", encoders.ticks_per_rev),
-        ])
+        Ok(())
     }
 }

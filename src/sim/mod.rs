@@ -34,7 +34,7 @@ mod readable;
 mod render;
 #[cfg(feature = "vision")]
 pub mod rendered_camera;
-mod shapes;
+pub mod shapes;
 #[cfg(feature = "vision")]
 mod sheet_paint;
 mod truth;

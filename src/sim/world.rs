@@ -88,10 +88,11 @@ impl World {
 
     /// Reads and validates a world file.
     pub fn load(path: &Path) -> Result<World, WorldError> {
-        let text = std::fs::read_to_string(path).map_err(|source| WorldError::Read {
-            path: path.to_path_buf(),
-            error: source,
-        })?;
+        let text = crate::data::files::read_text_limited(path, crate::data::files::WORLD_LIMIT)
+            .map_err(|source| WorldError::Read {
+                path: path.to_path_buf(),
+                error: source,
+            })?;
         Self::from_toml(&text, path)
     }
 

@@ -39,10 +39,16 @@ impl Default for SlamConfig {
 impl SlamConfig {
     /// Checks what the parser cannot.
     pub fn validate(&self) -> Result<(), crate::data::check::Invalid> {
-        crate::data::check::all_positive(&[
-            ("dist_std", self.dist_std),
-            ("angle_std_deg", self.angle_std_deg),
-            ("gate_chi2", self.gate_chi2),
-        ])
+        use crate::data::check;
+        check::within(&[
+            ("motor_std_deg", self.motor_std_deg, 0.0, 90.0),
+            ("dist_std", self.dist_std, 0.0001, 10.0),
+            ("angle_std_deg", self.angle_std_deg, 0.01, 90.0),
+            ("gate_chi2", self.gate_chi2, 0.1, 1000.0),
+        ])?;
+        if let Some(v) = self.fixed_initial_variance {
+            check::within(&[("fixed_initial_variance", v, 1e-6, 100.0)])?;
+        }
+        check::counts_within(&[("min_sightings", u64::from(self.min_sightings), 1, 1000)])
     }
 }

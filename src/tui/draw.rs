@@ -78,7 +78,14 @@ pub fn draw(frame: &mut Frame, app: &App, theme: Theme) {
         draw_camera(frame, app, theme, inner);
     }
     if let Some((entries, selected)) = app.map_picker() {
-        draw_picker(frame, entries, selected, theme, map_rect);
+        draw_picker(
+            frame,
+            entries,
+            selected,
+            app.picker_listing(),
+            theme,
+            map_rect,
+        );
     }
     if app.view().help {
         draw_help(frame, app, theme, size);
@@ -90,6 +97,7 @@ fn draw_picker(
     frame: &mut Frame,
     entries: &[crate::app::loading::MapEntry],
     selected: usize,
+    listing: bool,
     theme: Theme,
     map: Rect,
 ) {
@@ -121,10 +129,12 @@ fn draw_picker(
         })
         .collect();
     if lines.is_empty() {
-        lines.push(Line::styled(
-            "no saved maps here yet (S saves one)",
-            theme.label(),
-        ));
+        let text = if listing {
+            "listing the maps folder…"
+        } else {
+            "no saved maps here yet (S saves one)"
+        };
+        lines.push(Line::styled(text, theme.label()));
     }
     let block = Block::bordered()
         .title(" Load a map: up/down, enter loads, m leaves ")

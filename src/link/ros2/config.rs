@@ -1,6 +1,6 @@
 //! `[ros2]`: topic names, QoS, message variants and the robot's wheels, for `--link ros2`.
 
-use crate::data::check::{Invalid, all_positive};
+use crate::data::check::Invalid;
 use serde::{Deserialize, Serialize};
 
 /// Which message cmd_vel carries (Humble's TurtleBot3 takes Twist, Jazzy's TwistStamped).
@@ -122,21 +122,17 @@ impl Default for Ros2Config {
 
 impl Ros2Config {
     pub fn validate(&self) -> Result<(), Invalid> {
-        all_positive(&[
-            ("wheel_radius", self.wheel_radius),
-            ("odom_timeout", self.odom_timeout),
-            ("picture_rate_hz", self.picture_rate_hz),
-            ("qos.depth", f64::from(self.qos.depth)),
-            ("scan_qos.depth", f64::from(self.scan_qos.depth)),
+        crate::data::check::within(&[
+            ("wheel_radius", self.wheel_radius, 0.005, 0.5),
+            ("odom_timeout", self.odom_timeout, 0.01, 60.0),
+            ("picture_rate_hz", self.picture_rate_hz, 0.01, 100.0),
+            // Joint positions, metres or radians.
+            ("gripper_open", self.gripper_open, -1000.0, 1000.0),
+            ("gripper_closed", self.gripper_closed, -1000.0, 1000.0),
         ])?;
-        for (field, value) in [
-            ("gripper_open", self.gripper_open),
-            ("gripper_closed", self.gripper_closed),
-        ] {
-            if !value.is_finite() {
-                return Err((field, value, "must be a finite number"));
-            }
-        }
-        Ok(())
+        crate::data::check::counts_within(&[
+            ("qos.depth", u64::from(self.qos.depth), 1, 1000),
+            ("scan_qos.depth", u64::from(self.scan_qos.depth), 1, 1000),
+        ])
     }
 }

@@ -64,11 +64,13 @@ impl Default for SerialConfig {
 impl SerialConfig {
     /// The first bad field (name within `[serial]`), its value and why.
     pub fn validate(&self) -> Result<(), Invalid> {
+        crate::data::check::within(&[
+            ("counts_per_rev", self.counts_per_rev, 1.0, 1.0e6),
+            ("pid_rate_hz", self.pid_rate_hz, 1.0, 1000.0),
+            ("poll_hz", self.poll_hz, 1.0, 1000.0),
+        ])?;
+        crate::data::check::counts_within(&[("baud", u64::from(self.baud), 300, 4_000_000)])?;
         all_positive(&[
-            ("baud", f64::from(self.baud)),
-            ("counts_per_rev", self.counts_per_rev),
-            ("pid_rate_hz", self.pid_rate_hz),
-            ("poll_hz", self.poll_hz),
             ("refresh", self.refresh),
             ("command_timeout", self.command_timeout),
             ("reply_timeout", self.reply_timeout),
@@ -88,26 +90,34 @@ impl SerialConfig {
             ("gripper_timeout", self.gripper_timeout),
         ] {
             if seconds > 60.0 {
-                return Err((field, seconds, "must be at most 60 s"));
+                return Err((field, seconds, "must be at most 60 s".into()));
             }
         }
         if self.poll_hz < 1.0 {
-            return Err(("poll_hz", self.poll_hz, "must be at least 1 per second"));
+            return Err((
+                "poll_hz",
+                self.poll_hz,
+                "must be at least 1 per second".into(),
+            ));
         }
         // The firmware stops the motors 2 s after the last command: refresh well inside that.
         if self.refresh > 1.5 {
-            return Err(("refresh", self.refresh, "must be at most 1.5 s"));
+            return Err(("refresh", self.refresh, "must be at most 1.5 s".into()));
         }
         for (field, deg) in [
             ("gripper_open_deg", self.gripper_open_deg),
             ("gripper_close_deg", self.gripper_close_deg),
         ] {
             if deg > 180.0 {
-                return Err((field, deg, "must lie in 0..=180 degrees"));
+                return Err((field, deg, "must lie in 0..=180 degrees".into()));
             }
         }
         if self.retries > 20 {
-            return Err(("retries", f64::from(self.retries), "must be at most 20"));
+            return Err((
+                "retries",
+                f64::from(self.retries),
+                "must be at most 20".into(),
+            ));
         }
         Ok(())
     }

@@ -215,5 +215,13 @@ pub fn human(report: &Report) -> String {
     if let (Some(w), Some(f)) = (report.wall_time_s, report.realtime_factor) {
         out += &format!("wall time       {w:.3} s ({f:.0}x real time)\n");
     }
+    // The last few warnings and errors: what went wrong is part of the report.
+    let shown = report.warnings.len().saturating_sub(PROBLEMS_SHOWN);
+    for w in &report.warnings[shown..] {
+        out += &format!("problem         {w}\n");
+    }
     out
 }
+
+/// Warnings and errors the human report lists, newest last.
+const PROBLEMS_SHOWN: usize = 5;

@@ -80,10 +80,17 @@ impl LogBook {
     }
 
     pub fn push(&mut self, time: f64, level: Level, text: impl Into<String>) {
+        let text: String = text.into();
+        // Lines may quote what a file or a peer sent: only printable text reaches the screen.
+        let text = if text.chars().any(char::is_control) {
+            crate::data::printable::printable(&text.replace('\n', " "), None)
+        } else {
+            text
+        };
         let entry = Entry {
             time,
             level,
-            text: text.into(),
+            text,
             repeats: 1,
         };
         self.written += 1;

@@ -25,9 +25,11 @@ pub enum MapFileError {
     },
     #[error("map {path}: {message}")]
     Yaml { path: PathBuf, message: String },
-    #[error("map {path}: field `{field}` = {value}: {reason}")]
+    #[error("map {path}{}: field `{field}` = {value}: {reason}", line.map(|l| format!(":{l}")).unwrap_or_default())]
     Field {
         path: PathBuf,
+        /// The line that sets the field, when the file sets it.
+        line: Option<usize>,
         field: &'static str,
         value: String,
         reason: &'static str,
@@ -180,7 +182,26 @@ pub fn decode(
         path: path.to_path_buf(),
         message: e.to_string(),
     })?;
-    let mode = check(&yaml, path)?;
+    let mode = check(&yaml, path).map_err(|e| match e {
+        MapFileError::Field {
+            path,
+            field,
+            value,
+            reason,
+            ..
+        } => MapFileError::Field {
+            // A header key starts its line: `resolution: 0.05`.
+            line: text
+                .lines()
+                .position(|l| l.trim_start().starts_with(&format!("{field}:")))
+                .map(|n| n + 1),
+            path,
+            field,
+            value,
+            reason,
+        },
+        other => other,
+    })?;
     // map_server: the image is relative to the YAML's folder unless absolute.
     let image_path = if yaml.image.is_absolute() {
         yaml.image.clone()
@@ -266,6 +287,7 @@ enum Mode {
 fn check(yaml: &MapYaml, path: &Path) -> Result<Mode, MapFileError> {
     let field = |field, value: String, reason| MapFileError::Field {
         path: path.to_path_buf(),
+        line: None,
         field,
         value,
         reason,

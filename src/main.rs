@@ -252,9 +252,9 @@ fn parse_key_rate(s: &str) -> Result<f64, String> {
     bounded(s, 0.1, 1000.0, "keys a second")
 }
 
-/// A mission's time limit: up to a simulated day.
+/// A mission's time limit: up to two simulated hours.
 fn parse_time_limit(s: &str) -> Result<f64, String> {
-    bounded(s, 1.0, 86_400.0, "s")
+    bounded(s, 1.0, 7200.0, "s")
 }
 
 fn parse_point(s: &str) -> Result<Point2, String> {

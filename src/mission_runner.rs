@@ -292,6 +292,9 @@ pub fn human(r: &MissionReport) -> String {
 }
 
 /// Reads a seed range `A..B` (inclusive) or a single seed.
+/// Most runs one sweep makes.
+pub const MAX_SWEEP: u64 = 1000;
+
 pub fn parse_seeds(text: &str) -> Result<Vec<u64>, String> {
     let bad = || format!("`{text}` is not a seed range like 1..50");
     match text.split_once("..") {
@@ -305,6 +308,12 @@ pub fn parse_seeds(text: &str) -> Result<Vec<u64>, String> {
             if a > b {
                 return Err(format!(
                     "`{text}` runs backwards: the first seed must not be above the last ({b}..{a}?)"
+                ));
+            }
+            if b - a >= MAX_SWEEP {
+                return Err(format!(
+                    "`{text}` is {} runs: a sweep runs at most {MAX_SWEEP}",
+                    u128::from(b - a) + 1
                 ));
             }
             Ok((a..=b).collect())

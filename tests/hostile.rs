@@ -317,6 +317,12 @@ fn cli_cases() -> Vec<Case> {
         case("cli", &["mission", "--time-limit", "-5"], "--time-limit"),
         case("cli", &["mission", "--time-limit", "nan"], "--time-limit"),
         case("cli", &["mission", "--sweep", "5..1"], "backwards"),
+        case(
+            "cli",
+            &["mission", "--sweep", "1..18446744073709551615"],
+            "at most",
+        ),
+        case("cli", &["mission", "--time-limit", "1e9"], "--time-limit"),
         case("cli", &["--headless", "--key-rate", "1e-300"], "--key-rate"),
         case("cli", &["--headless", "--key-rate", "inf"], "--key-rate"),
         case("cli", &["--domain", "999", "--link", "ros2"], "--domain"),

@@ -146,13 +146,13 @@ impl SimConfig {
                 0.0,
                 90.0,
             ),
-            ("camera.rate_hz", camera.rate_hz, 0.1, 1000.0),
+            ("camera.rate_hz", camera.rate_hz, 0.1, 60.0),
             ("camera.dist_std", camera.dist_std, 0.0, 10.0),
             ("camera.angle_std_deg", camera.angle_std_deg, 0.0, 90.0),
             ("encoders.noise_std", encoders.noise_std, 0.0, 1.0),
             ("lidar.min_range", lidar.min_range, 0.0, 100.0),
             ("lidar.max_range", lidar.max_range, 0.01, 100.0),
-            ("lidar.rate_hz", lidar.rate_hz, 0.1, 100.0),
+            ("lidar.rate_hz", lidar.rate_hz, 0.1, 30.0),
             ("lidar.range_std", lidar.range_std, 0.0, 1.0),
             ("gripper.actuation_time", gripper.actuation_time, 0.0, 60.0),
             ("gripper.reach_near", gripper.reach_near, 0.0, 1.0),
@@ -184,7 +184,7 @@ impl SimConfig {
             }
         }
         check::counts_within(&[
-            ("lidar.beams", u64::from(lidar.beams), 1, 10_000),
+            ("lidar.beams", u64::from(lidar.beams), 1, 2048),
             (
                 "encoders.ticks_per_rev",
                 u64::from(encoders.ticks_per_rev),

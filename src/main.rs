@@ -247,6 +247,9 @@ fn bounded(s: &str, lo: f64, hi: f64, unit: &str) -> Result<f64, String> {
     }
 }
 
+/// Simulated seconds a headless run may spend pressing keys (two hours).
+const MAX_HEADLESS_KEYS_TIME: f64 = 7200.0;
+
 /// Headless keys per second of simulated time: 0.1 to 1000.
 fn parse_key_rate(s: &str) -> Result<f64, String> {
     bounded(s, 0.1, 1000.0, "keys a second")
@@ -356,6 +359,14 @@ fn run_headless(
     }
     let keys =
         parse_key_sequence(cli.keys.as_deref().unwrap_or("")).context("cannot read --keys")?;
+    let lasts = keys.len() as f64 / cli.key_rate;
+    if lasts > MAX_HEADLESS_KEYS_TIME {
+        bail!(
+            "--keys: {} keys at {} a second take {lasts:.0} s, over the {MAX_HEADLESS_KEYS_TIME} s a headless run may press keys for",
+            keys.len(),
+            cli.key_rate
+        );
+    }
     let mut app = session.into_app(0.0);
     let started = Instant::now();
     app.set_stopwatch(stopwatch);

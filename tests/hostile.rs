@@ -323,6 +323,17 @@ fn cli_cases() -> Vec<Case> {
             "at most",
         ),
         case("cli", &["mission", "--time-limit", "1e9"], "--time-limit"),
+        case(
+            "cli",
+            &[
+                "--headless",
+                "--key-rate",
+                "0.1",
+                "--keys",
+                &"w".repeat(1000),
+            ],
+            "--keys",
+        ),
         case("cli", &["--headless", "--key-rate", "1e-300"], "--key-rate"),
         case("cli", &["--headless", "--key-rate", "inf"], "--key-rate"),
         case("cli", &["--domain", "999", "--link", "ros2"], "--domain"),

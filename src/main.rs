@@ -392,6 +392,11 @@ fn run_headless(
             headless::run_paced(&mut app, &keys, cli.key_rate, &mut pace)
         }
     };
+    // A run whose robot stopped answering did not do what it was asked.
+    let lost = match app.pilot().link_status() {
+        navdeck::app::LinkStatus::Lost(why) => Some(why.clone()),
+        _ => None,
+    };
     app.shutdown("headless run ended");
     let status = signals
         .as_ref()
@@ -409,7 +414,10 @@ fn run_headless(
         say!("{}", headless::human(&report));
     }
     // A save that was asked for and failed fails the run (the log says why).
-    let status = if status == 0 && app.failed_saves() > 0 {
+    if let Some(why) = &lost {
+        say_err!("navdeck: the robot was not answering at the end: {why}");
+    }
+    let status = if status == 0 && (app.failed_saves() > 0 || lost.is_some()) {
         1
     } else {
         status

@@ -14,8 +14,8 @@ pub const MAP_YAML_LIMIT: u64 = 64 << 10;
 /// Most bytes of a map image: a 8192 x 8192 binary PGM with room for its header.
 pub const MAP_IMAGE_LIMIT: u64 = (8192 * 8192) + (64 << 10);
 
-/// The bytes of the regular file at `path`, refused over `limit` bytes.
-pub fn read_limited(path: &Path, limit: u64) -> std::io::Result<Vec<u8>> {
+/// The metadata of `path` when it is a regular file (a link to one counts).
+fn regular_file(path: &Path) -> std::io::Result<std::fs::Metadata> {
     let meta = std::fs::metadata(path)?;
     if !meta.is_file() {
         return Err(std::io::Error::new(
@@ -23,6 +23,12 @@ pub fn read_limited(path: &Path, limit: u64) -> std::io::Result<Vec<u8>> {
             "not a regular file (a folder, device or pipe is not read)",
         ));
     }
+    Ok(meta)
+}
+
+/// The bytes of the regular file at `path`, refused over `limit` bytes.
+pub fn read_limited(path: &Path, limit: u64) -> std::io::Result<Vec<u8>> {
+    let meta = regular_file(path)?;
     if meta.len() > limit {
         return Err(too_big(meta.len(), limit));
     }
@@ -39,13 +45,7 @@ pub fn read_limited(path: &Path, limit: u64) -> std::io::Result<Vec<u8>> {
 
 /// The first `n` bytes (or fewer) of the regular file at `path`: enough for a header.
 pub fn read_head(path: &Path, n: u64) -> std::io::Result<Vec<u8>> {
-    let meta = std::fs::metadata(path)?;
-    if !meta.is_file() {
-        return Err(std::io::Error::new(
-            std::io::ErrorKind::InvalidInput,
-            "not a regular file (a folder, device or pipe is not read)",
-        ));
-    }
+    regular_file(path)?;
     let mut bytes = Vec::new();
     std::fs::File::open(path)?.take(n).read_to_end(&mut bytes)?;
     Ok(bytes)

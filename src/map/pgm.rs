@@ -49,7 +49,13 @@ fn header(bytes: &[u8], at: &mut usize) -> Result<(bool, usize, usize, u16), Pgm
     let binary = match magic.as_str() {
         "P5" => true,
         "P2" => false,
-        _ => return Err(PgmError::Magic(magic)),
+        // Only the start of what was found: the file may be anything at all.
+        _ => {
+            let start: String = magic.chars().take(8).collect();
+            return Err(PgmError::Magic(crate::data::printable::printable(
+                &start, None,
+            )));
+        }
     };
     let mut number = |field| {
         token(bytes, at)

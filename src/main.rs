@@ -5,7 +5,7 @@ use clap::Parser;
 use navdeck::clock::Clock;
 use navdeck::config::Config;
 use navdeck::console::{ConsoleOptions, run_console};
-use navdeck::geometry::Point2;
+use navdeck::geometry::{Point2, Pose2};
 use navdeck::headless;
 use navdeck::keymap::parse_key_sequence;
 use navdeck::map::io as map_io;
@@ -75,9 +75,15 @@ struct Cli {
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u16).range(0..=232))]
     domain: Option<u16>,
 
-    /// World file for the twin (TOML, see maps/); default: the built-in arena.
+    /// World for the twin: a world file (TOML, see maps/) or a Nav2 map (map_server
+    /// YAML + PGM, its occupied cells walls); default: the built-in arena.
     #[arg(long, value_name = "FILE")]
     world: Option<PathBuf>,
+
+    /// Where the twin's robot starts, metres and degrees in the world's frame, instead
+    /// of the world's own start (a Nav2 map's is its roomiest free cell).
+    #[arg(long, value_name = "X,Y,THETA_DEG", value_parser = parse_pose, allow_hyphen_values = true)]
+    start: Option<Pose2>,
 
     /// Seed for the twin's sensor noise: the same seed replays the same run.
     #[arg(
@@ -186,9 +192,13 @@ struct MissionArgs {
     /// Run every seed of a range, e.g. 1..50, on all cores, and print the summary.
     #[arg(long, value_name = "A..B", conflicts_with = "seed")]
     sweep: Option<String>,
-    /// World file for the twin; default: the built-in arena.
+    /// World for the twin: a world file (TOML) or a Nav2 map (YAML + PGM); default: the
+    /// built-in arena.
     #[arg(long, value_name = "FILE")]
     world: Option<PathBuf>,
+    /// Where the robot starts: X,Y,THETA_DEG (default: the world's start).
+    #[arg(long, value_name = "X,Y,THETA_DEG", value_parser = parse_pose, allow_hyphen_values = true)]
+    start: Option<Pose2>,
     /// Each run on a world generated from its seed (as `navdeck world generate`).
     #[arg(long, conflicts_with = "world")]
     generated: bool,
@@ -260,6 +270,25 @@ fn parse_time_limit(s: &str) -> Result<f64, String> {
     bounded(s, 1.0, 7200.0, "s")
 }
 
+/// A pose as X,Y,THETA_DEG: metres and degrees, finite.
+fn parse_pose(s: &str) -> Result<Pose2, String> {
+    let parts: Vec<&str> = s.split(',').map(str::trim).collect();
+    let [x, y, deg] = parts.as_slice() else {
+        return Err(format!("`{s}` is not X,Y,THETA_DEG"));
+    };
+    let number = |v: &str| {
+        v.parse::<f64>()
+            .ok()
+            .filter(|n| n.is_finite() && n.abs() <= 1.0e5)
+            .ok_or_else(|| format!("`{v}` in `{s}` is not a number within 100000"))
+    };
+    Ok(Pose2::new(
+        number(x)?,
+        number(y)?,
+        navdeck::geometry::wrap_angle(number(deg)?.to_radians()),
+    ))
+}
+
 fn parse_point(s: &str) -> Result<Point2, String> {
     let parts: Vec<&str> = s.split(',').map(str::trim).collect();
     let [x, y] = parts.as_slice() else {
@@ -291,6 +320,7 @@ fn real_main(cli: Cli) -> Result<ExitCode> {
         let given = [
             ("--config", cli.config.is_some()),
             ("--world", cli.world.is_some()),
+            ("--start", cli.start.is_some()),
             ("--keymap", cli.keymap.is_some()),
             ("--sim-camera", cli.sim_camera),
             ("--headless", cli.headless),
@@ -318,6 +348,7 @@ fn real_main(cli: Cli) -> Result<ExitCode> {
     let spec = SessionSpec {
         world: cli.world.clone(),
         seed: cli.seed,
+        start: cli.start,
         config: cli.config.clone(),
         keymap: cli.keymap.clone(),
         link: match &cli.link {
@@ -472,6 +503,7 @@ fn run_mission(args: &MissionArgs) -> Result<ExitCode> {
     let spec = |seed| SessionSpec {
         world: args.world.clone(),
         seed,
+        start: args.start,
         config: args.config.clone(),
         keymap: None,
         link: LinkChoice::Sim,

@@ -52,11 +52,20 @@ impl std::str::FromStr for LinkChoice {
 /// The choices a session is built from.
 #[derive(Clone, Debug)]
 pub struct SessionSpec {
+    /// A world file (TOML), or a Nav2 map (YAML + PGM) whose occupied cells are walls.
     pub world: Option<PathBuf>,
     pub seed: u64,
+    /// Where the robot starts instead of the world's own start pose.
+    pub start: Option<crate::geometry::Pose2>,
     pub config: Option<PathBuf>,
     pub keymap: Option<PathBuf>,
     pub link: LinkChoice,
+}
+
+/// Whether `path` names a Nav2 map (map_server YAML) rather than a world file.
+pub fn is_nav2_map(path: &std::path::Path) -> bool {
+    path.extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("yaml") || e.eq_ignore_ascii_case("yml"))
 }
 
 /// The robot a session drives: the twin stays itself until the console starts, so its
@@ -115,10 +124,19 @@ impl Session {
             LinkChoice::Sim => {
                 let world = match (given, &spec.world) {
                     (Some(world), _) => world,
+                    (None, Some(path)) if is_nav2_map(path) => {
+                        crate::sim::nav2_world::load(path, spec.start).with_context(|| {
+                            format!("cannot use map {} as a world", path.display())
+                        })?
+                    }
                     (None, Some(path)) => World::load(path)
                         .with_context(|| format!("cannot use world {}", path.display()))?,
                     (None, None) => World::default_arena(),
                 };
+                let mut world = world;
+                if let Some(start) = spec.start {
+                    world.start = start;
+                }
                 crate::world_fit::world_fits(&world, &config).map_err(|why| {
                     let name = spec
                         .world
@@ -300,6 +318,7 @@ mod tests {
         Session::load(&SessionSpec {
             world: None,
             seed: 1,
+            start: None,
             config,
             keymap: None,
             link: LinkChoice::Sim,
@@ -315,6 +334,7 @@ mod tests {
         let spec = SessionSpec {
             world: None,
             seed: 1,
+            start: None,
             config: None,
             keymap: None,
             link: LinkChoice::Sim,

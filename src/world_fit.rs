@@ -22,6 +22,20 @@ pub fn world_fits(world: &World, config: &Config) -> Result<(), String> {
     }
     let radius = config.robot.footprint_radius;
     let start = world.start.position();
+    if !world.contains(start) || !(world.start.theta.is_finite()) {
+        return Err(format!(
+            "the start ({:.2}, {:.2}) lies outside the world, which spans {} x {} m about (0, 0)",
+            start.x, start.y, world.width, world.height
+        ));
+    }
+    for (i, o) in world.obstacles.iter().enumerate() {
+        if crate::sim::shapes::rect_contains(o.pose, o.width, o.height, start) {
+            return Err(format!(
+                "the start ({:.2}, {:.2}) lies inside obstacles[{i}]",
+                start.x, start.y
+            ));
+        }
+    }
     if let Some(d) = world
         .walls
         .iter()

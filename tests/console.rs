@@ -348,6 +348,7 @@ fn race_mode_warns_when_the_pose_uncertainty_grows() {
     let app = app_with(SessionSpec {
         world: None,
         seed: 1,
+        start: None,
         config: Some(path),
         keymap: None,
         link: LinkChoice::Sim,

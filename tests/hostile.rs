@@ -202,6 +202,14 @@ fn world_cases() -> Vec<Case> {
         case("world", &["mission", "--world", "/dev/zero"], "/dev/zero"),
         case("world", &["mission", "--world", "{dir}"], "regular file"),
         case("world", &["mission", "--world", "missing.toml"], "missing.toml"),
+        case(
+            "world",
+            &["--world", concat!(env!("CARGO_MANIFEST_DIR"), "/maps/turtlebot3_world.yaml"), "--start", "0,0,0", "--headless"],
+            "start",
+        ),
+        case("world", &["--start", "0.5,0.5,0", "--headless"], "obstacles[0]"),
+        case("world", &["--start", "nan,0,0", "--headless"], "--start"),
+        case("world", &["--start", "9,9,0", "--headless"], "outside the world"),
         world("w.toml", "[[walls]]\n".repeat(10_000)),
     ]
 }

@@ -250,6 +250,7 @@ fn the_console_saves_its_map_by_key_command_and_autosave() {
     let mut app = navdeck::session::Session::load(&navdeck::session::SessionSpec {
         world: None,
         seed: 1,
+        start: None,
         config: None,
         keymap: None,
         link: navdeck::session::LinkChoice::Sim,
@@ -293,6 +294,7 @@ fn load_mode_picks_a_saved_map_and_seeds_the_filter_with_its_landmarks() {
     let spec = navdeck::session::SessionSpec {
         world: None,
         seed: 1,
+        start: None,
         config: None,
         keymap: None,
         link: navdeck::session::LinkChoice::Sim,

@@ -17,6 +17,7 @@ fn world_app(file: &str) -> App {
     app_with(SessionSpec {
         world: Some(PathBuf::from("tests/worlds").join(file)),
         seed: 1,
+        start: None,
         config: None,
         keymap: None,
         link: LinkChoice::Sim,

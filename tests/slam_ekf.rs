@@ -62,6 +62,7 @@ fn scripted_five_minute_loop_meets_seed_accuracy_with_consistent_covariance() {
         let spec = SessionSpec {
             world: None,
             seed,
+            start: None,
             config: None,
             keymap: None,
             link: LinkChoice::Sim,
@@ -98,6 +99,7 @@ fn a_standing_start_then_goto_keeps_nees_finite_and_in_band() {
         let spec = SessionSpec {
             world: None,
             seed,
+            start: None,
             config: None,
             keymap: None,
             link: LinkChoice::Sim,

@@ -27,6 +27,7 @@ mod frame_noise;
 pub mod generate;
 mod gripper;
 mod lidar;
+pub mod nav2_world;
 mod raster;
 #[cfg(feature = "vision")]
 mod readable;

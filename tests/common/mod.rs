@@ -20,6 +20,7 @@ pub fn default_app() -> App {
     app_with(SessionSpec {
         world: None,
         seed: 1,
+        start: None,
         config: None,
         keymap: None,
         link: LinkChoice::Sim,

@@ -13,6 +13,7 @@ fn frame(c: &mut Criterion) {
     let spec = SessionSpec {
         world: None,
         seed: 1,
+        start: None,
         config: None,
         keymap: None,
         link: LinkChoice::Sim,

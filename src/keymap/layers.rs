@@ -27,14 +27,20 @@ pub struct Keymap {
 impl Keymap {
     /// The built-in bindings: `keymaps/default.toml`, the keys of seed 001.
     pub fn default_map() -> Keymap {
-        let mut map = Keymap {
-            global: Table::new(),
-            modes: BTreeMap::new(),
-            source: "built-in".to_string(),
-        };
-        map.overlay(DEFAULT_TOML, Path::new(DEFAULT_PATH))
-            .unwrap_or_else(|e| panic!("the built-in keymap is broken: {e}"));
-        map
+        // Parsed once per process: every keymap file is laid over a copy of it.
+        static BUILT_IN: std::sync::OnceLock<Keymap> = std::sync::OnceLock::new();
+        BUILT_IN
+            .get_or_init(|| {
+                let mut map = Keymap {
+                    global: Table::new(),
+                    modes: BTreeMap::new(),
+                    source: "built-in".to_string(),
+                };
+                map.overlay(DEFAULT_TOML, Path::new(DEFAULT_PATH))
+                    .unwrap_or_else(|e| panic!("the built-in keymap is broken: {e}"));
+                map
+            })
+            .clone()
     }
 
     /// The defaults overlaid by the keymap file at `path`.

@@ -385,6 +385,11 @@ fn calibration_cases() -> Vec<Case> {
         with("distortion", calib("600.", "320.", "640", ".nan")),
         with("image_width", calib("600.", "320.", "wide", "0.")),
         with("image_width", calib("600.", "320.", "2000000000", "0.")),
+        // Found by fuzzing: OpenCV 4.6's FileStorage parser never returns on this file.
+        with(
+            "did not finish",
+            include_str!("hostile_inputs/calibration_parser_loop.yml").to_string(),
+        ),
         case("calibration", &args, "/dev/zero")
             .file("c.toml", "[vision]\ncalibration = \"/dev/zero\"\n"),
     ]

@@ -9,9 +9,41 @@ use std::path::Path;
 /// The seed 001 calibration shipped with navdeck.
 pub const SHIPPED: &str = "config/camera_intrinsics.yml";
 
+/// How long OpenCV may take to read a calibration file, seconds: a real one takes well
+/// under a millisecond, and some malformed files send its parser into a loop it never
+/// leaves (found by fuzzing OpenCV 4.6's FileStorage).
+const READ_TIMEOUT: f64 = 2.0;
+
 /// Reads `camera_matrix` (3x3), `distortion_coefficients` (4, 5, 8, 12 or 14 values),
-/// `image_width` and `image_height` from an OpenCV FileStorage file.
+/// `image_width` and `image_height` from an OpenCV FileStorage file. OpenCV reads it on a
+/// thread of its own: a file it cannot finish within `READ_TIMEOUT` is refused (the
+/// thread is left to the process's end, which a refused calibration brings soon).
 pub fn load(path: &Path) -> Result<Intrinsics, CalibrationError> {
+    let (send, receive) = std::sync::mpsc::channel();
+    let owned = path.to_path_buf();
+    std::thread::Builder::new()
+        .name("navdeck-calibration".into())
+        .spawn(move || {
+            let _ = send.send(read(&owned));
+        })
+        .map_err(|e| CalibrationError::Read {
+            path: path.to_path_buf(),
+            message: format!("cannot start reading: {e}"),
+        })?;
+    receive
+        .recv_timeout(std::time::Duration::from_secs_f64(READ_TIMEOUT))
+        .unwrap_or_else(|_| {
+            Err(CalibrationError::Read {
+                path: path.to_path_buf(),
+                message: format!(
+                    "OpenCV did not finish reading it within {READ_TIMEOUT} s: not a well-formed FileStorage file"
+                ),
+            })
+        })
+}
+
+/// `load`'s work, on its own thread.
+fn read(path: &Path) -> Result<Intrinsics, CalibrationError> {
     let read = |message: String| CalibrationError::Read {
         path: path.to_path_buf(),
         message,

@@ -2,21 +2,19 @@
 //! where both are known.
 
 use crate::config::Config;
+use crate::map::config::MAX_CELLS;
 use crate::sim::World;
 
-/// Most cells of the planning map a world may ask for (the same limit as `[map]`'s).
-const MAX_MAP_CELLS: f64 = 16.0e6;
-
 /// Whether `world` suits the robot and the map of `config`: its planning map within
-/// `MAX_MAP_CELLS` at `[map] resolution`, and the robot's footprint at the start clear
-/// of walls and blocks.
+/// `MAX_CELLS` at `[map] resolution`, and the robot's footprint at the start clear
+/// of walls, obstacles and blocks.
 pub fn world_fits(world: &World, config: &Config) -> Result<(), String> {
     let res = config.map.resolution;
     let cells =
         (world.width.max(config.map.width) / res) * (world.height.max(config.map.height) / res);
-    if cells > MAX_MAP_CELLS {
+    if cells > MAX_CELLS {
         return Err(format!(
-            "size {} x {} m at [map] resolution {res} m makes {cells:.0} cells, over the limit of {MAX_MAP_CELLS:.0}: use a coarser resolution",
+            "size {} x {} m at [map] resolution {res} m makes {cells:.0} cells, over the limit of {MAX_CELLS:.0}: use a coarser resolution",
             world.width, world.height
         ));
     }
@@ -28,35 +26,11 @@ pub fn world_fits(world: &World, config: &Config) -> Result<(), String> {
             start.x, start.y, world.width, world.height
         ));
     }
-    for (i, o) in world.obstacles.iter().enumerate() {
-        if crate::sim::shapes::rect_contains(o.pose, o.width, o.height, start) {
-            return Err(format!(
-                "the start ({:.2}, {:.2}) lies inside obstacles[{i}]",
-                start.x, start.y
-            ));
-        }
-    }
-    if let Some(d) = world
-        .walls
-        .iter()
-        .map(|w| w.distance_to(start))
-        .find(|&d| d < radius)
-    {
+    if let Some(why) = world.start_conflict(radius) {
         return Err(format!(
-            "the robot's footprint ([robot] footprint_radius {radius} m) at the start ({:.2}, {:.2}) reaches {:.3} m into a wall",
-            start.x,
-            start.y,
-            radius - d
+            "the robot's footprint ([robot] footprint_radius {radius} m) at the start ({:.2}, {:.2}) {why}",
+            start.x, start.y
         ));
-    }
-    for (i, b) in world.blocks.iter().enumerate() {
-        let edges = crate::sim::shapes::rect_edges(b.pose, b.size, b.size);
-        if edges.iter().any(|e| e.distance_to(start) < radius) {
-            return Err(format!(
-                "the robot's footprint ([robot] footprint_radius {radius} m) at the start ({:.2}, {:.2}) overlaps blocks[{i}]",
-                start.x, start.y
-            ));
-        }
     }
     Ok(())
 }

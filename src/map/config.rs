@@ -54,6 +54,10 @@ impl Default for MapConfig {
     }
 }
 
+/// Most cells a planning map may have: 16 million (a 40 m square at 1 cm), a few
+/// hundred megabytes over all its layers.
+pub const MAX_CELLS: f64 = 16.0e6;
+
 impl MapConfig {
     /// The first field that is out of range: (name in the section, value, reason).
     pub fn validate(&self) -> Result<(), crate::data::check::Invalid> {
@@ -72,7 +76,7 @@ impl MapConfig {
             ("autosave_every", self.autosave_every, 0.0, 86_400.0),
         ])?;
         let cells = (self.width / self.resolution) * (self.height / self.resolution);
-        if cells > 16.0e6 {
+        if cells > MAX_CELLS {
             return Err((
                 "resolution",
                 self.resolution,

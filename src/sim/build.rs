@@ -94,25 +94,8 @@ pub fn build(file: WorldFile, text: &str, path: &Path) -> Result<World, WorldErr
         let line = ck.line(block.span());
         add_block(&mut ck, &mut world, i, line, block.get_ref())?;
     }
-    for (i, o) in world.obstacles.iter().enumerate() {
-        if rect_contains(o.pose, o.width, o.height, start.position()) {
-            let reason = format!("the robot would start inside obstacles[{i}]");
-            return Err(ck.err(start_line, "start", fmt_list(&[sx, sy, sdeg]), reason));
-        }
-    }
-    for (i, b) in world.blocks.iter().enumerate() {
-        if rect_contains(b.pose, b.size, b.size, start.position()) {
-            let reason = format!("the robot would start inside blocks[{i}]");
-            return Err(ck.err(start_line, "start", fmt_list(&[sx, sy, sdeg]), reason));
-        }
-    }
-    if let Some(d) = world
-        .walls
-        .iter()
-        .map(|w| w.distance_to(start.position()))
-        .find(|&d| d < START_CLEARANCE)
-    {
-        let reason = format!("the robot would start {d:.3} m from a wall (on it)");
+    if let Some(why) = world.start_conflict(START_CLEARANCE) {
+        let reason = format!("the robot's centre {why}");
         return Err(ck.err(start_line, "start", fmt_list(&[sx, sy, sdeg]), reason));
     }
     check_blocks_apart(&ck, &world, &file.blocks)?;

@@ -31,12 +31,12 @@ pub fn from_grid(
     start: Option<Pose2>,
     path: &Path,
 ) -> Result<World, WorldError> {
-    let invalid = |field: &str, value: String, reason: &str| WorldError::Invalid {
+    let invalid = |field: &str, value: String, reason: String| WorldError::Invalid {
         path: path.to_path_buf(),
         line: None,
         field: field.to_string(),
         value,
-        reason: reason.to_string(),
+        reason,
     };
     let (w, h) = grid.extent();
     let (x0, y0) = (grid.origin.x, grid.origin.y);
@@ -48,7 +48,7 @@ pub fn from_grid(
         return Err(invalid(
             "size",
             format!("[{width:.1}, {height:.1}]"),
-            "the map with its origin must fit a world of at most 100 m a side",
+            format!("the map with its origin must fit a world of at most {max} m a side"),
         ));
     }
     let start = match start {
@@ -58,7 +58,7 @@ pub fn from_grid(
                 return Err(invalid(
                     "start",
                     format!("[{:.2}, {:.2}]", pose.x, pose.y),
-                    "must be on a known free cell of the map",
+                    "must be on a known free cell of the map".into(),
                 ));
             }
             pose
@@ -67,7 +67,7 @@ pub fn from_grid(
             invalid(
                 "image",
                 path.display().to_string(),
-                "the map has no known free cell to start on",
+                "the map has no known free cell to start on".into(),
             )
         })?,
     };

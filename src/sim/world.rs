@@ -134,6 +134,39 @@ impl World {
         Some(Pose2::new(mid.x, mid.y, a.normal))
     }
 
+    /// What a robot of footprint `radius` at the start pose runs into: its centre inside
+    /// an obstacle or a block, or within `radius` of a wall or a block's side; `None`
+    /// when it stands clear.
+    pub fn start_conflict(&self, radius: f64) -> Option<String> {
+        use super::shapes::{rect_contains, rect_edges};
+        let start = self.start.position();
+        if let Some(i) = self
+            .obstacles
+            .iter()
+            .position(|o| rect_contains(o.pose, o.width, o.height, start))
+        {
+            return Some(format!("lies inside obstacles[{i}]"));
+        }
+        for (i, b) in self.blocks.iter().enumerate() {
+            if rect_contains(b.pose, b.size, b.size, start) {
+                return Some(format!("lies inside blocks[{i}]"));
+            }
+            let edges = rect_edges(b.pose, b.size, b.size);
+            if let Some(d) = edges
+                .iter()
+                .map(|e| e.distance_to(start))
+                .find(|&d| d < radius)
+            {
+                return Some(format!("is {d:.3} m from blocks[{i}], under {radius} m"));
+            }
+        }
+        self.walls
+            .iter()
+            .map(|w| w.distance_to(start))
+            .find(|&d| d < radius)
+            .map(|d| format!("is {d:.3} m from a wall, under {radius} m"))
+    }
+
     /// True when `p` lies within the world's bounds.
     pub fn contains(&self, p: Point2) -> bool {
         p.x.abs() <= self.width / 2.0 && p.y.abs() <= self.height / 2.0

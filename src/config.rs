@@ -89,28 +89,18 @@ impl Config {
             path: path.to_path_buf(),
             message: e.to_string().trim_end().to_string(),
         })?;
-        config.validate(path).map_err(|e| match e {
-            ConfigError::Invalid {
-                path,
-                field,
-                value,
-                reason,
-                ..
-            } => ConfigError::Invalid {
-                line: line_of(text, &field),
-                path,
-                field,
-                value,
-                reason,
-            },
-            other => other,
-        })?;
+        config.check_sections(path, Some(text))?;
         Ok(config)
     }
 
     /// Checks values a parser cannot, section by section: each section's `validate()`
     /// names its first bad field, and the error adds the file and the section.
     pub fn validate(&self, path: &Path) -> Result<(), ConfigError> {
+        self.check_sections(path, None)
+    }
+
+    /// `validate`, naming the line of `text` (the file's TOML) that sets a bad field.
+    fn check_sections(&self, path: &Path, text: Option<&str>) -> Result<(), ConfigError> {
         let sections = [
             ("robot", self.robot.validate()),
             ("teleop", self.teleop.validate()),
@@ -127,10 +117,11 @@ impl Config {
         ];
         for (section, result) in sections {
             if let Err((field, value, reason)) = result {
+                let field = format!("{section}.{field}");
                 return Err(ConfigError::Invalid {
                     path: path.to_path_buf(),
-                    line: None,
-                    field: format!("{section}.{field}"),
+                    line: text.and_then(|t| line_of(t, &field)),
+                    field,
                     value: format!("{value:?}"),
                     reason,
                 });

@@ -182,26 +182,7 @@ pub fn decode(
         path: path.to_path_buf(),
         message: e.to_string(),
     })?;
-    let mode = check(&yaml, path).map_err(|e| match e {
-        MapFileError::Field {
-            path,
-            field,
-            value,
-            reason,
-            ..
-        } => MapFileError::Field {
-            // A header key starts its line: `resolution: 0.05`.
-            line: text
-                .lines()
-                .position(|l| l.trim_start().starts_with(&format!("{field}:")))
-                .map(|n| n + 1),
-            path,
-            field,
-            value,
-            reason,
-        },
-        other => other,
-    })?;
+    let mode = check(&yaml, text, path)?;
     // map_server: the image is relative to the YAML's folder unless absolute.
     let image_path = if yaml.image.is_absolute() {
         yaml.image.clone()
@@ -284,10 +265,15 @@ enum Mode {
     Raw,
 }
 
-fn check(yaml: &MapYaml, path: &Path) -> Result<Mode, MapFileError> {
-    let field = |field, value: String, reason| MapFileError::Field {
+/// The header's values in their bounds; `text` is the YAML, for the line of a bad field.
+fn check(yaml: &MapYaml, text: &str, path: &Path) -> Result<Mode, MapFileError> {
+    let field = |field: &'static str, value: String, reason| MapFileError::Field {
         path: path.to_path_buf(),
-        line: None,
+        // A header key starts its line: `resolution: 0.05`.
+        line: text
+            .lines()
+            .position(|l| l.trim_start().starts_with(&format!("{field}:")))
+            .map(|n| n + 1),
         field,
         value,
         reason,

@@ -1,7 +1,7 @@
 //! The log pane: newest lines at the bottom, coloured by level; paged back, filtered by
 //! level or text; a line too long for the pane wraps under its text.
 
-use super::text::{fit, wrap};
+use super::text::wrap_rows;
 use crate::app::App;
 use crate::app::log::{Entry, format_time};
 use crate::data::Level;
@@ -62,11 +62,7 @@ fn entry_lines(e: &Entry, theme: Theme, width: usize) -> Vec<Line<'static>> {
         text.push_str(&format!("  ×{}", e.repeats));
     }
     let room = width.saturating_sub(head).max(1);
-    let mut parts = wrap(&text, room);
-    if parts.len() > MAX_ROWS {
-        let rest = parts.split_off(MAX_ROWS - 1).join(" ");
-        parts.push(fit(&rest, room));
-    }
+    let parts = wrap_rows(&text, room, MAX_ROWS);
     let mut lines = Vec::new();
     for (k, part) in parts.into_iter().enumerate() {
         lines.push(if k == 0 {

@@ -1,5 +1,6 @@
 //! The status panel: mode, link, pose, velocities, limits, loop rate, sim time.
 
+use super::text::wrap_rows;
 use crate::app::{App, LinkStatus};
 use crate::geometry::Pose2;
 use crate::pilot::mode::Mode;
@@ -33,13 +34,6 @@ fn clock_text(t: f64) -> String {
 fn minutes_text(t: f64) -> String {
     let s = t.max(0.0).floor() as u64;
     format!("{}:{:02}", s / 60, s % 60)
-}
-
-/// `text` as a first line within `width` columns, broken between words, and the rest.
-fn split_words(text: &str, width: usize) -> (String, String) {
-    let mut lines = super::text::wrap(text, width).into_iter();
-    let first = lines.next().unwrap_or_default();
-    (first, lines.collect::<Vec<_>>().join(" "))
 }
 
 /// `text`, or a dash when there is nothing to list.
@@ -96,11 +90,7 @@ fn rows(app: &App, theme: Theme, width: usize) -> Vec<Line<'static>> {
         // Why, as the link says it now (its waiting time counts up), over up to three
         // rows; the Link row already says it is lost.
         let reason = reason.strip_prefix("link lost: ").unwrap_or(reason);
-        let mut parts = super::text::wrap(reason, width.saturating_sub(LABEL));
-        if parts.len() > 3 {
-            let rest = parts.split_off(2).join(" ");
-            parts.push(rest);
-        }
+        let parts = wrap_rows(reason, width.saturating_sub(LABEL), 3);
         rows.extend(parts.into_iter().map(|p| row(theme, "", p)));
     }
     for (label, value) in app.link().details(app.now()) {
@@ -215,18 +205,12 @@ fn navigation_rows(app: &App, theme: Theme, room: usize) -> Vec<Line<'static>> {
         } else {
             m.state_label()
         };
-        // The state and its target can be long: two rows, broken between words.
-        let (first, rest) = split_words(&state, room);
-        rows.push(row(theme, "Mission", first));
-        if !rest.is_empty() {
-            rows.push(row(theme, "", rest));
-        }
+        // The state and its target, and why, can be long: two rows each, broken
+        // between words.
         let reason = if paused { String::new() } else { m.reason() };
-        if !reason.is_empty() {
-            let (first, rest) = split_words(&reason, room);
-            rows.push(row(theme, "Why", first));
-            if !rest.is_empty() {
-                rows.push(row(theme, "", rest));
+        for (label, text) in [("Mission", state), ("Why", reason)] {
+            for (k, part) in wrap_rows(&text, room, 2).into_iter().enumerate() {
+                rows.push(row(theme, if k == 0 { label } else { "" }, part));
             }
         }
         let total = match app.config().mission.total_blocks {
@@ -283,12 +267,7 @@ mod tests {
     use super::*;
 
     #[test]
-    fn long_mission_states_break_between_words() {
-        let (a, b) = split_words("drive blue block 523 into blue gate", 21);
-        assert_eq!(
-            (a.as_str(), b.as_str()),
-            ("drive blue block 523", "into blue gate")
-        );
+    fn minutes_read_minutes_and_seconds() {
         assert_eq!(minutes_text(125.5), "2:05");
     }
 

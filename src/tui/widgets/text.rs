@@ -33,6 +33,17 @@ pub fn wrap(text: &str, width: usize) -> Vec<String> {
     lines
 }
 
+/// `text` wrapped as `wrap` does into at most `rows` lines, the last holding the rest,
+/// cut with `…` when it does not fit.
+pub fn wrap_rows(text: &str, width: usize, rows: usize) -> Vec<String> {
+    let mut lines = wrap(text, width);
+    if lines.len() > rows.max(1) {
+        let rest = lines.split_off(rows.max(1) - 1).join(" ");
+        lines.push(fit(&rest, width.max(1)));
+    }
+    lines
+}
+
 /// `text` as it fits in `room` columns: cut with `…` as its last column when too long.
 pub fn fit(text: &str, room: usize) -> String {
     if text.chars().count() <= room {
@@ -58,6 +69,16 @@ mod tests {
         for line in wrap("a fairly long line of words to break up", 9) {
             assert!(line.chars().count() <= 9, "{line}");
         }
+    }
+
+    #[test]
+    fn wrapped_rows_end_with_the_rest_cut_to_fit() {
+        assert_eq!(
+            wrap_rows("drive blue block 523 into blue gate", 21, 2),
+            vec!["drive blue block 523", "into blue gate"]
+        );
+        assert_eq!(wrap_rows("aa bb cc dd ee", 5, 2), vec!["aa bb", "cc d…"]);
+        assert_eq!(wrap_rows("aa", 5, 3), vec!["aa"]);
     }
 
     #[test]

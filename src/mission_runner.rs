@@ -291,10 +291,10 @@ pub fn human(r: &MissionReport) -> String {
     out
 }
 
-/// Reads a seed range `A..B` (inclusive) or a single seed.
 /// Most runs one sweep makes.
 pub const MAX_SWEEP: u64 = 1000;
 
+/// Reads a seed range `A..B` (inclusive) of at most `MAX_SWEEP` seeds, or a single seed.
 pub fn parse_seeds(text: &str) -> Result<Vec<u64>, String> {
     let bad = || format!("`{text}` is not a seed range like 1..50");
     match text.split_once("..") {

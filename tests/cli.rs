@@ -1,16 +1,12 @@
 //! The binary from the outside: headless runs, help, and refusals of bad input.
 
+mod common;
+
+use common::navdeck;
+
 use serde_json::Value;
 use std::path::PathBuf;
-use std::process::{Command, Output};
-
-fn navdeck(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_navdeck"))
-        .args(args)
-        .env("NO_COLOR", "1")
-        .output()
-        .expect("navdeck runs")
-}
+use std::process::Output;
 
 fn headless_json(args: &[&str]) -> Value {
     let mut all = vec!["--headless", "--json"];

@@ -2,19 +2,11 @@
 
 mod common;
 
-use common::{default_app, key};
+use common::{default_app, key, navdeck};
 use navdeck::app::KeyKind;
 use navdeck::app::mode::Mode;
 use navdeck::mission_runner;
 use serde_json::Value;
-use std::process::Command;
-
-fn navdeck(args: &[&str]) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_navdeck"))
-        .args(args)
-        .output()
-        .expect("navdeck runs")
-}
 
 #[test]
 fn the_mission_delivers_all_four_blocks_without_touching_anything() {

@@ -1,20 +1,16 @@
 //! The twin inside a Nav2 map: TurtleBot3's own world (map_server YAML + PGM, shipped in
 //! maps/) becomes walls the lidar sees and the robot runs into, in the map's own frame.
 
+mod common;
+
+use common::navdeck;
+
 use navdeck::config::Config;
 use navdeck::geometry::Twist;
 use navdeck::sim::{Twin, nav2_world};
 use std::path::Path;
-use std::process::Command;
 
 const MAP: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/maps/turtlebot3_world.yaml");
-
-fn navdeck(args: &[&str]) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_navdeck"))
-        .args(args)
-        .output()
-        .expect("navdeck runs")
-}
 
 #[test]
 fn the_turtlebot3_world_becomes_walls_in_its_own_frame() {

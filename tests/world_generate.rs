@@ -3,13 +3,16 @@
 //! the same file; the command line writes files the other commands load, and refuses bad
 //! options by name.
 
+mod common;
+
+use common::navdeck;
+
 use navdeck::geometry::Point2;
 use navdeck::perception::markers::MarkerCategory;
 use navdeck::sim::World;
 use navdeck::sim::generate::{GenerateOptions, Style, check_reachable, generate};
 use std::collections::HashSet;
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
 
 const SEEDS: u64 = 200;
 
@@ -180,14 +183,6 @@ fn impossible_options_are_refused_by_name() {
     };
     assert!(generate(&nan).unwrap_err().to_string().contains("`size`"));
     assert!("mazes".parse::<Style>().unwrap_err().contains("mazes"));
-}
-
-fn navdeck(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_navdeck"))
-        .args(args)
-        .env("NO_COLOR", "1")
-        .output()
-        .expect("navdeck runs")
 }
 
 fn scratch_dir() -> PathBuf {

@@ -15,6 +15,15 @@ use ratatui::backend::TestBackend;
 use std::sync::atomic::AtomicUsize;
 use std::sync::{Arc, Mutex};
 
+/// Runs the navdeck binary with `args`, without colour, and waits for it.
+pub fn navdeck(args: &[&str]) -> std::process::Output {
+    std::process::Command::new(env!("CARGO_BIN_EXE_navdeck"))
+        .args(args)
+        .env("NO_COLOR", "1")
+        .output()
+        .expect("navdeck runs")
+}
+
 /// The default session: the built-in arena, seed 1.
 pub fn default_app() -> App {
     app_with(SessionSpec {

@@ -26,13 +26,20 @@ fn regular_file(path: &Path) -> std::io::Result<std::fs::Metadata> {
     Ok(meta)
 }
 
-/// The bytes of the regular file at `path`, refused over `limit` bytes.
-pub fn read_limited(path: &Path, limit: u64) -> std::io::Result<Vec<u8>> {
+/// The size of the regular file at `path`, refused over `limit` bytes, for a reader that
+/// opens the file itself (OpenCV's): nothing is read here.
+pub fn check_limited(path: &Path, limit: u64) -> std::io::Result<u64> {
     let meta = regular_file(path)?;
     if meta.len() > limit {
         return Err(too_big(meta.len(), limit));
     }
-    let mut bytes = Vec::with_capacity(meta.len() as usize);
+    Ok(meta.len())
+}
+
+/// The bytes of the regular file at `path`, refused over `limit` bytes.
+pub fn read_limited(path: &Path, limit: u64) -> std::io::Result<Vec<u8>> {
+    let size = check_limited(path, limit)?;
+    let mut bytes = Vec::with_capacity(size as usize);
     // The file may grow while read: never more than the limit.
     std::fs::File::open(path)?
         .take(limit + 1)

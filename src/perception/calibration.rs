@@ -48,13 +48,16 @@ fn read(path: &Path) -> Result<Intrinsics, CalibrationError> {
         path: path.to_path_buf(),
         message,
     };
-    // Read as every input file is (a regular file, not too large), and handed to OpenCV
-    // from memory: the file is read once.
-    let bytes = crate::data::files::read_limited(path, crate::data::files::TEXT_LIMIT)
+    // Checked as every input file is (a regular file, not too large) before OpenCV opens
+    // and reads it; nothing is read here. (OpenCV is given the file, not its bytes: from
+    // memory it refuses YAML without a `%YAML` line, which it reads from a .yml file.)
+    crate::data::files::check_limited(path, crate::data::files::TEXT_LIMIT)
         .map_err(|e| read(e.to_string()))?;
-    let text = String::from_utf8_lossy(&bytes);
-    let mode = FileStorage_Mode::READ as i32 | FileStorage_Mode::MEMORY as i32;
-    let fs = FileStorage::new(&text, mode, "").map_err(|e| read(e.message))?;
+    let name = path
+        .to_str()
+        .ok_or_else(|| read("the path is not UTF-8".into()))?;
+    let fs =
+        FileStorage::new(name, FileStorage_Mode::READ as i32, "").map_err(|e| read(e.message))?;
     if !fs.is_opened().unwrap_or(false) {
         return Err(read("OpenCV cannot open it as FileStorage YAML/XML".into()));
     }

@@ -17,6 +17,7 @@ fn frame(c: &mut Criterion) {
         config: None,
         keymap: None,
         link: LinkChoice::Sim,
+        localize: Default::default(),
     };
     for (braille, name) in [
         (false, "render_200x60_ascii"),

@@ -52,6 +52,8 @@ pub struct Config {
     pub plan: PlanConfig,
     pub follow: FollowConfig,
     pub mission: MissionConfig,
+    /// Which estimator places the robot; Monte-Carlo localisation's settings.
+    pub localization: crate::slam::mcl::config::LocalizationConfig,
     /// `--link ros2`: topics, QoS, message variants.
     pub ros2: crate::link::ros2::config::Ros2Config,
     pub serial: SerialConfig,
@@ -70,6 +72,7 @@ impl Config {
             plan: self.plan.clone(),
             follow: self.follow.clone(),
             mission: self.mission.clone(),
+            localization: self.localization.clone(),
         }
     }
 
@@ -111,6 +114,7 @@ impl Config {
             ("plan", self.plan.validate()),
             ("follow", self.follow.validate()),
             ("mission", self.mission.validate()),
+            ("localization", self.localization.validate()),
             ("ros2", self.ros2.validate()),
             ("serial", self.serial.validate()),
             ("vision", self.vision.validate()),

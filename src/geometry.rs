@@ -169,6 +169,26 @@ impl Rms {
     }
 }
 
+/// Parses `X,Y,THETA_DEG` (metres and degrees, as the command line and `:pose` take a
+/// pose) into a pose with its heading in radians.
+pub fn parse_pose_degrees(s: &str) -> Result<Pose2, String> {
+    let parts: Vec<&str> = s.split(',').map(str::trim).collect();
+    let [x, y, deg] = parts.as_slice() else {
+        return Err(format!("`{s}` is not X,Y,THETA_DEG"));
+    };
+    let number = |v: &str| {
+        v.parse::<f64>()
+            .ok()
+            .filter(|n| n.is_finite() && n.abs() <= 1.0e5)
+            .ok_or_else(|| format!("`{v}` in `{s}` is not a number within 100000"))
+    };
+    Ok(Pose2::new(
+        number(x)?,
+        number(y)?,
+        wrap_angle(number(deg)?.to_radians()),
+    ))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

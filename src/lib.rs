@@ -21,5 +21,6 @@ pub mod plan_report;
 pub mod session;
 pub mod sim;
 pub mod slam;
+pub mod tour;
 pub mod tui;
 pub mod world_fit;

@@ -55,6 +55,9 @@ macro_rules! say_err {
 /// Characters of an error line shown.
 const ERROR_LINE: usize = 400;
 
+mod tour_command;
+use tour_command::{LocalizeArgs, TourArgs};
+
 /// A terminal teleop-and-autonomy console for small differential-drive robots.
 ///
 /// With no options it opens the console on the built-in digital twin in seed 001's
@@ -84,6 +87,9 @@ struct Cli {
     /// of the world's own start (a Nav2 map's is its roomiest free cell).
     #[arg(long, value_name = "X,Y,THETA_DEG", value_parser = parse_pose, allow_hyphen_values = true)]
     start: Option<Pose2>,
+
+    #[command(flatten)]
+    localize: LocalizeArgs,
 
     /// Seed for the twin's sensor noise: the same seed replays the same run.
     #[arg(
@@ -153,6 +159,9 @@ enum Subcommand {
     Plan(PlanArgs),
     /// Run the whole exploration-and-delivery mission in the twin on simulated time.
     Mission(MissionArgs),
+    /// Drive the twin from goal to goal on simulated time and score the estimate against
+    /// the truth (tracking, global localisation, a kidnapped robot).
+    Tour(TourArgs),
     /// Look at a saved map (Nav2 map_server YAML + PGM).
     #[command(subcommand)]
     Map(MapCommand),
@@ -199,6 +208,8 @@ struct MissionArgs {
     /// Where the robot starts: X,Y,THETA_DEG (default: the world's start).
     #[arg(long, value_name = "X,Y,THETA_DEG", value_parser = parse_pose, allow_hyphen_values = true)]
     start: Option<Pose2>,
+    #[command(flatten)]
+    localize: LocalizeArgs,
     /// Each run on a world generated from its seed (as `navdeck world generate`).
     #[arg(long, conflicts_with = "world")]
     generated: bool,
@@ -272,21 +283,7 @@ fn parse_time_limit(s: &str) -> Result<f64, String> {
 
 /// A pose as X,Y,THETA_DEG: metres and degrees, finite.
 fn parse_pose(s: &str) -> Result<Pose2, String> {
-    let parts: Vec<&str> = s.split(',').map(str::trim).collect();
-    let [x, y, deg] = parts.as_slice() else {
-        return Err(format!("`{s}` is not X,Y,THETA_DEG"));
-    };
-    let number = |v: &str| {
-        v.parse::<f64>()
-            .ok()
-            .filter(|n| n.is_finite() && n.abs() <= 1.0e5)
-            .ok_or_else(|| format!("`{v}` in `{s}` is not a number within 100000"))
-    };
-    Ok(Pose2::new(
-        number(x)?,
-        number(y)?,
-        navdeck::geometry::wrap_angle(number(deg)?.to_radians()),
-    ))
+    navdeck::geometry::parse_pose_degrees(s)
 }
 
 fn parse_point(s: &str) -> Result<Point2, String> {
@@ -325,11 +322,18 @@ fn real_main(cli: Cli) -> Result<ExitCode> {
             ("--sim-camera", cli.sim_camera),
             ("--headless", cli.headless),
             ("--camera", cli.camera.is_some()),
+            ("--estimator", cli.localize.given() == Some("--estimator")),
+            ("--map", cli.localize.given() == Some("--map")),
+            (
+                "--initial-pose",
+                cli.localize.given() == Some("--initial-pose"),
+            ),
         ];
         if let Some((option, _)) = given.iter().find(|(_, on)| *on) {
             let name = match command {
                 Subcommand::Plan(_) => "plan",
                 Subcommand::Mission(_) => "mission",
+                Subcommand::Tour(_) => "tour",
                 Subcommand::Map(_) => "map",
                 Subcommand::World(_) => "world",
             };
@@ -341,6 +345,7 @@ fn real_main(cli: Cli) -> Result<ExitCode> {
     match &cli.command {
         Some(Subcommand::Plan(args)) => return run_plan(args),
         Some(Subcommand::Mission(args)) => return run_mission(args),
+        Some(Subcommand::Tour(args)) => return tour_command::run(args),
         Some(Subcommand::Map(command)) => return run_map(command),
         Some(Subcommand::World(command)) => return world_command::run(command),
         None => {}
@@ -358,6 +363,7 @@ fn real_main(cli: Cli) -> Result<ExitCode> {
             }),
             other => other.clone(),
         },
+        localize: cli.localize.choice(),
     };
     // Everything is loaded and validated before the terminal is touched.
     let mut session = Session::load(&spec)?;
@@ -507,6 +513,7 @@ fn run_mission(args: &MissionArgs) -> Result<ExitCode> {
         config: args.config.clone(),
         keymap: None,
         link: LinkChoice::Sim,
+        localize: args.localize.choice(),
     };
     let load = |seed: u64| -> Result<Session> {
         let mut session = match &generated {
@@ -530,10 +537,18 @@ fn run_mission(args: &MissionArgs) -> Result<ExitCode> {
     // Load once up front so a bad file is refused before anything runs.
     load(args.seed)?;
     let one = |seed: u64| -> Result<mission_runner::MissionReport> {
-        let (config, mut link) = load(seed)?.into_link();
+        let session = load(seed)?;
+        let localizer = session.localizer.clone();
+        let (config, mut link) = session.into_link();
         let started = Instant::now();
-        let mut report =
-            mission_runner::run(&config, link.as_mut(), seed, args.time_limit, args.log);
+        let mut report = mission_runner::run(
+            &config,
+            link.as_mut(),
+            localizer.as_ref(),
+            seed,
+            args.time_limit,
+            args.log,
+        );
         let wall = started.elapsed().as_secs_f64();
         report.wall_time_s = Some(wall);
         report.realtime_factor = Some(report.sim_time / wall.max(1e-9));

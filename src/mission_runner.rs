@@ -66,10 +66,11 @@ impl MissionReport {
 /// Runs the mission on `link` with a pilot of `config`'s settings, from session time 0
 /// until it ends or `time_limit` simulated seconds pass. No console: the pilot is driven
 /// directly, a control step every period. With `keep_log`, the report carries every line
-/// the session logged.
+/// the session logged. With a `localizer`, MCL places the robot.
 pub fn run(
     config: &Config,
     link: &mut dyn RobotLink,
+    localizer: Option<&crate::pilot::localize::Localizer>,
     seed: u64,
     time_limit: f64,
     keep_log: bool,
@@ -77,6 +78,10 @@ pub fn run(
     let mut pilot = drive::pilot_for(link, config.pilot_settings(), 0.0);
     let truth = link.ground_truth().map(|t| t.pose());
     let mut run = Run::default();
+    if let Some(Err(why)) = localizer.map(|l| l.apply(&mut pilot)) {
+        let (time, level, text) = (0.0, Level::Error, format!("MCL not started: {why}"));
+        run.log.push(LogLine { time, level, text });
+    }
     let out = pilot.step(Input::intent(0.0, Intent::Mode(Mode::Exploration), truth));
     run.log.extend(out.log);
     if out.act_now {

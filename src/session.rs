@@ -8,7 +8,9 @@ use crate::link::RobotLink;
 use crate::link::ros2::{Ros2Link, Ros2Options, domain_from};
 use crate::link::serial::SerialLink;
 use crate::link::sim::SimLink;
+use crate::pilot::localize::{InitialPose, Localizer};
 use crate::sim::{Twin, World};
+use crate::slam::mcl::config::Estimator;
 use anyhow::{Context, Result, bail};
 use std::path::PathBuf;
 
@@ -60,6 +62,18 @@ pub struct SessionSpec {
     pub config: Option<PathBuf>,
     pub keymap: Option<PathBuf>,
     pub link: LinkChoice,
+    pub localize: LocalizeChoice,
+}
+
+/// The command line's say on how the robot is localised (over `[localization]`).
+#[derive(Clone, Debug, Default)]
+pub struct LocalizeChoice {
+    /// `--estimator`.
+    pub estimator: Option<Estimator>,
+    /// `--map`: the map MCL localises on (default: the world, when it is a Nav2 map).
+    pub map: Option<PathBuf>,
+    /// `--initial-pose` (default: the twin's start, or global localisation on a robot).
+    pub initial_pose: Option<InitialPose>,
 }
 
 /// Whether `path` names a Nav2 map (map_server YAML) rather than a world file.
@@ -93,6 +107,8 @@ pub struct Session {
     pub ros2_domain: Option<u16>,
     /// Whether the config file set `[mission] blind_distance` (else it follows the camera).
     blind_from_user: bool,
+    /// MCL's map and start, when the session localises with it.
+    pub localizer: Option<Localizer>,
 }
 
 impl Session {
@@ -173,12 +189,14 @@ impl Session {
             )?)),
         };
         let blind_from_user = config.mission.blind_distance.is_some();
+        let localizer = localizer_for(spec, &mut config, &robot)?;
         let mut session = Session {
             config,
             keymap,
             robot,
             ros2_domain,
             blind_from_user,
+            localizer,
         };
         // The twin's ideal sensor sees a block until the marker on its face is at the
         // sensor's least range.
@@ -283,8 +301,49 @@ impl Session {
 
     /// The console on this session, starting at session time `now`.
     pub fn into_app(self, now: f64) -> App {
-        App::new(self.config, self.keymap, self.robot.into_link(), now)
+        let mut app = App::new(self.config, self.keymap, self.robot.into_link(), now);
+        if let Some(localizer) = &self.localizer {
+            app.localize(localizer);
+        }
+        app
     }
+}
+
+/// MCL's map and start for `spec`, or None when the EKF places the robot. The command
+/// line's estimator overrides the config's and is written back into it.
+fn localizer_for(
+    spec: &SessionSpec,
+    config: &mut Config,
+    robot: &Robot,
+) -> Result<Option<Localizer>> {
+    let choice = &spec.localize;
+    if let Some(e) = choice.estimator {
+        config.localization.estimator = e;
+    }
+    if config.localization.estimator != Estimator::Mcl {
+        if choice.map.is_some() || choice.initial_pose.is_some() {
+            bail!("--map and --initial-pose are for MCL: add --estimator mcl");
+        }
+        return Ok(None);
+    }
+    let nav2_world = spec.world.as_ref().filter(|w| is_nav2_map(w));
+    let Some(path) = choice.map.as_ref().or(nav2_world) else {
+        bail!(
+            "the MCL estimator needs a map to localise on: --map FILE.yaml (a Nav2 map), \
+             or a Nav2 map as the twin's --world"
+        );
+    };
+    let map = crate::map::io::load(path)
+        .with_context(|| format!("cannot read the map {} for MCL", path.display()))?;
+    let initial = match (choice.initial_pose, robot) {
+        (Some(initial), _) => initial,
+        // The twin starts where its world says, as the EKF does; a real robot is looked for.
+        (None, Robot::Twin(twin)) => InitialPose::At(twin.pose()),
+        (None, Robot::Link(_)) => InitialPose::Unknown,
+    };
+    let localizer = Localizer::new(map.grid, initial, spec.seed, path.display().to_string())
+        .map_err(anyhow::Error::msg)?;
+    Ok(Some(localizer))
 }
 
 /// How near a block can come before it leaves the view of `detector`'s camera (its
@@ -322,6 +381,7 @@ mod tests {
             config,
             keymap: None,
             link: LinkChoice::Sim,
+            localize: LocalizeChoice::default(),
         })
         .unwrap()
     }
@@ -338,6 +398,7 @@ mod tests {
             config: None,
             keymap: None,
             link: LinkChoice::Sim,
+            localize: LocalizeChoice::default(),
         };
         let session = Session::load_with_world(&spec, world.clone()).unwrap();
         // The mission is not told the truth: it delivers what it finds.

@@ -352,6 +352,7 @@ fn race_mode_warns_when_the_pose_uncertainty_grows() {
         config: Some(path),
         keymap: None,
         link: LinkChoice::Sim,
+        localize: Default::default(),
     });
     let app = drive_pattern(app, 'r');
     assert!(

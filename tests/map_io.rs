@@ -254,6 +254,7 @@ fn the_console_saves_its_map_by_key_command_and_autosave() {
         config: None,
         keymap: None,
         link: navdeck::session::LinkChoice::Sim,
+        localize: Default::default(),
     })
     .unwrap()
     .into_app(0.0);
@@ -298,6 +299,7 @@ fn load_mode_picks_a_saved_map_and_seeds_the_filter_with_its_landmarks() {
         config: None,
         keymap: None,
         link: navdeck::session::LinkChoice::Sim,
+        localize: Default::default(),
     };
     let dir = scratch("load");
     let mut first = navdeck::session::Session::load(&spec)

@@ -118,6 +118,7 @@ fn the_console_shows_the_turtlebot3_world() {
         config: None,
         keymap: None,
         link: LinkChoice::Sim,
+        localize: Default::default(),
     };
     let mut app = Session::load(&spec).unwrap().into_app(0.0);
     app.resize(100, 30);

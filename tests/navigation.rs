@@ -21,6 +21,7 @@ fn world_app(file: &str) -> App {
         config: None,
         keymap: None,
         link: LinkChoice::Sim,
+        localize: Default::default(),
     })
 }
 

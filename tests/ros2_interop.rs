@@ -1,15 +1,22 @@
 //! navdeck against a robot on Eclipse Cyclone DDS (the DDS ROS 2 ships), played by
 //! tests/interop/turtlebot_peer.py with ROS 2's wire types: headless navdeck drives it
-//! over `--link ros2`, and both sides check what crossed.
+//! over `--link ros2`, and both sides check what crossed. tests/interop/amcl_peer.py
+//! plays RViz beside MCL: pose estimates on /initialpose in, particles on /particlecloud
+//! out, checked at the link itself.
 //!
 //! Needs a Python with the PyPI `cyclonedds` package: `NAVDECK_PYTHON` names it
 //! (./scripts/test makes a virtualenv and sets it, with NAVDECK_REQUIRE_INTEROP=1 so
 //! that a missing peer fails the run instead of skipping).
 
+use navdeck::config::Config;
+use navdeck::geometry::Pose2;
+use navdeck::link::ros2::{Ros2Link, Ros2Options};
+use navdeck::link::{Picture, RobotLink, SensorFrame};
 use serde_json::Value;
 use std::io::{BufRead, BufReader};
 use std::path::PathBuf;
 use std::process::{Command, Stdio};
+use std::time::Instant;
 
 /// Cyclone on loopback only: no multicast, unicast discovery to 127.0.0.1.
 const CYCLONE_CONFIG: &str = "<CycloneDDS><Domain Id=\"any\"><General><Interfaces>\
@@ -147,4 +154,235 @@ fn a_jazzy_style_peer_gets_twist_stamped() {
         warnings.is_empty(),
         "no warnings on a matched link: {warnings:?}"
     );
+}
+
+/// A peer script on `domain` whose stdout lines arrive on a channel; closing its stdin
+/// (on drop) makes it leave.
+struct LinePeer {
+    child: std::process::Child,
+    lines: std::sync::mpsc::Receiver<String>,
+}
+
+impl LinePeer {
+    fn start(script: &str, domain: u16) -> Option<LinePeer> {
+        let python = python()?;
+        let path = format!("{}/tests/interop/{script}", env!("CARGO_MANIFEST_DIR"));
+        let mut child = Command::new(&python)
+            .arg(path)
+            .arg(domain.to_string())
+            .env("CYCLONEDDS_URI", CYCLONE_CONFIG)
+            .stdin(Stdio::piped())
+            .stdout(Stdio::piped())
+            .spawn()
+            .expect("start the Cyclone DDS peer");
+        let out = BufReader::new(child.stdout.take().unwrap());
+        let (tx, lines) = std::sync::mpsc::channel();
+        std::thread::spawn(move || {
+            for line in out.lines().map_while(Result::ok) {
+                if tx.send(line).is_err() {
+                    break;
+                }
+            }
+        });
+        let mut peer = LinePeer { child, lines };
+        assert_eq!(peer.next_line("ready"), "ready", "the peer did not start");
+        Some(peer)
+    }
+
+    fn say(&mut self, line: &str) {
+        use std::io::Write;
+        let stdin = self.child.stdin.as_mut().unwrap();
+        writeln!(stdin, "{line}")
+            .and_then(|_| stdin.flush())
+            .unwrap();
+    }
+
+    /// The peer's next line, waiting at most PATIENCE for `what`.
+    fn next_line(&mut self, what: &str) -> String {
+        self.lines
+            .recv_timeout(std::time::Duration::from_secs_f64(PATIENCE))
+            .unwrap_or_else(|e| panic!("no {what} from the peer: {e}"))
+    }
+}
+
+impl Drop for LinePeer {
+    fn drop(&mut self) {
+        drop(self.child.stdin.take());
+        let _ = self.child.wait();
+    }
+}
+
+/// Upper bound on any wait for DDS (discovery on loopback takes well under a second).
+const PATIENCE: f64 = 20.0;
+
+/// navdeck's ROS 2 link on loopback, as `LOOPBACK` configures the headless runs, with
+/// `tweak` applied to its config.
+fn connect_loopback(
+    domain: u16,
+    tweak: impl FnOnce(&mut Config),
+) -> Result<Ros2Link, navdeck::link::LinkError> {
+    let mut config = Config::default();
+    config.ros2.interfaces = vec!["127.0.0.1".into()];
+    tweak(&mut config);
+    Ros2Link::connect(Ros2Options {
+        config: config.ros2,
+        domain,
+        track: config.robot.track,
+        max_wheel_speed: config.robot.max_wheel_speed(),
+    })
+}
+
+fn loopback_link(domain: u16) -> Ros2Link {
+    connect_loopback(domain, |_| {}).expect("ROS 2 link")
+}
+
+/// What the link reported while polled.
+#[derive(Default)]
+struct Polled {
+    frames: Vec<SensorFrame>,
+    notes: Vec<String>,
+}
+
+impl Polled {
+    fn initial_poses(&self) -> Vec<Pose2> {
+        self.frames.iter().filter_map(|f| f.initial_pose).collect()
+    }
+}
+
+/// Polls `link` every 5 ms, as the console's loop runs, until `done` holds for what it
+/// reported; panics with `what` after PATIENCE seconds.
+fn poll_until(link: &mut Ros2Link, what: &str, mut done: impl FnMut(&Polled) -> bool) -> Polled {
+    let started = Instant::now();
+    let mut polled = Polled::default();
+    loop {
+        let now = started.elapsed().as_secs_f64();
+        if let Ok(frame) = link.poll(now) {
+            polled.frames.push(frame);
+        }
+        polled
+            .notes
+            .extend(link.take_notes().into_iter().map(|n| n.text));
+        if done(&polled) {
+            return polled;
+        }
+        assert!(
+            now < PATIENCE,
+            "gave up waiting for {what}; notes: {:?}; pose estimates: {:?}",
+            polled.notes,
+            polled.initial_poses()
+        );
+        std::thread::sleep(std::time::Duration::from_millis(5));
+    }
+}
+
+#[test]
+fn rviz_pose_estimates_reach_the_link_and_bad_ones_are_refused_with_a_warning() {
+    let Some(mut peer) = LinePeer::start("amcl_peer.py", 73) else {
+        return;
+    };
+    let mut link = loopback_link(73);
+    poll_until(&mut link, "odometry from the peer", |p| {
+        !p.frames.is_empty()
+    });
+
+    peer.say("pose map 1.25 -0.5 2.0");
+    assert_eq!(peer.next_line("sent"), "sent");
+    let got = poll_until(&mut link, "the pose estimate", |p| {
+        !p.initial_poses().is_empty()
+    });
+    let pose = got.initial_poses()[0];
+    assert!(
+        (pose.x - 1.25).abs() < 1e-6
+            && (pose.y + 0.5).abs() < 1e-6
+            && (pose.theta - 2.0).abs() < 1e-6,
+        "{pose:?}"
+    );
+    // Applied once: the next frame carries none.
+    let next = poll_until(&mut link, "the next frame", |p| !p.frames.is_empty());
+    assert_eq!(next.initial_poses(), vec![], "{:?}", next.notes);
+
+    for (line, says) in [
+        ("pose odom 3.0 3.0 0.0", "header.frame_id = \"odom\""),
+        ("pose map nan 0.0 0.0", "position.x = NaN"),
+    ] {
+        peer.say(line);
+        assert_eq!(peer.next_line("sent"), "sent");
+        let refused = poll_until(&mut link, says, |p| {
+            p.notes
+                .iter()
+                .any(|n| n.contains("initialpose") && n.contains(says))
+        });
+        assert_eq!(refused.initial_poses(), vec![], "{line} was applied");
+    }
+    assert!(link.label().contains("2 dropped"), "{}", link.label());
+
+    // An empty frame_id counts as the map.
+    peer.say("pose - -0.75 0.5 -1.0");
+    assert_eq!(peer.next_line("sent"), "sent");
+    let got = poll_until(&mut link, "the frameless estimate", |p| {
+        !p.initial_poses().is_empty()
+    });
+    let pose = got.initial_poses()[0];
+    assert!(
+        (pose.x + 0.75).abs() < 1e-6
+            && (pose.y - 0.5).abs() < 1e-6
+            && (pose.theta + 1.0).abs() < 1e-6,
+        "{pose:?}"
+    );
+}
+
+#[test]
+fn mcl_particles_reach_a_cyclone_reader_as_a_pose_array() {
+    let Some(peer) = LinePeer::start("amcl_peer.py", 74) else {
+        return;
+    };
+    // A topic name ROS 2 refuses is refused by its field, before anything is published.
+    let err = connect_loopback(74, |c| {
+        c.ros2.particle_cloud_topic = "particle cloud".into()
+    })
+    .err()
+    .expect("a bad topic name")
+    .to_string();
+    assert!(
+        err.contains("particle_cloud_topic") && err.contains("\"particle cloud\""),
+        "{err}"
+    );
+    let mut link = loopback_link(74);
+    let particles = vec![
+        Pose2::new(0.5, 0.25, 0.3),
+        Pose2::new(-1.0, 2.0, -2.5),
+        Pose2::new(0.0, -0.125, 3.0),
+    ];
+    let picture = Picture {
+        particles: Some(particles.clone()),
+        ..Picture::default()
+    };
+    // Best effort and volatile: clouds shown before discovery matched are lost, so show
+    // one a control period until the peer reports one.
+    let give_up = Instant::now() + std::time::Duration::from_secs_f64(PATIENCE);
+    let cloud = loop {
+        link.show(&picture);
+        match peer
+            .lines
+            .recv_timeout(std::time::Duration::from_millis(100))
+        {
+            Ok(line) => break serde_json::from_str::<Value>(&line).unwrap()["cloud"].clone(),
+            Err(_) => assert!(
+                Instant::now() < give_up,
+                "no particle cloud reached the peer"
+            ),
+        }
+    };
+    assert_eq!(cloud["frame"], "map");
+    let poses = cloud["poses"].as_array().unwrap();
+    assert_eq!(poses.len(), particles.len(), "{poses:?}");
+    for (got, want) in poses.iter().zip(&particles) {
+        let (x, y, yaw) = (f(&got[0]), f(&got[1]), f(&got[2]));
+        assert!(
+            (x - want.x).abs() < 1e-9
+                && (y - want.y).abs() < 1e-9
+                && (yaw - want.theta).abs() < 1e-9,
+            "{got:?} vs {want:?}"
+        );
+    }
 }

@@ -66,6 +66,7 @@ fn scripted_five_minute_loop_meets_seed_accuracy_with_consistent_covariance() {
             config: None,
             keymap: None,
             link: LinkChoice::Sim,
+            localize: Default::default(),
         };
         let mut app = Session::load(&spec).unwrap().into_app(0.0);
         let r = navdeck::headless::run(&mut app, &keys, 10.0);
@@ -103,6 +104,7 @@ fn a_standing_start_then_goto_keeps_nees_finite_and_in_band() {
             config: None,
             keymap: None,
             link: LinkChoice::Sim,
+            localize: Default::default(),
         };
         let mut app = Session::load(&spec).unwrap().into_app(0.0);
         let r = navdeck::headless::run(&mut app, &keys, 10.0);

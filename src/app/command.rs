@@ -20,6 +20,10 @@ pub enum Typed {
     Save(String),
     /// `mission restart`: forget the paused mission and start a fresh one.
     RestartMission,
+    /// `pose X Y THETA_DEG`: place the pose estimate (RViz's "2D Pose Estimate").
+    SetPose(crate::geometry::Pose2),
+    /// `relocalize`: MCL's global localisation afresh.
+    Relocalize,
 }
 
 /// Everything that changes the console's state, through one door (`App::apply`): a key's
@@ -42,7 +46,7 @@ impl From<Typed> for Intent {
     }
 }
 
-pub const USAGE: &str = "goto X Y | goto marker ID | controller [pid|pure_pursuit|hybrid] | clear | save [NAME] | mission restart";
+pub const USAGE: &str = "goto X Y | goto marker ID | controller [pid|pure_pursuit|hybrid] | clear | save [NAME] | mission restart | pose X Y THETA_DEG | relocalize";
 
 /// Reads one command line, or says what is wrong with it.
 pub fn parse(line: &str) -> Result<Intent, String> {
@@ -71,6 +75,11 @@ pub fn parse(line: &str) -> Result<Intent, String> {
         // The same as the key that clears the route.
         ["clear"] => Ok(Action::ClearRoute.into()),
         ["mission", "restart"] => Ok(Typed::RestartMission.into()),
+        ["pose", x, y, theta] => crate::geometry::parse_pose_degrees(&format!("{x},{y},{theta}"))
+            .map(|p| Typed::SetPose(p).into())
+            .map_err(|e| format!("pose: {e}")),
+        ["pose", ..] => Err("pose wants X Y (metres) and THETA (degrees)".to_string()),
+        ["relocalize"] => Ok(Typed::Relocalize.into()),
         ["mission", ..] => Err("mission wants `restart` (e resumes a paused mission)".to_string()),
         ["save", name] => Ok(Typed::Save(name.to_string()).into()),
         // The same as the save key: maps/saved.
@@ -100,6 +109,16 @@ mod tests {
         assert_eq!(parse("controller"), Ok(Typed::WhichController.into()));
         assert_eq!(parse("save"), Ok(Intent::Action(Action::SaveMap)));
         assert_eq!(parse("mission restart"), Ok(Typed::RestartMission.into()));
+        assert_eq!(
+            parse("pose 1.5 -0.5 90"),
+            Ok(Typed::SetPose(crate::geometry::Pose2::new(
+                1.5,
+                -0.5,
+                std::f64::consts::FRAC_PI_2
+            ))
+            .into())
+        );
+        assert_eq!(parse("relocalize"), Ok(Typed::Relocalize.into()));
     }
 
     #[test]
@@ -108,5 +127,7 @@ mod tests {
         assert!(parse("goto 1e400 0").unwrap_err().contains("1e400"));
         assert!(parse("fly 1 2").unwrap_err().contains("`fly`"));
         assert!(parse("controller lqr").unwrap_err().contains("lqr"));
+        assert!(parse("pose 1 2 nan").unwrap_err().contains("nan"));
+        assert!(parse("pose 1 2").unwrap_err().contains("THETA"));
     }
 }

@@ -11,6 +11,7 @@ mod control;
 pub mod loading;
 pub mod log;
 mod picture;
+mod pose_estimate;
 mod revision;
 mod saving;
 pub mod screen;
@@ -68,6 +69,8 @@ pub struct App {
     world_grid: Option<OccupancyGrid>,
     /// Thinking mode's goal cursor, and the command being typed after `:`.
     cursor: Option<Point2>,
+    /// A pose estimate's position, placed and waiting for its heading.
+    pose_anchor: Option<Point2>,
     prompt: Option<String>,
     files: saving::Files,
     picker: loading::Picker,
@@ -96,6 +99,7 @@ impl App {
             collisions_logged: 0,
             world_grid,
             cursor: None,
+            pose_anchor: None,
             prompt: None,
             files: saving::Files::new(now),
             picker: loading::Picker::default(),
@@ -118,6 +122,14 @@ impl App {
 
     fn log(&mut self, level: Level, text: impl Into<String>) {
         self.log.push(self.now, level, text);
+    }
+
+    /// Localises with MCL as the session chose (`--estimator mcl`).
+    pub fn localize(&mut self, localizer: &crate::pilot::localize::Localizer) {
+        if let Err(why) = localizer.apply(&mut self.pilot) {
+            self.log(Level::Error, format!("MCL not started: {why}"));
+        }
+        self.refresh_revision();
     }
 
     /// A warning from outside the core (the console's own set-up) into the log.
@@ -329,6 +341,7 @@ impl App {
             Action::CursorUp if load => self.pick(-1),
             Action::CursorDown if load => self.pick(1),
             Action::PlanToCursor if load => self.load_selected(),
+            Action::PoseEstimate => self.pose_estimate_key(),
             Action::CursorLeft => self.move_cursor(-1.0, 0.0),
             Action::CursorRight => self.move_cursor(1.0, 0.0),
             Action::CursorUp => self.move_cursor(0.0, 1.0),
@@ -351,6 +364,8 @@ impl App {
             Typed::GotoMarker(id) => self.run_intent(pilot::Intent::Goto(Target::Marker(id))),
             Typed::Controller(kind) => self.run_intent(pilot::Intent::Controller(kind)),
             Typed::RestartMission => self.run_intent(pilot::Intent::RestartMission),
+            Typed::SetPose(pose) => self.run_intent(pilot::Intent::SetPose(pose)),
+            Typed::Relocalize => self.run_intent(pilot::Intent::Relocalize),
             Typed::WhichController => {
                 let now = self.pilot.follower().controller().label();
                 self.log(

@@ -32,8 +32,12 @@ impl App {
         let (slam, belief) = (self.pilot.slam(), self.pilot.belief());
         let picture = Picture {
             stamp: t,
-            pose: slam.pose(),
-            pose_covariance: slam.pose_covariance(),
+            // The pose the robot decides with: MCL's when it runs.
+            pose: self.pilot.estimated_pose(),
+            pose_covariance: self.pilot.pose_covariance(),
+            particles: (self.pilot.mcl())
+                .filter(|_| full)
+                .map(|m| m.particles().iter().map(|p| p.pose).collect()),
             landmarks: full.then(|| slam.landmarks().collect()),
             // An empty path clears the last one from the display.
             path: full.then(|| {

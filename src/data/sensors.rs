@@ -87,4 +87,7 @@ pub struct SensorFrame {
     pub gripper: Option<GripperState>,
     /// How the camera pipeline did on the newest frame (when frames are detected in navdeck).
     pub camera: Option<CameraStatus>,
+    /// A pose estimate placed from outside navdeck (RViz's "2D Pose Estimate" on ROS 2
+    /// `/initialpose`), in the map frame.
+    pub initial_pose: Option<crate::geometry::Pose2>,
 }

@@ -58,6 +58,8 @@ pub enum Action {
     CursorUp,
     CursorDown,
     PlanToCursor,
+    /// RViz's "2D Pose Estimate": first press the position, second the heading.
+    PoseEstimate,
     CommandLine,
     ClearRoute,
     NextController,
@@ -68,7 +70,7 @@ pub enum Action {
 
 impl Action {
     /// Every action, in the order the help overlay lists them.
-    pub const ALL: [Action; 53] = [
+    pub const ALL: [Action; 54] = [
         Action::ModeManual,
         Action::ModeExplore,
         Action::ModeThink,
@@ -117,6 +119,7 @@ impl Action {
         Action::CursorUp,
         Action::CursorDown,
         Action::PlanToCursor,
+        Action::PoseEstimate,
         Action::CommandLine,
         Action::ClearRoute,
         Action::NextController,
@@ -175,6 +178,7 @@ impl Action {
             Action::CursorUp => "cursor_up",
             Action::CursorDown => "cursor_down",
             Action::PlanToCursor => "plan_to_cursor",
+            Action::PoseEstimate => "pose_estimate",
             Action::CommandLine => "command_line",
             Action::ClearRoute => "clear_route",
             Action::NextController => "next_controller",
@@ -239,6 +243,7 @@ impl Action {
             Action::CursorUp => "goal cursor up",
             Action::CursorDown => "goal cursor down",
             Action::PlanToCursor => "plan a path to the cursor",
+            Action::PoseEstimate => "set the pose at the cursor",
             Action::CommandLine => "command (:goto x y …)",
             Action::ClearRoute => "forget the planned path",
             Action::NextController => "next path controller",

@@ -48,6 +48,8 @@ pub struct Picture {
     pub stamp: f64,
     pub pose: Pose2,
     pub pose_covariance: Matrix3<f64>,
+    /// MCL's particles, when it runs (at the full picture's period).
+    pub particles: Option<Vec<Pose2>>,
     pub landmarks: Option<Vec<LandmarkEstimate>>,
     pub path: Option<Vec<Point2>>,
     pub map: Option<OccupancyGrid>,
@@ -82,6 +84,11 @@ pub trait RobotLink: Send {
     }
     /// Shows what navdeck believes: the pose every control step, the rest when due.
     fn show(&mut self, _picture: &Picture) {}
+    /// The twin only: carries the robot to `pose` behind its odometry's back (a kidnapped
+    /// robot, for tests). False where there is no twin.
+    fn teleport(&mut self, _pose: Pose2) -> bool {
+        false
+    }
     /// Ground truth, when a simulator stands behind this link (for display and scoring).
     fn ground_truth(&self) -> Option<&dyn crate::sim::GroundTruth> {
         None

@@ -185,6 +185,7 @@ impl RobotLink for SerialLink {
             scan: None,
             gripper: self.gripper,
             camera: None,
+            initial_pose: None,
         };
         Ok(frame)
     }

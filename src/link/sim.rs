@@ -41,6 +41,10 @@ impl RobotLink for SimLink {
         self.twin.set_command(crate::geometry::Twist::ZERO);
     }
 
+    fn teleport(&mut self, pose: crate::geometry::Pose2) -> bool {
+        self.twin.teleport(pose);
+        true
+    }
     fn ground_truth(&self) -> Option<&dyn crate::sim::GroundTruth> {
         Some(&self.twin)
     }

@@ -236,19 +236,16 @@ impl BeliefMap {
     /// Takes a whole occupancy grid as certain evidence: its occupied cells become
     /// obstacles (inflated as lidar hits are), its free cells free, its unknown stays unknown.
     pub fn absorb_grid(&mut self, grid: &OccupancyGrid) {
-        for cy in 0..self.costmap.height {
-            for cx in 0..self.costmap.width {
-                let value = grid.at(self.costmap.center_of(cx, cy));
-                let delta = if value >= OCCUPIED / 2 {
-                    f32::INFINITY
-                } else if value >= 0 {
-                    f32::NEG_INFINITY
-                } else {
-                    continue;
-                };
-                self.add_evidence(cx as i64, cy as i64, delta);
-            }
-            self.flush();
+        let map = &self.costmap;
+        let observed: Vec<Option<bool>> = (0..map.width * map.height)
+            .map(|i| {
+                let value = grid.at(map.center_of(i % map.width, i / map.width));
+                (value >= 0).then_some(value >= OCCUPIED / 2)
+            })
+            .collect();
+        self.evidence.absorb(&observed);
+        for i in 0..observed.len() {
+            self.refresh(i);
         }
     }
 

@@ -113,6 +113,81 @@ impl Evidence {
     }
 }
 
+impl Evidence {
+    /// Takes a whole grid of certain observations at once (`Some(true)` occupied,
+    /// `Some(false)` free, `None` unobserved): each observed cell's log-odds goes to its
+    /// bound, as `add` with an infinite delta would put it, and every cell's counts are
+    /// then recounted in one pass. Stamping each occupied cell's disc costs occupied cells
+    /// times the disc's area (a saved map at 1 cm: seconds); the recount costs cells times
+    /// the disc's height, with a running sum along each row.
+    pub fn absorb(&mut self, observed: &[Option<bool>]) {
+        for (i, o) in observed.iter().enumerate().take(self.log_odds.len()) {
+            match o {
+                Some(true) => {
+                    self.log_odds[i] = MAX_LOG_ODDS;
+                    self.occupied[i] = true;
+                }
+                Some(false) => {
+                    self.log_odds[i] = MIN_LOG_ODDS;
+                    self.occupied[i] = false;
+                }
+                None => {}
+            }
+        }
+        self.recount();
+    }
+
+    /// Recomputes `near_lethal` and `near_inflated` from `occupied`.
+    fn recount(&mut self) {
+        let (w, h) = (self.width, self.height);
+        // Per row offset dy: the disc's lethal span and its whole span, as dx bounds.
+        let mut spans: std::collections::BTreeMap<i32, [(i32, i32); 2]> = Default::default();
+        for &(dx, dy, lethal) in &self.disc {
+            let e = spans.entry(dy).or_insert([(i32::MAX, i32::MIN); 2]);
+            e[1] = (e[1].0.min(dx), e[1].1.max(dx));
+            if lethal {
+                e[0] = (e[0].0.min(dx), e[0].1.max(dx));
+            }
+        }
+        // prefix[y][x]: occupied cells in row y left of x.
+        let mut prefix = vec![0u32; (w + 1) * h];
+        for y in 0..h {
+            for x in 0..w {
+                let o = u32::from(self.occupied[y * w + x]);
+                prefix[y * (w + 1) + x + 1] = prefix[y * (w + 1) + x] + o;
+            }
+        }
+        let row_sum = |y: usize, x: i64, lo: i32, hi: i32| -> u32 {
+            let a = (x + i64::from(lo)).clamp(0, w as i64) as usize;
+            let b = (x + i64::from(hi) + 1).clamp(0, w as i64) as usize;
+            if b > a {
+                prefix[y * (w + 1) + b] - prefix[y * (w + 1) + a]
+            } else {
+                0
+            }
+        };
+        for y in 0..h {
+            for x in 0..w {
+                let (mut lethal, mut all) = (0u32, 0u32);
+                for (&dy, span) in &spans {
+                    let yy = y as i64 + i64::from(dy);
+                    if yy < 0 || yy >= h as i64 {
+                        continue;
+                    }
+                    let yy = yy as usize;
+                    all += row_sum(yy, x as i64, span[1].0, span[1].1);
+                    if span[0].0 <= span[0].1 {
+                        lethal += row_sum(yy, x as i64, span[0].0, span[0].1);
+                    }
+                }
+                let i = y * w + x;
+                self.near_lethal[i] = lethal.min(u32::from(u16::MAX)) as u16;
+                self.near_inflated[i] = (all - lethal).min(u32::from(u16::MAX)) as u16;
+            }
+        }
+    }
+}
+
 /// Cells from (x0, y0) to (x1, y1) inclusive, by Bresenham's line algorithm.
 pub fn line_cells(x0: i64, y0: i64, x1: i64, y1: i64, mut visit: impl FnMut(i64, i64)) {
     let (dx, dy) = ((x1 - x0).abs(), -(y1 - y0).abs());
@@ -164,5 +239,33 @@ mod tests {
         assert_eq!(cells.first(), Some(&(0, 0)));
         assert_eq!(cells.last(), Some(&(5, -3)));
         assert_eq!(cells.len(), 6);
+    }
+
+    #[test]
+    fn absorbing_a_grid_counts_as_adding_its_cells_one_by_one() {
+        let (w, h) = (37, 23);
+        let observed: Vec<Option<bool>> = (0..w * h)
+            .map(|i| match (i * 7919) % 11 {
+                0 => Some(true),
+                1..=6 => Some(false),
+                _ => None,
+            })
+            .collect();
+        let mut one_by_one = Evidence::new(w, h, 2.5, 4.2);
+        let mut touched = Vec::new();
+        for (i, o) in observed.iter().enumerate() {
+            let delta = match o {
+                Some(true) => f32::INFINITY,
+                Some(false) => f32::NEG_INFINITY,
+                None => continue,
+            };
+            one_by_one.add(i % w, i / w, delta, &mut touched);
+        }
+        let mut at_once = Evidence::new(w, h, 2.5, 4.2);
+        at_once.absorb(&observed);
+        assert_eq!(at_once.occupied, one_by_one.occupied);
+        assert_eq!(at_once.log_odds, one_by_one.log_odds);
+        assert_eq!(at_once.near_lethal, one_by_one.near_lethal);
+        assert_eq!(at_once.near_inflated, one_by_one.near_inflated);
     }
 }

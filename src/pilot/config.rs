@@ -8,6 +8,7 @@ use crate::map::config::MapConfig;
 use crate::mission::config::MissionConfig;
 use crate::plan::config::PlanConfig;
 use crate::slam::config::SlamConfig;
+use crate::slam::mcl::config::LocalizationConfig;
 use serde::{Deserialize, Serialize};
 
 /// The sections the pilot reads, taken from the session's config.
@@ -21,6 +22,7 @@ pub struct Settings {
     pub plan: PlanConfig,
     pub follow: FollowConfig,
     pub mission: MissionConfig,
+    pub localization: LocalizationConfig,
 }
 
 /// Race mode (seed 001: "High-speed mode (reduced SLAM updates)").

@@ -19,6 +19,9 @@ impl Pilot {
     /// Folds in what the robot reported up to `t`.
     pub(super) fn sense(&mut self, t: f64, frame: &SensorFrame) {
         self.link_answered(t);
+        if let Some(pose) = frame.initial_pose {
+            self.set_pose(pose);
+        }
         if let Some(wheels) = frame.wheels {
             self.estimate_motion(wheels);
             self.measuring.travel.left += wheels.left;
@@ -31,6 +34,7 @@ impl Pilot {
             self.note_frame(s.iter().map(|m| m.id).collect());
         }
         if let Some(scan) = &frame.scan {
+            self.localize_scan(scan);
             self.map_scan(t, scan);
         }
         if let Some(g) = frame.gripper {
@@ -39,7 +43,7 @@ impl Pilot {
             }
             if g == GripperState::Holding && self.hand.state != Some(g) {
                 // What the lidar mapped in the jaws is the block, gone from that spot.
-                self.belief.clear_held(self.ekf.pose(), JAWS);
+                self.belief.clear_held(self.pose(), JAWS);
             }
             self.hand.state = Some(g);
         }

@@ -115,7 +115,8 @@ impl Pilot {
 
     /// The position's standard deviation along its worst direction, metres.
     pub(super) fn position_std(&self) -> f64 {
-        crate::slam::ellipse::axes(&self.ekf.position_covariance(), 1.0).0
+        let c = self.pose_covariance();
+        crate::slam::ellipse::axes(&c.fixed_view::<2, 2>(0, 0).into_owned(), 1.0).0
     }
 
     /// In race mode, warns once when the position's uncertainty passes the bound.
@@ -136,8 +137,8 @@ impl Pilot {
     /// One accuracy sample against the truth, when it is known.
     pub(super) fn sample_accuracy(&mut self) {
         if let Some(truth) = self.estimating.truth {
-            let cov = self.ekf.pose_covariance();
-            let est = self.ekf.pose();
+            let cov = self.pose_covariance();
+            let est = self.pose();
             self.estimating.accuracy.add(truth, est, &cov);
         }
     }
@@ -149,7 +150,7 @@ impl Pilot {
 
     /// Standard deviations of the pose estimate: x, y (m) and heading (rad).
     pub fn pose_sigma(&self) -> (f64, f64, f64) {
-        let c = self.ekf.pose_covariance();
+        let c = self.pose_covariance();
         (c[(0, 0)].sqrt(), c[(1, 1)].sqrt(), c[(2, 2)].sqrt())
     }
 }

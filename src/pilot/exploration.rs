@@ -77,7 +77,7 @@ impl Pilot {
         let path = self.path_status();
         let outputs = mission.step(&Inputs {
             t,
-            pose: self.ekf.pose(),
+            pose: self.pose(),
             landmarks: &landmarks,
             seen: frame.as_deref().unwrap_or(&[]),
             camera_frame: frame.is_some(),

@@ -7,7 +7,7 @@ use super::safety::LinkStatus;
 use super::teleop::{DriveKey, SpeedChange};
 use crate::control::config::ControllerKind;
 use crate::data::{GripperCommand, Level};
-use crate::geometry::{Point2, Twist};
+use crate::geometry::{Point2, Pose2, Twist};
 use crate::map::io::MapFile;
 use nalgebra::Matrix2;
 
@@ -45,6 +45,10 @@ pub enum Intent {
         map: Box<MapFile>,
         source: String,
     },
+    /// Place the estimate here (RViz's "2D Pose Estimate", `:pose`, ROS 2 /initialpose).
+    SetPose(Pose2),
+    /// Start global localisation afresh (`:relocalize`).
+    Relocalize,
 }
 
 impl Pilot {
@@ -128,6 +132,14 @@ impl Pilot {
             Intent::AdoptMap { map, source } => {
                 self.adopt_map(&map, &source);
                 self.set_mode(Mode::Manual)
+            }
+            Intent::SetPose(pose) => {
+                self.set_pose(pose);
+                false
+            }
+            Intent::Relocalize => {
+                self.relocalize();
+                false
             }
         }
     }

@@ -32,7 +32,7 @@ impl Pilot {
     pub(super) fn map_sightings(&mut self, sightings: &[MarkerSighting]) {
         let estimates: Vec<_> = self.ekf.landmarks().map(|l| (l.id, l.mean)).collect();
         self.belief.update_landmarks(estimates.iter().copied());
-        let from = self.ekf.pose().position();
+        let from = self.pose().position();
         for s in sightings {
             if let Some(&(_, at)) = estimates.iter().find(|(id, _)| *id == s.id) {
                 self.belief.observe_sight_line(from, at, SIGHT_LINE_MARGIN);
@@ -44,8 +44,13 @@ impl Pilot {
     /// while has passed: the same view again and again adds no information, only
     /// overconfidence (gmapping's linearUpdate / angularUpdate / temporalUpdate).
     pub(super) fn map_scan(&mut self, t: f64, scan: &LaserScan) {
-        let pose = self.ekf.pose();
+        let pose = self.pose();
         self.upkeep.newest_scan = Some((pose, scan.clone()));
+        if !self.localized() {
+            // A scan placed at a pose MCL has not settled on would draw walls where
+            // there are none.
+            return;
+        }
         if let Some((last, at)) = self.upkeep.last_scan_pose {
             let moved = last.position().distance(pose.position());
             let turned = crate::geometry::wrap_angle(pose.theta - last.theta).abs();
@@ -59,7 +64,10 @@ impl Pilot {
     }
 
     pub(super) fn map_footprint(&mut self) {
-        let here = self.ekf.pose().position();
+        if !self.localized() {
+            return;
+        }
+        let here = self.pose().position();
         self.upkeep.trail.note(here);
         if self
             .upkeep

@@ -14,6 +14,7 @@ mod control;
 pub mod estimate;
 mod exploration;
 mod intent;
+pub mod localize;
 mod mapping;
 pub mod mode;
 pub mod navigation;
@@ -128,6 +129,8 @@ pub struct Pilot {
     manual_speeds: (f64, f64),
     odometry: Odometry,
     ekf: EkfSlam,
+    /// Monte-Carlo localisation on a known map, when the session has one.
+    mcl: Option<crate::slam::mcl::Mcl>,
     estimating: estimate::Estimating,
     /// The planning map the robot builds from what it senses.
     belief: BeliefMap,
@@ -164,6 +167,7 @@ impl Pilot {
             odometry: Odometry::new(start, robot.track),
             // The map frame starts at the robot: its pose is known exactly there.
             ekf: EkfSlam::new(start, Matrix3::zeros(), &settings.slam, robot.track),
+            mcl: None,
             estimating: estimate::Estimating::default(),
             belief: BeliefMap::new(m, (m.width.max(extent.0), m.height.max(extent.1))),
             upkeep: mapping::Upkeep::default(),
@@ -242,7 +246,11 @@ impl Pilot {
         &self.teleop
     }
     pub fn estimated_pose(&self) -> Pose2 {
-        self.ekf.pose()
+        self.pose()
+    }
+    /// Where wheel odometry alone puts the robot (dead reckoning).
+    pub fn odometry_pose(&self) -> Pose2 {
+        self.odometry.pose()
     }
     pub fn odometry_distance(&self) -> f64 {
         self.odometry.distance()
@@ -286,6 +294,6 @@ impl Pilot {
         self.nav
             .route
             .as_ref()
-            .map_or(self.ekf.pose().position(), |r| r.goal)
+            .map_or(self.pose().position(), |r| r.goal)
     }
 }

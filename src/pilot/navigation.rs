@@ -87,7 +87,7 @@ impl Pilot {
     /// Plans from the robot's estimated position to `target`; logs the outcome.
     pub(super) fn plan_route(&mut self, target: Target) -> bool {
         let label = target.label();
-        let start = self.ekf.pose().position();
+        let start = self.pose().position();
         let goal = match target {
             Target::Point(p) => p,
             Target::Marker(id) => match self.marker_goal(id) {
@@ -169,7 +169,7 @@ impl Pilot {
         } else {
             (0.0, APPROACH_MARGIN)
         };
-        let from = self.ekf.pose().position();
+        let from = self.pose().position();
         Some(approach_point(
             self.belief.costmap(),
             landmark.mean,
@@ -215,7 +215,7 @@ impl Pilot {
             Err(twist) => return twist,
         };
         self.replan_if_blocked(t);
-        let step = self.follower.step(self.ekf.pose(), dt);
+        let step = self.follower.step(self.pose(), dt);
         let twist = self.guarded(t, step.twist);
         self.nav.last_step = Some((t, twist));
         match step.status {
@@ -236,7 +236,7 @@ impl Pilot {
                 if !self.nav.arrived {
                     self.nav.arrived = true;
                     self.nav.following = None;
-                    let p = self.ekf.pose();
+                    let p = self.pose();
                     let label = self
                         .nav
                         .route
@@ -267,7 +267,7 @@ impl Pilot {
         let contact = contact_ahead(
             self.belief.costmap(),
             self.belief.sensed_occupied(),
-            self.ekf.pose(),
+            self.pose(),
             twist,
             robot.footprint_radius + margin,
             horizon,

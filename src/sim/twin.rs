@@ -129,6 +129,13 @@ impl Twin {
         self.pose
     }
 
+    /// Carries the robot to `pose` without its wheels turning: the kidnapped robot of
+    /// Probabilistic Robotics 8.3, for tests of recovery. The odometry knows nothing of it.
+    pub fn teleport(&mut self, pose: Pose2) {
+        self.pose = pose;
+        self.drive = Twist::ZERO;
+    }
+
     /// The base's actual twist after speed and acceleration limits (zero after a collision).
     pub fn velocity(&self) -> Twist {
         self.drive
@@ -189,6 +196,7 @@ impl Twin {
             scan: self.scan.take(),
             gripper: Some(self.gripper.state()),
             camera: self.camera_status.take(),
+            initial_pose: None,
         }
     }
 

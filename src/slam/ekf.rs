@@ -130,6 +130,25 @@ impl EkfSlam {
         self.slots.get(&id).map(|&slot| self.estimate(slot))
     }
 
+    /// Puts the robot at `pose` with covariance `cov`, as another estimator (MCL) or the
+    /// user placed it: the landmarks keep their estimates, and their correlation with the
+    /// robot is dropped, since the new pose was not derived from them.
+    pub fn relocate(&mut self, pose: Pose2, cov: &Matrix3<f64>) {
+        self.mu[0] = pose.x;
+        self.mu[1] = pose.y;
+        self.mu[2] = wrap_angle(pose.theta);
+        for i in 0..3 {
+            for j in 0..=i {
+                self.sigma[(i, j)] = cov[(i, j)];
+            }
+        }
+        for r in 3..self.sigma.nrows() {
+            for c in 0..3 {
+                self.sigma[(r, c)] = 0.0;
+            }
+        }
+    }
+
     /// Drops landmark `id` from the state, as when the thing it marks was moved: the
     /// marginal of a Gaussian over the other variables is its mean and covariance with the
     /// dropped variables' rows and columns struck out. A later sighting starts it afresh.

@@ -64,6 +64,10 @@ impl Theme {
     pub fn scan(self) -> Style {
         self.fg(Color::LightRed)
     }
+    /// MCL's particles.
+    pub fn particles(self) -> Style {
+        self.fg(Color::Magenta)
+    }
     /// Where the robot has driven.
     pub fn trail(self) -> Style {
         self.fg(Color::Blue)

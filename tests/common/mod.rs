@@ -33,6 +33,7 @@ pub fn default_app() -> App {
         config: None,
         keymap: None,
         link: LinkChoice::Sim,
+        localize: Default::default(),
     })
 }
 

@@ -72,6 +72,10 @@ pub struct Ros2Config {
     pub plan_topic: String,
     pub landmarks_topic: String,
     pub pose_topic: String,
+    /// Where RViz's "2D Pose Estimate" arrives (geometry_msgs/PoseWithCovarianceStamped).
+    pub initial_pose_topic: String,
+    /// Where MCL's particles go out (geometry_msgs/PoseArray, best effort as AMCL's).
+    pub particle_cloud_topic: String,
     pub map_frame: String,
     pub odom_frame: String,
     /// Wheel joints in /joint_states and the wheel radius, metres (TurtleBot3: 0.033).
@@ -105,6 +109,8 @@ impl Default for Ros2Config {
             plan_topic: "plan".into(),
             landmarks_topic: "landmarks".into(),
             pose_topic: "navdeck/pose".into(),
+            initial_pose_topic: "initialpose".into(),
+            particle_cloud_topic: "particlecloud".into(),
             map_frame: "map".into(),
             odom_frame: "odom".into(),
             left_wheel_joint: "wheel_left_joint".into(),

@@ -2,14 +2,16 @@
 //! `ros2-client` (no ROS installation needed on navdeck's machine).
 //!
 //! In: odometry (the watchdog's heartbeat), wheel joints (seed 001's wheel travel, with
-//! odometry deltas as the fallback), laser scans. Out: cmd_vel, the gripper, and for
-//! RViz the map, plan, landmarks, estimated pose and the map -> odom transform.
+//! odometry deltas as the fallback), laser scans, RViz's pose estimates (/initialpose).
+//! Out: cmd_vel, the gripper, and for RViz the map, plan, landmarks, estimated pose,
+//! MCL's particles and the map -> odom transform.
 
 pub mod cmd_vel;
 pub mod config;
 #[cfg(feature = "vision")]
 pub mod image;
 pub mod inbound;
+pub mod initial_pose;
 pub mod msgs;
 pub mod participant;
 pub mod picture;
@@ -21,7 +23,7 @@ use super::{
 use crate::geometry::Pose2;
 use crate::link::rate::RateMeter;
 use cmd_vel::CmdVelPolicy;
-use config::{CmdVelType, Ros2Config};
+use config::{CmdVelType, Qos, Ros2Config};
 use inbound::Refusal;
 use participant::{Factory, fail, join, qos_profile, take_all, topic_name};
 pub use participant::{dds_type, domain_from};
@@ -33,6 +35,9 @@ use std::collections::BTreeMap;
 /// until one is found, then now and again.
 const DISCOVERY_SEARCH: f64 = 0.05;
 const DISCOVERY_EVERY: f64 = 1.0;
+
+/// Refused /initialpose messages logged one by one in a poll; the rest are counted.
+const INITIAL_POSE_NOTES: usize = 3;
 
 /// Where and how to reach the robot.
 #[derive(Clone, Debug)]
@@ -76,6 +81,7 @@ pub struct Ros2Link {
     odom: Subscription<msgs::Odometry>,
     joints: Subscription<msgs::JointState>,
     scan: Subscription<msgs::LaserScan>,
+    initial_pose_sub: Subscription<msgs::PoseWithCovarianceStamped>,
     twist: Option<Publisher<msgs::Twist>>,
     stamped: Option<Publisher<msgs::TwistStamped>>,
     gripper: Publisher<msgs::Float64>,
@@ -98,6 +104,8 @@ pub struct Ros2Link {
     /// The newest odometry pose and its stamp, for the fallback and the transform.
     odom_pose: Option<(Pose2, f64)>,
     joint_angles: Option<((f64, f64), f64)>,
+    /// The newest good /initialpose, until a frame carries it.
+    initial_pose: Option<Pose2>,
     travel: WheelTravel,
     elapsed: f64,
     dropped: BTreeMap<&'static str, u64>,
@@ -138,6 +146,14 @@ impl Ros2Link {
             "sensor_msgs",
             "LaserScan",
             qos_profile(c.scan_qos, false),
+        )?;
+        // Reliable, volatile, keep-last 10: what RViz's pose tool writes and AMCL reads.
+        let initial_pose_sub = f.subscription(
+            "initial_pose_topic",
+            &c.initial_pose_topic,
+            "geometry_msgs",
+            "PoseWithCovarianceStamped",
+            qos_profile(Qos::default(), false),
         )?;
         let twist = match c.cmd_vel_type {
             CmdVelType::TwistStamped => None,
@@ -192,6 +208,7 @@ impl Ros2Link {
             odom,
             joints,
             scan,
+            initial_pose_sub,
             twist,
             stamped,
             gripper,
@@ -211,6 +228,7 @@ impl Ros2Link {
             odom_at: None,
             odom_pose: None,
             joint_angles: None,
+            initial_pose: None,
             travel: WheelTravel::default(),
             elapsed: 0.0,
             dropped: BTreeMap::new(),
@@ -309,6 +327,32 @@ impl Ros2Link {
             }
         }
         newest
+    }
+
+    /// RViz's "2D Pose Estimate": the newest good one waits for the next frame; each
+    /// refused one is logged with what was wrong (a few a poll, then a count).
+    fn take_initial_pose(&mut self) {
+        let topic = &self.config.initial_pose_topic;
+        let messages = take_all(&self.initial_pose_sub, topic, &mut self.notices);
+        let (pose, refused) = initial_pose::newest(&messages, &self.config.map_frame);
+        if pose.is_some() {
+            self.initial_pose = pose;
+        }
+        if refused.is_empty() {
+            return;
+        }
+        *self.dropped.entry("bad initial pose").or_insert(0) += refused.len() as u64;
+        for why in refused.iter().take(INITIAL_POSE_NOTES) {
+            self.notices.push(Notice::warn(format!(
+                "ROS 2: ignored a pose estimate on {topic}: {why}"
+            )));
+        }
+        if refused.len() > INITIAL_POSE_NOTES {
+            self.notices.push(Notice::warn(format!(
+                "ROS 2: ignored {} more pose estimates on {topic}",
+                refused.len() - INITIAL_POSE_NOTES
+            )));
+        }
     }
 
     /// Asks discovery which type the robot's cmd_vel subscriber reads, and says so.
@@ -474,6 +518,7 @@ impl RobotLink for Ros2Link {
         self.take_joints(now);
         self.take_odometry(now);
         let scan = self.take_scan(now);
+        self.take_initial_pose();
         self.check_peer(now);
         let topic = &self.config.odom_topic;
         match self.odom_at {
@@ -510,6 +555,7 @@ impl RobotLink for Ros2Link {
             scan,
             gripper: None,
             camera: None,
+            initial_pose: self.initial_pose.take(),
         })
     }
 

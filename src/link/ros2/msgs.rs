@@ -280,6 +280,13 @@ pub struct Path {
     pub poses: Vec<PoseStamped>,
 }
 
+/// geometry_msgs/PoseArray (what AMCL publishes its particles as).
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct PoseArray {
+    pub header: Header,
+    pub poses: Vec<Pose>,
+}
+
 /// geometry_msgs/PoseWithCovarianceStamped.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct PoseWithCovarianceStamped {

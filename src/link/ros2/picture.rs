@@ -1,5 +1,6 @@
 //! navdeck's picture as ROS 2 messages for RViz: the map, the plan, the landmarks with
-//! their covariance ellipses, the estimated pose and the map -> odom transform.
+//! their covariance ellipses, the estimated pose, MCL's particles and the map -> odom
+//! transform.
 
 use super::msgs::{self, ColorRgba, Header, MarkerHumble, Quaternion, Time, Vector3};
 use crate::geometry::{Point2, Pose2, wrap_angle};
@@ -11,6 +12,10 @@ use nalgebra::Matrix3;
 
 /// Points on each landmark's ellipse outline.
 const ELLIPSE_POINTS: usize = 24;
+
+/// Particles in one /particlecloud message at most (AMCL's default max_particles is
+/// 2000): about 280 kB, so a large filter does not flood the network.
+pub const MAX_CLOUD_POSES: usize = 5000;
 
 fn point(p: Point2) -> Vector3 {
     Vector3 {
@@ -52,6 +57,17 @@ pub fn pose_with_covariance(
             pose: pose(p),
             covariance: msgs::Covariance6(c),
         },
+    }
+}
+
+/// MCL's particles as geometry_msgs/PoseArray, as AMCL publishes them; a larger filter
+/// is thinned to MAX_CLOUD_POSES evenly spread through the list.
+pub fn particle_cloud(particles: &[Pose2], stamp: Time, frame: &str) -> msgs::PoseArray {
+    let n = particles.len();
+    let shown = n.min(MAX_CLOUD_POSES);
+    msgs::PoseArray {
+        header: Header::new(stamp, frame),
+        poses: (0..shown).map(|i| pose(particles[i * n / shown])).collect(),
     }
 }
 
@@ -205,6 +221,26 @@ mod tests {
             (1.0, 2.0, 3.0, 4.0, 5.0, 6.0)
         );
         assert_eq!(c[30], 3.0);
+    }
+
+    #[test]
+    fn particles_become_poses_and_a_large_cloud_is_thinned_evenly() {
+        let few = [Pose2::new(1.0, 2.0, 0.5), Pose2::new(-1.0, 0.0, -3.0)];
+        let m = particle_cloud(&few, Time::default(), "map");
+        assert_eq!(m.header.frame_id, "map");
+        assert_eq!(m.poses.len(), 2);
+        assert_eq!((m.poses[0].position.x, m.poses[0].position.y), (1.0, 2.0));
+        assert!((m.poses[1].orientation.yaw() + 3.0).abs() < 1e-12);
+        let many: Vec<Pose2> = (0..12_000)
+            .map(|i| Pose2::new(f64::from(i), 0.0, 0.0))
+            .collect();
+        let m = particle_cloud(&many, Time::default(), "map");
+        assert_eq!(m.poses.len(), MAX_CLOUD_POSES);
+        // Pose i is particle ⌊2.4 i⌋: 0, 2, 4, 7, ... up to 11 997 of 0..=11 999.
+        let xs = |i: usize| m.poses[i].position.x;
+        assert_eq!((xs(0), xs(1), xs(2), xs(3)), (0.0, 2.0, 4.0, 7.0));
+        assert_eq!(xs(MAX_CLOUD_POSES - 1), 11_997.0);
+        assert!(particle_cloud(&[], Time::default(), "map").poses.is_empty());
     }
 
     #[test]

@@ -1,6 +1,6 @@
 //! What navdeck believes, published for RViz: the estimated pose, the map -> odom
-//! transform, the plan, the map (latched) and the landmarks in the distribution's
-//! Marker layout.
+//! transform, the plan, the map (latched), the landmarks in the distribution's Marker
+//! layout and MCL's particle cloud.
 
 use super::config::{Distro, Qos, Ros2Config};
 use super::participant::{Factory, qos_profile};
@@ -22,6 +22,7 @@ pub(super) struct RvizPublishers {
     landmarks: LandmarkPublisher,
     pose: Publisher<msgs::PoseWithCovarianceStamped>,
     tf: Publisher<msgs::TfMessage>,
+    particles: Publisher<msgs::PoseArray>,
 }
 
 impl RvizPublishers {
@@ -76,17 +77,26 @@ impl RvizPublishers {
                 false,
             ),
         )?;
+        // Best effort, as AMCL publishes its cloud (RViz's display must ask for best effort).
+        let particles = f.publisher(
+            "particle_cloud_topic",
+            &c.particle_cloud_topic,
+            "geometry_msgs",
+            "PoseArray",
+            qos_profile(Qos::SENSOR_DATA, false),
+        )?;
         Ok(Self {
             map,
             plan,
             landmarks,
             pose,
             tf,
+            particles,
         })
     }
 
     /// The pose (and, with odometry, the map -> odom transform) every call; the plan, the
-    /// map and the landmarks when the picture carries them.
+    /// map, the landmarks and the particles when the picture carries them.
     pub(super) fn show(&self, picture: &Picture, odom: Option<Pose2>, config: &Ros2Config) {
         let stamp = now_stamp();
         let frame = config.map_frame.clone();
@@ -101,6 +111,11 @@ impl RvizPublishers {
             let _ = self
                 .tf
                 .publish(picture::transform(&frame, &config.odom_frame, t, stamp));
+        }
+        if let Some(particles) = &picture.particles {
+            let _ = self
+                .particles
+                .publish(picture::particle_cloud(particles, stamp, &frame));
         }
         if let Some(path) = &picture.path {
             let _ = self.plan.publish(picture::path(path, stamp, &frame));

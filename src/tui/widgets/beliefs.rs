@@ -29,15 +29,14 @@ pub fn render(app: &App, vp: &Viewport, theme: Theme, buf: &mut Buffer) {
                 .set_style(theme.marker(category).add_modifier(Modifier::BOLD));
         }
     }
-    let position = slam.pose().position();
-    draw_ellipse(
-        position,
-        &slam.position_covariance(),
-        vp,
-        braille,
-        theme.robot(),
-        buf,
-    );
+    // The pose the robot decides with (MCL's when it runs) and its covariance.
+    let position = app.pilot().estimated_pose().position();
+    let cov = app
+        .pilot()
+        .pose_covariance()
+        .fixed_view::<2, 2>(0, 0)
+        .into_owned();
+    draw_ellipse(position, &cov, vp, braille, theme.robot(), buf);
 }
 
 /// The 95 % outline of `cov` around `center`, when it is larger than one cell.

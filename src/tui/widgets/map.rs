@@ -62,6 +62,7 @@ pub fn render(app: &App, theme: Theme, area: Rect, buf: &mut Buffer) {
     if app.view().show_truth {
         draw_world_objects(app, &vp, theme, buf);
     }
+    super::particles::render(app, &vp, theme, buf);
     super::sensing::render(app, &vp, theme, buf);
     super::path::render(app, &vp, theme, buf);
     super::explore::render(app, &vp, theme, buf);

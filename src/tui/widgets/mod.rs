@@ -7,6 +7,7 @@ pub mod help;
 pub mod landmarks;
 pub mod log;
 pub mod map;
+pub mod particles;
 pub mod path;
 pub mod sensing;
 pub mod status;

@@ -103,6 +103,26 @@ fn rows(app: &App, theme: Theme, width: usize) -> Vec<Line<'static>> {
         "Sigma",
         format!("{sx:6.3} {sy:6.3} {:4.1}°", st.to_degrees()),
     ));
+    if let Some(mcl) = app.pilot().mcl() {
+        let st = mcl.status();
+        rows.push(row(
+            theme,
+            "MCL",
+            format!("{} particles, ESS {:.0}", st.particles, st.effective),
+        ));
+        let state = if st.converged {
+            "converged".to_string()
+        } else if st.clusters > 1 {
+            format!(
+                "{} hypotheses, best {:.0} %",
+                st.clusters,
+                100.0 * st.cluster_weight
+            )
+        } else {
+            format!("searching, spread {:.2} m", mcl.position_std())
+        };
+        rows.push(row(theme, "Locate", state));
+    }
     if let Some(truth) = app.true_pose().filter(|_| app.view().show_truth) {
         rows.push(row(theme, "Truth", pose_text(truth)));
         let est = app.pilot().estimated_pose();

@@ -1,0 +1,17 @@
+//! Monte-Carlo localisation on a known map with the lidar (seed 002; Probabilistic
+//! Robotics chapter 8): particles moved by the odometry motion model, weighed by a
+//! measurement model, resampled when their effective sample size falls, their count set
+//! by KLD-sampling, and random particles added when the scans fit worse than they used
+//! to (augmented MCL), so that a lost or kidnapped robot finds itself again.
+
+pub mod beam_memo;
+pub mod cluster;
+pub mod config;
+mod filter;
+pub mod known_map;
+pub mod motion;
+pub mod resample;
+pub mod sensor;
+
+pub use filter::{Mcl, Particle, Status};
+pub use known_map::{KnownMap, KnownMapError};

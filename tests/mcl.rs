@@ -1,0 +1,239 @@
+//! Monte-Carlo localisation as a user meets it: tracking, global localisation and a
+//! kidnapped robot in the twin (scored against its truth by the tour runner), a `:goto`
+//! on MCL alone, the console's pose commands, and bad input refused.
+
+mod common;
+
+use common::navdeck;
+use navdeck::app::{App, KeyKind};
+use navdeck::config::Config;
+use navdeck::geometry::{Point2, Pose2};
+use navdeck::keymap::Key;
+use navdeck::pilot::localize::InitialPose;
+use navdeck::session::{LinkChoice, LocalizeChoice, Session, SessionSpec};
+use navdeck::slam::mcl::config::Estimator;
+use navdeck::tour::{self, TourOptions, TourReport};
+
+const TB3: &str = "maps/turtlebot3_world.yaml";
+const FLAT: &str = "maps/flat.yaml";
+
+fn spec(world: &str, seed: u64, initial: Option<InitialPose>) -> SessionSpec {
+    SessionSpec {
+        world: Some(world.into()),
+        seed,
+        start: None,
+        config: None,
+        keymap: None,
+        link: LinkChoice::Sim,
+        localize: LocalizeChoice {
+            estimator: Some(Estimator::Mcl),
+            map: None,
+            initial_pose: initial,
+        },
+    }
+}
+
+fn tour_of(
+    spec: &SessionSpec,
+    tweak: impl FnOnce(&mut Config),
+    options: TourOptions,
+) -> TourReport {
+    let session = Session::load(spec).expect("session loads");
+    let localizer = session.localizer.clone();
+    let (mut config, mut link) = session.into_link();
+    tweak(&mut config);
+    tour::run(&config, link.as_mut(), localizer.as_ref(), &options).expect("the tour runs")
+}
+
+fn options(seed: u64, duration: f64) -> TourOptions {
+    TourOptions {
+        seed,
+        duration,
+        kidnap: None,
+        goals: Vec::new(),
+        random_start: false,
+    }
+}
+
+#[test]
+fn mcl_tracks_the_turtlebot3_world_to_centimetres_where_dead_reckoning_drifts() {
+    let r = tour_of(&spec(TB3, 1, None), |_| {}, options(1, 120.0));
+    let (pos, head) = (r.position_rmse.unwrap(), r.heading_rmse_deg.unwrap());
+    assert!(pos < 0.03 && head < 1.5, "MCL RMSE {pos} m, {head}°");
+    let dr = r.dr_position_rmse.unwrap();
+    assert!(dr > 2.0 * pos, "dead reckoning {dr} m against MCL {pos} m");
+    assert_eq!(r.collisions, Some(0));
+    assert!(r.arrivals.len() >= 3, "{r:?}");
+}
+
+#[test]
+fn global_localisation_finds_the_robot_in_the_flat() {
+    for seed in 1..=3 {
+        let mut o = options(seed, 40.0);
+        o.random_start = true;
+        let r = tour_of(&spec(FLAT, seed, Some(InitialPose::Unknown)), |_| {}, o);
+        let at = r.localised_at.unwrap_or(f64::INFINITY);
+        assert!(at <= 30.0, "seed {seed}: localised at {at} s");
+        assert_eq!(r.collisions, Some(0), "seed {seed}");
+    }
+}
+
+#[test]
+fn a_kidnapped_robot_finds_itself_again() {
+    let mut o = options(1, 80.0);
+    o.kidnap = Some((30.0, Pose2::new(0.5, -1.3, std::f64::consts::FRAC_PI_2)));
+    let r = tour_of(&spec(FLAT, 1, None), |_| {}, o);
+    assert!(r.kidnapped_at.is_some());
+    let after = r.recovered_after.unwrap_or(f64::INFINITY);
+    assert!(after <= 30.0, "recovered after {after} s: {r:?}");
+}
+
+#[test]
+fn a_goto_across_the_turtlebot3_world_on_mcl_alone_arrives_within_5_cm() {
+    let goals = vec![
+        Point2::new(1.8, 0.0),
+        Point2::new(-1.8, 0.0),
+        Point2::new(0.0, 1.6),
+        Point2::new(0.0, -1.6),
+    ];
+    let mut o = options(2, 200.0);
+    o.goals = goals.clone();
+    // The follower stops within its goal tolerance of where MCL puts the robot.
+    let r = tour_of(&spec(TB3, 2, None), |c| c.follow.goal_tolerance = 0.02, o);
+    assert_eq!(r.collisions, Some(0));
+    assert!(r.arrivals.len() >= goals.len(), "{r:?}");
+    for a in &r.arrivals {
+        assert!(a.true_error < 0.05, "{a:?}");
+    }
+}
+
+fn mcl_console(world: &str) -> App {
+    let mut app = common::app_with(spec(world, 1, None));
+    app.resize(120, 40);
+    // Zoomed in on the robot, as far as the TurtleBot3 world's walls.
+    for _ in 0..4 {
+        app.handle_key(Key::char('+'), KeyKind::Press, 0.0);
+    }
+    for k in 1..=10 {
+        app.update(0.1 * f64::from(k));
+    }
+    app
+}
+
+fn type_line(app: &mut App, line: &str) {
+    let t = app.now();
+    app.handle_key(Key::char(':'), KeyKind::Press, t);
+    for c in line.chars() {
+        app.handle_key(Key::char(c), KeyKind::Press, t);
+    }
+    app.handle_key(common::key("enter"), KeyKind::Press, t);
+}
+
+#[test]
+fn the_console_shows_particles_and_the_filter_state() {
+    let app = mcl_console(TB3);
+    let screen = common::render_at(&app, 120, 40);
+    assert!(screen.contains("MCL"), "{screen}");
+    assert!(screen.contains("converged"), "{screen}");
+    assert!(
+        screen.contains('▓') || screen.contains('▒') || screen.contains('░'),
+        "particles shade the map:\n{screen}"
+    );
+    insta::assert_snapshot!(screen);
+}
+
+#[test]
+fn pose_and_relocalize_commands_place_the_particles() {
+    let mut app = mcl_console(TB3);
+    type_line(&mut app, "pose -1.5 0.2 90");
+    let p = app.pilot().estimated_pose();
+    assert!((p.x + 1.5).abs() < 0.2 && (p.y - 0.2).abs() < 0.2, "{p:?}");
+    assert!((p.theta - std::f64::consts::FRAC_PI_2).abs() < 0.2, "{p:?}");
+    let text: Vec<&str> = app.log_book().iter().map(|e| e.text.as_str()).collect();
+    assert!(
+        text.iter()
+            .any(|t| t.contains("pose set to (-1.50, 0.20) 90°")),
+        "{text:?}"
+    );
+    type_line(&mut app, "pose 50 50 0");
+    let last = app.log_book().last().unwrap().text.clone();
+    assert!(last.contains("off the map"), "{last}");
+    type_line(&mut app, "relocalize");
+    let mcl = app.pilot().mcl().unwrap();
+    let max = app.config().localization.max_particles as usize;
+    assert_eq!(mcl.status().particles, max);
+    assert!(!mcl.status().converged);
+}
+
+#[test]
+fn the_pose_estimate_key_takes_a_position_then_a_heading() {
+    let mut app = mcl_console(TB3);
+    let t = app.now();
+    app.handle_key(Key::char('t'), KeyKind::Press, t);
+    // The cursor starts at the robot; P there, three cells up, P again: facing +y.
+    app.handle_key(Key::char('P'), KeyKind::Press, t);
+    let at = app.pose_anchor().expect("position placed");
+    for _ in 0..3 {
+        app.handle_key(common::key("up"), KeyKind::Press, t);
+    }
+    app.handle_key(Key::char('P'), KeyKind::Press, t);
+    let p = app.pilot().estimated_pose();
+    assert!(p.position().distance(at) < 0.2, "{p:?} vs {at:?}");
+    assert!((p.theta - std::f64::consts::FRAC_PI_2).abs() < 0.2, "{p:?}");
+}
+
+fn refused(args: &[&str]) -> String {
+    let out = navdeck(args);
+    assert_eq!(out.status.code(), Some(2), "{args:?} should be refused");
+    String::from_utf8_lossy(&out.stderr).into_owned()
+}
+
+#[test]
+fn bad_localisation_input_is_refused_with_the_field_and_value() {
+    let why = refused(&["--headless", "--estimator", "mcl"]);
+    assert!(why.contains("--map"), "{why}");
+    let why = refused(&[
+        "--headless",
+        "--world",
+        TB3,
+        "--estimator",
+        "mcl",
+        "--initial-pose",
+        "50,50,0",
+    ]);
+    assert!(why.contains("off the map"), "{why}");
+    let why = refused(&["--headless", "--map", TB3]);
+    assert!(why.contains("--estimator mcl"), "{why}");
+    let why = refused(&["--headless", "--estimator", "pf"]);
+    assert!(why.contains("pf"), "{why}");
+    let dir = std::env::temp_dir().join(format!("navdeck-mcl-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let config = dir.join("zero.toml");
+    std::fs::write(&config, "[localization]\nmin_particles = 0\n").unwrap();
+    let why = refused(&["--headless", "--config", config.to_str().unwrap()]);
+    assert!(
+        why.contains("localization.min_particles") && why.contains(":2"),
+        "{why}"
+    );
+    // A map with no free cell: nowhere for a particle to be.
+    std::fs::write(
+        dir.join("solid.pgm"),
+        b"P5\n4 4\n255\n\0\0\0\0\0\0\0\0\0\0\0\0\0\0\0\0",
+    )
+    .unwrap();
+    std::fs::write(
+        dir.join("solid.yaml"),
+        "image: solid.pgm\nresolution: 0.05\norigin: [0, 0, 0]\nnegate: 0\noccupied_thresh: 0.65\nfree_thresh: 0.196\n",
+    )
+    .unwrap();
+    let map = dir.join("solid.yaml");
+    let why = refused(&[
+        "--headless",
+        "--estimator",
+        "mcl",
+        "--map",
+        map.to_str().unwrap(),
+    ]);
+    assert!(why.contains("no known free cell"), "{why}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -353,6 +353,36 @@ fn cli_cases() -> Vec<Case> {
         ),
         case("cli", &["plan", "--from", "nan,0", "--to", "0,0"], "--from"),
         case("cli", &["--link", "serial:/dev/null@0"], "baud"),
+        case(
+            "cli",
+            &["--world", "maps/flat.yaml", "--estimator", "mcl", "--initial-pose", "nan,0,0"],
+            "--initial-pose",
+        ),
+        case(
+            "cli",
+            &["--world", "maps/flat.yaml", "--estimator", "mcl", "--initial-pose", "1e9,0,0"],
+            "--initial-pose",
+        ),
+        case(
+            "cli",
+            &["--estimator", "mcl", "--map", "/dev/zero"],
+            "/dev/zero",
+        ),
+        case(
+            "cli",
+            &["tour", "--world", "maps/flat.yaml", "--duration", "1e9"],
+            "--duration",
+        ),
+        case(
+            "cli",
+            &["tour", "--world", "maps/flat.yaml", "--kidnap", "nan@0,0,0"],
+            "--kidnap",
+        ),
+        case(
+            "cli",
+            &["tour", "--world", "maps/flat.yaml", "--goals", "1,2;x,3"],
+            "--goals",
+        ),
     ]
 }
 

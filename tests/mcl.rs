@@ -237,3 +237,21 @@ fn bad_localisation_input_is_refused_with_the_field_and_value() {
     assert!(why.contains("no known free cell"), "{why}");
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+#[test]
+fn the_mission_on_mcl_is_not_lost_for_want_of_markers() {
+    // The TurtleBot3 world has no markers: on the EKF alone the mission would call the
+    // robot lost; MCL vouches for its pose, and exploration runs to its end.
+    let session = Session::load(&spec(TB3, 1, None)).unwrap();
+    let localizer = session.localizer.clone();
+    let (config, mut link) = session.into_link();
+    let r =
+        navdeck::mission_runner::run(&config, link.as_mut(), localizer.as_ref(), 1, 400.0, false);
+    assert_eq!(r.outcome, "delivered all", "{r:?}");
+    assert_eq!(r.collisions, Some(0));
+    assert!(
+        r.warnings.iter().all(|w| !w.contains("lost")),
+        "{:?}",
+        r.warnings
+    );
+}

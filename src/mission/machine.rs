@@ -175,7 +175,7 @@ impl Mission {
     /// and stops; once done, it stops.
     pub fn step(&mut self, inputs: &Inputs) -> Outputs {
         let mut log = Vec::new();
-        if inputs.camera_frame && !inputs.seen.is_empty() {
+        if (inputs.camera_frame && !inputs.seen.is_empty()) || inputs.localized {
             self.last_marker = inputs.t;
         }
         self.note_found(inputs, &mut log);

@@ -41,6 +41,9 @@ pub struct Inputs<'a> {
     /// The filter's position uncertainty: the standard deviation along its worst
     /// direction, metres.
     pub position_std: f64,
+    /// Another estimator vouches for the pose (MCL converged on a known map): a view
+    /// without markers is then no sign of being lost.
+    pub localized: bool,
 }
 
 /// How the robot should move this step.

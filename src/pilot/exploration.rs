@@ -86,6 +86,7 @@ impl Pilot {
             map: self.belief.costmap(),
             occupied: self.belief.sensed_occupied(),
             position_std: self.position_std(),
+            localized: self.mcl.as_ref().is_some_and(|m| m.status().converged),
         });
         self.exploring.mission = Some(mission);
         for (level, text) in outputs.log {

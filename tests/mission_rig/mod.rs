@@ -88,6 +88,7 @@ impl Rig {
             map: &self.map,
             occupied: &self.occupied,
             position_std: self.position_std,
+            localized: false,
         };
         let out = self.mission.step(&inputs);
         self.log.extend(out.log.iter().map(|(_, l)| l.clone()));

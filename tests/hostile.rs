@@ -355,12 +355,26 @@ fn cli_cases() -> Vec<Case> {
         case("cli", &["--link", "serial:/dev/null@0"], "baud"),
         case(
             "cli",
-            &["--world", "maps/flat.yaml", "--estimator", "mcl", "--initial-pose", "nan,0,0"],
+            &[
+                "--world",
+                "maps/flat.yaml",
+                "--estimator",
+                "mcl",
+                "--initial-pose",
+                "nan,0,0",
+            ],
             "--initial-pose",
         ),
         case(
             "cli",
-            &["--world", "maps/flat.yaml", "--estimator", "mcl", "--initial-pose", "1e9,0,0"],
+            &[
+                "--world",
+                "maps/flat.yaml",
+                "--estimator",
+                "mcl",
+                "--initial-pose",
+                "1e9,0,0",
+            ],
             "--initial-pose",
         ),
         case(

@@ -166,8 +166,34 @@ impl Evidence {
                 0
             }
         };
+        // Each row's occupied columns, first and last: a row far from every occupied cell
+        // is all zeros, and so is a column far from them.
+        let bounds: Vec<Option<(usize, usize)>> = (0..h)
+            .map(|y| {
+                let row = &self.occupied[y * w..(y + 1) * w];
+                let first = row.iter().position(|&o| o)?;
+                let last = row.iter().rposition(|&o| o)?;
+                Some((first, last))
+            })
+            .collect();
+        let reach = spans
+            .keys()
+            .map(|dy| dy.unsigned_abs() as usize)
+            .max()
+            .unwrap_or(0);
+        let wide = spans
+            .values()
+            .map(|s| s[1].0.unsigned_abs().max(s[1].1.unsigned_abs()))
+            .max();
+        let wide = wide.unwrap_or(0) as usize;
+        self.near_lethal.iter_mut().for_each(|c| *c = 0);
+        self.near_inflated.iter_mut().for_each(|c| *c = 0);
         for y in 0..h {
-            for x in 0..w {
+            let band = (y.saturating_sub(reach)..=(y + reach).min(h - 1)).filter_map(|r| bounds[r]);
+            let Some((lo, hi)) = band.reduce(|a, b| (a.0.min(b.0), a.1.max(b.1))) else {
+                continue;
+            };
+            for x in lo.saturating_sub(wide)..=(hi + wide).min(w - 1) {
                 let (mut lethal, mut all) = (0u32, 0u32);
                 for (&dy, span) in &spans {
                     let yy = y as i64 + i64::from(dy);
@@ -243,29 +269,38 @@ mod tests {
 
     #[test]
     fn absorbing_a_grid_counts_as_adding_its_cells_one_by_one() {
-        let (w, h) = (37, 23);
-        let observed: Vec<Option<bool>> = (0..w * h)
-            .map(|i| match (i * 7919) % 11 {
-                0 => Some(true),
-                1..=6 => Some(false),
-                _ => None,
-            })
-            .collect();
-        let mut one_by_one = Evidence::new(w, h, 2.5, 4.2);
-        let mut touched = Vec::new();
-        for (i, o) in observed.iter().enumerate() {
-            let delta = match o {
-                Some(true) => f32::INFINITY,
-                Some(false) => f32::NEG_INFINITY,
-                None => continue,
-            };
-            one_by_one.add(i % w, i / w, delta, &mut touched);
+        // A dense pattern, and a sparse one with empty rows and far columns.
+        let dense = |i: usize| match (i * 7919) % 11 {
+            0 => Some(true),
+            1..=6 => Some(false),
+            _ => None,
+        };
+        let sparse = |i: usize| match i {
+            130 | 131 | 1777 => Some(true),
+            _ if i.is_multiple_of(3) => Some(false),
+            _ => None,
+        };
+        for (w, h, pattern) in [
+            (37, 23, &dense as &dyn Fn(usize) -> Option<bool>),
+            (61, 47, &sparse),
+        ] {
+            let observed: Vec<Option<bool>> = (0..w * h).map(pattern).collect();
+            let mut one_by_one = Evidence::new(w, h, 2.5, 4.2);
+            let mut touched = Vec::new();
+            for (i, o) in observed.iter().enumerate() {
+                let delta = match o {
+                    Some(true) => f32::INFINITY,
+                    Some(false) => f32::NEG_INFINITY,
+                    None => continue,
+                };
+                one_by_one.add(i % w, i / w, delta, &mut touched);
+            }
+            let mut at_once = Evidence::new(w, h, 2.5, 4.2);
+            at_once.absorb(&observed);
+            assert_eq!(at_once.occupied, one_by_one.occupied);
+            assert_eq!(at_once.log_odds, one_by_one.log_odds);
+            assert_eq!(at_once.near_lethal, one_by_one.near_lethal);
+            assert_eq!(at_once.near_inflated, one_by_one.near_inflated);
         }
-        let mut at_once = Evidence::new(w, h, 2.5, 4.2);
-        at_once.absorb(&observed);
-        assert_eq!(at_once.occupied, one_by_one.occupied);
-        assert_eq!(at_once.log_odds, one_by_one.log_odds);
-        assert_eq!(at_once.near_lethal, one_by_one.near_lethal);
-        assert_eq!(at_once.near_inflated, one_by_one.near_inflated);
     }
 }

@@ -196,6 +196,11 @@ impl Mcl {
         }
         let weights: Vec<f64> = self.particles.iter().map(|p| p.weight).collect();
         self.effective = resample::effective_sample_size(&weights);
+        // The estimate comes from the weighted set, before resampling: resampling only adds
+        // noise to it (Probabilistic Robotics 4.3.4), and a random particle added below has
+        // not yet met a scan, so it must not pull the estimate until one has weighed it.
+        self.force_update = false;
+        self.refresh_estimate();
         // Table 8.3, line 13: random particles while the scans fit worse lately than they
         // used to.
         let (slow, fast) = (self.w_slow.value(), self.w_fast.value());
@@ -211,7 +216,6 @@ impl Mcl {
             self.resample(&weights);
         }
         self.updates += 1;
-        self.refresh_estimate();
         true
     }
 

@@ -58,6 +58,9 @@ pub struct Config {
     pub ros2: crate::link::ros2::config::Ros2Config,
     pub serial: SerialConfig,
     pub vision: VisionConfig,
+    /// The arm on the robot, its kinematics and limits. No [arm], no arm.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub arm: Option<crate::arm::config::ArmConfig>,
 }
 
 impl Config {
@@ -73,6 +76,7 @@ impl Config {
             follow: self.follow.clone(),
             mission: self.mission.clone(),
             localization: self.localization.clone(),
+            arm: self.arm.clone(),
         }
     }
 
@@ -118,6 +122,7 @@ impl Config {
             ("ros2", self.ros2.validate()),
             ("serial", self.serial.validate()),
             ("vision", self.vision.validate()),
+            ("arm", self.arm.as_ref().map_or(Ok(()), |a| a.validate())),
         ];
         for (section, result) in sections {
             if let Err((field, value, reason)) = result {

@@ -1,6 +1,7 @@
 //! navdeck: a terminal teleop-and-autonomy console for small differential-drive robots.
 
 pub mod app;
+pub mod arm;
 pub mod clock;
 pub mod config;
 pub mod console;

@@ -57,6 +57,8 @@ const ERROR_LINE: usize = 400;
 
 mod tour_command;
 use tour_command::{LocalizeArgs, TourArgs};
+mod arm_command;
+use arm_command::ArmCommand;
 
 /// A terminal teleop-and-autonomy console for small differential-drive robots.
 ///
@@ -168,6 +170,9 @@ enum Subcommand {
     /// Make twin worlds.
     #[command(subcommand)]
     World(WorldCommand),
+    /// The arm's kinematics: joints for a tool position (ik) and back (fk).
+    #[command(subcommand)]
+    Arm(ArmCommand),
 }
 
 #[derive(Debug, clap::Subcommand)]
@@ -336,6 +341,7 @@ fn real_main(cli: Cli) -> Result<ExitCode> {
                 Subcommand::Tour(_) => "tour",
                 Subcommand::Map(_) => "map",
                 Subcommand::World(_) => "world",
+                Subcommand::Arm(_) => "arm",
             };
             anyhow::bail!(
                 "{option} before `{name}` is the console's option: give the subcommand's own after it (navdeck {name} --help lists them)"
@@ -348,6 +354,7 @@ fn real_main(cli: Cli) -> Result<ExitCode> {
         Some(Subcommand::Tour(args)) => return tour_command::run(args),
         Some(Subcommand::Map(command)) => return run_map(command),
         Some(Subcommand::World(command)) => return world_command::run(command),
+        Some(Subcommand::Arm(command)) => return arm_command::run(command),
         None => {}
     }
     let spec = SessionSpec {

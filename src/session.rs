@@ -162,7 +162,11 @@ impl Session {
                         });
                     anyhow::anyhow!("{name}: {why}")
                 })?;
-                let twin = Twin::new(world, &config.robot, &config.sim, spec.seed);
+                let mut twin = Twin::new(world, &config.robot, &config.sim, spec.seed);
+                if let Some(arm) = &config.arm {
+                    // The twin's arm starts at home, as the pilot believes it does.
+                    twin.add_arm(arm);
+                }
                 Robot::Twin(Box::new(twin))
             }
             LinkChoice::Ros2(target) => {

@@ -79,6 +79,16 @@ fn defaults_have_the_seed_keys() {
                 assert_eq!(map.lookup(mode, key(name)), Some(Action::ModeManual));
                 continue;
             }
+            if mode == Mode::Gripper && matches!(name, "r" | "f") {
+                // In gripper mode r and f move the arm's tool up and down.
+                let arm = if name == "r" {
+                    Action::ArmUp
+                } else {
+                    Action::ArmDown
+                };
+                assert_eq!(map.lookup(mode, key(name)), Some(arm));
+                continue;
+            }
             if mode == Mode::Thinking && matches!(name, "l" | "up") {
                 // Thinking mode's goal cursor moves with h j k l and the arrows.
                 assert_eq!(

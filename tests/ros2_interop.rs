@@ -2,14 +2,17 @@
 //! tests/interop/turtlebot_peer.py with ROS 2's wire types: headless navdeck drives it
 //! over `--link ros2`, and both sides check what crossed. tests/interop/amcl_peer.py
 //! plays RViz beside MCL: pose estimates on /initialpose in, particles on /particlecloud
-//! out, checked at the link itself.
+//! out, checked at the link itself. tests/interop/arm_peer.py plays an OpenManipulator-X
+//! arm's controllers: trajectories and gripper goals in, joint states out.
 //!
 //! Needs a Python with the PyPI `cyclonedds` package: `NAVDECK_PYTHON` names it
 //! (./scripts/test makes a virtualenv and sets it, with NAVDECK_REQUIRE_INTEROP=1 so
 //! that a missing peer fails the run instead of skipping).
 
 use navdeck::config::Config;
+use navdeck::data::{ArmState, ArmTarget, GripperCommand};
 use navdeck::geometry::Pose2;
+use navdeck::link::ros2::config::Rmw;
 use navdeck::link::ros2::{Ros2Link, Ros2Options};
 use navdeck::link::{Picture, RobotLink, SensorFrame};
 use serde_json::Value;
@@ -165,11 +168,17 @@ struct LinePeer {
 
 impl LinePeer {
     fn start(script: &str, domain: u16) -> Option<LinePeer> {
+        Self::start_with(script, domain, &[])
+    }
+
+    /// `start` with arguments after the domain.
+    fn start_with(script: &str, domain: u16, args: &[&str]) -> Option<LinePeer> {
         let python = python()?;
         let path = format!("{}/tests/interop/{script}", env!("CARGO_MANIFEST_DIR"));
         let mut child = Command::new(&python)
             .arg(path)
             .arg(domain.to_string())
+            .args(args)
             .env("CYCLONEDDS_URI", CYCLONE_CONFIG)
             .stdin(Stdio::piped())
             .stdout(Stdio::piped())
@@ -385,4 +394,159 @@ fn mcl_particles_reach_a_cyclone_reader_as_a_pose_array() {
             "{got:?} vs {want:?}"
         );
     }
+}
+
+/// Polls `link` as `poll_until` does until the peer prints a JSON line with `key`, and
+/// returns its value; panics with `what` after PATIENCE seconds.
+fn poll_until_line(link: &mut Ros2Link, peer: &LinePeer, key: &str, what: &str) -> Value {
+    let started = Instant::now();
+    loop {
+        // Notes stay with the link for a later `poll_until`.
+        let _ = link.poll(started.elapsed().as_secs_f64());
+        if let Ok(line) = peer.lines.recv_timeout(std::time::Duration::from_millis(5)) {
+            let record: Value = serde_json::from_str(&line)
+                .unwrap_or_else(|e| panic!("the peer said {line:?}: {e}"));
+            if let Some(v) = record.get(key) {
+                return v.clone();
+            }
+        }
+        assert!(
+            started.elapsed().as_secs_f64() < PATIENCE,
+            "gave up waiting for {what}"
+        );
+    }
+}
+
+fn arm_of(polled: &Polled) -> Vec<ArmState> {
+    polled.frames.iter().filter_map(|f| f.arm).collect()
+}
+
+#[test]
+fn an_arm_target_reaches_a_cyclone_controller_and_its_joints_come_back_by_name() {
+    let Some(mut peer) = LinePeer::start("arm_peer.py", 75) else {
+        return;
+    };
+    let mut link = connect_loopback(75, |c| c.ros2.arm = true).expect("ROS 2 link");
+    poll_until(&mut link, "odometry from the peer", |p| {
+        !p.frames.is_empty()
+    });
+
+    let target = ArmTarget {
+        joints: [0.125, -1.0 / 3.0, 0.7, -0.3],
+        within: 2.5,
+    };
+    let reach = navdeck::data::Command {
+        arm: Some(target),
+        ..navdeck::data::Command::STOP
+    };
+    link.send(&reach).unwrap();
+    let got = poll_until_line(&mut link, &peer, "trajectory", "the arm trajectory");
+    assert_eq!(
+        got["names"],
+        serde_json::json!(["joint1", "joint2", "joint3", "joint4"])
+    );
+    let points = got["points"].as_array().unwrap();
+    assert_eq!(points.len(), 1, "{got}");
+    let positions: Vec<f64> = points[0]["positions"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(f)
+        .collect();
+    assert_eq!(positions.len(), 4, "{got}");
+    for (p, want) in positions.iter().zip(target.joints) {
+        assert!(
+            (p - want).abs() < 1e-9,
+            "{positions:?} vs {:?}",
+            target.joints
+        );
+    }
+    assert_eq!(
+        points[0]["time_from_start"],
+        serde_json::json!([2, 500_000_000])
+    );
+    // Zero: "start on receipt", whatever the robot's clock says.
+    assert_eq!(got["stamp"], serde_json::json!([0, 0]));
+
+    // Out of order, beside another joint: matched by name.
+    peer.say("joints joint3=0.3 wheel_left_joint=5.0 joint1=0.1 joint4=-0.4 joint2=-0.2");
+    assert_eq!(peer.next_line("sent"), "sent");
+    let got = poll_until(&mut link, "the arm's joints", |p| !arm_of(p).is_empty());
+    assert_eq!(
+        arm_of(&got),
+        vec![ArmState {
+            joints: [0.1, -0.2, 0.3, -0.4]
+        }]
+    );
+
+    for (line, says) in [
+        (
+            "joints joint1=0.5 joint2=nan joint3=0 joint4=0",
+            "position[1] (joint2) = NaN",
+        ),
+        (
+            "joints joint1=0.5 joint2=0 joint4=0",
+            "name lacks \"joint3\"",
+        ),
+    ] {
+        peer.say(line);
+        assert_eq!(peer.next_line("sent"), "sent");
+        let refused = poll_until(&mut link, says, |p| {
+            p.notes
+                .iter()
+                .any(|n| n.contains("joint_states") && n.contains(says))
+        });
+        assert_eq!(arm_of(&refused), vec![], "{line} was reported");
+    }
+    assert!(link.label().contains("2 dropped"), "{}", link.label());
+}
+
+#[test]
+fn gripper_orders_reach_a_cyclone_action_server_as_goals() {
+    let Some(peer) = LinePeer::start("arm_peer.py", 76) else {
+        return;
+    };
+    let mut link = connect_loopback(76, |c| {
+        c.ros2.arm = true;
+        c.ros2.gripper_max_effort = 2.5;
+    })
+    .expect("ROS 2 link");
+    for (order, position) in [(GripperCommand::Open, 0.01), (GripperCommand::Close, -0.01)] {
+        let command = navdeck::data::Command {
+            gripper: Some(order),
+            ..navdeck::data::Command::STOP
+        };
+        link.send(&command).unwrap();
+        let goal = poll_until_line(&mut link, &peer, "goal", "the gripper goal");
+        assert_eq!(
+            (f(&goal["position"]), f(&goal["max_effort"])),
+            (position, 2.5),
+            "{order:?}"
+        );
+    }
+}
+
+#[test]
+fn a_gripper_goal_refused_by_an_rmw_cyclonedds_server_is_warned() {
+    let Some(peer) = LinePeer::start_with("arm_peer.py", 78, &["--cyclone-mapping", "--reject"])
+    else {
+        return;
+    };
+    let mut link = connect_loopback(78, |c| {
+        c.ros2.arm = true;
+        c.ros2.gripper_action_rmw = Rmw::CycloneDds;
+    })
+    .expect("ROS 2 link");
+    let close = navdeck::data::Command {
+        gripper: Some(GripperCommand::Close),
+        ..navdeck::data::Command::STOP
+    };
+    link.send(&close).unwrap();
+    let goal = poll_until_line(&mut link, &peer, "goal", "the gripper goal");
+    assert_eq!(f(&goal["position"]), -0.01);
+    poll_until(&mut link, "the refusal", |p| {
+        p.notes
+            .iter()
+            .any(|n| n.contains("gripper_controller/gripper_cmd refused the gripper goal (close)"))
+    });
 }

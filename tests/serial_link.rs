@@ -5,11 +5,12 @@ mod serial_emulator;
 
 use navdeck::app::{App, KeyKind, LinkStatus};
 use navdeck::config::Config;
-use navdeck::data::{Command, GripperCommand, GripperState, WheelTravel};
+use navdeck::data::{ArmTarget, Command, GripperCommand, GripperState, WheelTravel};
 use navdeck::geometry::Twist;
 use navdeck::keymap::{Key, Keymap};
 use navdeck::link::RobotLink;
 use navdeck::link::serial::SerialLink;
+use navdeck::link::serial::config::ArmServo;
 use serial_emulator::{Emulator, Options, until};
 use std::io::{Read, Write};
 use std::time::Duration;
@@ -36,6 +37,7 @@ fn forward(v: f64) -> Command {
     Command {
         twist: Twist::new(v, 0.0),
         gripper: None,
+        arm: None,
     }
 }
 
@@ -128,6 +130,7 @@ fn turning_on_the_spot_sends_opposite_targets() {
     let turn = Command {
         twist: Twist::new(0.0, 1.0),
         gripper: None,
+        arm: None,
     };
     let travel = drive(&mut link, &emu, turn, 0.01);
     // Equal and opposite within a few counts (one count is 0.05 mm here).
@@ -256,6 +259,7 @@ fn the_gripper_is_reported_moving_then_where_the_servo_says() {
     let open = Command {
         twist: Twist::ZERO,
         gripper: Some(GripperCommand::Open),
+        arm: None,
     };
     link.send(&open).unwrap();
     let mut seen = Vec::new();
@@ -271,6 +275,61 @@ fn the_gripper_is_reported_moving_then_where_the_servo_says() {
     assert_eq!(emu.state().servo_angle[1], 90.0);
 }
 
+/// Four arm servos: indices 4..=7, zeros and directions that differ.
+fn arm_servos() -> Vec<ArmServo> {
+    [(4, 90.0, 1), (5, 90.0, -1), (6, 30.0, 1), (7, 150.0, -1)]
+        .map(|(index, zero_deg, direction)| ArmServo {
+            index,
+            zero_deg,
+            direction,
+        })
+        .to_vec()
+}
+
+#[test]
+fn an_arm_target_becomes_one_servo_write_per_joint_and_a_clamped_one_is_warned() {
+    let emu = Emulator::start();
+    let mut config = config();
+    config.serial.gripper_servo = Some(1);
+    config.serial.arm_servos = arm_servos();
+    config.validate(std::path::Path::new("arm.toml")).unwrap();
+    let mut link = SerialLink::open(&emu.path(), &config.serial, &config.robot).unwrap();
+    let reach = Command {
+        arm: Some(ArmTarget {
+            joints: [
+                std::f64::consts::FRAC_PI_4,
+                std::f64::consts::FRAC_PI_4,
+                -0.5,
+                std::f64::consts::FRAC_PI_6,
+            ],
+            within: 1.5,
+        }),
+        ..forward(0.1)
+    };
+    // Every control period repeats the target while the robot drives.
+    let travel = drive(&mut link, &emu, reach, 0.02);
+    assert!(travel.left > 0.0);
+    // 90 + 45, 90 - 45, 30 - 28.6 (-0.5 rad), 150 - 30: once each, however often asked.
+    let want = vec![(4, 135), (5, 45), (6, 1), (7, 120)];
+    assert_eq!(emu.state().servo_writes, want);
+
+    // 2 rad on joint 1 is 90 + 114.6 degrees: beyond the servo, so 180 and a warning.
+    let far = Command {
+        arm: Some(ArmTarget {
+            joints: [2.0, std::f64::consts::FRAC_PI_4, -0.5, 0.52],
+            within: 1.5,
+        }),
+        ..forward(0.0)
+    };
+    link.send(&far).unwrap();
+    until_note(&mut link, "clamped to 180");
+    emu.wait_for("the clamped write", |s| s.servo_writes.len() > want.len());
+    // Joint 4 moved 0.24 degrees (0.52 rad is 29.79): not worth a write.
+    assert_eq!(emu.state().servo_writes[want.len()..], [(4, 180)]);
+    emu.wait_for("servo 4 at its end stop", |s| s.servo_angle[4] == 180.0);
+    assert_eq!(emu.state().servo_angle[5], 45.0);
+}
+
 #[test]
 fn a_firmware_without_servos_is_named_and_driving_goes_on() {
     let emu = Emulator::start_with(Options {
@@ -283,6 +342,7 @@ fn a_firmware_without_servos_is_named_and_driving_goes_on() {
     let close = Command {
         twist: Twist::ZERO,
         gripper: Some(GripperCommand::Close),
+        arm: None,
     };
     link.send(&close).unwrap();
     until_note(&mut link, "USE_SERVOS");
@@ -440,4 +500,51 @@ fn bad_serial_settings_are_refused_by_name() {
         .unwrap_err()
         .to_string();
     assert!(e.contains("gripper_servo"), "{e}");
+    // Arm servos: four or none, each named with its value when it is wrong.
+    let servo = |i: i64, zero: f64, dir: i64| {
+        format!("{{ index = {i}, zero_deg = {zero:?}, direction = {dir} }}")
+    };
+    let arm = |servos: &[String]| format!("[serial]\narm_servos = [{}]\n", servos.join(", "));
+    let good: Vec<String> = (0..4).map(|i| servo(4 + i, 90.0, 1)).collect();
+    assert_eq!(
+        Config::parse(&arm(&good), path)
+            .unwrap()
+            .serial
+            .arm_servos
+            .len(),
+        4
+    );
+    for (k, bad, field, value) in [
+        (
+            0,
+            servo(16, 90.0, 1),
+            "serial.arm_servos[0].index",
+            "= 16.0",
+        ),
+        (
+            2,
+            servo(6, 200.0, 1),
+            "serial.arm_servos[2].zero_deg",
+            "= 200.0",
+        ),
+        (
+            3,
+            servo(7, 90.0, 0),
+            "serial.arm_servos[3].direction",
+            "= 0.0",
+        ),
+        (1, servo(4, 90.0, 1), "serial.arm_servos[1].index", "= 4.0"),
+    ] {
+        let mut servos = good.clone();
+        servos[k] = bad;
+        let e = Config::parse(&arm(&servos), path).unwrap_err().to_string();
+        assert!(e.contains(field) && e.contains(value), "{e}");
+    }
+    let e = Config::parse(&arm(&good[..3]), path)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("serial.arm_servos") && e.contains("= 3.0"),
+        "{e}"
+    );
 }

@@ -25,6 +25,7 @@ use crate::keymap::Action;
 use crate::keymap::{Key, KeyCode, Keymap};
 use crate::link::RobotLink;
 use crate::map::grid::OccupancyGrid;
+use crate::pilot::arm::{ArmAxis, ArmPose};
 use crate::pilot::navigation::Target;
 use crate::pilot::{self, Pilot};
 use command::{Intent, Typed};
@@ -258,6 +259,18 @@ impl App {
             Action::ModeFollow => pilot::Intent::Mode(Mode::PathFollowing),
             Action::ModeRace => pilot::Intent::Mode(Mode::Race),
             Action::ModeLoad => pilot::Intent::Mode(Mode::Load),
+            Action::ModeGripper => pilot::Intent::Mode(Mode::Gripper),
+            Action::ArmForward => pilot::Intent::ArmKey(ArmAxis::Reach, 1.0),
+            Action::ArmBack => pilot::Intent::ArmKey(ArmAxis::Reach, -1.0),
+            Action::ArmLeft => pilot::Intent::ArmKey(ArmAxis::Turn, 1.0),
+            Action::ArmRight => pilot::Intent::ArmKey(ArmAxis::Turn, -1.0),
+            Action::ArmUp => pilot::Intent::ArmKey(ArmAxis::Lift, 1.0),
+            Action::ArmDown => pilot::Intent::ArmKey(ArmAxis::Lift, -1.0),
+            Action::ArmPitchUp => pilot::Intent::ArmKey(ArmAxis::Pitch, 1.0),
+            Action::ArmPitchDown => pilot::Intent::ArmKey(ArmAxis::Pitch, -1.0),
+            Action::ArmHome => pilot::Intent::ArmPose(ArmPose::Home),
+            Action::ArmReady => pilot::Intent::ArmPose(ArmPose::Ready),
+            Action::ArmStow => pilot::Intent::ArmPose(ArmPose::Stow),
             Action::GripperOpen => pilot::Intent::Gripper(GripperCommand::Open),
             Action::GripperClose => pilot::Intent::Gripper(GripperCommand::Close),
             Action::Stop => pilot::Intent::Stop,

@@ -9,12 +9,15 @@ pub struct Command {
     pub twist: Twist,
     /// `Some` to move the gripper; `None` leaves it as it is.
     pub gripper: Option<GripperCommand>,
+    /// `Some` to move an arm's joints there; `None` leaves the arm as it is.
+    pub arm: Option<super::ArmTarget>,
 }
 
 impl Command {
     pub const STOP: Command = Command {
         twist: Twist::ZERO,
         gripper: None,
+        arm: None,
     };
 }
 

@@ -3,6 +3,7 @@
 //! checks every config section validates with. The core,
 //! the links and the console all speak it; it imports nothing of navdeck but geometry.
 
+pub mod arm;
 pub mod camera;
 pub mod check;
 pub mod command;
@@ -12,6 +13,7 @@ pub mod printable;
 pub mod robot;
 pub mod sensors;
 
+pub use arm::{ArmState, ArmTarget};
 pub use camera::{CameraStatus, Thumbnail};
 pub use command::{Command, GripperCommand};
 pub use level::Level;

@@ -90,4 +90,6 @@ pub struct SensorFrame {
     /// A pose estimate placed from outside navdeck (RViz's "2D Pose Estimate" on ROS 2
     /// `/initialpose`), in the map frame.
     pub initial_pose: Option<crate::geometry::Pose2>,
+    /// An arm's joints, when the robot has one and reported them.
+    pub arm: Option<super::ArmState>,
 }

@@ -6,6 +6,7 @@
 //! garbage lines, replies out of turn, `Invalid Command`s, rejected encoder jumps,
 //! reconnects) are kept in `stats()` and summarised as notes for the console's log.
 
+pub mod arm;
 pub mod config;
 pub mod protocol;
 pub mod transport;
@@ -13,7 +14,9 @@ pub mod wheels;
 pub mod worker;
 
 use super::{Command, GripperState, LinkError, Notice, RobotLink, SensorFrame, WheelTravel};
+use crate::data::ArmTarget;
 use crate::data::robot::RobotConfig;
+use arm::ArmServos;
 use config::SerialConfig;
 use std::sync::Arc;
 use std::sync::mpsc::{self, Receiver, Sender};
@@ -67,6 +70,10 @@ pub struct SerialLink {
     travel: WheelTravel,
     elapsed: f64,
     gripper: Option<GripperState>,
+    /// The arm's servos, and the newest target (sent again after a reconnection).
+    arm: ArmServos,
+    arm_target: Option<ArmTarget>,
+    warned_no_arm: bool,
     notes: Vec<Notice>,
 }
 
@@ -118,6 +125,9 @@ impl SerialLink {
             travel: WheelTravel::default(),
             elapsed: 0.0,
             gripper: None,
+            arm: ArmServos::new(&serial.arm_servos),
+            arm_target: None,
+            warned_no_arm: false,
             notes: Vec::new(),
         })
     }
@@ -139,11 +149,37 @@ impl SerialLink {
                 FromWorker::Connected => {
                     self.lost = None;
                     self.notes.push(Notice::warn("serial: reconnected"));
+                    // A board that reset holds its servos where it starts them.
+                    self.arm.forget();
+                    if let Some(target) = self.arm_target {
+                        let _ = self.order_arm(target);
+                    }
                 }
                 FromWorker::Lost(reason) => self.lost = Some(reason),
                 FromWorker::Note(note) => self.notes.push(Notice::warn(note)),
             }
         }
+    }
+
+    /// The servo writes for an arm target, when it moved; clamped angles are noted.
+    fn order_arm(&mut self, target: ArmTarget) -> Result<(), LinkError> {
+        if !self.arm.configured() {
+            if !std::mem::replace(&mut self.warned_no_arm, true) {
+                self.notes.push(Notice::warn(
+                    "serial: arm target ignored: no [serial] arm_servos configured",
+                ));
+            }
+            return Ok(());
+        }
+        self.arm_target = Some(target);
+        let plan = self.arm.plan(&target);
+        let warnings = plan.warnings.into_iter();
+        self.notes
+            .extend(warnings.map(|w| Notice::warn(format!("serial: {w}"))));
+        if plan.writes.is_empty() {
+            return Ok(());
+        }
+        self.order(ToWorker::Servos(plan.writes))
     }
 
     fn order(&self, message: ToWorker) -> Result<(), LinkError> {
@@ -167,6 +203,9 @@ impl RobotLink for SerialLink {
         if let Some(g) = command.gripper {
             self.order(ToWorker::Gripper(g))?;
         }
+        if let Some(target) = command.arm {
+            self.order_arm(target)?;
+        }
         Ok(())
     }
 
@@ -186,6 +225,7 @@ impl RobotLink for SerialLink {
             gripper: self.gripper,
             camera: None,
             initial_pose: None,
+            arm: None,
         };
         Ok(frame)
     }

@@ -26,6 +26,9 @@ impl RobotLink for SimLink {
         if let Some(g) = command.gripper {
             self.twin.command_gripper(g);
         }
+        if let Some(target) = &command.arm {
+            self.twin.command_arm(target);
+        }
         Ok(())
     }
 

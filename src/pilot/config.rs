@@ -23,6 +23,8 @@ pub struct Settings {
     pub follow: FollowConfig,
     pub mission: MissionConfig,
     pub localization: LocalizationConfig,
+    /// The arm, when the robot has one.
+    pub arm: Option<crate::arm::ArmConfig>,
 }
 
 /// Race mode (seed 001: "High-speed mode (reduced SLAM updates)").

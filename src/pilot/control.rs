@@ -19,6 +19,9 @@ impl Pilot {
     /// Folds in what the robot reported up to `t`.
     pub(super) fn sense(&mut self, t: f64, frame: &SensorFrame) {
         self.link_answered(t);
+        if let Some(arm) = frame.arm {
+            self.arm_measured(arm.joints);
+        }
         if let Some(pose) = frame.initial_pose {
             self.set_pose(pose);
         }
@@ -56,6 +59,7 @@ impl Pilot {
         Command {
             twist,
             gripper: self.hand.pending.take(),
+            arm: self.arm_command(t),
         }
     }
 

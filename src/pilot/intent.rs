@@ -49,6 +49,10 @@ pub enum Intent {
     SetPose(Pose2),
     /// Start global localisation afresh (`:relocalize`).
     Relocalize,
+    /// An arm key pressed or auto-repeated in gripper mode: the axis and its direction.
+    ArmKey(super::arm::ArmAxis, f64),
+    /// The arm to a named pose.
+    ArmPose(super::arm::ArmPose),
 }
 
 impl Pilot {
@@ -77,6 +81,15 @@ impl Pilot {
             Intent::EmergencyStop => {
                 self.emergency_stop();
                 true
+            }
+            Intent::Speed(change) if self.mode == Mode::Gripper => {
+                use super::teleop::SpeedChange;
+                let faster = matches!(
+                    change,
+                    SpeedChange::SpeedUp | SpeedChange::LinearUp | SpeedChange::AngularUp
+                );
+                self.arm_speed(faster);
+                false
             }
             Intent::Speed(change) => {
                 if self.teleop.adjust(change) {
@@ -141,6 +154,14 @@ impl Pilot {
                 self.relocalize();
                 false
             }
+            Intent::ArmKey(axis, sign) => {
+                self.arm_key(axis, sign);
+                true
+            }
+            Intent::ArmPose(pose) => {
+                self.arm_pose(pose);
+                true
+            }
         }
     }
 
@@ -165,6 +186,13 @@ impl Pilot {
                 mode.label().to_lowercase()
             );
             self.log(Level::Error, text);
+            return false;
+        }
+        if mode == Mode::Gripper && self.arm.is_none() {
+            self.log(
+                Level::Error,
+                "gripper mode needs an arm: add an [arm] section to the config (see README)",
+            );
             return false;
         }
         if mode == Mode::PathFollowing && !self.start_following() {
@@ -243,6 +271,7 @@ impl Pilot {
     /// hands the robot back to manual mode, paused where it stands.
     fn stop_key(&mut self) {
         self.teleop.clear();
+        self.halt_arm();
         let again = match self.mode {
             Mode::Exploration => "e resumes the mission",
             Mode::PathFollowing => "p follows the path again",
@@ -286,6 +315,7 @@ impl Pilot {
 
     /// The emergency stop key: on, or off again when it is on (the robot stays still).
     fn emergency_stop(&mut self) {
+        self.halt_arm();
         if self.gate.estop {
             self.gate.estop = false;
             self.log(

@@ -9,6 +9,7 @@
 //! The console (`app/`) owns the link and the screen and calls `step`; the headless
 //! mission runner calls it directly.
 
+pub mod arm;
 pub mod config;
 mod control;
 pub mod estimate;
@@ -143,6 +144,8 @@ pub struct Pilot {
     commanded: Twist,
     measuring: control::Measuring,
     hand: Hand,
+    /// The arm, when the config has one.
+    arm: Option<arm::ArmPilot>,
     /// A monotonic clock, installed by the runner, to time planning for the log only.
     stopwatch: Option<Arc<dyn Clock>>,
     log: Vec<LogLine>,
@@ -183,6 +186,7 @@ impl Pilot {
             commanded: Twist::ZERO,
             measuring: control::Measuring::default(),
             hand: Hand::default(),
+            arm: settings.arm.clone().map(arm::ArmPilot::new),
             stopwatch: None,
             log: Vec::new(),
             settings,

@@ -1,4 +1,5 @@
-//! The operating modes of seed 001 ("Operating Modes": m e t p r l).
+//! The operating modes of seed 001 ("Operating Modes": m e t p r l), and gripper mode
+//! (h) for an arm.
 
 /// What the console is doing with the robot.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -9,16 +10,19 @@ pub enum Mode {
     PathFollowing,
     Race,
     Load,
+    /// Jogging an arm's tool by keys (an `[arm]` in the config).
+    Gripper,
 }
 
 impl Mode {
-    pub const ALL: [Mode; 6] = [
+    pub const ALL: [Mode; 7] = [
         Mode::Manual,
         Mode::Exploration,
         Mode::Thinking,
         Mode::PathFollowing,
         Mode::Race,
         Mode::Load,
+        Mode::Gripper,
     ];
 
     /// The keymap section that holds this mode's bindings.
@@ -30,6 +34,7 @@ impl Mode {
             Mode::PathFollowing => "path_following",
             Mode::Race => "race",
             Mode::Load => "load",
+            Mode::Gripper => "gripper",
         }
     }
 
@@ -46,6 +51,7 @@ impl Mode {
             Mode::PathFollowing => "PATH FOLLOWING",
             Mode::Race => "RACE",
             Mode::Load => "LOAD",
+            Mode::Gripper => "GRIPPER",
         }
     }
 
@@ -64,6 +70,7 @@ impl Mode {
                 | Mode::PathFollowing
                 | Mode::Exploration
                 | Mode::Load
+                | Mode::Gripper
         )
     }
 }

@@ -11,6 +11,7 @@
 //! `Twin::step(dt)`, and all randomness comes from one generator seeded in `Twin::new`,
 //! so the same seed and the same calls give bit-identical results.
 
+pub mod arm;
 mod blocks;
 mod build;
 mod camera;

@@ -62,6 +62,8 @@ pub struct Twin {
     block_edges: Vec<Segment>,
     block_markers: Vec<Marker>,
     blocks_moved: bool,
+    /// An arm, when the robot has one.
+    arm: Option<super::arm::TwinArm>,
     /// The block the jaws last let go of: it sits between them, so the robot may back
     /// away from it (or stand still) without touching it.
     released: Option<usize>,
@@ -111,6 +113,7 @@ impl Twin {
             block_edges: Vec::new(),
             block_markers: Vec::new(),
             blocks_moved: true,
+            arm: None,
             released: None,
         }
     }
@@ -127,6 +130,24 @@ impl Twin {
     /// True pose (ground truth).
     pub fn pose(&self) -> Pose2 {
         self.pose
+    }
+
+    /// Gives the robot the arm of `config`, at rest at home; its gripper is then the
+    /// arm's, catching blocks at the tool tip.
+    pub fn add_arm(&mut self, config: &crate::arm::ArmConfig) {
+        self.arm = Some(super::arm::TwinArm::new(config));
+    }
+
+    /// Asks the arm for new joint positions (no arm: nothing happens).
+    pub fn command_arm(&mut self, target: &crate::data::ArmTarget) {
+        if let Some(arm) = self.arm.as_mut() {
+            arm.command(target);
+        }
+    }
+
+    /// The arm's joints, when there is an arm.
+    pub fn arm_joints(&self) -> Option<[f64; 4]> {
+        self.arm.as_ref().map(|a| a.joints())
     }
 
     /// Carries the robot to `pose` without its wheels turning: the kidnapped robot of
@@ -197,6 +218,7 @@ impl Twin {
             gripper: Some(self.gripper.state()),
             camera: self.camera_status.take(),
             initial_pose: None,
+            arm: self.arm.as_ref().map(|a| a.state()),
         }
     }
 
@@ -246,6 +268,10 @@ impl Twin {
     /// One physics step: gripper, drive, collision, then any sensor that is due.
     fn tick(&mut self) {
         let h = self.h;
+        if let Some(arm) = self.arm.as_mut() {
+            arm.step(h);
+            self.carry_in_arm();
+        }
         if self.gripper.advance(h) {
             self.catch_block();
         }
@@ -334,11 +360,43 @@ impl Twin {
             self.blocks[i].pose = pose;
             self.blocks_moved = true;
         }
+        self.carry_in_arm();
+    }
+
+    /// A block in an arm's jaws rides at the tool tip.
+    fn carry_in_arm(&mut self) {
+        let (Some(arm), Some(i)) = (&self.arm, self.gripper.held()) else {
+            return;
+        };
+        let [x, y, _] = arm.tool_in_robot();
+        let p = self
+            .pose
+            .transform_point(crate::geometry::Point2::new(x, y));
+        let theta = self.blocks[i].pose.theta;
+        self.blocks[i].pose = Pose2::new(p.x, p.y, theta);
+        self.blocks_moved = true;
     }
 
     /// At the end of closing: catch the free block nearest the middle of the jaw zone.
     fn catch_block(&mut self) {
         let pose = self.pose;
+        if let Some(arm) = &self.arm {
+            // An arm's jaws close round a block only when the tool tip is at it.
+            let [x, y, z] = arm.tool_in_robot();
+            let tip = pose.transform_point(crate::geometry::Point2::new(x, y));
+            let tol = super::arm::GRASP_TOLERANCE;
+            let caught = (self.blocks.iter().enumerate())
+                .filter(|(_, b)| !b.held)
+                .map(|(i, b)| (i, b.pose.position().distance(tip), b.size))
+                .filter(|&(_, d, size)| d <= size / 2.0 + tol && (-tol..=size + tol).contains(&z))
+                .min_by(|a, b| a.1.total_cmp(&b.1));
+            if let Some((i, _, _)) = caught {
+                self.gripper.grab(i, pose, self.blocks[i].pose);
+                self.blocks[i].held = true;
+                self.blocks_moved = true;
+            }
+            return;
+        }
         let best = self
             .blocks
             .iter()

@@ -1,7 +1,7 @@
 //! Composes one frame from the panels; reads the app, never changes it.
 
 use super::theme::Theme;
-use super::widgets::{camera, help, landmarks, log, map, status, text, title};
+use super::widgets::{arm_view, camera, help, landmarks, log, map, status, text, title};
 use crate::app::App;
 use crate::app::screen::{Area, MIN_SIZE, layout};
 use ratatui::Frame;
@@ -76,6 +76,9 @@ pub fn draw(frame: &mut Frame, app: &App, theme: Theme) {
     }
     if app.view().camera != crate::app::view::CameraPanel::Off {
         draw_camera(frame, app, theme, inner);
+    }
+    if app.pilot().mode() == crate::app::mode::Mode::Gripper && app.pilot().arm().is_some() {
+        draw_arm(frame, app, theme, inner);
     }
     if let Some((entries, selected)) = app.map_picker() {
         draw_picker(
@@ -165,6 +168,27 @@ fn draw_landmarks(frame: &mut Frame, app: &App, theme: Theme, map: Rect) {
         Paragraph::new(landmarks::lines(app, &listed, theme, rows)).block(block),
         area,
     );
+}
+
+/// Gripper mode's side view of the arm in the map's top-right corner.
+fn draw_arm(frame: &mut Frame, app: &App, theme: Theme, map: Rect) {
+    let width = 36.min(map.width);
+    let height = 20.min(map.height);
+    let area = Rect::new(map.x + map.width - width, map.y, width, height);
+    let block = Block::bordered()
+        .title(" Arm (h) ")
+        .border_style(theme.border());
+    let inner = block.inner(area);
+    frame.render_widget(Clear, area);
+    let text = arm_view::lines(app, theme, usize::from(inner.width));
+    frame.render_widget(Paragraph::new(text).block(block), area);
+    let drawing = Rect::new(
+        inner.x,
+        inner.y + arm_view::TEXT_ROWS.min(inner.height),
+        inner.width,
+        inner.height.saturating_sub(arm_view::TEXT_ROWS),
+    );
+    arm_view::drawing(app, theme, drawing, frame.buffer_mut());
 }
 
 /// The camera panel in the map's top-left corner: 32 columns of thumbnail (16:9).

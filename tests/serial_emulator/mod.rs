@@ -1,7 +1,8 @@
 //! A ROSArduinoBridge firmware on a pseudo-terminal, for tests: the commands navdeck uses,
-//! the 30 Hz PID frame with a first-order wheel model, the 2 s auto-stop, servos that sweep,
-//! the time bytes take at the baud rate, and switches for faults (garbage, a dropped or slow
-//! reply, an encoder jump, unplugging and plugging back in).
+//! the 30 Hz PID frame with a first-order wheel model, the 2 s auto-stop, 16 servos that
+//! sweep (every write recorded), the time bytes take at the baud rate, and switches for
+//! faults (garbage, a dropped or slow reply, an encoder jump, unplugging and plugging back
+//! in).
 //!
 //! The device path handed to navdeck is a symlink to the terminal's slave side, so
 //! unplugging can remove it and plugging back in can point it at a new terminal, as a USB
@@ -26,6 +27,8 @@ const RESPONSE: f64 = 0.5;
 const FULL_PWM_TICKS: f64 = 40.0;
 /// Degrees a servo sweeps per frame.
 const SERVO_STEP: f64 = 6.0;
+/// Servos the board drives (`s`/`t` indices 0..SERVOS), as on a 16-channel servo board.
+pub const SERVOS: usize = 16;
 /// Generous bound for a slow machine; reaching it fails the test.
 pub const PATIENCE: Duration = Duration::from_secs(20);
 
@@ -70,13 +73,15 @@ pub struct State {
     pub target: (i32, i32),
     pub moving: bool,
     pub auto_stops: u32,
-    pub servo_angle: [f64; 4],
+    pub servo_angle: [f64; SERVOS],
+    /// Every `s IDX DEG` accepted, in order: (index, degrees as sent, before clamping).
+    pub servo_writes: Vec<(usize, i64)>,
     pub plugged: bool,
     /// PID frames run since start.
     pub frames: u64,
     raw: Option<(f64, f64)>,
     speed: (f64, f64),
-    servo_target: [f64; 4],
+    servo_target: [f64; SERVOS],
     last_motor: Instant,
     start: Instant,
     garbage: Option<Vec<u8>>,
@@ -176,9 +181,11 @@ impl State {
             }
             "u" if arg1.split(':').count() == 4 => "OK".into(),
             "b" => options.baud.to_string(),
-            "s" | "t" if options.servos && (0..4).contains(&int(arg1)) => {
+            "s" | "t" if options.servos && (0..SERVOS as i64).contains(&int(arg1)) => {
                 let i = int(arg1) as usize;
                 if command == "s" {
+                    self.servo_writes.push((i, int(arg2)));
+                    // Servo.write clamps to 0..180.
                     self.servo_target[i] = int(arg2).clamp(0, 180) as f64;
                     "OK".into()
                 } else {
@@ -239,12 +246,13 @@ impl Emulator {
                 target: (0, 0),
                 moving: false,
                 auto_stops: 0,
-                servo_angle: [0.0; 4],
+                servo_angle: [0.0; SERVOS],
+                servo_writes: Vec::new(),
                 plugged: true,
                 frames: 0,
                 raw: None,
                 speed: (0.0, 0.0),
-                servo_target: [0.0; 4],
+                servo_target: [0.0; SERVOS],
                 last_motor: now,
                 start: now,
                 garbage: None,

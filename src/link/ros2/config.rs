@@ -21,6 +21,16 @@ pub enum Distro {
     Jazzy,
 }
 
+/// The robot's RMW implementation, where ROS 2 services (an action's goals) differ on the
+/// wire: Fast DDS (ROS 2's default) carries the request id beside the data, rmw_cyclonedds
+/// in front of it (ros2-client's "Enhanced" and "Cyclone" service mappings).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Rmw {
+    FastDds,
+    CycloneDds,
+}
+
 /// Reliability of a topic's QoS.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
@@ -91,7 +101,33 @@ pub struct Ros2Config {
     pub interfaces: Vec<String>,
     /// How often the map and landmarks go out for RViz, Hz (pose and TF follow control).
     pub picture_rate_hz: f64,
+    // A four-joint arm and its gripper, as turtlebot3_manipulation's bringup names them.
+    /// The robot has an arm: targets go out as trajectories, joint_states report it and
+    /// the gripper goes to `gripper_action` instead of `gripper_topic`. Off by default.
+    pub arm: bool,
+    /// trajectory_msgs/JointTrajectory for the arm's JointTrajectoryController.
+    pub arm_trajectory_topic: String,
+    /// The arm's four joints, base first, as joint_states and the controller name them.
+    pub arm_joint_names: Vec<String>,
+    /// The control_msgs/action/GripperCommand action of the GripperActionController.
+    pub gripper_action: String,
+    /// The gripper joint's positions sent as the goal's `position`, metres
+    /// (OpenManipulator-X's gripper_left_joint: 0.01 open, -0.01 closed).
+    pub gripper_open_width: f64,
+    pub gripper_closed_width: f64,
+    /// The goal's `max_effort`, newtons (a position-controlled gripper ignores it).
+    pub gripper_max_effort: f64,
+    /// How the robot's RMW frames the action's service requests.
+    pub gripper_action_rmw: Rmw,
 }
+
+/// `arm_joint_names[k]`, for refusals (a field name is static).
+const JOINT_FIELDS: [&str; 4] = [
+    "arm_joint_names[0]",
+    "arm_joint_names[1]",
+    "arm_joint_names[2]",
+    "arm_joint_names[3]",
+];
 
 impl Default for Ros2Config {
     fn default() -> Self {
@@ -122,6 +158,16 @@ impl Default for Ros2Config {
             scan_qos: Qos::SENSOR_DATA,
             interfaces: Vec::new(),
             picture_rate_hz: 1.0,
+            arm: false,
+            arm_trajectory_topic: "arm_controller/joint_trajectory".into(),
+            arm_joint_names: ["joint1", "joint2", "joint3", "joint4"]
+                .map(String::from)
+                .to_vec(),
+            gripper_action: "gripper_controller/gripper_cmd".into(),
+            gripper_open_width: 0.01,
+            gripper_closed_width: -0.01,
+            gripper_max_effort: 1.0,
+            gripper_action_rmw: Rmw::FastDds,
         }
     }
 }
@@ -135,10 +181,72 @@ impl Ros2Config {
             // Joint positions, metres or radians.
             ("gripper_open", self.gripper_open, -1000.0, 1000.0),
             ("gripper_closed", self.gripper_closed, -1000.0, 1000.0),
+            ("gripper_open_width", self.gripper_open_width, -1.0, 1.0),
+            ("gripper_closed_width", self.gripper_closed_width, -1.0, 1.0),
+            ("gripper_max_effort", self.gripper_max_effort, 0.0, 10_000.0),
         ])?;
         crate::data::check::counts_within(&[
             ("qos.depth", u64::from(self.qos.depth), 1, 1000),
             ("scan_qos.depth", u64::from(self.scan_qos.depth), 1, 1000),
-        ])
+        ])?;
+        self.check_joint_names()
+    }
+
+    /// Four joint names, none empty or twice.
+    fn check_joint_names(&self) -> Result<(), Invalid> {
+        let names = &self.arm_joint_names;
+        if names.len() != 4 {
+            return Err((
+                "arm_joint_names",
+                names.len() as f64,
+                "must name exactly 4 joints (the value is how many it names)".into(),
+            ));
+        }
+        for (k, name) in names.iter().enumerate() {
+            let why = if name.trim().is_empty() || name.chars().any(char::is_control) {
+                "is not a joint name"
+            } else if names[..k].contains(name) {
+                "is named twice"
+            } else {
+                continue;
+            };
+            // The value is the joint's position in the list; the name is in the reason.
+            return Err((JOINT_FIELDS[k], k as f64, format!("{name:?} {why}").into()));
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_arm_is_off_by_default_with_turtlebot3_manipulation_names() {
+        let c = Ros2Config::default();
+        assert!(!c.arm);
+        assert_eq!(c.arm_joint_names, ["joint1", "joint2", "joint3", "joint4"]);
+        assert_eq!(c.arm_trajectory_topic, "arm_controller/joint_trajectory");
+        assert_eq!(c.gripper_action, "gripper_controller/gripper_cmd");
+        assert_eq!(c.validate(), Ok(()));
+    }
+
+    #[test]
+    fn bad_arm_settings_are_refused_by_field() {
+        let with = |names: &[&str]| Ros2Config {
+            arm_joint_names: names.iter().map(|n| n.to_string()).collect(),
+            ..Ros2Config::default()
+        };
+        let field = |c: Ros2Config| c.validate().unwrap_err();
+        assert_eq!(field(with(&["a", "b", "c"])).0, "arm_joint_names");
+        let twice = field(with(&["a", "b", "a", "d"]));
+        assert_eq!(twice.0, "arm_joint_names[2]");
+        assert!(twice.2.contains("\"a\" is named twice"), "{twice:?}");
+        assert_eq!(field(with(&["a", " ", "c", "d"])).0, "arm_joint_names[1]");
+        let effort = Ros2Config {
+            gripper_max_effort: -1.0,
+            ..Ros2Config::default()
+        };
+        assert_eq!(field(effort).0, "gripper_max_effort");
     }
 }

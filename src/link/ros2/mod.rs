@@ -3,9 +3,14 @@
 //!
 //! In: odometry (the watchdog's heartbeat), wheel joints (seed 001's wheel travel, with
 //! odometry deltas as the fallback), laser scans, RViz's pose estimates (/initialpose).
+//! With `[ros2] arm = true`, also an arm (arm.rs): trajectories out, its joints in, and
+//! the gripper through its action instead of a topic.
 //! Out: cmd_vel, the gripper, and for RViz the map, plan, landmarks, estimated pose,
 //! MCL's particles and the map -> odom transform.
 
+mod arm;
+pub mod arm_joints;
+pub mod arm_msgs;
 pub mod cmd_vel;
 pub mod config;
 #[cfg(feature = "vision")]
@@ -85,6 +90,9 @@ pub struct Ros2Link {
     twist: Option<Publisher<msgs::Twist>>,
     stamped: Option<Publisher<msgs::TwistStamped>>,
     gripper: Publisher<msgs::Float64>,
+    /// The arm and its gripper action, when `[ros2] arm` is on.
+    arm: Option<arm::Arm>,
+    warned_no_arm: bool,
     rviz: RvizPublishers,
     cmd_vel_dds: String,
     odom_dds: String,
@@ -184,6 +192,10 @@ impl Ros2Link {
         )?;
         let rviz = RvizPublishers::open(&mut f, qos.clone(), latched)?;
         let node_name = NodeName::new(&namespace, "navdeck").expect("checked above");
+        let arm = match c.arm {
+            true => Some(arm::Arm::open(&mut f, &node_name)?),
+            false => None,
+        };
         let dds_name = |field: &str, topic: &str| {
             topic_name(&namespace, field, topic).map(|t| t.to_dds_name("rt", &node_name, ""))
         };
@@ -212,6 +224,8 @@ impl Ros2Link {
             twist,
             stamped,
             gripper,
+            arm,
+            warned_no_arm: false,
             rviz,
             cmd_vel_dds,
             odom_dds,
@@ -274,8 +288,25 @@ impl Ros2Link {
         }
     }
 
+    /// An arm reading dropped: the first of each kind and every hundredth say why.
+    fn refuse_arm(&mut self, why: arm_joints::Refused) {
+        let count = self.dropped.entry(why.kind).or_insert(0);
+        *count += 1;
+        if *count == 1 || (*count).is_multiple_of(100) {
+            self.notices.push(Notice::warn(format!(
+                "ROS 2: dropped a {} message for the arm: {} ({}; {count} so far)",
+                self.config.joint_states_topic, why.detail, why.kind
+            )));
+        }
+    }
+
     fn take_joints(&mut self, now: f64) {
         for msg in take_all(&self.joints, "joint states", &mut self.notices) {
+            if let Some(arm) = &mut self.arm
+                && let Err(why) = arm.read(&msg)
+            {
+                self.refuse_arm(why);
+            }
             let angles = match inbound::wheel_angles(
                 &msg,
                 &self.config.left_wheel_joint,
@@ -501,6 +532,15 @@ impl RobotLink for Ros2Link {
         if self.policy.should_send(command.twist) {
             self.publish_twist(command.twist);
         }
+        if let Some(arm) = &mut self.arm {
+            arm.send(command.arm, command.gripper, &mut self.notices);
+            return Ok(());
+        }
+        if command.arm.is_some() && !std::mem::replace(&mut self.warned_no_arm, true) {
+            self.notices.push(Notice::warn(
+                "ROS 2: arm target ignored: no arm configured ([ros2] arm = false)",
+            ));
+        }
         if let Some(g) = command.gripper {
             let data = match g {
                 GripperCommand::Open => self.config.gripper_open,
@@ -519,6 +559,9 @@ impl RobotLink for Ros2Link {
         self.take_odometry(now);
         let scan = self.take_scan(now);
         self.take_initial_pose();
+        if let Some(arm) = &mut self.arm {
+            arm.poll(now, &self.context, &mut self.notices);
+        }
         self.check_peer(now);
         let topic = &self.config.odom_topic;
         match self.odom_at {
@@ -556,6 +599,7 @@ impl RobotLink for Ros2Link {
             gripper: None,
             camera: None,
             initial_pose: self.initial_pose.take(),
+            arm: self.arm.as_mut().and_then(arm::Arm::take_state),
         })
     }
 

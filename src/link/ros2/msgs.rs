@@ -35,6 +35,26 @@ pub struct Duration {
     pub nanosec: u32,
 }
 
+impl Duration {
+    /// From seconds, rounded to the nanosecond (non-finite or negative: zero; saturating
+    /// at i32 seconds).
+    pub fn from_seconds(t: f64) -> Self {
+        if !(t.is_finite() && t > 0.0) {
+            return Self::default();
+        }
+        let whole = t.floor().min(f64::from(i32::MAX));
+        let nanos = ((t - whole) * 1e9).round().min(999_999_999.0);
+        Self {
+            sec: whole as i32,
+            nanosec: nanos as u32,
+        }
+    }
+
+    pub fn seconds(self) -> f64 {
+        f64::from(self.sec) + f64::from(self.nanosec) * 1e-9
+    }
+}
+
 /// std_msgs/Header.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct Header {
@@ -214,6 +234,11 @@ pub struct JointState {
     pub velocity: Vec<f64>,
     pub effort: Vec<f64>,
 }
+
+pub use super::arm_msgs::{
+    GripperCommand, GripperCommandFeedback, GripperCommandGoal, GripperCommandResult,
+    JointTrajectory, JointTrajectoryPoint,
+};
 
 /// sensor_msgs/LaserScan.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]

@@ -1,5 +1,5 @@
-//! The `[serial]` config section: a ROSArduinoBridge robot's encoders, PID rate, timing and
-//! gripper servo. Wheel radius and track come from `[robot]`.
+//! The `[serial]` config section: a ROSArduinoBridge robot's encoders, PID rate, timing,
+//! gripper servo and arm servos. Wheel radius and track come from `[robot]`.
 
 use crate::data::check::{Invalid, all_non_negative, all_positive};
 use serde::{Deserialize, Serialize};
@@ -38,7 +38,46 @@ pub struct SerialConfig {
     /// Seconds the gripper servo may take to reach its angle before it is reported as
     /// commanded anyway.
     pub gripper_timeout: f64,
+    /// The servos of a four-joint arm, base first; empty: the robot has no arm.
+    pub arm_servos: Vec<ArmServo>,
 }
+
+/// One arm joint's hobby servo: `s index DEG` with DEG = zero_deg + direction x the
+/// joint's angle in degrees.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ArmServo {
+    /// The servo's index in the firmware (0..=15).
+    pub index: i64,
+    /// The servo angle at which the joint is at zero, degrees (0..=180).
+    pub zero_deg: f64,
+    /// 1 if the servo's angle grows with the joint's, -1 if it is mounted the other way.
+    pub direction: i64,
+}
+
+/// `arm_servos[k].index`, `.zero_deg` and `.direction`, for refusals (a field name is static).
+const SERVO_FIELDS: [[&str; 3]; 4] = [
+    [
+        "arm_servos[0].index",
+        "arm_servos[0].zero_deg",
+        "arm_servos[0].direction",
+    ],
+    [
+        "arm_servos[1].index",
+        "arm_servos[1].zero_deg",
+        "arm_servos[1].direction",
+    ],
+    [
+        "arm_servos[2].index",
+        "arm_servos[2].zero_deg",
+        "arm_servos[2].direction",
+    ],
+    [
+        "arm_servos[3].index",
+        "arm_servos[3].zero_deg",
+        "arm_servos[3].direction",
+    ],
+];
 
 impl Default for SerialConfig {
     fn default() -> Self {
@@ -57,6 +96,7 @@ impl Default for SerialConfig {
             gripper_open_deg: 90.0,
             gripper_close_deg: 20.0,
             gripper_timeout: 3.0,
+            arm_servos: Vec::new(),
         }
     }
 }
@@ -118,6 +158,41 @@ impl SerialConfig {
                 f64::from(self.retries),
                 "must be at most 20".into(),
             ));
+        }
+        self.check_arm_servos()
+    }
+
+    /// None, or four servos: each index 0..=15 and used once (not by the gripper either),
+    /// zero within the servo's 0..=180 degrees, direction 1 or -1.
+    fn check_arm_servos(&self) -> Result<(), Invalid> {
+        let servos = &self.arm_servos;
+        if !servos.is_empty() && servos.len() != 4 {
+            return Err((
+                "arm_servos",
+                servos.len() as f64,
+                "must list 4 servos, base first, or none (the value is how many it lists)".into(),
+            ));
+        }
+        for (k, s) in servos.iter().enumerate() {
+            let [index, zero, direction] = SERVO_FIELDS[k];
+            if !(0..=15).contains(&s.index) {
+                return Err((index, s.index as f64, "must lie in 0..=15".into()));
+            }
+            let taken = servos[..k].iter().any(|o| o.index == s.index)
+                || self.gripper_servo.map(i64::from) == Some(s.index);
+            if taken {
+                return Err((
+                    index,
+                    s.index as f64,
+                    "is already used by another arm joint or the gripper".into(),
+                ));
+            }
+            if !(0.0..=180.0).contains(&s.zero_deg) {
+                return Err((zero, s.zero_deg, "must lie in 0..=180 degrees".into()));
+            }
+            if s.direction != 1 && s.direction != -1 {
+                return Err((direction, s.direction as f64, "must be 1 or -1".into()));
+            }
         }
         Ok(())
     }

@@ -3,6 +3,7 @@
 //! stops the motors when the console goes quiet, and reopens a port that went away. It is
 //! the edge: it reads the wall clock for its own timing.
 
+use super::arm::ServoQueue;
 use super::config::SerialConfig;
 use super::protocol::{Reply, Request};
 use super::transport::{Counters, TransactError, Transport};
@@ -26,6 +27,8 @@ pub type SerialTransport = Transport<Box<dyn serialport::SerialPort>>;
 pub enum ToWorker {
     Drive(Twist),
     Gripper(GripperCommand),
+    /// Arm servo writes, (index, degrees), base joint first.
+    Servos(Vec<(u8, u16)>),
     Stop,
     Shutdown,
 }
@@ -115,6 +118,7 @@ pub struct Worker {
     noted: String,
     noted_at: f64,
     gripper_note: bool,
+    servo_note: bool,
 }
 
 impl Worker {
@@ -135,6 +139,7 @@ impl Worker {
             noted: String::new(),
             noted_at: f64::NEG_INFINITY,
             gripper_note: false,
+            servo_note: false,
         }
     }
 
@@ -216,6 +221,7 @@ impl Worker {
         let mut last_reading: Option<f64> = None;
         let mut gripper_order: Option<GripperCommand> = None;
         let mut actuating: Option<(GripperCommand, f64)> = None;
+        let mut servos = ServoQueue::default();
         if let Some(state) = self.initial_gripper(t) {
             self.say(FromWorker::Gripper(state));
         }
@@ -229,7 +235,7 @@ impl Worker {
                     .min(derived_at + DITHER_PERIOD)
                     .min(ordered_at + cfg.command_timeout);
             }
-            if gripper_order.is_some() {
+            if gripper_order.is_some() || !servos.is_empty() {
                 due = now;
             }
             let first = if due > now {
@@ -250,6 +256,7 @@ impl Worker {
                     }
                     ToWorker::Stop => desired = Twist::ZERO,
                     ToWorker::Gripper(g) => gripper_order = Some(g),
+                    ToWorker::Servos(writes) => servos.push(&writes),
                     ToWorker::Shutdown => {
                         let _ =
                             t.transact(Request::Motors(0, 0), timeout, cfg.retries, &self.counters);
@@ -292,6 +299,13 @@ impl Worker {
 
             if let Some(g) = gripper_order.take()
                 && let Err(e) = self.order_gripper(t, g, &mut actuating)
+            {
+                return End::Lost(e.to_string());
+            }
+
+            // One arm servo a turn: the wheels' requests go between them.
+            if let Some((index, deg)) = servos.pop()
+                && let Err(e) = self.write_servo(t, index, deg)
             {
                 return End::Lost(e.to_string());
             }
@@ -392,6 +406,34 @@ impl Worker {
                 self.note(format!(
                     "the firmware refuses `{r}`: build ROSArduinoBridge with USE_SERVOS"
                 ));
+                Ok(())
+            }
+            Err(e) => Err(e),
+        }
+    }
+
+    /// `s IDX DEG` for an arm joint; a firmware without servos is named once.
+    fn write_servo(
+        &mut self,
+        t: &mut SerialTransport,
+        index: u8,
+        deg: u16,
+    ) -> Result<(), TransactError> {
+        let request = Request::Servo(index, deg);
+        let retries = self.settings.serial.retries;
+        match t.transact(
+            request,
+            self.settings.reply_timeout(),
+            retries,
+            &self.counters,
+        ) {
+            Ok(_) => Ok(()),
+            Err(TransactError::Refused(r)) => {
+                if !std::mem::replace(&mut self.servo_note, true) {
+                    self.note(format!(
+                        "the firmware refuses `{r}`: build ROSArduinoBridge with USE_SERVOS (and enough N_SERVOS for the arm)"
+                    ));
+                }
                 Ok(())
             }
             Err(e) => Err(e),

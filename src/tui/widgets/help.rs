@@ -11,7 +11,7 @@ const KEY_WIDTH: usize = 9;
 
 /// Actions the help shows as one entry when every one of them is bound: their keys in
 /// this order, one description.
-const FAMILIES: [(&[Action], &str); 9] = [
+const FAMILIES: [(&[Action], &str); 12] = [
     (
         &[
             Action::Forward,
@@ -61,6 +61,28 @@ const FAMILIES: [(&[Action], &str); 9] = [
             Action::CursorDown,
         ],
         "move the goal cursor",
+    ),
+    (
+        &[
+            Action::ArmForward,
+            Action::ArmBack,
+            Action::ArmLeft,
+            Action::ArmRight,
+        ],
+        "move the tool, while held",
+    ),
+    (
+        &[
+            Action::ArmUp,
+            Action::ArmDown,
+            Action::ArmPitchUp,
+            Action::ArmPitchDown,
+        ],
+        "tool up / down, pitch",
+    ),
+    (
+        &[Action::ArmHome, Action::ArmReady, Action::ArmStow],
+        "arm home, ready, stow",
     ),
 ];
 
@@ -131,7 +153,8 @@ pub fn entries(app: &App, theme: Theme) -> Vec<Line<'static>> {
 /// What the map's glyphs mean.
 pub const LEGEND: &str = "Map: @ robot (% its footprint, zoomed in)  o true pose  + 95% ellipse  \
      # wall  : near a wall  . free  * boundary  x obstacle  R/B gate  r/b block  \
-     ' lidar hit  · trail  • path  G goal  X goal cursor  ? frontier  ! exploring to";
+     ' lidar hit  · trail  • path  G goal  X goal cursor  ? frontier  ! exploring to  \
+     ░▒▓ MCL particles";
 
 /// How driving by keys works, for users of teleop_twist_keyboard and the like, where a
 /// key press sets a speed that holds until the next key.

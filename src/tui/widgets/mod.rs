@@ -1,5 +1,6 @@
 //! The console's panels, each a read-only view of the `App`.
 
+pub mod arm_view;
 pub mod beliefs;
 pub mod camera;
 pub mod explore;

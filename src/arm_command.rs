@@ -1,0 +1,215 @@
+//! `navdeck arm ik|fk` (part of the binary, beside main.rs): the command line's side of
+//! `navdeck::arm`. The solve is timed here; the kinematics read no clock.
+
+use crate::ERROR_LINE;
+use anyhow::Result;
+use navdeck::arm::{self, ArmConfig, Joints, Solver, Target, Unreachable};
+use navdeck::config::Config;
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+use std::time::Instant;
+
+/// `navdeck arm ...`: the arm's kinematics, from the [arm] section of --config (its
+/// defaults, seed 000's arm, without one).
+#[derive(Debug, clap::Subcommand)]
+pub enum ArmCommand {
+    /// Joints that put the tool on X Y Z (metres in the arm's base frame: x forward,
+    /// y left, z up from joint 1's base), nearest the `home` pose; exit 1 if unreachable.
+    Ik(IkArgs),
+    /// Where the tool is with the joints at J1 J2 J3 J4 (radians, base to wrist).
+    Fk(FkArgs),
+}
+
+#[derive(Debug, clap::Args)]
+#[command(allow_negative_numbers = true)]
+pub struct IkArgs {
+    /// Forward, metres.
+    #[arg(value_name = "X", value_parser = finite)]
+    x: f64,
+    /// Left, metres.
+    #[arg(value_name = "Y", value_parser = finite)]
+    y: f64,
+    /// Up, metres.
+    #[arg(value_name = "Z", value_parser = finite)]
+    z: f64,
+    /// The tool's pitch, degrees: 0 level, 90 straight down (default: the pitch nearest
+    /// [arm] preferred_pitch that reaches; the 2dof solver's is fixed).
+    #[arg(long, value_name = "DEG", value_parser = finite)]
+    pitch: Option<f64>,
+    /// Print one JSON object.
+    #[arg(long)]
+    json: bool,
+    /// Parameters (TOML): the [arm] section.
+    #[arg(long, value_name = "FILE")]
+    config: Option<PathBuf>,
+}
+
+#[derive(Debug, clap::Args)]
+#[command(allow_negative_numbers = true)]
+pub struct FkArgs {
+    /// Joint 1, the base's yaw, radians.
+    #[arg(value_name = "J1", value_parser = finite)]
+    j1: f64,
+    /// Joint 2, the shoulder, radians.
+    #[arg(value_name = "J2", value_parser = finite)]
+    j2: f64,
+    /// Joint 3, the elbow, radians.
+    #[arg(value_name = "J3", value_parser = finite)]
+    j3: f64,
+    /// Joint 4, the wrist, radians.
+    #[arg(value_name = "J4", value_parser = finite)]
+    j4: f64,
+    /// Print one JSON object.
+    #[arg(long)]
+    json: bool,
+    /// Parameters (TOML): the [arm] section.
+    #[arg(long, value_name = "FILE")]
+    config: Option<PathBuf>,
+}
+
+/// A finite number (NaN and infinities refused, naming the argument).
+fn finite(s: &str) -> Result<f64, String> {
+    s.trim()
+        .parse::<f64>()
+        .ok()
+        .filter(|v| v.is_finite())
+        .ok_or_else(|| format!("`{s}` is not a finite number"))
+}
+
+/// The [arm] section of `path`, or its defaults.
+fn arm_config(path: Option<&Path>) -> Result<ArmConfig> {
+    Ok(match path {
+        Some(path) => Config::load(path)?.arm.unwrap_or_default(),
+        None => ArmConfig::default(),
+    })
+}
+
+fn solver_name(solver: Solver) -> &'static str {
+    match solver {
+        Solver::FourDof => "4dof",
+        Solver::TwoDof => "2dof",
+    }
+}
+
+/// A short name for why a target is unreachable, for JSON.
+fn kind(e: &Unreachable) -> &'static str {
+    match e {
+        Unreachable::TooFar { .. } => "too_far",
+        Unreachable::TooClose { .. } => "too_close",
+        Unreachable::PitchOutOfReach { .. } => "pitch_out_of_reach",
+        Unreachable::JointLimit { .. } => "joint_limit",
+        Unreachable::Singular { .. } => "singular",
+        Unreachable::NotANumber { .. } => "not_a_number",
+        Unreachable::PitchLocked { .. } => "pitch_locked",
+    }
+}
+
+pub fn run(command: &ArmCommand) -> Result<ExitCode> {
+    match command {
+        ArmCommand::Ik(args) => ik(args),
+        ArmCommand::Fk(args) => fk(args),
+    }
+}
+
+fn ik(args: &IkArgs) -> Result<ExitCode> {
+    let cfg = arm_config(args.config.as_deref())?;
+    let target = Target {
+        pitch: args.pitch.map(f64::to_radians),
+        ..Target::point(args.x, args.y, args.z)
+    };
+    let current = Joints(cfg.poses.home);
+    let started = Instant::now();
+    let solved = arm::inverse(&cfg, &target, &current);
+    let micros = started.elapsed().as_secs_f64() * 1e6;
+    let solver = solver_name(cfg.solver);
+    let s = match solved {
+        Ok(s) => s,
+        Err(e) => {
+            if args.json {
+                let out = serde_json::json!({
+                    "reachable": false,
+                    "solver": solver,
+                    "kind": kind(&e),
+                    "reason": e.to_string(),
+                    "solve_time_us": micros,
+                });
+                sayln!("{out}");
+            } else {
+                say_err!("navdeck arm ik: unreachable: {e}");
+            }
+            return Ok(ExitCode::from(1));
+        }
+    };
+    let pose = arm::forward(&cfg, &s.joints);
+    if args.json {
+        let out = serde_json::json!({
+            "reachable": true,
+            "solver": solver,
+            "joints": s.joints,
+            "branch": s.branch,
+            "pose": pose,
+            "residual_m": s.residual,
+            "manipulability": s.manipulability,
+            "iterations": s.iterations,
+            "solve_time_us": micros,
+        });
+        sayln!("{out}");
+    } else {
+        let [a, b, c, d] = s.joints.0;
+        sayln!("joints    {a:.6} {b:.6} {c:.6} {d:.6} rad");
+        sayln!("branch    {}", s.branch);
+        sayln!("pitch     {:.1} deg", pose.pitch.to_degrees());
+        sayln!(
+            "residual  {:.4} mm (the tool at these joints to the target)",
+            s.residual * 1e3
+        );
+        sayln!(
+            "solved    in {micros:.1} us ({solver}, {} refinement steps), manipulability {:.2e} m^3",
+            s.iterations,
+            s.manipulability
+        );
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
+fn fk(args: &FkArgs) -> Result<ExitCode> {
+    let cfg = arm_config(args.config.as_deref())?;
+    let joints = Joints([args.j1, args.j2, args.j3, args.j4]);
+    let pose = arm::forward(&cfg, &joints);
+    let limits = arm::check_limits(&cfg, &joints);
+    if args.json {
+        let out = serde_json::json!({
+            "x": pose.x,
+            "y": pose.y,
+            "z": pose.z,
+            "pitch": pose.pitch,
+            "pitch_deg": pose.pitch.to_degrees(),
+            "within_limits": limits.is_ok(),
+        });
+        sayln!("{out}");
+    } else {
+        sayln!(
+            "x {:.6} m  y {:.6} m  z {:.6} m  pitch {:.1} deg",
+            pose.x,
+            pose.y,
+            pose.z,
+            pose.pitch.to_degrees()
+        );
+        if let Err(Unreachable::JointLimit {
+            joint,
+            value,
+            min,
+            max,
+        }) = limits
+        {
+            sayln!(
+                "note: joint {joint} at {:.1} deg is outside its limits {:.1} to {:.1} deg",
+                value.to_degrees(),
+                min.to_degrees(),
+                max.to_degrees()
+            );
+        }
+    }
+    Ok(ExitCode::SUCCESS)
+}

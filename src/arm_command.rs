@@ -19,6 +19,25 @@ pub enum ArmCommand {
     Ik(IkArgs),
     /// Where the tool is with the joints at J1 J2 J3 J4 (radians, base to wrist).
     Fk(FkArgs),
+    /// Pick a block many times in the twin, its pose from the camera, 20-45 cm ahead:
+    /// success and error per distance band.
+    PickTest(PickTestArgs),
+}
+
+#[derive(Debug, clap::Args)]
+pub struct PickTestArgs {
+    /// How many picks, spread evenly over the five 5 cm bands.
+    #[arg(long, default_value_t = 200, value_name = "N", value_parser = clap::value_parser!(u64).range(1..=10_000))]
+    picks: u64,
+    /// Seed of the block placements and the twin's noise.
+    #[arg(long, default_value_t = 1, value_name = "N")]
+    seed: u64,
+    /// Robot, twin and [arm] parameters (TOML); without [arm], the default arm.
+    #[arg(long, value_name = "FILE")]
+    config: Option<std::path::PathBuf>,
+    /// Print one JSON object.
+    #[arg(long)]
+    json: bool,
 }
 
 #[derive(Debug, clap::Args)]
@@ -109,7 +128,35 @@ pub fn run(command: &ArmCommand) -> Result<ExitCode> {
     match command {
         ArmCommand::Ik(args) => ik(args),
         ArmCommand::Fk(args) => fk(args),
+        ArmCommand::PickTest(args) => pick_test(args),
     }
+}
+
+fn pick_test(args: &PickTestArgs) -> Result<ExitCode> {
+    let config = match &args.config {
+        Some(path) => navdeck::config::Config::load(path)?,
+        None => navdeck::config::Config::default(),
+    };
+    let started = std::time::Instant::now();
+    let (picks, bands) = navdeck::arm_pick::run(&config, args.picks as usize, args.seed);
+    let wall = started.elapsed().as_secs_f64();
+    if args.json {
+        let out = serde_json::json!({ "bands": bands, "picks": picks, "wall_time_s": wall });
+        sayln!("{out}");
+    } else {
+        for b in &bands {
+            sayln!(
+                "{:.2}-{:.2} m: {}/{} picked ({:.1} %), mean error {:.1} mm",
+                b.from_m,
+                b.to_m,
+                b.successes,
+                b.picks,
+                b.success_rate * 100.0,
+                b.mean_error_mm
+            );
+        }
+    }
+    Ok(ExitCode::SUCCESS)
 }
 
 fn ik(args: &IkArgs) -> Result<ExitCode> {

@@ -2,6 +2,7 @@
 
 pub mod app;
 pub mod arm;
+pub mod arm_pick;
 pub mod clock;
 pub mod config;
 pub mod console;

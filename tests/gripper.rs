@@ -212,3 +212,16 @@ fn the_emergency_stop_holds_the_arm_where_it_is() {
         );
     }
 }
+
+#[test]
+fn picks_from_the_camera_estimate_succeed_when_it_is_close_enough() {
+    let (picks, bands) = navdeck::arm_pick::run(&navdeck::config::Config::default(), 20, 3);
+    assert_eq!(bands.iter().map(|b| b.picks).sum::<usize>(), 20);
+    let ok = picks.iter().filter(|p| p.success).count();
+    assert!(ok >= 10, "{picks:?}");
+    // A pick fails only with a reason, and never when the estimate was within 1 cm.
+    for p in &picks {
+        assert!(p.success || p.why.is_some(), "{p:?}");
+        assert!(p.success || p.error_mm > 10.0, "{p:?}");
+    }
+}

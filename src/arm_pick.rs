@@ -27,10 +27,8 @@ const BANDS: [(f64, f64); 5] = [
 const BEARING: f64 = 0.3;
 /// How long the robot looks at the block, seconds.
 const LOOK: f64 = 1.0;
-/// Where the robot stops: the block this far ahead of the arm's base, metres.
-const STANDOFF: f64 = 0.22;
-/// The tool goes this far above the block before it descends, metres.
-const ABOVE: f64 = 0.05;
+/// The tool goes this far above the block before it descends, metres (the mission's).
+const ABOVE: f64 = crate::mission::ARM_ABOVE;
 const STEP: f64 = 0.05;
 
 /// One pick's outcome.
@@ -140,7 +138,8 @@ fn one(config: &Config, arm: &ArmConfig, distance: f64, bearing: f64, seed: u64)
         points.iter().map(|p| p.x).sum::<f64>() / n,
         points.iter().map(|p| p.y).sum::<f64>() / n,
     );
-    // Approach: turn to face the estimate, drive until it stands STANDOFF ahead of the arm.
+    // Approach: turn to face the estimate, drive until it stands `[mission] arm_standoff`
+    // ahead of the arm, as the mission does.
     let heading = estimate.y.atan2(estimate.x);
     drive_until(
         &mut twin,
@@ -148,7 +147,8 @@ fn one(config: &Config, arm: &ArmConfig, distance: f64, bearing: f64, seed: u64)
         Twist::new(0.0, heading.signum() * 0.5),
         |o| wrap_angle(heading - o.pose().theta).abs() < 0.01,
     );
-    let ahead = estimate.distance(odometry.pose().position()) - (arm.mount.x + STANDOFF);
+    let ahead =
+        estimate.distance(odometry.pose().position()) - (arm.mount.x + config.mission.arm_standoff);
     let start = odometry.pose().position();
     drive_until(
         &mut twin,

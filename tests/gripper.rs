@@ -225,3 +225,38 @@ fn picks_from_the_camera_estimate_succeed_when_it_is_close_enough() {
         assert!(p.success || p.error_mm > 10.0, "{p:?}");
     }
 }
+
+/// With an `[arm]`, the mission picks with it (seed 000's above, descend, close, lift) and
+/// puts blocks down at their gates: the twin's base cannot scoop a block up, so every
+/// delivery is the arm's. Corridors 9 once ran the base into a block it stopped short of
+/// by too little.
+#[test]
+fn the_mission_picks_and_places_with_the_arm() {
+    let dir = std::env::temp_dir().join(format!("navdeck-arm-mission-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let config = dir.join("arm.toml");
+    std::fs::write(&config, "[arm]\n").unwrap();
+    let config = config.to_str().unwrap();
+    let runs: [&[&str]; 2] = [
+        &["--seed", "2"],
+        &["--generated", "--style", "corridors", "--seed", "9"],
+    ];
+    for run in runs {
+        let mut args = vec!["mission", "--config", config, "--json", "--log"];
+        args.extend_from_slice(run);
+        let out = common::navdeck(&args);
+        let r: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+        assert_eq!(r["outcome"], "delivered all", "{run:?}: {}", r["warnings"]);
+        assert_eq!(r["true_delivered"], r["total"], "{run:?}");
+        assert_eq!(r["collisions"], 0, "{run:?}: {}", r["warnings"]);
+        let log: Vec<&str> = (r["log"].as_array().unwrap().iter())
+            .map(|l| l.as_str().unwrap())
+            .collect();
+        let count = |what: &str| log.iter().filter(|l| l.contains(what)).count();
+        let delivered = r["delivered"].as_u64().unwrap() as usize;
+        assert!(count("Arm above") >= delivered, "{run:?}");
+        assert!(count("Lifting") >= delivered, "{run:?}");
+        assert_eq!(count("Lowering"), delivered, "{run:?}");
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}

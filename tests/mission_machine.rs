@@ -291,3 +291,44 @@ fn a_small_object_no_marker_explains_is_looked_at_from_four_sides_before_the_end
     rig.until(3000, |_, r| r.mission.is_done());
     assert!(rig.plans.is_empty(), "{:?}", rig.plans);
 }
+
+/// Seed 000's pick with an arm: the robot stops with the block `arm_standoff` ahead of the
+/// arm's base, the tool goes above the block, down to it, closes and lifts; at the gate
+/// the tool goes down before the jaws open and up again before the robot backs off.
+#[test]
+fn with_an_arm_the_pick_goes_above_down_close_lift_and_the_drop_is_put_down() {
+    let mut rig = Rig::new(config(4), all_free()).with_arm();
+    rig.add_block(421, 1.0, 0.0);
+    rig.add_red_gate();
+    rig.until(800, |out, _| out.gripper == Some(GripperCommand::Close));
+    // Stopped short: the block 0.08 m behind the centre's mount plus 0.25 m ahead of it.
+    let ahead = rig.pose.inverse_transform_point(Point2::new(1.0, 0.0));
+    let mount = navdeck::arm::ArmConfig::default().mount.x;
+    assert!(
+        (ahead.x - (mount + 0.25)).abs() < 0.01 && ahead.y.abs() < 0.01,
+        "{ahead:?}"
+    );
+    assert!(rig.logged("Arm above red block 421"));
+    // Two moves so far: above the block, then down to its middle.
+    assert_eq!(rig.arm_moves.len(), 2, "{:?}", rig.arm_moves);
+    let [x, y, z] = rig.tool().unwrap();
+    assert!(Point2::new(x, y).distance(Point2::new(1.0, 0.0)) < 1e-6);
+    assert!(
+        (z - 0.025).abs() < 1e-6,
+        "the tool at the block's middle: {z}"
+    );
+    rig.until(100, |out, _| {
+        plan_to(out).is_some_and(|p| p.1 == "red gate")
+    });
+    assert!(rig.logged("Lifting red block 421") && rig.logged("Picked up red block 421"));
+    let home = navdeck::arm::ArmConfig::default().poses.home;
+    assert_eq!(rig.arm.as_ref().unwrap().1, home, "carried at home");
+    // At the gate: lowered to the floor where it is carried, opened, raised, backed off.
+    rig.until(800, |out, _| out.gripper == Some(GripperCommand::Open));
+    assert!(rig.logged("Lowering red block 421"));
+    let [_, _, z] = rig.tool().unwrap();
+    assert!((z - 0.025).abs() < 1e-6, "{z}");
+    rig.until(300, |_, r| r.logged("Delivered red block 421"));
+    assert_eq!(rig.arm.as_ref().unwrap().1, home, "raised again");
+    assert_eq!(rig.arm_moves.len(), 5, "above, down, lift, lower, raise");
+}

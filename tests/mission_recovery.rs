@@ -322,3 +322,23 @@ fn a_lost_robot_goes_back_to_a_fixed_marker_not_a_block_and_scans_there_before_h
     );
     assert!(rig.logged("no landmarks in view even after going back and scanning"));
 }
+
+/// With an arm, a close on nothing lifts the empty arm before the robot backs away, and
+/// the retry reaches for the block afresh.
+#[test]
+fn with_an_arm_an_empty_grip_lifts_backs_up_and_reaches_again() {
+    let mut rig = Rig::new(config(4), all_free()).with_arm();
+    rig.add_block(421, 1.0, 0.0);
+    rig.add_red_gate();
+    // The block is really 5 cm to the side of where the map has it: the jaws miss.
+    rig.blocks[0].1 = Point2::new(1.0, 0.05);
+    rig.until(800, |_, r| r.logged("Gripper closed on nothing"));
+    let moves = rig.arm_moves.len();
+    rig.until(100, |_, r| r.mission.state_label().starts_with("back up"));
+    assert_eq!(rig.arm_moves.len(), moves + 1, "the arm goes up first");
+    let home = navdeck::arm::ArmConfig::default().poses.home;
+    assert_eq!(rig.arm.as_ref().unwrap().1, home);
+    rig.until(300, |_, r| r.logged("back to a potential block"));
+    let reaches = rig.log.iter().filter(|l| l.contains("Arm above")).count();
+    assert_eq!(reaches, 2, "{:?}", rig.log);
+}

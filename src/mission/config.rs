@@ -136,6 +136,11 @@ pub struct MissionConfig {
     /// whose markers were never turned towards the camera (navdeck's: more than a block's
     /// diagonal, less than an obstacle). 0 turns the looks off.
     pub object_size: f64,
+    /// With an `[arm]`: the robot stops with the block this far ahead of the arm's base
+    /// joint, metres (navdeck's: 0.25 m, which the default arm reaches on the floor with
+    /// the tool pointing down, and which leaves the default body 5 cm clear of the block's
+    /// corners when the block's estimate is a few centimetres off).
+    pub arm_standoff: f64,
 }
 
 impl Default for MissionConfig {
@@ -162,6 +167,7 @@ impl Default for MissionConfig {
             view_range: 1.5,
             view_fov_deg: 60.0,
             object_size: 0.15,
+            arm_standoff: 0.25,
         }
     }
 }
@@ -178,6 +184,7 @@ impl MissionConfig {
             ("gripper_wait", self.gripper_wait, 0.0, 60.0),
             ("drop_staging", self.drop_staging, 0.01, 5.0),
             ("drop_distance", self.drop_distance, 0.01, 5.0),
+            ("arm_standoff", self.arm_standoff, 0.01, 2.0),
             ("back_off_time", self.back_off_time, 0.0, 60.0),
             ("lost_timeout", self.lost_timeout, 0.0, 3600.0),
             ("lost_position_std", self.lost_position_std, 0.0, 10.0),

@@ -1,6 +1,8 @@
 //! Delivering a held block (seed 001 section 8 "Delivery Sequence"): path to a point in
-//! front of its gate, face the gate, creep in, open, back off.
+//! front of its gate, face the gate, creep in, open, back off. With an arm, the tool is
+//! lowered to the floor before it opens, and raised again after.
 
+use super::arm_moves::{ArmMove, ArmMoves, arrived};
 use super::clearance::clear_ahead;
 use super::config::{BACK_OFF_SPEED, MissionConfig};
 use super::drive::{Wait, faces, opened, steer, turn_towards};
@@ -16,7 +18,11 @@ enum Stage {
     Travel(Leg),
     Face,
     Forward,
+    /// The arm puts the block on the floor below where it carries it.
+    Lower(ArmMove),
     Open,
+    /// The arm, empty, back to its carrying pose.
+    Raise(ArmMove),
     BackOff,
 }
 
@@ -116,7 +122,9 @@ impl Delivery {
             Stage::Travel(_) => format!("deliver {block} to {gate} gate"),
             Stage::Face => format!("face {gate} gate with {block}"),
             Stage::Forward => format!("drive {block} into {gate} gate"),
+            Stage::Lower(_) => format!("lower {block}"),
             Stage::Open => format!("drop {block}"),
+            Stage::Raise(_) => "raise the arm".to_string(),
             Stage::BackOff => format!("back off from {gate} gate"),
         }
     }
@@ -131,12 +139,15 @@ impl Delivery {
         inputs: &Inputs,
         config: &MissionConfig,
         ctx: &mut Ctx,
+        arm: Option<&mut ArmMoves>,
         log: &mut Vec<(Level, String)>,
     ) -> DropEvent {
         let (t, pose) = (inputs.t, inputs.pose);
         let waited = t - self.since;
         let error = wrap_angle(self.gate.facing() - pose.theta);
         let stop = DropEvent::Go(Motion::Stop, None);
+        let joints = inputs.arm;
+        let open = DropEvent::Go(Motion::Stop, Some(GripperCommand::Open));
         match &mut self.stage {
             Stage::Travel(leg) => match leg.step(inputs, config, ctx, log) {
                 LegStep::Move(motion) => DropEvent::Go(motion, None),
@@ -161,8 +172,25 @@ impl Delivery {
                 // creep too, wherever the markers put the gate.
                 let blocked = clear_ahead(inputs.map, inputs.occupied, pose, stop_at).is_some();
                 if distance <= stop_at || blocked || waited >= 2.0 * creep + 2.0 {
-                    self.enter(Stage::Open, t);
-                    return DropEvent::Go(Motion::Stop, Some(GripperCommand::Open));
+                    let lower = arm.map(|a| a.lower_to(config.block_size / 2.0, joints));
+                    match lower {
+                        Some(Ok(m)) => {
+                            let block = name(self.colour, self.block);
+                            log.push((Level::Info, format!("Lowering {block}")));
+                            self.enter(Stage::Lower(m), t);
+                        }
+                        Some(Err(why)) => {
+                            // Dropped from where it is carried rather than not at all.
+                            log.push((Level::Warn, format!("The arm cannot lower: {why}")));
+                            self.enter(Stage::Open, t);
+                            return open;
+                        }
+                        None => {
+                            self.enter(Stage::Open, t);
+                            return open;
+                        }
+                    }
+                    return stop;
                 }
                 let twist = Twist::new(config.approach_speed, steer(error));
                 DropEvent::Go(Motion::Drive(twist), None)
@@ -173,10 +201,28 @@ impl Delivery {
                     if outcome == Wait::TimedOut {
                         log.push((Level::Warn, "Gripper did not report open".into()));
                     }
+                    if let Some(arm) = arm {
+                        self.enter(Stage::Raise(arm.go_to_pose("home", joints)), t);
+                        return stop;
+                    }
                     self.enter(Stage::BackOff, t);
                     DropEvent::Go(Motion::Drive(Twist::new(-BACK_OFF_SPEED, 0.0)), None)
                 }
             },
+            Stage::Lower(m) => {
+                if !arrived(m, joints, waited) {
+                    return stop;
+                }
+                self.enter(Stage::Open, t);
+                open
+            }
+            Stage::Raise(m) => {
+                if !arrived(m, joints, waited) {
+                    return stop;
+                }
+                self.enter(Stage::BackOff, t);
+                DropEvent::Go(Motion::Drive(Twist::new(-BACK_OFF_SPEED, 0.0)), None)
+            }
             Stage::BackOff => {
                 if waited >= config.back_off_time - 1e-9 {
                     return DropEvent::Delivered;

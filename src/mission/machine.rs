@@ -1,6 +1,7 @@
 //! The mission state machine (seed 001 sections 7-8): scan, choose, explore, pick up,
 //! deliver, recover. Driven only by `Inputs`; every time it keeps came in through them.
 
+use super::arm_moves::ArmMoves;
 use super::config::{LOST_SCAN_AFTER, MissionConfig, RELOCATE_STANDOFF};
 use super::delivery::{Delivery, DropEvent};
 use super::drive::Turn;
@@ -128,6 +129,8 @@ pub struct Mission {
     pub(super) delivered_markers: Vec<u32>,
     /// Lost, the robot already went back to a landmark and scanned there.
     pub(super) relocated: bool,
+    /// The arm that picks and places blocks, when the robot has one.
+    pub(super) arm: Option<ArmMoves>,
 }
 
 /// What resuming says, and the markers whose landmarks the filter should drop.
@@ -168,7 +171,15 @@ impl Mission {
             held: None,
             delivered_markers: Vec::new(),
             relocated: false,
+            arm: None,
         }
+    }
+
+    /// The same mission picking with `arm` (seed 000's pick) instead of driving into
+    /// blocks.
+    pub fn with_arm(mut self, arm: crate::arm::ArmConfig) -> Self {
+        self.arm = Some(ArmMoves::new(arm));
+        self
     }
 
     /// One control step. Once the mission hands over, every later step says `to_manual`
@@ -189,6 +200,7 @@ impl Mission {
                 break;
             }
         }
+        out.arm = self.arm.as_mut().and_then(ArmMoves::take).map(|j| j.0);
         out.log = log;
         out.to_manual = matches!(self.phase, Phase::Manual);
         out.ignore_markers = self.ignored();
@@ -343,7 +355,8 @@ impl Mission {
             }
             Phase::Pickup(pickup) => {
                 let (odd, colour) = (pickup.block, pickup.colour);
-                match pickup.step(inputs, &self.config, &self.objects, &mut self.ctx, log) {
+                let arm = self.arm.as_mut();
+                match pickup.step(inputs, &self.config, &self.objects, &mut self.ctx, arm, log) {
                     PickEvent::Go(motion, gripper) => Tick::Out(motion, gripper),
                     PickEvent::Picked => {
                         log.push((Level::Success, format!("Picked up {}", name(colour, odd))));
@@ -367,7 +380,8 @@ impl Mission {
                 if let Some(gate) = self.objects.gate_for(colour) {
                     delivery.follow_gate(*gate, &self.config);
                 }
-                match delivery.step(inputs, &self.config, &mut self.ctx, log) {
+                let arm = self.arm.as_mut();
+                match delivery.step(inputs, &self.config, &mut self.ctx, arm, log) {
                     DropEvent::Go(motion, gripper) => Tick::Out(motion, gripper),
                     DropEvent::Delivered => {
                         self.objects.deliver(odd);

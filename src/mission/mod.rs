@@ -1,6 +1,7 @@
 //! The autonomous mission of seed 001 sections 7-8: explore, find blocks and gates, pick
 //! each block up and deliver it. Pure state: landmarks and time in, commands out.
 
+mod arm_moves;
 mod block_fit;
 mod choose;
 mod clearance;
@@ -20,5 +21,6 @@ pub mod targets;
 mod unexplained;
 mod view;
 
+pub use arm_moves::ABOVE as ARM_ABOVE;
 pub use config::{MissionConfig, TargetRule};
 pub use machine::{Mission, TimelineEntry};

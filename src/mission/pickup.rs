@@ -1,6 +1,9 @@
 //! Picking a block up (seed 001 section 8 "Pickup Sequence"): path to a staging point,
-//! open, face the block, creep up to it, close, and check the gripper holds it.
+//! open, face the block, creep up to it, close, and check the gripper holds it. With an
+//! arm (seed 000 section 6), the creep stops with the block in the arm's reach, and the
+//! arm goes above the block, descends, closes and lifts.
 
+use super::arm_moves::{ABOVE, ArmMove, ArmMoves, arrived};
 use super::block_fit::lidar_centre;
 use super::config::{BLOCK_LOST_AFTER, CAMERA_HALF_FOV, CAMERA_RANGE, FIT_SEARCH, MissionConfig};
 use super::drive::{Wait, bearing, faces, opened, steer, towards, turn_towards};
@@ -23,7 +26,17 @@ enum Stage {
     Reopen,
     /// Back away a little so the retry approaches straight.
     BackUp,
+    /// The arm's tool to above the block, then down to it.
+    ArmAbove(ArmMove),
+    ArmDown(ArmMove),
+    /// The arm, holding the block, up to its carrying pose.
+    Lift(ArmMove),
+    /// The arm, empty after a miss, up before the robot backs away.
+    ArmUp(ArmMove),
 }
+
+/// The arm's carrying pose.
+const CARRY: &str = "home";
 
 /// What a pick-up step comes to.
 #[derive(Clone, Debug, PartialEq)]
@@ -120,6 +133,10 @@ impl Pickup {
             Stage::Close => "grip",
             Stage::Reopen => "reopen for",
             Stage::BackUp => "back up from",
+            Stage::ArmAbove(_) => "arm above",
+            Stage::ArmDown(_) => "arm down to",
+            Stage::Lift(_) => "lift",
+            Stage::ArmUp(_) => "arm up from",
         };
         format!("{what} {}", name(self.colour, self.block))
     }
@@ -136,6 +153,7 @@ impl Pickup {
         config: &MissionConfig,
         objects: &Objects,
         ctx: &mut Ctx,
+        arm: Option<&mut ArmMoves>,
         log: &mut Vec<(Level, String)>,
     ) -> PickEvent {
         let Some(block) = objects.blocks().find(|b| b.markers[0] == self.block) else {
@@ -162,6 +180,12 @@ impl Pickup {
         let error = bearing(pose, aim);
         let waited = t - self.since;
         let stop = PickEvent::Go(Motion::Stop, None);
+        // With an arm the robot stops short, the block in the arm's reach.
+        let grip_at = arm.as_ref().map_or(config.grip_distance, |a| {
+            a.reach_from_centre(config.arm_standoff)
+        });
+        let joints = inputs.arm;
+        let mid = config.block_size / 2.0;
         if matches!(self.stage, Stage::Face | Stage::Approach) {
             // Seed 001 "Block Lost During Approach": in view but unseen for 3 s (navdeck's
             // figure; the seed gives none). Nearer than the camera's blind distance the
@@ -199,9 +223,10 @@ impl Pickup {
                     if outcome == Wait::TimedOut {
                         log.push((Level::Warn, "Gripper did not report open".into()));
                     }
-                    let next = match self.stage {
-                        Stage::Open => Stage::Face,
-                        _ => Stage::BackUp,
+                    let next = match (&self.stage, arm) {
+                        (Stage::Open, _) => Stage::Face,
+                        (_, Some(arm)) => Stage::ArmUp(arm.go_to_pose(CARRY, joints)),
+                        (_, None) => Stage::BackUp,
                     };
                     self.enter(next, t);
                     stop
@@ -215,17 +240,70 @@ impl Pickup {
                 PickEvent::Go(Motion::Drive(turn_towards(error, config)), None)
             }
             Stage::Approach => {
-                let creep =
-                    (config.staging_distance - config.grip_distance) / config.approach_speed;
-                if distance <= config.grip_distance || waited >= 2.0 * creep + 2.0 {
-                    self.enter(Stage::Close, t);
-                    return PickEvent::Go(Motion::Stop, Some(GripperCommand::Close));
+                let creep = (config.staging_distance - grip_at).abs() / config.approach_speed;
+                if distance <= grip_at || waited >= 2.0 * creep + 2.0 {
+                    let Some(arm) = arm else {
+                        self.enter(Stage::Close, t);
+                        return PickEvent::Go(Motion::Stop, Some(GripperCommand::Close));
+                    };
+                    return match arm.over(aim, mid + ABOVE, pose, joints) {
+                        Ok(m) => {
+                            let block = name(self.colour, self.block);
+                            log.push((Level::Info, format!("Arm above {block}")));
+                            self.enter(Stage::ArmAbove(m), t);
+                            stop
+                        }
+                        Err(why) => {
+                            let block = name(self.colour, self.block);
+                            log.push((Level::Warn, format!("The arm cannot reach {block}: {why}")));
+                            self.missed(t, ctx, log)
+                        }
+                    };
                 }
                 let twist = Twist::new(config.approach_speed, steer(error));
                 PickEvent::Go(Motion::Drive(twist), None)
             }
+            Stage::ArmAbove(m) => {
+                if !arrived(m, joints, waited) {
+                    return stop;
+                }
+                let Some(arm) = arm else { return stop };
+                match arm.lower_to(mid, joints) {
+                    Ok(m) => self.enter(Stage::ArmDown(m), t),
+                    Err(why) => {
+                        log.push((Level::Warn, format!("The arm cannot descend: {why}")));
+                        return self.missed(t, ctx, log);
+                    }
+                }
+                stop
+            }
+            Stage::ArmDown(m) => {
+                if !arrived(m, joints, waited) {
+                    return stop;
+                }
+                self.enter(Stage::Close, t);
+                PickEvent::Go(Motion::Stop, Some(GripperCommand::Close))
+            }
+            Stage::Lift(m) | Stage::ArmUp(m) => {
+                if !arrived(m, joints, waited) {
+                    return stop;
+                }
+                if matches!(self.stage, Stage::Lift(_)) {
+                    return PickEvent::Picked;
+                }
+                self.enter(Stage::BackUp, t);
+                stop
+            }
             Stage::Close => match inputs.gripper {
-                Some(GripperState::Holding) => PickEvent::Picked,
+                Some(GripperState::Holding) => match arm {
+                    Some(arm) => {
+                        let block = name(self.colour, self.block);
+                        log.push((Level::Info, format!("Lifting {block}")));
+                        self.enter(Stage::Lift(arm.go_to_pose(CARRY, joints)), t);
+                        stop
+                    }
+                    None => PickEvent::Picked,
+                },
                 // A gripper that reports nothing: after seed 001's wait, the block's markers
                 // still in view mean it was not picked up (seed 001 "Gripper Failure").
                 None if waited >= config.gripper_wait => {
@@ -241,7 +319,7 @@ impl Pickup {
                 _ => stop,
             },
             Stage::BackUp => {
-                if distance >= config.grip_distance + 0.1 || waited >= 4.0 {
+                if distance >= grip_at + 0.1 || waited >= 4.0 {
                     self.enter(Stage::Face, t);
                     return stop;
                 }

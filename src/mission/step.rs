@@ -44,6 +44,9 @@ pub struct Inputs<'a> {
     /// Another estimator vouches for the pose (MCL converged on a known map): a view
     /// without markers is then no sign of being lost.
     pub localized: bool,
+    /// The arm's joints as the robot last reported them, radians (none without an arm,
+    /// or before a report).
+    pub arm: Option<[f64; 4]>,
 }
 
 /// How the robot should move this step.
@@ -67,6 +70,8 @@ pub use crate::data::Level;
 pub struct Outputs {
     pub motion: Motion,
     pub gripper: Option<GripperCommand>,
+    /// Joints the arm should move to, radians (with an arm in the mission's hands).
+    pub arm: Option<[f64; 4]>,
     /// Lines for the log, in seed 001's words where it has them.
     pub log: Vec<(Level, String)>,
     /// Marker IDs the filter must not use now: those of the block in the gripper, and of
@@ -81,6 +86,7 @@ impl Outputs {
         Self {
             motion,
             gripper: None,
+            arm: None,
             log: Vec::new(),
             ignore_markers: Vec::new(),
             to_manual: false,

@@ -83,6 +83,17 @@ impl ArmPilot {
         }
     }
 
+    /// The arm to `to` at its joints' speed limits (the mission's moves).
+    /// Returns how long the move takes, seconds.
+    pub fn move_to(&mut self, to: Joints) -> f64 {
+        let within = move_time(&self.config, &self.joints(), &to);
+        self.target = to;
+        self.held.clear();
+        self.pending = Some(within);
+        self.at_edge = None;
+        within
+    }
+
     /// The joints the arm is at as far as navdeck knows: reported, else asked for.
     pub fn joints(&self) -> Joints {
         self.measured.unwrap_or(self.target)
@@ -149,11 +160,7 @@ impl Pilot {
         let Some(to) = arm.config.pose(pose.name()) else {
             return;
         };
-        let within = move_time(&arm.config, &arm.joints(), &to);
-        arm.target = to;
-        arm.held.clear();
-        arm.pending = Some(within);
-        arm.at_edge = None;
+        let within = arm.move_to(to);
         self.log(
             Level::Info,
             format!("arm to {} ({within:.1} s)", pose.name()),

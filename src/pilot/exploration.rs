@@ -52,7 +52,13 @@ impl Pilot {
     /// Starts a fresh mission.
     pub(super) fn start_mission(&mut self) {
         self.drop_route();
-        self.exploring.mission = Some(Mission::new(self.settings.mission.clone(), self.now));
+        let mission = Mission::new(self.settings.mission.clone(), self.now);
+        // With an arm, the mission picks with it (seed 000) instead of driving into blocks.
+        let mission = match &self.settings.arm {
+            Some(arm) => mission.with_arm(arm.clone()),
+            None => mission,
+        };
+        self.exploring.mission = Some(mission);
         self.exploring.last_step = None;
         self.exploring.no_path = None;
         self.exploring.started = self.now;
@@ -87,6 +93,7 @@ impl Pilot {
             occupied: self.belief.sensed_occupied(),
             position_std: self.position_std(),
             localized: self.mcl.as_ref().is_some_and(|m| m.status().converged),
+            arm: self.arm.as_ref().and_then(|a| a.measured).map(|j| j.0),
         });
         self.exploring.mission = Some(mission);
         for (level, text) in outputs.log {
@@ -95,6 +102,9 @@ impl Pilot {
         self.estimating.ignored_markers = outputs.ignore_markers;
         if let Some(cmd) = outputs.gripper {
             self.hand.pending = Some(cmd);
+        }
+        if let (Some(joints), Some(arm)) = (outputs.arm, self.arm.as_mut()) {
+            arm.move_to(crate::arm::Joints(joints));
         }
         if outputs.to_manual {
             self.log(Level::Warn, "mission handed the robot to manual control");

@@ -324,8 +324,10 @@ impl Twin {
             if self.released == Some(i) {
                 continue;
             }
-            // A block may slide into open jaws (seed 001 approaches blocks with the gripper open).
-            if self.gripper.jaws_open()
+            // A block may slide into open jaws (seed 001 approaches blocks with the gripper
+            // open); an arm's jaws are up on the arm, and the base runs into blocks.
+            if self.arm.is_none()
+                && self.gripper.jaws_open()
                 && self.gripper.jaw_offset(next, b.pose.position()).is_some()
             {
                 continue;

@@ -1,6 +1,7 @@
 //! A scripted stand-in for the console around the mission: straight-line paths, a gripper
 //! that catches what lies between its jaws, hand-made landmark maps. No twin, no clock.
 
+use navdeck::arm::{ArmConfig, Joints, forward};
 use navdeck::data::{GripperCommand, GripperState};
 use navdeck::geometry::{Point2, Pose2, wrap_angle};
 use navdeck::map::costmap::{Costmap, FREE, NO_INFORMATION};
@@ -35,6 +36,9 @@ pub struct Rig {
     pub log: Vec<String>,
     pub commands: Vec<GripperCommand>,
     pub plans: Vec<(f64, Point2, String)>,
+    /// An arm whose joints reach each target at once, and the targets asked for.
+    pub arm: Option<(ArmConfig, [f64; 4])>,
+    pub arm_moves: Vec<[f64; 4]>,
 }
 
 impl Rig {
@@ -58,7 +62,27 @@ impl Rig {
             log: Vec::new(),
             commands: Vec::new(),
             plans: Vec::new(),
+            arm: None,
+            arm_moves: Vec::new(),
         }
+    }
+
+    /// The same rig with seed 000's default arm, at home, in the mission's hands.
+    pub fn with_arm(mut self) -> Self {
+        let config = ArmConfig::default();
+        self.mission = self.mission.clone().with_arm(config.clone());
+        let home = config.poses.home;
+        self.arm = Some((config, home));
+        self
+    }
+
+    /// Where the arm's tool tip is: world x, y and height above the floor.
+    pub fn tool(&self) -> Option<[f64; 3]> {
+        let (config, joints) = self.arm.as_ref()?;
+        let t = forward(config, &Joints(*joints));
+        let [x, y, z] = config.mount.to_robot([t.x, t.y, t.z]);
+        let p = self.pose.transform_point(Point2::new(x, y));
+        Some([p.x, p.y, z])
     }
 
     /// A 0.05 m block centred at (x, y), turned so both marked faces look towards -x.
@@ -89,6 +113,7 @@ impl Rig {
             occupied: &self.occupied,
             position_std: self.position_std,
             localized: false,
+            arm: self.arm.as_ref().map(|a| a.1),
         };
         let out = self.mission.step(&inputs);
         self.log.extend(out.log.iter().map(|(_, l)| l.clone()));
@@ -101,6 +126,10 @@ impl Rig {
                     GripperCommand::Close => GripperState::Closing,
                 });
             }
+        }
+        if let (Some(j), Some(arm)) = (out.arm, self.arm.as_mut()) {
+            arm.1 = j;
+            self.arm_moves.push(j);
         }
         match &out.motion {
             Motion::Drive(tw) => {
@@ -156,7 +185,12 @@ impl Rig {
         self.gripper = Some(match command {
             GripperCommand::Open => GripperState::Open,
             GripperCommand::Close => {
+                let tool = self.tool();
                 let caught = self.blocks.iter().any(|(_, c)| {
+                    // An arm's jaws hold what is at its tool tip (the twin's tolerance).
+                    if let Some([x, y, z]) = tool {
+                        return c.distance(Point2::new(x, y)) <= 0.035 && (0.0..=0.06).contains(&z);
+                    }
                     let local = self.pose.inverse_transform_point(*c);
                     (0.06..=0.14).contains(&local.x) && local.y.abs() <= 0.035
                 });

@@ -147,8 +147,8 @@ fn one(config: &Config, arm: &ArmConfig, distance: f64, bearing: f64, seed: u64)
         Twist::new(0.0, heading.signum() * 0.5),
         |o| wrap_angle(heading - o.pose().theta).abs() < 0.01,
     );
-    let ahead =
-        estimate.distance(odometry.pose().position()) - (arm.mount.x + config.mission.arm_standoff);
+    let ahead = estimate.distance(odometry.pose().position())
+        - crate::mission::arm_reach(arm, config.mission.arm_standoff, block.size / 2.0);
     let start = odometry.pose().position();
     drive_until(
         &mut twin,

@@ -30,6 +30,8 @@ pub(crate) struct ArmMoves {
     last: Joints,
     /// A target not yet handed to the console.
     out: Option<Joints>,
+    /// The last `reach_from_centre`: its standoff and height, and its answer.
+    reach: Option<((f64, f64), f64)>,
 }
 
 impl ArmMoves {
@@ -39,6 +41,7 @@ impl ArmMoves {
             config,
             last,
             out: None,
+            reach: None,
         }
     }
 
@@ -47,9 +50,33 @@ impl ArmMoves {
         self.out.take()
     }
 
-    /// How far ahead of the robot's centre the block stands when the arm reaches for it.
-    pub fn reach_from_centre(&self, standoff: f64) -> f64 {
-        self.config.mount.x + standoff
+    /// How far ahead of the robot's centre the block stands when the arm reaches for it:
+    /// `standoff` ahead of the arm's base, or nearer, in 5 mm steps, until the tool reaches
+    /// both the block's middle (`mid` above the floor) and `ABOVE` over it there (seed
+    /// 002's locked wrist reaches less far than seed 000's free one).
+    pub fn reach_from_centre(&mut self, standoff: f64, mid: f64) -> f64 {
+        if let Some((asked, at)) = self.reach
+            && asked == (standoff, mid)
+        {
+            return at;
+        }
+        let home = Joints(self.config.poses.home);
+        let reaches = |x: f64| {
+            [mid, mid + ABOVE].iter().all(|&z| {
+                let a = self
+                    .config
+                    .mount
+                    .from_robot([self.config.mount.x + x, 0.0, z]);
+                inverse(&self.config, &Target::point(a[0], a[1], a[2]), &home).is_ok()
+            })
+        };
+        let nearest = (0..=(standoff / 0.005) as usize)
+            .map(|k| standoff - k as f64 * 0.005)
+            .find(|&x| reaches(x))
+            .unwrap_or(standoff);
+        let at = self.config.mount.x + nearest;
+        self.reach = Some(((standoff, mid), at));
+        at
     }
 
     /// Starts a move to `goal` from where the arm is (`measured`, else the last target).
@@ -139,6 +166,24 @@ mod tests {
         let r2 = arm.config.mount.to_robot([t.x, t.y, t.z]);
         assert!((r2[0] - r[0]).abs() < 1e-6 && (r2[1] - r[1]).abs() < 1e-6);
         assert!((r2[2] - 0.025).abs() < 1e-6);
+    }
+
+    #[test]
+    fn the_locked_wrist_stops_the_robot_nearer_than_the_free_one() {
+        let mut free = ArmMoves::new(ArmConfig::default());
+        let at = free.reach_from_centre(0.25, 0.025);
+        assert!((at - (free.config.mount.x + 0.25)).abs() < 1e-9, "{at}");
+        let config = ArmConfig {
+            solver: crate::arm::Solver::TwoDof,
+            ..ArmConfig::default()
+        };
+        let mut locked = ArmMoves::new(config);
+        let near = locked.reach_from_centre(0.25, 0.025);
+        assert!(near < at, "{near} vs {at}");
+        let p = Pose2::default();
+        let block = Point2::new(near, 0.0);
+        assert!(locked.over(block, 0.025, p, None).is_ok());
+        assert!(locked.over(block, 0.025 + ABOVE, p, None).is_ok());
     }
 
     #[test]

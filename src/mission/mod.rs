@@ -23,4 +23,10 @@ mod view;
 
 pub use arm_moves::ABOVE as ARM_ABOVE;
 pub use config::{MissionConfig, TargetRule};
+
+/// How far ahead of the robot's centre a block stands when `arm` reaches for it, the
+/// mission's way (`[mission] arm_standoff`, or nearer where the arm reaches no further).
+pub fn arm_reach(arm: &crate::arm::ArmConfig, standoff: f64, mid: f64) -> f64 {
+    arm_moves::ArmMoves::new(arm.clone()).reach_from_centre(standoff, mid)
+}
 pub use machine::{Mission, TimelineEntry};

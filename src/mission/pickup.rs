@@ -181,11 +181,12 @@ impl Pickup {
         let waited = t - self.since;
         let stop = PickEvent::Go(Motion::Stop, None);
         // With an arm the robot stops short, the block in the arm's reach.
-        let grip_at = arm.as_ref().map_or(config.grip_distance, |a| {
-            a.reach_from_centre(config.arm_standoff)
+        let mid = config.block_size / 2.0;
+        let mut arm = arm;
+        let grip_at = (arm.as_mut()).map_or(config.grip_distance, |a| {
+            a.reach_from_centre(config.arm_standoff, mid)
         });
         let joints = inputs.arm;
-        let mid = config.block_size / 2.0;
         if matches!(self.stage, Stage::Face | Stage::Approach) {
             // Seed 001 "Block Lost During Approach": in view but unseen for 3 s (navdeck's
             // figure; the seed gives none). Nearer than the camera's blind distance the

@@ -260,3 +260,27 @@ fn the_mission_picks_and_places_with_the_arm() {
     }
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// Taking control back from the mission with a drive key stops an arm move it started,
+/// as the stop key does.
+#[test]
+fn a_drive_key_during_the_missions_reach_holds_the_arm() {
+    let slow = "[arm.limits]\nspeed = [0.5, 0.5, 0.5, 0.5]\n";
+    // Seed 1's first reach starts about 23 s in and takes seconds with slow joints.
+    let mut steps = vec![press('e')];
+    steps.extend((0..240).map(|_| Step::Wait(0.1)));
+    steps.extend([press('w'), Step::Wait(1.0)]);
+    let out = run_script(arm_app_with(slow), 120, 40, steps);
+    let log = log_text(&out.app);
+    assert!(log.contains("Arm above"), "the reach had started: {log}");
+    assert!(log.contains("manual control taken back"), "{log}");
+    let arm = out.app.pilot().arm().unwrap();
+    let measured = arm.measured.unwrap().0;
+    for k in 0..4 {
+        assert!(
+            (arm.target.0[k] - measured[k]).abs() < 0.05,
+            "{:?} vs {measured:?}",
+            arm.target
+        );
+    }
+}

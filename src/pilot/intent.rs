@@ -243,6 +243,8 @@ impl Pilot {
                     self.mode.label().to_lowercase()
                 ),
             );
+            // A move the mission started stops with the base.
+            self.halt_arm();
             self.set_mode(Mode::Manual);
         }
         if let LinkStatus::Lost(reason) = &self.gate.link {

@@ -43,19 +43,7 @@ pub(super) fn solve(
         pitch: Some(locked),
         ..*t
     };
-    let (joints, iterations, residual) = newton(cfg, chosen.joints, &target);
-    let manipulability = if iterations == 0 {
-        chosen.manipulability
-    } else {
-        super::manipulability(cfg, &joints)
-    };
-    Ok(Solution {
-        joints,
-        branch: chosen.branch,
-        residual,
-        manipulability,
-        iterations,
-    })
+    Ok(chosen.refined(cfg, newton(cfg, chosen.joints, &target)))
 }
 
 /// Newton on (reach, height) over (theta2, theta3) with theta4 slaved to the pitch.

@@ -54,21 +54,7 @@ pub(super) fn finish(
     match planar::choose(cfg, ways, current) {
         None => Err(planar::refusal(cfg, ways, pitch)),
         Some(Err(manipulability)) => Err(Unreachable::Singular { manipulability }),
-        Some(Ok(chosen)) => {
-            let (joints, iterations, residual) = refine(cfg, chosen.joints, t);
-            let manipulability = if iterations == 0 {
-                chosen.manipulability
-            } else {
-                super::manipulability(cfg, &joints)
-            };
-            Ok(Solution {
-                joints,
-                branch: chosen.branch,
-                residual,
-                manipulability,
-                iterations,
-            })
-        }
+        Some(Ok(chosen)) => Ok(chosen.refined(cfg, refine(cfg, chosen.joints, t))),
     }
 }
 

@@ -4,7 +4,7 @@
 
 use super::config::ArmConfig;
 use super::kinematics::manipulability;
-use super::{Branch, Joints, Unreachable};
+use super::{Branch, Joints, Solution, Unreachable};
 use std::f64::consts::{PI, TAU};
 
 /// A joint may come out this far beyond a limit and be put on it, rad.
@@ -218,6 +218,29 @@ pub(super) struct Chosen {
     pub joints: Joints,
     pub branch: Branch,
     pub manipulability: f64,
+}
+
+impl Chosen {
+    /// The solution once refined to `(joints, iterations, residual)`: its manipulability
+    /// measured afresh only when the refinement moved the joints.
+    pub fn refined(
+        self,
+        cfg: &ArmConfig,
+        (joints, iterations, residual): (Joints, u32, f64),
+    ) -> Solution {
+        let manipulability = if iterations == 0 {
+            self.manipulability
+        } else {
+            manipulability(cfg, &joints)
+        };
+        Solution {
+            joints,
+            branch: self.branch,
+            residual,
+            manipulability,
+            iterations,
+        }
+    }
 }
 
 /// Seed 000 section 4.2.3, made strict: of the possible ways, those at least

@@ -62,13 +62,9 @@ impl ArmMoves {
         }
         let home = Joints(self.config.poses.home);
         let reaches = |x: f64| {
-            [mid, mid + ABOVE].iter().all(|&z| {
-                let a = self
-                    .config
-                    .mount
-                    .from_robot([self.config.mount.x + x, 0.0, z]);
-                inverse(&self.config, &Target::point(a[0], a[1], a[2]), &home).is_ok()
-            })
+            [mid, mid + ABOVE]
+                .iter()
+                .all(|&z| self.solve([self.config.mount.x + x, 0.0, z], &home).is_ok())
         };
         let nearest = (0..=(standoff / 0.005) as usize)
             .map(|k| standoff - k as f64 * 0.005)
@@ -100,11 +96,17 @@ impl ArmMoves {
         measured: Option<[f64; 4]>,
     ) -> Result<ArmMove, String> {
         let p = pose.inverse_transform_point(block);
-        let a = self.config.mount.from_robot([p.x, p.y, height]);
         let current = measured.map_or(self.last, Joints);
-        let solution = inverse(&self.config, &Target::point(a[0], a[1], a[2]), &current)
-            .map_err(|e| e.to_string())?;
-        Ok(self.start(solution.joints, measured))
+        let joints = self.solve([p.x, p.y, height], &current)?;
+        Ok(self.start(joints, measured))
+    }
+
+    /// Joints that put the tool at `point` in the robot's frame, nearest `current`.
+    fn solve(&self, point: [f64; 3], current: &Joints) -> Result<Joints, String> {
+        let a = self.config.mount.from_robot(point);
+        inverse(&self.config, &Target::point(a[0], a[1], a[2]), current)
+            .map(|s| s.joints)
+            .map_err(|e| e.to_string())
     }
 
     /// The tool straight down to `height` from where the arm's target is now (placing a
@@ -112,11 +114,9 @@ impl ArmMoves {
     pub fn lower_to(&mut self, height: f64, measured: Option<[f64; 4]>) -> Result<ArmMove, String> {
         let tool = forward(&self.config, &self.last);
         let floor = self.config.mount.to_robot([tool.x, tool.y, tool.z]);
-        let a = self.config.mount.from_robot([floor[0], floor[1], height]);
         let current = measured.map_or(self.last, Joints);
-        let solution = inverse(&self.config, &Target::point(a[0], a[1], a[2]), &current)
-            .map_err(|e| e.to_string())?;
-        Ok(self.start(solution.joints, measured))
+        let joints = self.solve([floor[0], floor[1], height], &current)?;
+        Ok(self.start(joints, measured))
     }
 
     /// The arm to its named pose `name` (home when the config lacks it).

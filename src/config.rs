@@ -61,6 +61,8 @@ pub struct Config {
     /// The arm on the robot, its kinematics and limits. No [arm], no arm.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub arm: Option<crate::arm::config::ArmConfig>,
+    /// `--record`: what a recording holds, and a folder to record every session into.
+    pub record: crate::record::RecordConfig,
 }
 
 impl Config {
@@ -123,6 +125,7 @@ impl Config {
             ("serial", self.serial.validate()),
             ("vision", self.vision.validate()),
             ("arm", self.arm.as_ref().map_or(Ok(()), |a| a.validate())),
+            ("record", self.record.validate()),
         ];
         for (section, result) in sections {
             if let Err((field, value, reason)) = result {

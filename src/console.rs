@@ -2,6 +2,7 @@
 //! run on the wall clock, and on the way out the robot stopped, the terminal restored
 //! and the link closed within a deadline.
 
+use crate::app::App;
 use crate::clock::Clock;
 use crate::session::Session;
 use crate::tui::events::WallClock;
@@ -36,17 +37,105 @@ pub struct ConsoleOptions {
     pub log_dir: Option<PathBuf>,
     /// Start with the braille map.
     pub braille: bool,
+    /// Record the session to this MCAP file, with this metadata.
+    pub record: Option<(PathBuf, std::collections::BTreeMap<String, String>)>,
 }
 
-/// Opens a new `dir/navdeck-STAMP-PID.log` (STAMP the start time in UTC, RFC 3339 with
-/// the `:` left out so the name works everywhere; the process ID keeps two consoles
-/// started in the same second apart), making `dir` if needed.
-fn open_log_file(dir: &std::path::Path) -> std::io::Result<(PathBuf, std::fs::File)> {
-    std::fs::create_dir_all(dir)?;
+/// Starts recording `app`'s session into `path` (which must not exist), stamped with the
+/// wall clock; `session` says how it was started. `simulated`: the session runs on
+/// simulated time, so the loop may wait for the writer rather than drop a message.
+pub fn start_recording(
+    app: &mut App,
+    path: &std::path::Path,
+    session: std::collections::BTreeMap<String, String>,
+    simulated: bool,
+) -> Result<()> {
+    let epoch = std::time::SystemTime::now()
+        .duration_since(std::time::UNIX_EPOCH)
+        .map_or(0.0, |d| d.as_secs_f64())
+        - app.now();
+    let mut recorder = crate::record::Recorder::create(path, &app.config().record, epoch)?;
+    recorder.wait_when_full(simulated);
+    app.record_to(recorder, session);
+    Ok(())
+}
+
+/// `dir/navdeck-STAMP-PID.mcap`: where `[record] folder` puts a session's recording.
+pub fn dated_recording(dir: &std::path::Path) -> PathBuf {
+    dated_file(dir, "mcap")
+}
+
+/// `dir/navdeck-STAMP-PID.EXT`: STAMP the start time in UTC, RFC 3339 with the `:` left
+/// out so the name works everywhere; the process ID keeps two consoles started in the
+/// same second apart.
+fn dated_file(dir: &std::path::Path, ext: &str) -> PathBuf {
     let stamp = humantime::format_rfc3339_seconds(std::time::SystemTime::now())
         .to_string()
         .replace(':', "");
-    let path = dir.join(format!("navdeck-{stamp}-{}.log", std::process::id()));
+    dir.join(format!("navdeck-{stamp}-{}.{ext}", std::process::id()))
+}
+
+/// Plays a recording on the real terminal until quit, a signal or a hang-up; opens on
+/// the view as recorded (`as_recorded`) or the re-run. Returns the exit status.
+pub fn run_replay_console(
+    replay: crate::replay::Replay,
+    speed: f64,
+    as_recorded: bool,
+) -> Result<u8> {
+    use crate::replay::playback::{Playback, View};
+    let signals = Signals::watch().context("cannot watch signals")?;
+    let theme = Theme::from_env(std::env::var_os("NO_COLOR"));
+    let clock = WallClock::start();
+    let view = if as_recorded {
+        View::AsRecorded
+    } else {
+        View::Rerun
+    };
+    let step = replay.app().config().robot.control_period;
+    let playback = Playback::new(replay.span(), speed, view, step);
+    let mut player = crate::tui::replay::run::Player { replay, playback };
+    let mut stats = RunStats::default();
+    let outcome = on_terminal(&signals, |terminal, events| {
+        crate::tui::replay::run::run(
+            terminal,
+            &mut player,
+            events,
+            &clock,
+            signals.cell(),
+            theme,
+            &mut stats,
+        )
+    })?;
+    if let Err(e) = &outcome {
+        let _ = writeln!(std::io::stderr(), "navdeck: replay ended: {e}");
+    }
+    Ok(exit_status(&outcome) as u8)
+}
+
+/// Runs `loop_body` on the real terminal and its input. When it returns the robot has
+/// been told to stop: from then the process ends within the deadline, and a second
+/// signal ends it at once. The terminal is restored before this returns, so anything
+/// printed after it reaches a normal screen.
+fn on_terminal(
+    signals: &Signals,
+    loop_body: impl FnOnce(
+        &mut ratatui::Terminal<
+            ratatui::backend::CrosstermBackend<crate::tui::terminal::TerminalOut>,
+        >,
+        &mut TtyEvents,
+    ) -> Result<Exit, RunError>,
+) -> Result<Result<Exit, RunError>> {
+    let mut guard = TerminalGuard::enter().context("cannot set up the terminal")?;
+    let mut events = TtyEvents::open(signals).context("cannot read the terminal")?;
+    let outcome = loop_body(&mut guard.terminal, &mut events);
+    signals.arm_immediate_exit(exit_deadline(), exit_status(&outcome));
+    Ok(outcome)
+}
+
+/// Opens a new `dir/navdeck-STAMP-PID.log` (`dated_file`), making `dir` if needed.
+fn open_log_file(dir: &std::path::Path) -> std::io::Result<(PathBuf, std::fs::File)> {
+    std::fs::create_dir_all(dir)?;
+    let path = dated_file(dir, "log");
     let file = std::fs::OpenOptions::new()
         .write(true)
         .create_new(true)
@@ -78,6 +167,9 @@ pub fn run_console(
     if options.braille {
         app.apply(crate::keymap::Action::ToggleBraille);
     }
+    if let Some((path, session)) = &options.record {
+        start_recording(&mut app, path, session.clone(), false)?;
+    }
     let log_dir = (options.log_dir.clone()).unwrap_or_else(|| PathBuf::from("logs"));
     let log_file = match open_log_file(&log_dir) {
         Ok((path, file)) => match app.log_to(Box::new(file)) {
@@ -93,25 +185,19 @@ pub fn run_console(
         }
     };
     let mut stats = RunStats::default();
-    let outcome = {
-        let mut guard = TerminalGuard::enter().context("cannot set up the terminal")?;
-        let mut events = TtyEvents::open(&signals).context("cannot read the terminal")?;
-        let outcome = run(
-            &mut guard.terminal,
+    let outcome = on_terminal(&signals, |terminal, events| {
+        run(
+            terminal,
             &mut app,
-            &mut events,
+            events,
             &clock,
             signals.cell(),
             theme,
             &mut stats,
-        );
-        // The robot has been told to stop: from here the process ends within the deadline,
-        // and a second signal ends it at once.
-        signals.arm_immediate_exit(exit_deadline(), exit_status(&outcome));
-        outcome
-        // The guard drops here: the terminal is restored before anything is printed.
-    };
+        )
+    })?;
     let label = app.link().label();
+    let recorded = app.finish_recording();
     // Closes the link: the serial port, the DDS participant.
     drop(app);
     let why = match &outcome {
@@ -125,6 +211,20 @@ pub fn run_console(
         std::io::stderr(),
         "navdeck: robot on {label} stopped; {why}"
     );
+    match (recorded, &options.record) {
+        (Some(Ok(summary)), Some((path, _))) => {
+            let _ = writeln!(
+                std::io::stderr(),
+                "navdeck: session recorded in {} ({} bytes)",
+                path.display(),
+                summary.bytes
+            );
+        }
+        (Some(Err(why)), _) => {
+            let _ = writeln!(std::io::stderr(), "navdeck: {why}");
+        }
+        _ => {}
+    }
     if let Some(path) = log_file {
         let _ = writeln!(
             std::io::stderr(),

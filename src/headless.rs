@@ -51,6 +51,12 @@ pub struct Report {
     /// Wall-clock figures, filled in by the caller (the core reads no clock).
     pub wall_time_s: Option<f64>,
     pub realtime_factor: Option<f64>,
+    /// What the session's recording holds (`--record`), filled in by the caller.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub recording: Option<crate::record::Summary>,
+    /// A re-run of a recording (`navdeck replay --headless`): how it compares.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub replay: Option<crate::replay::Comparison>,
 }
 
 /// Presses `keys` through the active keymap at `rate` keys per simulated second, waits
@@ -155,6 +161,8 @@ pub fn report(app: &App, keys: usize) -> Report {
         warnings: app.log_book().problems().map(|e| e.text.clone()).collect(),
         wall_time_s: None,
         realtime_factor: None,
+        recording: None,
+        replay: None,
     }
 }
 
@@ -211,6 +219,30 @@ pub fn human(report: &Report) -> String {
             out += &format!(" (true pose {:.1} cm)", t * 100.0);
         }
         out += "\n";
+    }
+    if let Some(c) = &report.replay {
+        out += &format!(
+            "re-run          {} of {} control ticks' estimates identical to the recording; largest difference {:.4} m\n",
+            c.identical, c.ticks, c.max_position_difference
+        );
+        if let (Some(a), Some(b), Some(ah), Some(bh)) = (
+            c.recorded_position_rmse,
+            c.rerun_position_rmse,
+            c.recorded_heading_rmse_deg,
+            c.rerun_heading_rmse_deg,
+        ) {
+            out += &format!(
+                "error vs truth  recorded ({}) RMSE {a:.4} m, {ah:.2} deg; re-run ({}) RMSE {b:.4} m, {bh:.2} deg\n",
+                c.recorded_estimator, c.rerun_estimator
+            );
+        }
+    }
+    if let Some(r) = &report.recording {
+        let messages: u64 = r.topics.iter().map(|t| t.2).sum();
+        out += &format!(
+            "recorded        {} ({} bytes, {messages} messages)\n",
+            r.path, r.bytes
+        );
     }
     if let (Some(w), Some(f)) = (report.wall_time_s, report.realtime_factor) {
         out += &format!("wall time       {w:.3} s ({f:.0}x real time)\n");

@@ -20,6 +20,8 @@ pub mod perception;
 pub mod pilot;
 pub mod plan;
 pub mod plan_report;
+pub mod record;
+pub mod replay;
 pub mod session;
 pub mod sim;
 pub mod slam;

@@ -59,6 +59,8 @@ mod tour_command;
 use tour_command::{LocalizeArgs, TourArgs};
 mod arm_command;
 use arm_command::ArmCommand;
+mod replay_command;
+use replay_command::ReplayArgs;
 
 /// A terminal teleop-and-autonomy console for small differential-drive robots.
 ///
@@ -147,6 +149,11 @@ struct Cli {
     #[arg(long, value_name = "DIR")]
     maps_dir: Option<PathBuf>,
 
+    /// Record the session to this MCAP file (ROS 2 profile; `navdeck replay` plays it).
+    /// `[record] folder` records every console session without it.
+    #[arg(long, value_name = "FILE.mcap")]
+    record: Option<PathBuf>,
+
     /// Where the console writes each session's log (navdeck-DATE-PID.log); default `logs`.
     #[arg(long, value_name = "DIR")]
     log_dir: Option<PathBuf>,
@@ -173,6 +180,8 @@ enum Subcommand {
     /// The arm's kinematics: joints for a tool position (ik) and back (fk).
     #[command(subcommand)]
     Arm(ArmCommand),
+    /// Play a recording (--record): the console as it was, or re-run on today's code.
+    Replay(ReplayArgs),
 }
 
 #[derive(Debug, clap::Subcommand)]
@@ -327,6 +336,7 @@ fn real_main(cli: Cli) -> Result<ExitCode> {
             ("--sim-camera", cli.sim_camera),
             ("--headless", cli.headless),
             ("--camera", cli.camera.is_some()),
+            ("--record", cli.record.is_some()),
             ("--estimator", cli.localize.given() == Some("--estimator")),
             ("--map", cli.localize.given() == Some("--map")),
             (
@@ -342,6 +352,7 @@ fn real_main(cli: Cli) -> Result<ExitCode> {
                 Subcommand::Map(_) => "map",
                 Subcommand::World(_) => "world",
                 Subcommand::Arm(_) => "arm",
+                Subcommand::Replay(_) => "replay",
             };
             anyhow::bail!(
                 "{option} before `{name}` is the console's option: give the subcommand's own after it (navdeck {name} --help lists them)"
@@ -355,6 +366,7 @@ fn real_main(cli: Cli) -> Result<ExitCode> {
         Some(Subcommand::Map(command)) => return run_map(command),
         Some(Subcommand::World(command)) => return world_command::run(command),
         Some(Subcommand::Arm(command)) => return arm_command::run(command),
+        Some(Subcommand::Replay(args)) => return replay_command::run(args),
         None => {}
     }
     let spec = SessionSpec {
@@ -382,21 +394,64 @@ fn real_main(cli: Cli) -> Result<ExitCode> {
     if let Some(source) = &cli.camera {
         session = session.with_camera(source, stopwatch.clone())?;
     }
+    let record = match (&cli.record, &session.config.record.folder) {
+        (Some(path), _) => Some((path.clone(), recording_metadata(&cli))),
+        (None, Some(dir)) if !cli.headless => Some((
+            navdeck::console::dated_recording(dir),
+            recording_metadata(&cli),
+        )),
+        _ => None,
+    };
     if cli.headless {
-        return run_headless(session, &cli, stopwatch);
+        return run_headless(session, &cli, stopwatch, record);
     }
     let options = ConsoleOptions {
         maps_dir: cli.maps_dir.clone(),
         log_dir: cli.log_dir.clone(),
         braille: cli.braille,
+        record,
     };
     Ok(ExitCode::from(run_console(session, &options, stopwatch)?))
+}
+
+/// How the session was started, for its recording (a replay re-runs it the same way).
+fn recording_metadata(cli: &Cli) -> std::collections::BTreeMap<String, String> {
+    let mut m = std::collections::BTreeMap::new();
+    let path = |p: &Option<PathBuf>| p.as_ref().map(|p| p.display().to_string());
+    m.insert("seed".into(), cli.seed.to_string());
+    let given = [
+        ("world", path(&cli.world)),
+        ("config", path(&cli.config)),
+        ("keymap", path(&cli.keymap)),
+        (
+            "start",
+            cli.start
+                .map(|p| format!("{},{},{}", p.x, p.y, p.theta.to_degrees())),
+        ),
+        ("estimator", cli.localize.estimator_name()),
+        ("map", cli.localize.map_name()),
+        ("initial_pose", cli.localize.initial_pose_text()),
+        ("sim_camera", cli.sim_camera.then(|| "true".to_string())),
+        (
+            "keymap_text",
+            cli.keymap
+                .as_ref()
+                .and_then(|p| std::fs::read_to_string(p).ok()),
+        ),
+    ];
+    for (key, value) in given {
+        if let Some(v) = value {
+            m.insert(key.into(), v);
+        }
+    }
+    m
 }
 
 fn run_headless(
     session: Session,
     cli: &Cli,
     stopwatch: std::sync::Arc<dyn Clock>,
+    record: Option<(PathBuf, std::collections::BTreeMap<String, String>)>,
 ) -> Result<ExitCode> {
     if !(cli.key_rate.is_finite() && cli.key_rate > 0.0) {
         bail!("--key-rate {} must be a positive number", cli.key_rate);
@@ -412,6 +467,10 @@ fn run_headless(
         );
     }
     let mut app = session.into_app(0.0);
+    if let Some((path, meta)) = &record {
+        let simulated = app.link().ground_truth().is_some();
+        navdeck::console::start_recording(&mut app, path, meta.clone(), simulated)?;
+    }
     let started = Instant::now();
     app.set_stopwatch(stopwatch);
     if let Some(dir) = &cli.maps_dir {
@@ -450,6 +509,11 @@ fn run_headless(
         signals.arm_immediate_exit(navdeck::console::exit_deadline(), status);
     }
     let wall = started.elapsed().as_secs_f64();
+    match app.finish_recording() {
+        Some(Ok(summary)) => report.recording = Some(summary),
+        Some(Err(why)) => say_err!("navdeck: {why}"),
+        None => {}
+    }
     report.wall_time_s = Some(wall);
     report.realtime_factor = Some(report.sim_time / wall.max(1e-9));
     if cli.json {

@@ -65,6 +65,21 @@ pub struct SessionSpec {
     pub localize: LocalizeChoice,
 }
 
+impl SessionSpec {
+    /// The twin in `world` (the built-in arena when None), seed 1, every file default.
+    pub fn twin(world: Option<PathBuf>) -> Self {
+        Self {
+            world,
+            seed: 1,
+            start: None,
+            config: None,
+            keymap: None,
+            link: LinkChoice::Sim,
+            localize: LocalizeChoice::default(),
+        }
+    }
+}
+
 /// The command line's say on how the robot is localised (over `[localization]`).
 #[derive(Clone, Debug, Default)]
 pub struct LocalizeChoice {
@@ -379,13 +394,8 @@ mod tests {
 
     fn twin_session(config: Option<PathBuf>) -> Session {
         Session::load(&SessionSpec {
-            world: None,
-            seed: 1,
-            start: None,
             config,
-            keymap: None,
-            link: LinkChoice::Sim,
-            localize: LocalizeChoice::default(),
+            ..SessionSpec::twin(None)
         })
         .unwrap()
     }
@@ -395,15 +405,7 @@ mod tests {
         let mut world = World::default_arena();
         world.name = "two blocks".into();
         world.blocks.truncate(2);
-        let spec = SessionSpec {
-            world: None,
-            seed: 1,
-            start: None,
-            config: None,
-            keymap: None,
-            link: LinkChoice::Sim,
-            localize: LocalizeChoice::default(),
-        };
+        let spec = SessionSpec::twin(None);
         let session = Session::load_with_world(&spec, world.clone()).unwrap();
         // The mission is not told the truth: it delivers what it finds.
         let configured = Config::default().mission.total_blocks;

@@ -38,6 +38,26 @@ impl LocalizeArgs {
         }
     }
 
+    /// `--estimator` as typed, for a recording's metadata.
+    pub fn estimator_name(&self) -> Option<String> {
+        self.estimator.map(|e| match e {
+            Estimator::Ekf => "ekf".to_string(),
+            Estimator::Mcl => "mcl".to_string(),
+        })
+    }
+
+    pub fn map_name(&self) -> Option<String> {
+        self.map.as_ref().map(|p| p.display().to_string())
+    }
+
+    /// `--initial-pose` as it would be typed.
+    pub fn initial_pose_text(&self) -> Option<String> {
+        self.initial_pose.map(|i| match i {
+            InitialPose::Unknown => "unknown".to_string(),
+            InitialPose::At(p) => format!("{},{},{}", p.x, p.y, p.theta.to_degrees()),
+        })
+    }
+
     /// The first option given, for refusing them where they do nothing.
     pub fn given(&self) -> Option<&'static str> {
         [

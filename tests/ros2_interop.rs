@@ -9,6 +9,8 @@
 //! (./scripts/test makes a virtualenv and sets it, with NAVDECK_REQUIRE_INTEROP=1 so
 //! that a missing peer fails the run instead of skipping).
 
+mod python_support;
+
 use navdeck::config::Config;
 use navdeck::data::{ArmState, ArmTarget, GripperCommand};
 use navdeck::geometry::Pose2;
@@ -29,19 +31,7 @@ const CYCLONE_CONFIG: &str = "<CycloneDDS><Domain Id=\"any\"><General><Interface
 </Peers></Discovery></Domain></CycloneDDS>";
 
 fn python() -> Option<String> {
-    match std::env::var("NAVDECK_PYTHON") {
-        Ok(p) if !p.is_empty() => Some(p),
-        _ => {
-            assert!(
-                std::env::var_os("NAVDECK_REQUIRE_INTEROP").is_none(),
-                "NAVDECK_PYTHON is not set: the Cyclone DDS peer cannot run"
-            );
-            eprintln!(
-                "skipped: set NAVDECK_PYTHON to a Python with cyclonedds (./scripts/test does)"
-            );
-            None
-        }
-    }
+    python_support::python("the Cyclone DDS peer", "cyclonedds")
 }
 
 fn scratch(name: &str) -> PathBuf {

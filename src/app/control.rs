@@ -43,10 +43,12 @@ impl ControlClock {
 impl App {
     /// Runs every control step due up to `now` (periodic ticks and deadman expiries).
     pub fn update(&mut self, now: f64) {
+        self.record_input(crate::record::msgs::InputMsg::update(now));
         self.advance_to(now);
         // Between control steps, still bring what the robot reports up to date.
         self.sense(now);
         self.poll_picker(false);
+        self.record_log();
         self.refresh_revision();
     }
 
@@ -99,6 +101,7 @@ impl App {
                 self.clock.last_update = due;
                 self.run_step(due, Due::Tick);
                 self.show_picture(due);
+                self.record_tick(due);
                 if self.pilot.mode() == Mode::Exploration {
                     self.autosave(due);
                 }
@@ -124,8 +127,9 @@ impl App {
     fn run_step(&mut self, t: f64, due: Due) {
         self.now = self.now.max(t);
         let before = self.pilot.mode();
-        let stepped = crate::link::drive::step(self.link.as_mut(), &mut self.pilot, t, due);
-        self.take_log(stepped.log);
+        let mut stepped = crate::link::drive::step(self.link.as_mut(), &mut self.pilot, t, due);
+        self.record_step(t, &stepped);
+        self.take_log(std::mem::take(&mut stepped.log));
         self.follow_mode(before);
         if let Some(frame) = stepped.frame {
             if let Some(s) = &frame.sightings {

@@ -25,6 +25,8 @@ pub struct LogBook {
     /// Lines ever written, so a view can tell something new arrived.
     written: u64,
     sink: Option<Sink>,
+    /// Lines written since the last `take_fresh`, when something (a recording) takes them.
+    fresh: Option<Vec<Entry>>,
 }
 
 impl std::fmt::Debug for LogBook {
@@ -63,6 +65,7 @@ impl LogBook {
             capacity: capacity.max(1),
             written: 0,
             sink: None,
+            fresh: None,
         }
     }
 
@@ -94,6 +97,9 @@ impl LogBook {
             repeats: 1,
         };
         self.written += 1;
+        if let Some(fresh) = self.fresh.as_mut() {
+            fresh.push(entry.clone());
+        }
         if let Some(sink) = self.sink.as_mut() {
             let written = writeln!(sink, "{}", file_line(&entry)).and_then(|()| sink.flush());
             if written.is_err() {
@@ -115,6 +121,26 @@ impl LogBook {
             self.entries.remove(routine.unwrap_or(0));
         }
         self.entries.push_back(entry);
+    }
+
+    /// From now on every line is also kept until `take_fresh` takes it; the lines already
+    /// in the book come first.
+    pub fn keep_fresh(&mut self) {
+        let earlier = self.entries.iter().flat_map(|e| {
+            std::iter::repeat_n(
+                Entry {
+                    repeats: 1,
+                    ..e.clone()
+                },
+                e.repeats as usize,
+            )
+        });
+        self.fresh = Some(earlier.collect());
+    }
+
+    /// The lines written since the last call (with `keep_fresh` on).
+    pub fn take_fresh(&mut self) -> Vec<Entry> {
+        self.fresh.as_mut().map(std::mem::take).unwrap_or_default()
     }
 
     /// The newest `n` entries, oldest first.

@@ -12,6 +12,7 @@ pub mod loading;
 pub mod log;
 mod picture;
 mod pose_estimate;
+mod recording;
 mod revision;
 mod saving;
 pub mod screen;
@@ -78,6 +79,9 @@ pub struct App {
     redraw: revision::Redraw,
     picture: picture::Shown,
     camera: camera_feed::CameraFeed,
+    recording: Option<recording::Recording>,
+    /// Each control tick's estimate, kept for a replay to compare (`watch_estimates`).
+    watched: Option<Vec<recording::TickEstimate>>,
 }
 
 impl App {
@@ -107,6 +111,8 @@ impl App {
             redraw: revision::Redraw::default(),
             picture: picture::Shown::default(),
             camera: camera_feed::CameraFeed::default(),
+            recording: None,
+            watched: None,
             config,
         };
         let label = app.link.label();
@@ -146,6 +152,13 @@ impl App {
 
     /// Resolves a key through the active mode's keymap and acts on it.
     pub fn handle_key(&mut self, key: Key, kind: KeyKind, now: f64) {
+        let event = crate::record::msgs::InputMsg::key(now, key.to_string(), kind as u8);
+        self.record_input(event);
+        self.handle_key_inner(key, kind, now);
+        self.record_log();
+    }
+
+    fn handle_key_inner(&mut self, key: Key, kind: KeyKind, now: f64) {
         self.advance_to(now);
         if kind == KeyKind::Press && self.pilot.link_status() == &LinkStatus::Back {
             // Control resumes only on the user's word after a loss (the key is not acted on).
@@ -420,6 +433,7 @@ impl App {
     pub fn shutdown(&mut self, reason: &str) {
         self.run_intent(pilot::Intent::Halt);
         self.link.stop();
+        self.record_stop();
         self.log(Level::Warn, format!("robot stopped: {reason}"));
     }
 
@@ -504,6 +518,9 @@ impl App {
 
     /// Tells the console the terminal's size (the map scale depends on it).
     pub fn resize(&mut self, width: u16, height: u16) {
+        self.record_input(crate::record::msgs::InputMsg::resize(
+            self.now, width, height,
+        ));
         self.screen = (width, height);
         self.refresh_revision();
     }

@@ -28,6 +28,10 @@ pub fn pilot_for(link: &dyn RobotLink, settings: Settings, now: f64) -> Pilot {
 #[derive(Debug, Default)]
 pub struct Stepped {
     pub frame: Option<SensorFrame>,
+    /// Why the poll failed, when it did.
+    pub failure: Option<String>,
+    /// The command sent, when one was.
+    pub command: Option<crate::data::Command>,
     pub log: Vec<LogLine>,
 }
 
@@ -36,18 +40,16 @@ pub struct Stepped {
 pub fn step(link: &mut dyn RobotLink, pilot: &mut Pilot, t: f64, due: Due) -> Stepped {
     let polled = link.poll(t);
     let truth = link.ground_truth().map(|g| g.pose());
-    let failure;
-    let report = match &polled {
-        Ok(frame) => Report::Frame(frame),
-        Err(e) => {
-            failure = e.to_string();
-            Report::Failed(&failure)
-        }
+    let failure = polled.as_ref().err().map(ToString::to_string);
+    let report = match (&polled, &failure) {
+        (Ok(frame), _) => Report::Frame(frame),
+        (Err(_), Some(why)) => Report::Failed(why),
+        (Err(_), None) => Report::Failed(""),
     };
     let out = pilot.step(Input::report(t, report, truth, due));
     let mut log = out.log;
-    if let Some(command) = out.command
-        && let Err(e) = link.send(&command)
+    if let Some(command) = &out.command
+        && let Err(e) = link.send(command)
     {
         let reason = format!("command not sent: {e}");
         let failed = Input::report(t, Report::Failed(&reason), truth, Due::Nothing);
@@ -55,6 +57,8 @@ pub fn step(link: &mut dyn RobotLink, pilot: &mut Pilot, t: f64, due: Due) -> St
     }
     Stepped {
         frame: polled.ok(),
+        failure,
+        command: out.command,
         log,
     }
 }

@@ -5,6 +5,7 @@
 pub mod camera;
 pub mod drive;
 pub mod rate;
+pub mod replay;
 pub mod ros2;
 pub mod serial;
 pub mod sim;
@@ -62,6 +63,9 @@ pub enum LinkError {
     Lost(String),
     #[error("link I/O: {0}")]
     Io(#[from] std::io::Error),
+    /// A failure read back from a recording, in the words it was recorded with.
+    #[error("{0}")]
+    Replayed(String),
 }
 
 /// A connection to one robot. Sync and `Send`; any async I/O lives inside the implementation.

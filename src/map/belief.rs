@@ -223,12 +223,17 @@ impl BeliefMap {
     pub fn occupancy_grid(&self) -> OccupancyGrid {
         let c = &self.costmap;
         let mut grid = OccupancyGrid::new(c.width, c.height, c.resolution, c.origin, -1);
-        for (i, cell) in grid.cells.iter_mut().enumerate() {
-            if self.evidence.is_occupied(i) {
-                *cell = OCCUPIED;
-            } else if self.evidence.known(i) {
-                *cell = 0;
-            }
+        // Zipped slices, no indexing: the loop vectorises (a recording converts the map
+        // every few seconds on the control loop).
+        let cells = (self.evidence.occupied().iter()).zip(self.evidence.log_odds());
+        for (cell, (&occupied, &log_odds)) in grid.cells.iter_mut().zip(cells) {
+            *cell = if occupied {
+                OCCUPIED
+            } else if log_odds != 0.0 {
+                0
+            } else {
+                -1
+            };
         }
         grid
     }

@@ -54,6 +54,11 @@ impl Evidence {
         self.log_odds[i] != 0.0
     }
 
+    /// Every cell's log-odds, row-major: zero where nothing was ever seen.
+    pub fn log_odds(&self) -> &[f32] {
+        &self.log_odds
+    }
+
     /// Every cell's occupied flag, row-major.
     pub fn occupied(&self) -> &[bool] {
         &self.occupied

@@ -19,7 +19,12 @@ fn rect((x, y, w, h): Area) -> Rect {
 }
 
 pub fn draw(frame: &mut Frame, app: &App, theme: Theme) {
-    let size = frame.area();
+    draw_in(frame, frame.area(), app, theme);
+}
+
+/// The console in `size`, a part of the frame from its top-left corner (a replay keeps
+/// the bottom row for its time bar).
+pub fn draw_in(frame: &mut Frame, size: Rect, app: &App, theme: Theme) {
     if size.width < MIN_SIZE.0 || size.height < MIN_SIZE.1 {
         let text = format!(
             "terminal too small (need {}x{}, this one is {}x{}): make it larger, or q quits.",

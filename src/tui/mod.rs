@@ -4,6 +4,7 @@
 pub mod draw;
 pub mod events;
 pub mod input;
+pub mod replay;
 pub mod run;
 pub mod signals;
 pub mod terminal;

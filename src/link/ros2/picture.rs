@@ -131,11 +131,11 @@ pub fn grid(g: &OccupancyGrid, stamp: Time, frame: &str) -> msgs::OccupancyGrid 
             height: g.height as u32,
             origin: pose(Pose2::new(g.origin.x, g.origin.y, 0.0)),
         },
-        data: g.cells.clone(),
+        data: msgs::Cells(g.cells.clone()),
     }
 }
 
-fn color_of(id: u32) -> ColorRgba {
+pub fn color_of(id: u32) -> ColorRgba {
     let (r, g, b) = match MarkerCategory::of(id) {
         MarkerCategory::Boundary => (0.6, 0.6, 0.6),
         MarkerCategory::Obstacle => (1.0, 0.5, 0.0),

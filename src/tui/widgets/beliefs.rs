@@ -40,7 +40,7 @@ pub fn render(app: &App, vp: &Viewport, theme: Theme, buf: &mut Buffer) {
 }
 
 /// The 95 % outline of `cov` around `center`, when it is larger than one cell.
-fn draw_ellipse(
+pub fn draw_ellipse(
     center: Point2,
     cov: &Matrix2<f64>,
     vp: &Viewport,

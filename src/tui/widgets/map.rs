@@ -84,6 +84,18 @@ fn draw_grid_ascii(grid: &OccupancyGrid, vp: &Viewport, theme: Theme, buf: &mut 
     });
 }
 
+/// A recorded occupancy grid: '#' occupied, '.' known and free, unknown left blank.
+pub fn draw_occupancy_ascii(grid: &OccupancyGrid, vp: &Viewport, theme: Theme, buf: &mut Buffer) {
+    draw_ascii(grid, vp, buf, |cols, rows| {
+        let worst = grid.max_in_cells(cols, rows);
+        if worst >= OCCUPIED / 2 {
+            Some(('#', theme.occupied()))
+        } else {
+            (worst >= 0).then_some(('.', theme.free()))
+        }
+    });
+}
+
 /// One glyph per screen cell, chosen by `look` from the grid cells under it.
 fn draw_ascii(
     grid: &dyn CellRanges,
@@ -211,7 +223,7 @@ fn draw_world_objects(app: &App, vp: &Viewport, theme: Theme, buf: &mut Buffer) 
 }
 
 /// The robot as `body` with a heading tick in the neighbouring cell it faces.
-fn draw_robot(pose: Pose2, body: char, vp: &Viewport, style: Style, buf: &mut Buffer) {
+pub fn draw_robot(pose: Pose2, body: char, vp: &Viewport, style: Style, buf: &mut Buffer) {
     let Some((cx, cy)) = vp.cell(pose.position()) else {
         return;
     };

@@ -29,7 +29,7 @@ pub fn render(app: &App, vp: &Viewport, theme: Theme, buf: &mut Buffer) {
     }
 }
 
-fn draw_polyline(points: &[Point2], vp: &Viewport, style: Style, buf: &mut Buffer) {
+pub fn draw_polyline(points: &[Point2], vp: &Viewport, style: Style, buf: &mut Buffer) {
     let step = vp.scale / DOTS_PER_COLUMN;
     for pair in points.windows(2) {
         let (a, b) = (pair[0], pair[1]);
@@ -42,7 +42,7 @@ fn draw_polyline(points: &[Point2], vp: &Viewport, style: Style, buf: &mut Buffe
     }
 }
 
-fn put(buf: &mut Buffer, vp: &Viewport, p: Point2, glyph: char, style: Style) {
+pub fn put(buf: &mut Buffer, vp: &Viewport, p: Point2, glyph: char, style: Style) {
     if let Some(cell) = vp.cell(p) {
         buf[cell].set_char(glyph).set_style(style);
     }

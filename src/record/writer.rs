@@ -1,0 +1,180 @@
+//! The recording's own thread: it owns the file and the MCAP writer, so the control loop
+//! only ever hands it a finished message and never waits on the disk.
+
+use super::config::Compression;
+use super::schema::schema;
+use super::topics::TOPICS;
+use mcap::records::MessageHeader;
+use std::collections::BTreeMap;
+use std::fs::File;
+use std::io::BufWriter;
+use std::sync::mpsc::Receiver;
+use std::sync::{Arc, Mutex};
+
+/// A message's CDR bytes, made on the writer's thread: the control loop only builds the
+/// message.
+pub(super) type Encoder = Box<dyn FnOnce() -> Vec<u8> + Send>;
+
+/// What the control loop hands the writer.
+pub(super) enum Packet {
+    Message {
+        topic: usize,
+        sequence: u32,
+        time_ns: u64,
+        data: Encoder,
+    },
+    Attachment {
+        name: String,
+        media_type: String,
+        time_ns: u64,
+        data: Vec<u8>,
+    },
+    Metadata {
+        name: String,
+        entries: BTreeMap<String, String>,
+    },
+    /// Answered once everything before it is written (`Recorder::wait_for_writer`).
+    Barrier(std::sync::mpsc::Sender<()>),
+}
+
+/// What a finished recording holds.
+#[derive(Clone, Debug, Default, PartialEq, serde::Serialize)]
+pub struct Summary {
+    pub path: String,
+    pub bytes: u64,
+    /// (topic, ROS 2 type, messages), in channel order.
+    pub topics: Vec<(String, String, u64)>,
+    /// Messages the writer could not keep up with (none unless the disk stalled).
+    pub dropped: u64,
+}
+
+pub(super) struct Options {
+    pub compression: Compression,
+    pub level: u32,
+    pub chunk_period_ns: u64,
+}
+
+type McapWriter = mcap::Writer<BufWriter<File>>;
+
+/// Opens the MCAP file on `file` and registers every topic.
+pub(super) fn open(file: File, options: &Options) -> Result<McapWriter, mcap::McapError> {
+    let compression = match options.compression {
+        Compression::Zstd => Some(mcap::Compression::Zstd),
+        Compression::Lz4 => Some(mcap::Compression::Lz4),
+        Compression::None => None,
+    };
+    let write_options = mcap::WriteOptions::new()
+        .compression(compression)
+        .compression_level(options.level)
+        .profile("ros2")
+        .library(concat!("navdeck ", env!("CARGO_PKG_VERSION")))
+        // Chunks close on time (`chunk_period`); this only bounds a burst.
+        .chunk_size(Some(4 << 20));
+    let mut writer = mcap::Writer::with_options(BufWriter::new(file), write_options)?;
+    for (i, (_, topic, ty)) in TOPICS.iter().enumerate() {
+        let text = schema(ty).unwrap_or_default();
+        let schema_id = writer.add_schema(ty, "ros2msg", text.as_bytes())?;
+        let id = writer.add_channel(schema_id, topic, "cdr", &BTreeMap::new())?;
+        debug_assert_eq!(usize::from(id), i + 1);
+    }
+    writer.flush()?;
+    Ok(writer)
+}
+
+/// Writes what arrives until the sender goes, then the summary and footer. A failure
+/// is put in `problem` and ends the writing (what was written stays readable).
+pub(super) fn run(
+    mut writer: McapWriter,
+    packets: Receiver<Vec<Packet>>,
+    options: Options,
+    problem: Arc<Mutex<Option<String>>>,
+) -> Summary {
+    let mut counts = vec![0u64; TOPICS.len()];
+    let mut chunk_start: Option<u64> = None;
+    let mut failed = None;
+    for packet in packets.iter().flatten() {
+        if failed.is_some() {
+            if let Packet::Barrier(done) = packet {
+                let _ = done.send(());
+            }
+            continue;
+        }
+        let result = match packet {
+            Packet::Message {
+                topic,
+                sequence,
+                time_ns,
+                data,
+            } => {
+                counts[topic] += 1;
+                let header = MessageHeader {
+                    channel_id: (topic + 1) as u16,
+                    sequence,
+                    log_time: time_ns,
+                    publish_time: time_ns,
+                };
+                let start = *chunk_start.get_or_insert(time_ns);
+                writer
+                    .write_to_known_channel(&header, &data())
+                    .and_then(|()| {
+                        // Closing the chunk on time makes it readable after a crash.
+                        if time_ns.saturating_sub(start) >= options.chunk_period_ns {
+                            chunk_start = None;
+                            writer.flush()
+                        } else {
+                            Ok(())
+                        }
+                    })
+            }
+            Packet::Attachment {
+                name,
+                media_type,
+                time_ns,
+                data,
+            } => writer.attach(&mcap::Attachment {
+                log_time: time_ns,
+                create_time: time_ns,
+                name,
+                media_type,
+                data: data.into(),
+            }),
+            Packet::Metadata { name, entries } => writer.write_metadata(&mcap::records::Metadata {
+                name,
+                metadata: entries,
+            }),
+            Packet::Barrier(done) => {
+                let _ = done.send(());
+                Ok(())
+            }
+        };
+        if let Err(e) = result {
+            failed = Some(e.to_string());
+        }
+    }
+    if failed.is_none()
+        && let Err(e) = writer.finish()
+    {
+        failed = Some(e.to_string());
+    }
+    let bytes = writer
+        .into_inner()
+        .into_inner()
+        .ok()
+        .and_then(|f| f.metadata().ok())
+        .map_or(0, |m| m.len());
+    if let Some(why) = failed
+        && let Ok(mut slot) = problem.lock()
+    {
+        *slot = Some(why);
+    }
+    Summary {
+        path: String::new(),
+        bytes,
+        topics: TOPICS
+            .iter()
+            .zip(counts)
+            .map(|((_, name, ty), n)| (name.to_string(), ty.to_string(), n))
+            .collect(),
+        dropped: 0,
+    }
+}

@@ -62,17 +62,29 @@ pub struct Report {
 /// Presses `keys` through the active keymap at `rate` keys per simulated second, waits
 /// (up to `FOLLOW_TIMEOUT`) while the robot follows a path, lets it come to rest, and reports.
 pub fn run(app: &mut App, keys: &[Key], rate: f64) -> Report {
-    run_paced(app, keys, rate, &mut |_| true)
+    run_keys(app, keys, rate, &mut |_| true, false)
 }
 
 /// As `run`, calling `pace(t)` before the session reaches time `t`: a real robot's link
-/// passes a pacer that waits for the wall clock (the twin's runs need none). The run
-/// ends early, robot stopped, when `pace` returns false (a signal arrived).
+/// passes a pacer that waits for the wall clock (the twin's runs need none), and the
+/// session is brought up to date every control period between keys, as the console
+/// does, so what the robot and other nodes send is taken in as it comes. The run ends
+/// early, robot stopped, when `pace` returns false (a signal arrived).
 pub fn run_paced(
     app: &mut App,
     keys: &[Key],
     rate: f64,
     pace: &mut dyn FnMut(f64) -> bool,
+) -> Report {
+    run_keys(app, keys, rate, pace, true)
+}
+
+fn run_keys(
+    app: &mut App,
+    keys: &[Key],
+    rate: f64,
+    pace: &mut dyn FnMut(f64) -> bool,
+    every_period: bool,
 ) -> Report {
     let gap = 1.0 / rate;
     let start = app.now();
@@ -107,7 +119,14 @@ pub fn run_paced(
         if app.should_quit() {
             break;
         }
-        t += gap;
+        let next = t + gap;
+        while every_period && t + period < next - 1e-9 {
+            t += period;
+            if !step(app, t) {
+                return report(app, keys.len());
+            }
+        }
+        t = next;
     }
     if !app.should_quit() {
         // The time after the last key is a control tick too.
@@ -158,7 +177,13 @@ pub fn report(app: &App, keys: usize) -> Report {
         cross_track_rms: app.pilot().cross_track_rms(),
         true_cross_track_rms: app.pilot().true_cross_track_rms(),
         quit: app.should_quit(),
-        warnings: app.log_book().problems().map(|e| e.text.clone()).collect(),
+        // A robot node's line (its /rosout) names the node.
+        warnings: (app.log_book().problems())
+            .map(|e| match &e.source {
+                Some(node) => format!("[{node}] {}", e.text),
+                None => e.text.clone(),
+            })
+            .collect(),
         wall_time_s: None,
         realtime_factor: None,
         recording: None,

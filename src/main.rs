@@ -61,6 +61,8 @@ mod arm_command;
 use arm_command::ArmCommand;
 mod replay_command;
 use replay_command::ReplayArgs;
+mod ros2_command;
+use ros2_command::Ros2Command;
 
 /// A terminal teleop-and-autonomy console for small differential-drive robots.
 ///
@@ -77,6 +79,12 @@ struct Cli {
     /// ROS 2: namespace of the robot's topics, e.g. /tb3 (over [ros2] namespace).
     #[arg(long, value_name = "NS")]
     ns: Option<String>,
+
+    /// Join ROS 2 beside the twin or a serial robot: RViz draws the map, plan and pose,
+    /// RViz's "2D Goal Pose" (/goal_pose) and "2D Pose Estimate" (/initialpose) act,
+    /// /rosout carries the log both ways (`--link ros2` does all this already).
+    #[arg(long)]
+    ros2: bool,
 
     /// ROS 2: DDS domain ID (default: ROS_DOMAIN_ID, else 0).
     #[arg(long, value_name = "N", value_parser = clap::value_parser!(u16).range(0..=232))]
@@ -182,6 +190,10 @@ enum Subcommand {
     Arm(ArmCommand),
     /// Play a recording (--record): the console as it was, or re-run on today's code.
     Replay(ReplayArgs),
+    /// Look at a ROS 2 domain: `ros2 topics` lists every topic with its types, counts,
+    /// rate, QoS and mismatches.
+    #[command(subcommand)]
+    Ros2(Ros2Command),
 }
 
 #[derive(Debug, clap::Subcommand)]
@@ -336,6 +348,7 @@ fn real_main(cli: Cli) -> Result<ExitCode> {
             ("--sim-camera", cli.sim_camera),
             ("--headless", cli.headless),
             ("--camera", cli.camera.is_some()),
+            ("--ros2", cli.ros2),
             ("--record", cli.record.is_some()),
             ("--estimator", cli.localize.given() == Some("--estimator")),
             ("--map", cli.localize.given() == Some("--map")),
@@ -353,6 +366,7 @@ fn real_main(cli: Cli) -> Result<ExitCode> {
                 Subcommand::World(_) => "world",
                 Subcommand::Arm(_) => "arm",
                 Subcommand::Replay(_) => "replay",
+                Subcommand::Ros2(_) => "ros2",
             };
             anyhow::bail!(
                 "{option} before `{name}` is the console's option: give the subcommand's own after it (navdeck {name} --help lists them)"
@@ -367,6 +381,20 @@ fn real_main(cli: Cli) -> Result<ExitCode> {
         Some(Subcommand::World(command)) => return world_command::run(command),
         Some(Subcommand::Arm(command)) => return arm_command::run(command),
         Some(Subcommand::Replay(args)) => return replay_command::run(args),
+        Some(Subcommand::Ros2(command)) => {
+            if let Some(option) = [
+                ("--domain", cli.domain.is_some()),
+                ("--ns", cli.ns.is_some()),
+            ]
+            .iter()
+            .find_map(|(name, on)| on.then_some(name))
+            {
+                bail!(
+                    "{option} before `ros2` is the console's option: give it after `ros2 topics`"
+                );
+            }
+            return ros2_command::run(command);
+        }
         None => {}
     }
     let spec = SessionSpec {
@@ -393,6 +421,12 @@ fn real_main(cli: Cli) -> Result<ExitCode> {
     }
     if let Some(source) = &cli.camera {
         session = session.with_camera(source, stopwatch.clone())?;
+    }
+    if cli.ros2 {
+        session = session.with_ros2(&navdeck::session::Ros2Target {
+            namespace: cli.ns.clone(),
+            domain: cli.domain,
+        })?;
     }
     let record = match (&cli.record, &session.config.record.folder) {
         (Some(path), _) => Some((path.clone(), recording_metadata(&cli))),
@@ -478,9 +512,10 @@ fn run_headless(
     }
     // A real robot moves in real time: keep the session clock on the wall clock, and
     // stop the robot on SIGINT, SIGTERM or SIGHUP.
-    let signals = match app.link().ground_truth() {
-        Some(_) => None,
-        None => Some(Signals::watch().context("cannot watch for signals")?),
+    // So does a twin beside ROS 2: the other nodes live on the wall clock.
+    let signals = match (app.link().ground_truth(), cli.ros2) {
+        (Some(_), false) => None,
+        _ => Some(Signals::watch().context("cannot watch for signals")?),
     };
     let mut report = match &signals {
         None => headless::run(&mut app, &keys, cli.key_rate),

@@ -313,6 +313,31 @@ impl Session {
         }
     }
 
+    /// Joins ROS 2 beside a robot that is not on it (`--ros2`): RViz's topics, goals and
+    /// pose estimates from RViz, /rosout both ways and the console's state. A ROS 2 link
+    /// does all this already and is left as it is.
+    pub fn with_ros2(mut self, target: &Ros2Target) -> Result<Session> {
+        if matches!(self.robot, Robot::Link(_)) && self.ros2_domain.is_some() {
+            return Ok(self);
+        }
+        if let Some(ns) = &target.namespace {
+            self.config.ros2.namespace = ns.clone();
+        }
+        let domain = domain_from(target.domain, std::env::var("ROS_DOMAIN_ID").ok())
+            .map_err(anyhow::Error::msg)?;
+        let link = crate::link::ros2::beside::Ros2Beside::join(
+            self.robot.into_link(),
+            self.config.ros2.clone(),
+            domain,
+        )
+        .context("cannot join ROS 2")?;
+        Ok(Session {
+            robot: Robot::Link(Box::new(link)),
+            ros2_domain: Some(domain),
+            ..self
+        })
+    }
+
     /// The session's config and its robot as a link, for runners that need no console.
     pub fn into_link(self) -> (Config, Box<dyn RobotLink>) {
         (self.config, self.robot.into_link())

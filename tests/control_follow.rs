@@ -66,6 +66,7 @@ fn run(kind: ControllerKind, trajectory: &Trajectory, start: Pose2) -> Run {
             }
             FollowStatus::Following { cross_track, .. } => cross.push(cross_track),
             FollowStatus::NoTrajectory => panic!("{kind}: lost its trajectory"),
+            FollowStatus::Turning { .. } => panic!("{kind}: turning with no goal heading"),
         }
         robot.drive(twist, DT);
     }

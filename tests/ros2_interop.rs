@@ -14,7 +14,7 @@ mod python_support;
 use navdeck::config::Config;
 use navdeck::data::{ArmState, ArmTarget, GripperCommand};
 use navdeck::geometry::Pose2;
-use navdeck::link::ros2::config::Rmw;
+use navdeck::link::ros2::config::{Qos, Reliability, Rmw};
 use navdeck::link::ros2::{Ros2Link, Ros2Options};
 use navdeck::link::{Picture, RobotLink, SensorFrame};
 use serde_json::Value;
@@ -539,4 +539,298 @@ fn a_gripper_goal_refused_by_an_rmw_cyclonedds_server_is_warned() {
             .iter()
             .any(|n| n.contains("gripper_controller/gripper_cmd refused the gripper goal (close)"))
     });
+}
+
+/// Reads the peer's JSON lines until `done` says it has seen enough of them (all lines so
+/// far, oldest first); panics with `what` after PATIENCE seconds.
+fn peer_lines_until(peer: &LinePeer, what: &str, done: impl Fn(&[Value]) -> bool) -> Vec<Value> {
+    let started = Instant::now();
+    let mut seen = Vec::new();
+    while !done(&seen) {
+        let left = PATIENCE - started.elapsed().as_secs_f64();
+        assert!(
+            left > 0.0,
+            "gave up waiting for {what}; the peer said {seen:?}"
+        );
+        if let Ok(line) = peer
+            .lines
+            .recv_timeout(std::time::Duration::from_secs_f64(left))
+            && let Ok(v) = serde_json::from_str::<Value>(&line)
+        {
+            seen.push(v);
+        }
+    }
+    seen
+}
+
+#[test]
+fn a_goal_pose_drives_the_twin_beside_ros2_with_rosout_both_ways_on_localhost_only() {
+    let distro = navdeck::link::ros2::environment::built_distro();
+    let Some(mut peer) = LinePeer::start_with("graph_peer.py", 93, &[distro]) else {
+        return;
+    };
+    // The peer holds lines and goals until navdeck's readers match.
+    peer.say("log 30 turtlebot3_node battery low: 11.1 V");
+    peer.say("log 10 turtlebot3_node motor tick");
+    peer.say("goal odom 1.0 0.5 0.0");
+    peer.say("goal map 1.0 0.5 1.5707963");
+    let dir = scratch("graph");
+    let cfg = dir.join("navdeck.toml");
+    // No [ros2] interfaces: ROS_LOCALHOST_ONLY alone keeps navdeck on loopback.
+    std::fs::write(&cfg, "").unwrap();
+    let out = Command::new(env!("CARGO_BIN_EXE_navdeck"))
+        .args(["--ros2", "--domain", "93", "--config"])
+        .arg(&cfg)
+        .args([
+            "--headless",
+            "--json",
+            "--keys",
+            "ffffff",
+            "--key-rate",
+            "1",
+        ])
+        .env("ROS_LOCALHOST_ONLY", "1")
+        .env_remove("ROS_DISTRO")
+        .output()
+        .expect("run navdeck");
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success(),
+        "{stdout}{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let report: Value = serde_json::from_str(&stdout).expect("one JSON report");
+    // RViz's goal: planned to and driven, ending facing its heading (within Nav2's 0.25 rad).
+    let pose = &report["true_pose"];
+    let (x, y, theta) = (f(&pose["x"]), f(&pose["y"]), f(&pose["theta"]));
+    assert!(
+        (x - 1.0).hypot(y - 0.5) < 0.1,
+        "ended at ({x:.2}, {y:.2}): {report}"
+    );
+    assert!(
+        (theta - std::f64::consts::FRAC_PI_2).abs() < 0.3,
+        "ended facing {theta:.2} rad"
+    );
+    let warnings: Vec<&str> = report["warnings"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter_map(Value::as_str)
+        .collect();
+    // The robot's own warning reached the console's log, named by its node; its debug
+    // line did not (below [ros2] rosout_level); the goal in another frame was refused.
+    assert!(
+        warnings.contains(&"[turtlebot3_node] battery low: 11.1 V"),
+        "{warnings:?}"
+    );
+    assert!(!warnings.iter().any(|w| w.contains("motor tick")));
+    assert!(
+        warnings
+            .iter()
+            .any(|w| w.contains("ignored a goal on goal_pose") && w.contains("\"odom\"")),
+        "{warnings:?}"
+    );
+    // What the peer saw: navdeck on the node list of its distribution, its log lines on
+    // /rosout with their levels, and its state up to the arrival.
+    let seen = peer_lines_until(&peer, "navdeck's node, log and arrival", |seen| {
+        let node = seen.iter().any(|v| v["node"] == "/navdeck");
+        let arrived = seen.iter().any(|v| {
+            v["state"]
+                .as_str()
+                .is_some_and(|s| s.contains("\"navigation\":\"arrived\""))
+        });
+        node && arrived
+    });
+    let navdeck_lines: Vec<&Value> = seen
+        .iter()
+        .filter_map(|v| v.get("rosout"))
+        .filter(|r| r["name"] == "navdeck")
+        .collect();
+    let level_of = |text: &str| {
+        navdeck_lines
+            .iter()
+            .find(|r| r["msg"].as_str().unwrap_or("").contains(text))
+            .map(|r| r["level"].as_u64().unwrap())
+    };
+    assert_eq!(
+        level_of("goal pose received"),
+        Some(20),
+        "{navdeck_lines:?}"
+    );
+    assert_eq!(level_of("ignored a goal"), Some(30), "{navdeck_lines:?}");
+    assert_eq!(level_of("Destination arrived"), Some(20));
+    assert_eq!(level_of("discovery on this host only"), Some(20));
+    // The robot's lines are not sent back out under navdeck's name.
+    assert_eq!(level_of("battery low"), None);
+    let states: Vec<Value> = seen
+        .iter()
+        .filter_map(|v| v["state"].as_str())
+        .map(|s| serde_json::from_str(s).unwrap())
+        .collect();
+    let following = states
+        .iter()
+        .find(|s| s["navigation"] == "following")
+        .expect("a following state");
+    assert_eq!(following["mode"], "path_following");
+    assert!((f(&following["goal"]["x"]) - 1.0).abs() < 1e-9);
+    assert!((f(&following["goal"]["theta"]) - std::f64::consts::FRAC_PI_2).abs() < 1e-6);
+    assert_eq!(states.last().unwrap()["navigation"], "arrived");
+}
+
+/// The pattern big_peer.py fills a 384 x 384 map with (seed 1 in, 2 out).
+fn map_cells(seed: usize) -> Vec<i8> {
+    (0..384 * 384)
+        .map(|i| (((i * 31 + (i / 384) * 7 + seed) % 102) as i64 - 1) as i8)
+        .collect()
+}
+
+/// The pattern big_peer.py fills images with (seed 3 mono in, 4 rgb in, 5 rgb out).
+fn pixels(count: usize, seed: usize) -> Vec<u8> {
+    (0..count)
+        .map(|i| ((i * 13 + (i / 640) * 5 + seed) & 0xFF) as u8)
+        .collect()
+}
+
+/// A full-size map and VGA images both ways with `reliability`: navdeck's own map
+/// publisher and camera subscription, and the link's endpoints for the rest.
+fn big_messages(domain: u16, reliability: Reliability) {
+    use navdeck::link::ros2::msgs;
+    use navdeck::link::ros2::participant::{Factory, join, qos_profile, take_all};
+    let name = match reliability {
+        Reliability::Reliable => "reliable",
+        Reliability::BestEffort => "best_effort",
+    };
+    let Some(peer) = LinePeer::start_with("big_peer.py", domain, &[name]) else {
+        return;
+    };
+    let qos = Qos {
+        reliability,
+        depth: 2,
+    };
+    let mut link = connect_loopback(domain, |c| c.ros2.qos = qos).expect("ROS 2 link");
+    let mut config = Config::default();
+    config.ros2.interfaces = vec!["127.0.0.1".into()];
+    let (_context, namespace, mut node) =
+        join(&config.ros2, domain, "navdeck_big").expect("a second node");
+    let mut factory = Factory {
+        node: &mut node,
+        config: &config.ros2,
+        namespace: &namespace,
+    };
+    let profile = qos_profile(qos, false);
+    let map_in = factory
+        .subscription::<msgs::OccupancyGrid>(
+            "t",
+            "big/map_in",
+            "nav_msgs",
+            "OccupancyGrid",
+            profile.clone(),
+        )
+        .unwrap();
+    let rgb_in = factory
+        .subscription::<msgs::Image>("t", "big/image_in", "sensor_msgs", "Image", profile.clone())
+        .unwrap();
+    let rgb_out = factory
+        .publisher::<msgs::Image>("t", "big/image_out", "sensor_msgs", "Image", profile)
+        .unwrap();
+    #[cfg(feature = "vision")]
+    let mut camera = {
+        let mut c = config.ros2.clone();
+        c.scan_qos = qos;
+        navdeck::link::ros2::image::Ros2ImageSource::connect(&c, domain, "camera/image_raw")
+            .expect("the camera subscription")
+    };
+    let mut grid = navdeck::map::grid::OccupancyGrid::new(
+        384,
+        384,
+        0.05,
+        navdeck::geometry::Point2::new(-10.0, -10.0),
+        -1,
+    );
+    grid.cells = map_cells(2);
+    let picture = Picture {
+        map: Some(grid),
+        ..Picture::default()
+    };
+    let image = msgs::Image {
+        header: msgs::Header::new(msgs::Time::default(), "camera"),
+        height: 480,
+        width: 640,
+        encoding: "rgb8".into(),
+        is_bigendian: 0,
+        step: 640 * 3,
+        data: pixels(640 * 480 * 3, 5),
+    };
+    let (want_map, want_rgb) = (map_cells(1), pixels(640 * 480 * 3, 4));
+    #[cfg(feature = "vision")]
+    let want_mono = pixels(640 * 480, 3);
+    let (mut map_ok, mut rgb_ok, mut out_map_ok, mut out_image_ok) = (false, false, false, false);
+    // Without OpenCV there is no camera subscription to check.
+    #[cfg(feature = "vision")]
+    let mut mono_ok = false;
+    #[cfg(not(feature = "vision"))]
+    let mono_ok = true;
+    let mut notes = Vec::new();
+    let started = Instant::now();
+    // Each side sends again every few tenths until the other has one intact copy: best
+    // effort may lose a fragment, and so the whole sample, now and then.
+    while !(map_ok && rgb_ok && mono_ok && out_map_ok && out_image_ok) {
+        assert!(
+            started.elapsed().as_secs_f64() < PATIENCE,
+            "{name}: map in {map_ok}, image in {rgb_ok}, camera {mono_ok}, map out {out_map_ok}, image out {out_image_ok}"
+        );
+        link.show(&picture);
+        rgb_out.publish(image.clone()).unwrap();
+        for m in take_all(&map_in, "map", &mut notes) {
+            assert_eq!((m.info.width, m.info.height), (384, 384), "{name}");
+            assert!(
+                m.data.0 == want_map,
+                "{name}: a map arrived with other bytes"
+            );
+            map_ok = true;
+        }
+        for m in take_all(&rgb_in, "image", &mut notes) {
+            assert_eq!((m.width, m.height, m.step), (640, 480, 1920), "{name}");
+            assert!(
+                m.data == want_rgb,
+                "{name}: an image arrived with other bytes"
+            );
+            rgb_ok = true;
+        }
+        #[cfg(feature = "vision")]
+        {
+            use navdeck::perception::pipeline::FrameSource;
+            if let Some(frame) = camera.grab().expect("a readable camera frame") {
+                assert_eq!((frame.width, frame.height), (640, 480));
+                assert!(frame.data == want_mono, "{name}: a frame with other pixels");
+                mono_ok = true;
+            }
+        }
+        while let Ok(line) = peer
+            .lines
+            .recv_timeout(std::time::Duration::from_millis(200))
+        {
+            let v: Value = serde_json::from_str(&line).unwrap();
+            for (key, ok) in [
+                ("map_out", &mut out_map_ok),
+                ("image_out", &mut out_image_ok),
+            ] {
+                if let Some(r) = v.get(key) {
+                    assert_eq!(r["intact"], true, "{name}: {line}");
+                    *ok = true;
+                }
+            }
+        }
+    }
+    assert!(notes.is_empty(), "{name}: {notes:?}");
+}
+
+#[test]
+fn a_full_size_map_and_vga_images_cross_both_ways_reliable() {
+    big_messages(94, Reliability::Reliable);
+}
+
+#[test]
+fn a_full_size_map_and_vga_images_cross_both_ways_best_effort() {
+    big_messages(95, Reliability::BestEffort);
 }

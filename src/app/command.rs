@@ -10,6 +10,8 @@ use crate::keymap::Action;
 pub enum Typed {
     /// `goto X Y`: plan to a point of the map frame, metres.
     GotoPoint(Point2),
+    /// `goto X Y THETA_DEG`: plan to a pose, ending facing THETA (RViz's "2D Goal Pose").
+    GotoPose(crate::geometry::Pose2),
     /// `goto marker ID`: plan to a landmark's approach point.
     GotoMarker(u32),
     /// `controller NAME`.
@@ -46,7 +48,7 @@ impl From<Typed> for Intent {
     }
 }
 
-pub const USAGE: &str = "goto X Y | goto marker ID | controller [pid|pure_pursuit|hybrid] | clear | save [NAME] | mission restart | pose X Y THETA_DEG | relocalize";
+pub const USAGE: &str = "goto X Y [THETA_DEG] | goto marker ID | controller [pid|pure_pursuit|hybrid] | clear | save [NAME] | mission restart | pose X Y THETA_DEG | relocalize";
 
 /// Reads one command line, or says what is wrong with it.
 pub fn parse(line: &str) -> Result<Intent, String> {
@@ -66,7 +68,12 @@ pub fn parse(line: &str) -> Result<Intent, String> {
             };
             Ok(Typed::GotoPoint(Point2::new(coord(x)?, coord(y)?)).into())
         }
-        ["goto", ..] => Err("goto wants X Y in metres, or marker ID".to_string()),
+        ["goto", x, y, theta] => crate::geometry::parse_pose_degrees(&format!("{x},{y},{theta}"))
+            .map(|p| Typed::GotoPose(p).into())
+            .map_err(|e| format!("goto: {e}")),
+        ["goto", ..] => {
+            Err("goto wants X Y in metres (and a heading in degrees), or marker ID".to_string())
+        }
         ["controller"] => Ok(Typed::WhichController.into()),
         ["controller", name] => name
             .parse()
@@ -101,6 +108,9 @@ mod tests {
             Ok(Typed::GotoPoint(Point2::new(1.2, -0.5)).into())
         );
         assert_eq!(parse("goto marker 421"), Ok(Typed::GotoMarker(421).into()));
+        let pose = crate::geometry::Pose2::new(1.5, -0.5, 90f64.to_radians());
+        assert_eq!(parse("goto 1.5 -0.5 90"), Ok(Typed::GotoPose(pose).into()));
+        assert!(parse("goto 1.5 -0.5 east").unwrap_err().contains("east"));
         assert_eq!(
             parse("controller pid"),
             Ok(Typed::Controller(ControllerKind::Pid).into())

@@ -48,7 +48,7 @@ impl App {
         // Between control steps, still bring what the robot reports up to date.
         self.sense(now);
         self.poll_picker(false);
-        self.record_log();
+        self.pass_log();
         self.refresh_revision();
     }
 
@@ -141,7 +141,7 @@ impl App {
             self.note_collisions(t);
         }
         for note in self.link.take_notes() {
-            self.log.push(t, note.level, note.text);
+            self.log.push_from(t, note.level, note.source, note.text);
         }
     }
 

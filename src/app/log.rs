@@ -12,6 +12,8 @@ pub struct Entry {
     /// How many lines of the same shape in a row this one stands for (routine lines such
     /// as "new landmark 25 (boundary)" collapse into the last of them); 1 for most.
     pub repeats: u32,
+    /// The robot's node that said it (its /rosout), or None for navdeck's own line.
+    pub source: Option<String>,
 }
 
 /// Where every line also goes as it is written: the session's log file.
@@ -83,7 +85,19 @@ impl LogBook {
     }
 
     pub fn push(&mut self, time: f64, level: Level, text: impl Into<String>) {
+        self.push_from(time, level, None, text);
+    }
+
+    /// A line said by `source` (a robot node's /rosout), or navdeck's own when None.
+    pub fn push_from(
+        &mut self,
+        time: f64,
+        level: Level,
+        source: Option<String>,
+        text: impl Into<String>,
+    ) {
         let text: String = text.into();
+        let source = source.map(|s| crate::data::printable::printable(&s, None));
         // Lines may quote what a file or a peer sent: only printable text reaches the screen.
         let text = if text.chars().any(char::is_control) {
             crate::data::printable::printable(&text.replace('\n', " "), None)
@@ -95,6 +109,7 @@ impl LogBook {
             level,
             text,
             repeats: 1,
+            source,
         };
         self.written += 1;
         if let Some(fresh) = self.fresh.as_mut() {
@@ -110,6 +125,7 @@ impl LogBook {
         if let Some(last) = self.entries.back_mut()
             && level == Level::Info
             && last.level == Level::Info
+            && last.source == entry.source
             && shape(&last.text) == shape(&entry.text)
         {
             let repeats = last.repeats + 1;
@@ -123,10 +139,14 @@ impl LogBook {
         self.entries.push_back(entry);
     }
 
-    /// From now on every line is also kept until `take_fresh` takes it; the lines already
-    /// in the book come first.
+    /// From now on every line is also kept until `take_fresh` takes it.
     pub fn keep_fresh(&mut self) {
-        let earlier = self.entries.iter().flat_map(|e| {
+        self.fresh.get_or_insert_with(Vec::new);
+    }
+
+    /// Every line in the book, oldest first, a collapsed run as its lines again.
+    pub fn expanded(&self) -> Vec<Entry> {
+        let lines = self.entries.iter().flat_map(|e| {
             std::iter::repeat_n(
                 Entry {
                     repeats: 1,
@@ -135,7 +155,7 @@ impl LogBook {
                 e.repeats as usize,
             )
         });
-        self.fresh = Some(earlier.collect());
+        lines.collect()
     }
 
     /// The lines written since the last call (with `keep_fresh` on).
@@ -168,9 +188,17 @@ impl LogBook {
     }
 }
 
-/// One line of the log file.
+/// One line of the log file; a robot node's line names the node.
 fn file_line(e: &Entry) -> String {
-    format!("{} {} {}", format_time(e.time), e.level.tag(), e.text)
+    match &e.source {
+        Some(node) => format!(
+            "{} {} [{node}] {}",
+            format_time(e.time),
+            e.level.tag(),
+            e.text
+        ),
+        None => format!("{} {} {}", format_time(e.time), e.level.tag(), e.text),
+    }
 }
 
 /// Session time as `mm:ss.d`, the log's timestamp.
@@ -187,6 +215,33 @@ pub fn format_time(t: f64) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_robot_nodes_lines_keep_its_name_and_do_not_collapse_into_navdecks() {
+        let mut log = LogBook::new(10);
+        log.push(0.0, Level::Info, "new landmark 1 (boundary)");
+        log.push_from(
+            0.1,
+            Level::Info,
+            Some("lidar".into()),
+            "new landmark 2 (boundary)",
+        );
+        log.push_from(
+            0.2,
+            Level::Info,
+            Some("lidar".into()),
+            "new landmark 3 (boundary)",
+        );
+        let lines: Vec<_> = log
+            .iter()
+            .map(|e| (e.source.as_deref(), e.repeats))
+            .collect();
+        assert_eq!(lines, [(None, 1), (Some("lidar"), 2)]);
+        assert_eq!(
+            file_line(log.last().unwrap()),
+            "00:00.2 INFO [lidar] new landmark 3 (boundary)"
+        );
+    }
 
     #[test]
     fn oldest_lines_fall_off() {

@@ -10,6 +10,7 @@ mod command;
 mod control;
 pub mod loading;
 pub mod log;
+pub mod mission_state;
 mod picture;
 mod pose_estimate;
 mod recording;
@@ -115,6 +116,9 @@ impl App {
             watched: None,
             config,
         };
+        if app.link.takes_log() {
+            app.log.keep_fresh();
+        }
         let label = app.link.label();
         app.log(
             Level::Info,
@@ -155,7 +159,7 @@ impl App {
         let event = crate::record::msgs::InputMsg::key(now, key.to_string(), kind as u8);
         self.record_input(event);
         self.handle_key_inner(key, kind, now);
-        self.record_log();
+        self.pass_log();
     }
 
     fn handle_key_inner(&mut self, key: Key, kind: KeyKind, now: f64) {
@@ -356,6 +360,7 @@ impl App {
                 self.view.log.back = self.view.log.back.saturating_sub(self.log_page());
             }
             Action::LogFilter => self.view.log.next_level(),
+            Action::LogSource => self.view.log.next_source(),
             Action::LogSearch => self.prompt = Some("/".to_string()),
             Action::ToggleTruth => {
                 if self.link.ground_truth().is_some() {
@@ -386,6 +391,10 @@ impl App {
             Typed::GotoPoint(p) => {
                 self.cursor = self.cursor.map(|_| p);
                 self.run_intent(pilot::Intent::Goto(Target::Point(p)));
+            }
+            Typed::GotoPose(pose) => {
+                self.cursor = self.cursor.map(|_| pose.position());
+                self.run_intent(pilot::Intent::Goto(Target::Pose(pose)));
             }
             Typed::GotoMarker(id) => self.run_intent(pilot::Intent::Goto(Target::Marker(id))),
             Typed::Controller(kind) => self.run_intent(pilot::Intent::Controller(kind)),

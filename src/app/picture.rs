@@ -1,6 +1,7 @@
 //! What navdeck believes, handed to links that show it elsewhere (RViz over ROS 2).
 
 use super::App;
+use super::mission_state::MissionState;
 use crate::link::Picture;
 
 /// When the full picture last went to the link, and the map revision it carried.
@@ -8,6 +9,8 @@ use crate::link::Picture;
 pub(super) struct Shown {
     at: f64,
     map: Option<u64>,
+    /// The console's state as last shown.
+    state: Option<MissionState>,
 }
 
 impl Default for Shown {
@@ -15,6 +18,7 @@ impl Default for Shown {
         Self {
             at: f64::NEG_INFINITY,
             map: None,
+            state: None,
         }
     }
 }
@@ -29,6 +33,9 @@ impl App {
         if full {
             self.picture.at = t;
         }
+        // The state goes out when it changed (its topic is latched for late joiners).
+        let state = MissionState::of(&self.pilot);
+        let state_changed = self.picture.state.as_ref() != Some(&state);
         let (slam, belief) = (self.pilot.slam(), self.pilot.belief());
         let picture = Picture {
             stamp: t,
@@ -57,7 +64,11 @@ impl App {
             // display that joins later still gets the last one.
             map: (full && self.picture.map != Some(belief.revision()))
                 .then(|| belief.occupancy_grid()),
+            state: state_changed.then(|| state.to_json()),
         };
+        if state_changed {
+            self.picture.state = Some(state);
+        }
         if picture.map.is_some() {
             self.picture.map = Some(belief.revision());
         }

@@ -8,9 +8,11 @@ use super::mode::Mode;
 use crate::data::robot::RobotConfig;
 use crate::data::{Command, SensorFrame};
 use crate::geometry::{Point2, Pose2};
+use crate::link::ConsoleLine;
 use crate::link::drive::Stepped;
 use crate::link::ros2::msgs::{self, Header};
 use crate::link::ros2::picture;
+use crate::link::ros2::rosout;
 use crate::record::msgs::{
     BlockMsg, FrameMsg, InputMsg, LogMsg, SightingMsg, SightingsMsg, StringMsg, TruthMsg,
 };
@@ -74,6 +76,10 @@ impl App {
         let (width, height) = self.screen;
         let resize = InputMsg::resize(self.now, width, height);
         recorder.publish(Topic::Input, self.now, resize);
+        // Lines not yet passed to the link go to it alone; the recording takes the whole
+        // book so far, then every new line with the link.
+        self.pass_log();
+        let earlier = self.log.expanded();
         self.log.keep_fresh();
         self.recording = Some(Recording {
             recorder,
@@ -88,7 +94,8 @@ impl App {
             wheel_angles: [0.0; 2],
             twist: (0.0, 0.0),
         });
-        self.record_log();
+        self.record_lines(earlier);
+        self.pass_log();
     }
 
     /// Where the session is being recorded, if it is.
@@ -105,7 +112,7 @@ impl App {
 
     /// Closes the recording and says what it holds.
     pub fn finish_recording(&mut self) -> Option<Result<Summary, String>> {
-        self.record_log();
+        self.pass_log();
         self.recording.take().map(|r| r.recorder.finish())
     }
 
@@ -117,23 +124,39 @@ impl App {
         }
     }
 
-    /// The log lines written since the last call, as /rosout carries them.
-    pub(super) fn record_log(&mut self) {
+    /// The log lines written since the last call, to the link that passes them on
+    /// (/rosout) and into the recording as /rosout carries them.
+    pub(super) fn pass_log(&mut self) {
+        if self.recording.is_none() && !self.link.takes_log() {
+            return;
+        }
+        let fresh = self.log.take_fresh();
+        if self.link.takes_log() && !fresh.is_empty() {
+            let lines: Vec<ConsoleLine> = fresh
+                .iter()
+                .map(|e| ConsoleLine {
+                    level: e.level,
+                    text: e.text.clone(),
+                    source: e.source.clone(),
+                })
+                .collect();
+            self.link.log(&lines);
+        }
+        self.record_lines(fresh);
+    }
+
+    fn record_lines(&mut self, lines: Vec<super::log::Entry>) {
         let Some(r) = self.recording.as_mut() else {
             return;
         };
         if let Some(why) = r.recorder.take_problem() {
             self.log.push(self.now, Level::Warn, why);
         }
-        for e in self.log.take_fresh() {
+        for e in lines {
             let msg = LogMsg {
                 stamp: r.recorder.stamp(e.time),
-                level: match e.level {
-                    Level::Info | Level::Success => 20,
-                    Level::Warn => 30,
-                    Level::Error => 40,
-                },
-                name: "navdeck".into(),
+                level: rosout::severity(e.level),
+                name: e.source.unwrap_or_else(|| "navdeck".into()),
                 msg: e.text,
                 ..LogMsg::default()
             };

@@ -43,8 +43,19 @@ pub struct LogView {
     pub back: usize,
     /// Only lines at or above this level.
     pub min_level: Option<crate::data::Level>,
-    /// Only lines containing this text (any case).
+    /// Only lines containing this text or said by a node of this name (any case).
     pub search: Option<String>,
+    /// Whose lines: everyone's, navdeck's own, or the robot's nodes' (/rosout).
+    pub source: SourceFilter,
+}
+
+/// Whose lines the log pane shows.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum SourceFilter {
+    #[default]
+    All,
+    Navdeck,
+    Robot,
 }
 
 impl LogView {
@@ -59,13 +70,28 @@ impl LogView {
         self.back = 0;
     }
 
+    /// The next source filter: every line, navdeck's own, the robot's nodes', every line.
+    pub fn next_source(&mut self) {
+        self.source = match self.source {
+            SourceFilter::All => SourceFilter::Navdeck,
+            SourceFilter::Navdeck => SourceFilter::Robot,
+            SourceFilter::Robot => SourceFilter::All,
+        };
+        self.back = 0;
+    }
+
     /// Whether the pane shows `entry`.
     pub fn shows(&self, entry: &crate::app::log::Entry) -> bool {
-        self.min_level.is_none_or(|l| entry.level >= l)
-            && self
-                .search
-                .as_ref()
-                .is_none_or(|s| entry.text.to_lowercase().contains(&s.to_lowercase()))
+        let contains = |text: &str, s: &str| text.to_lowercase().contains(&s.to_lowercase());
+        let from = match self.source {
+            SourceFilter::All => true,
+            SourceFilter::Navdeck => entry.source.is_none(),
+            SourceFilter::Robot => entry.source.is_some(),
+        };
+        from && self.min_level.is_none_or(|l| entry.level >= l)
+            && self.search.as_ref().is_none_or(|s| {
+                contains(&entry.text, s) || entry.source.as_deref().is_some_and(|n| contains(n, s))
+            })
     }
 }
 
@@ -150,5 +176,36 @@ mod tests {
         v.zoom = Some(0);
         v.zoom_step(0.07, true);
         assert_eq!(v.zoom, Some(0), "finest zoom stays");
+    }
+
+    #[test]
+    fn the_log_shows_everyones_lines_then_navdecks_then_the_robots_and_finds_nodes() {
+        use crate::app::log::Entry;
+        use crate::data::Level;
+        let line = |source: Option<&str>, level, text: &str| Entry {
+            time: 0.0,
+            level,
+            text: text.into(),
+            repeats: 1,
+            source: source.map(String::from),
+        };
+        let own = line(None, Level::Info, "mode MANUAL");
+        let robot = line(Some("turtlebot3_node"), Level::Warn, "battery low");
+        let mut view = LogView::default();
+        assert!(view.shows(&own) && view.shows(&robot));
+        view.next_source();
+        assert_eq!(view.source, SourceFilter::Navdeck);
+        assert!(view.shows(&own) && !view.shows(&robot));
+        view.next_source();
+        assert!(!view.shows(&own) && view.shows(&robot));
+        view.next_source();
+        assert_eq!(view.source, SourceFilter::All);
+        // A search matches a node's name as well as the text.
+        view.search = Some("TURTLEBOT3".into());
+        assert!(view.shows(&robot) && !view.shows(&own));
+        // Level and source filters combine.
+        view.search = None;
+        view.next_level();
+        assert!(view.shows(&robot) && !view.shows(&own));
     }
 }

@@ -69,6 +69,12 @@ pub struct FollowConfig {
     pub controller: ControllerKind,
     /// Arrived when this close to the goal, metres (seed 001 section 6 drops a waypoint at 5 cm).
     pub goal_tolerance: f64,
+    /// With a goal heading (a goal pose), arrived when facing within this of it, radians
+    /// (Nav2's SimpleGoalChecker `yaw_goal_tolerance`: 0.25).
+    pub yaw_tolerance: f64,
+    /// Fastest turn in place to a goal's heading, rad/s (Nav2's RotationShimController
+    /// `rotate_to_heading_angular_vel`: 1.8), within the robot's own limit.
+    pub rotate_speed: f64,
     /// Floor on the reference speed, m/s: the profile ends at 0, the robot must still arrive.
     pub min_speed: f64,
     /// While following, the forward command is cut when keeping it up until the robot
@@ -87,6 +93,8 @@ impl Default for FollowConfig {
         Self {
             controller: ControllerKind::Hybrid,
             goal_tolerance: 0.05,
+            yaw_tolerance: 0.25,
+            rotate_speed: 1.8,
             min_speed: 0.03,
             stop_margin: 0.03,
             pid: PidFollowConfig::default(),
@@ -202,6 +210,8 @@ impl FollowConfig {
         let (pid, pp, hy) = (&self.pid, &self.pure_pursuit, &self.hybrid);
         crate::data::check::within(&[
             ("goal_tolerance", self.goal_tolerance, 0.001, 2.0),
+            ("yaw_tolerance", self.yaw_tolerance, 0.001, 3.2),
+            ("rotate_speed", self.rotate_speed, 0.01, 20.0),
             ("min_speed", self.min_speed, 0.001, 5.0),
             ("stop_margin", self.stop_margin, 0.0, 1.0),
             ("pid.kp", pid.kp, 0.0, 100.0),

@@ -22,6 +22,8 @@ pub enum FollowStatus {
         eta: f64,
         cross_track: f64,
     },
+    /// At the goal's position, turning in place to its heading: the error left, radians.
+    Turning { error: f64 },
     /// Within the goal tolerance (seed 004 section D: "finished"); the twist is zero from now on.
     Arrived,
 }
@@ -33,6 +35,9 @@ pub struct FollowStep {
     pub status: FollowStatus,
 }
 
+/// Turn rate per radian of heading error when turning to a goal's heading, 1/s.
+const TURN_GAIN: f64 = 2.0;
+
 /// Follows one trajectory at a time with a switchable controller.
 #[derive(Debug)]
 pub struct Follower {
@@ -43,6 +48,10 @@ pub struct Follower {
     trajectory: Option<Trajectory>,
     tracker: ProgressTracker,
     progress: Option<Progress>,
+    /// The heading to end with (a goal pose's), radians; None ends facing the path.
+    goal_heading: Option<f64>,
+    /// At the goal's position; with a goal heading, turning to it until `arrived`.
+    at_goal: bool,
     arrived: bool,
     squares: f64,
     samples: usize,
@@ -69,10 +78,19 @@ impl Follower {
             trajectory: None,
             tracker: ProgressTracker::default(),
             progress: None,
+            goal_heading: None,
+            at_goal: false,
             arrived: false,
             squares: 0.0,
             samples: 0,
         }
+    }
+
+    /// The heading to end with once at the goal (RViz's "2D Goal Pose"), or None to stop
+    /// facing along the path's end. Kept across trajectories until changed.
+    pub fn set_goal_heading(&mut self, heading: Option<f64>) {
+        self.goal_heading = heading;
+        self.arrived = false;
     }
 
     /// Starts following `trajectory` from its beginning; an empty one clears it.
@@ -111,6 +129,11 @@ impl Follower {
         self.arrived
     }
 
+    /// At the goal's position, still turning to its heading.
+    pub fn is_turning_to_heading(&self) -> bool {
+        self.at_goal && !self.arrived
+    }
+
     /// Root mean square of the cross-track error over the steps of this trajectory, metres.
     pub fn cross_track_rms(&self) -> Option<f64> {
         (self.samples > 0).then(|| (self.squares / self.samples as f64).sqrt())
@@ -124,6 +147,9 @@ impl Follower {
         if self.arrived {
             return stopped(FollowStatus::Arrived);
         }
+        if self.at_goal {
+            return self.turn_to_goal_heading(pose);
+        }
         let Some(progress) = self.tracker.update(pose, trajectory) else {
             return stopped(FollowStatus::NoTrajectory);
         };
@@ -133,8 +159,8 @@ impl Follower {
         if progress.remaining <= Self::END_ZONE
             && progress.goal_distance <= self.config.goal_tolerance
         {
-            self.arrived = true;
-            return stopped(FollowStatus::Arrived);
+            self.at_goal = true;
+            return self.turn_to_goal_heading(pose);
         }
         let mut reference = progress;
         reference.speed = reference.speed.max(self.config.min_speed);
@@ -153,10 +179,30 @@ impl Follower {
         }
     }
 
+    /// At the goal: turn in place until the heading is within `yaw_tolerance` of the goal
+    /// heading (Nav2's goal checker: position first, then yaw), then arrived.
+    fn turn_to_goal_heading(&mut self, pose: Pose2) -> FollowStep {
+        let error = self
+            .goal_heading
+            .map_or(0.0, |h| crate::geometry::wrap_angle(h - pose.theta));
+        if error.abs() <= self.config.yaw_tolerance {
+            self.arrived = true;
+            return stopped(FollowStatus::Arrived);
+        }
+        let top = self.config.rotate_speed.min(self.limits.max_angular);
+        // A proportional turn (the error halves in about 0.35 s), capped at the rotate speed.
+        let angular = (TURN_GAIN * error).clamp(-top, top);
+        FollowStep {
+            twist: Twist::new(0.0, angular),
+            status: FollowStatus::Turning { error },
+        }
+    }
+
     fn restart(&mut self) {
         self.tracker.reset();
         self.controller.reset();
         self.progress = None;
+        self.at_goal = false;
         self.arrived = false;
         self.squares = 0.0;
         self.samples = 0;
@@ -195,6 +241,39 @@ mod tests {
             ..FollowConfig::default()
         };
         Follower::new(config, 0.4, 4.0)
+    }
+
+    #[test]
+    fn with_a_goal_heading_it_turns_in_place_at_the_goal_then_arrives() {
+        let mut f = follower(ControllerKind::Hybrid);
+        f.set_goal_heading(Some(PI / 2.0));
+        f.set_trajectory(line(1.0));
+        // At the end of the line, facing along it: a quarter turn left is due.
+        let mut pose = Pose2::new(1.0, 0.0, 0.0);
+        let first = f.step(pose, 0.1);
+        assert!(matches!(first.status, FollowStatus::Turning { error } if error > 1.5));
+        assert_eq!(first.twist.linear, 0.0);
+        assert!(first.twist.angular > 0.0);
+        let mut steps = 0;
+        loop {
+            let step = f.step(pose, 0.1);
+            if step.status == FollowStatus::Arrived {
+                break;
+            }
+            pose.theta += step.twist.angular * 0.1;
+            steps += 1;
+            assert!(steps < 100, "never faced the goal heading");
+        }
+        assert!((pose.theta - PI / 2.0).abs() <= FollowConfig::default().yaw_tolerance);
+        assert_eq!(f.step(pose, 0.1).twist, Twist::ZERO);
+    }
+
+    #[test]
+    fn without_a_goal_heading_it_arrives_facing_any_way() {
+        let mut f = follower(ControllerKind::Hybrid);
+        f.set_trajectory(line(1.0));
+        let step = f.step(Pose2::new(1.0, 0.0, 2.0), 0.1);
+        assert_eq!(step.status, FollowStatus::Arrived);
     }
 
     #[test]

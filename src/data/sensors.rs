@@ -90,6 +90,9 @@ pub struct SensorFrame {
     /// A pose estimate placed from outside navdeck (RViz's "2D Pose Estimate" on ROS 2
     /// `/initialpose`), in the map frame.
     pub initial_pose: Option<crate::geometry::Pose2>,
+    /// A goal given from outside navdeck (RViz's "2D Goal Pose" on ROS 2 `/goal_pose`),
+    /// in the map frame: plan to it and drive there, ending facing its heading.
+    pub goal: Option<crate::geometry::Pose2>,
     /// An arm's joints, when the robot has one and reported them.
     pub arm: Option<super::ArmState>,
 }

@@ -64,6 +64,7 @@ pub enum Action {
     LogOlder,
     LogNewer,
     LogFilter,
+    LogSource,
     LogSearch,
     // Planning and following.
     CursorLeft,
@@ -83,7 +84,7 @@ pub enum Action {
 
 impl Action {
     /// Every action, in the order the help overlay lists them.
-    pub const ALL: [Action; 66] = [
+    pub const ALL: [Action; 67] = [
         Action::ModeManual,
         Action::ModeExplore,
         Action::ModeThink,
@@ -138,6 +139,7 @@ impl Action {
         Action::LogOlder,
         Action::LogNewer,
         Action::LogFilter,
+        Action::LogSource,
         Action::LogSearch,
         Action::CursorLeft,
         Action::CursorRight,
@@ -209,6 +211,7 @@ impl Action {
             Action::LogOlder => "log_older",
             Action::LogNewer => "log_newer",
             Action::LogFilter => "log_filter",
+            Action::LogSource => "log_source",
             Action::LogSearch => "log_search",
             Action::CursorLeft => "cursor_left",
             Action::CursorRight => "cursor_right",
@@ -286,6 +289,7 @@ impl Action {
             Action::LogOlder => "log: page back",
             Action::LogNewer => "log: page forward",
             Action::LogFilter => "log: all, warnings, errors",
+            Action::LogSource => "log: all, navdeck, robot",
             Action::LogSearch => "log: lines containing …",
             Action::CursorLeft => "goal cursor left",
             Action::CursorRight => "goal cursor right",

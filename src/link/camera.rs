@@ -1,7 +1,7 @@
 //! A camera beside any link (`--camera`): the robot's link drives and senses as before,
 //! and the camera pipeline's newest detection rides along in each frame.
 
-use super::{Command, LinkError, Notice, Picture, RobotLink, SensorFrame};
+use super::{Command, ConsoleLine, LinkError, Notice, Picture, RobotLink, SensorFrame};
 use crate::perception::pipeline::CameraPipeline;
 
 pub struct WithCamera {
@@ -56,5 +56,21 @@ impl RobotLink for WithCamera {
 
     fn take_notes(&mut self) -> Vec<Notice> {
         self.inner.take_notes()
+    }
+
+    fn details(&self, now: f64) -> Vec<(&'static str, String)> {
+        self.inner.details(now)
+    }
+
+    fn teleport(&mut self, pose: crate::geometry::Pose2) -> bool {
+        self.inner.teleport(pose)
+    }
+
+    fn takes_log(&self) -> bool {
+        self.inner.takes_log()
+    }
+
+    fn log(&mut self, lines: &[ConsoleLine]) {
+        self.inner.log(lines);
     }
 }

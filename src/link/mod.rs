@@ -24,6 +24,8 @@ use nalgebra::Matrix3;
 pub struct Notice {
     pub level: Level,
     pub text: String,
+    /// The robot's node that said it (its /rosout); None for the link's own line.
+    pub source: Option<String>,
 }
 
 impl Notice {
@@ -31,14 +33,25 @@ impl Notice {
         Self {
             level: Level::Info,
             text: text.into(),
+            source: None,
         }
     }
     pub fn warn(text: impl Into<String>) -> Self {
         Self {
             level: Level::Warn,
             text: text.into(),
+            source: None,
         }
     }
+}
+
+/// A line of the console's log, for a link that passes it on (/rosout over ROS 2).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct ConsoleLine {
+    pub level: Level,
+    pub text: String,
+    /// The robot's node that said it; None for navdeck's own line.
+    pub source: Option<String>,
 }
 
 /// What navdeck believes, for a link that shows it to other tools (RViz over ROS 2).
@@ -54,6 +67,8 @@ pub struct Picture {
     pub landmarks: Option<Vec<LandmarkEstimate>>,
     pub path: Option<Vec<Point2>>,
     pub map: Option<OccupancyGrid>,
+    /// The console's state as JSON (`app::mission_state`), when it changed.
+    pub state: Option<String>,
 }
 
 /// Why a link could not do what was asked.
@@ -107,4 +122,10 @@ pub trait RobotLink: Send {
     fn take_notes(&mut self) -> Vec<Notice> {
         Vec::new()
     }
+    /// Whether the link passes the console's log on (`log`): /rosout over ROS 2.
+    fn takes_log(&self) -> bool {
+        false
+    }
+    /// The console's log lines written since the last call, oldest first.
+    fn log(&mut self, _lines: &[ConsoleLine]) {}
 }

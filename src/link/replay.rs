@@ -168,6 +168,7 @@ fn merge(frames: &[FrameMsg]) -> SensorFrame {
         out.gripper = frame.gripper.or(out.gripper);
         out.camera = frame.camera.or(out.camera);
         out.initial_pose = frame.initial_pose.or(out.initial_pose);
+        out.goal = frame.goal.or(out.goal);
         out.arm = frame.arm.or(out.arm);
     }
     out

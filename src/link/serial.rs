@@ -225,6 +225,7 @@ impl RobotLink for SerialLink {
             gripper: self.gripper,
             camera: None,
             initial_pose: None,
+            goal: None,
             arm: None,
         };
         Ok(frame)

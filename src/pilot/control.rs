@@ -25,6 +25,9 @@ impl Pilot {
         if let Some(pose) = frame.initial_pose {
             self.set_pose(pose);
         }
+        if let Some(goal) = frame.goal {
+            self.drive_to_goal(goal);
+        }
         if let Some(wheels) = frame.wheels {
             self.estimate_motion(wheels);
             self.measuring.travel.left += wheels.left;

@@ -6,7 +6,7 @@ use super::mode::Mode;
 use crate::control::follower::FollowStatus;
 use crate::data::GripperState;
 use crate::data::Level;
-use crate::geometry::{Point2, Rms, Twist};
+use crate::geometry::{Point2, Pose2, Rms, Twist};
 use crate::map::contact::{JAWS, contact_ahead};
 use crate::map::costmap::is_lethal;
 use crate::map::reach::{approach_point, escape_map};
@@ -27,6 +27,8 @@ const APPROACH_MARGIN: f64 = 0.05;
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Target {
     Point(Point2),
+    /// A goal pose (RViz's "2D Goal Pose", `:goto X Y THETA_DEG`): the point, then its heading.
+    Pose(Pose2),
     /// A landmark: the goal is its approach point, worked out again at every replan
     /// because the map round the landmark fills in as the robot comes closer.
     Marker(u32),
@@ -37,7 +39,21 @@ impl Target {
     pub fn label(self) -> String {
         match self {
             Target::Point(p) => format!("({:.2}, {:.2})", p.x, p.y),
+            Target::Pose(p) => format!(
+                "({:.2}, {:.2}) facing {:.0}°",
+                p.x,
+                p.y,
+                p.theta.to_degrees()
+            ),
             Target::Marker(id) => format!("marker {id}"),
+        }
+    }
+
+    /// The heading to end with, for a goal pose.
+    pub fn heading(self) -> Option<f64> {
+        match self {
+            Target::Pose(p) => Some(p.theta),
+            _ => None,
         }
     }
 }
@@ -90,6 +106,7 @@ impl Pilot {
         let start = self.pose().position();
         let goal = match target {
             Target::Point(p) => p,
+            Target::Pose(p) => p.position(),
             Target::Marker(id) => match self.marker_goal(id) {
                 Some(p) => p,
                 None => {
@@ -126,6 +143,7 @@ impl Pilot {
                 );
                 // A new plan has not been driven: whatever "arrived" said was the old one's.
                 self.nav.arrived = false;
+                self.follower.set_goal_heading(target.heading());
                 if self.mode == Mode::PathFollowing {
                     self.follower.set_trajectory(plan.trajectory.clone());
                 }
@@ -237,20 +255,45 @@ impl Pilot {
                     self.nav.arrived = true;
                     self.nav.following = None;
                     let p = self.pose();
-                    let label = self
-                        .nav
-                        .route
-                        .as_ref()
-                        .map_or(String::new(), |r| r.label.clone());
+                    let route = self.nav.route.as_ref();
+                    let label = route.map_or(String::new(), |r| r.label.clone());
+                    let facing = match route.and_then(|r| r.target.heading()) {
+                        Some(_) => format!(" facing {:.0}°", p.theta.to_degrees()),
+                        None => String::new(),
+                    };
                     self.log(
                         Level::Success,
-                        format!("Destination arrived: {label} at ({:.2}, {:.2})", p.x, p.y),
+                        format!(
+                            "Destination arrived: {label} at ({:.2}, {:.2}){facing}",
+                            p.x, p.y
+                        ),
                     );
                 }
             }
-            FollowStatus::NoTrajectory => self.nav.following = None,
+            FollowStatus::Turning { .. } | FollowStatus::NoTrajectory => self.nav.following = None,
         }
         twist
+    }
+
+    /// A goal from outside (RViz's "2D Goal Pose"): plan to it and drive there, as Nav2
+    /// does with a goal; the robot ends facing the goal's heading.
+    pub(super) fn drive_to_goal(&mut self, goal: Pose2) {
+        let target = Target::Pose(goal);
+        self.log(
+            Level::Info,
+            format!("goal pose received: {}", target.label()),
+        );
+        if self.mode == Mode::PathFollowing {
+            // Following already: the new plan replaces the path being followed.
+            if self.plan_route(target) {
+                self.nav.true_cross_track = Rms::default();
+                self.nav.cross_track = Rms::default();
+            }
+            return;
+        }
+        if self.plan_route(target) {
+            self.set_mode(Mode::PathFollowing);
+        }
     }
 
     /// The follower's command, with its forward speed cut to zero if keeping it up until

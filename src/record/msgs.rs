@@ -3,7 +3,7 @@
 
 use crate::data::{ArmState, CameraStatus, GripperState, LaserScan, MarkerSighting, SensorFrame};
 use crate::geometry::Pose2;
-use crate::link::ros2::msgs::{Header, Time};
+use crate::link::ros2::msgs::Header;
 use serde::{Deserialize, Serialize};
 
 /// navdeck_msgs/MarkerSighting.
@@ -71,6 +71,8 @@ pub struct FrameMsg {
     pub camera_rejected: u32,
     pub camera_latency: f64,
     pub camera_error: String,
+    pub has_goal: bool,
+    pub goal: [f64; 3],
 }
 
 const GRIPPER_STATES: [GripperState; 5] = [
@@ -98,6 +100,7 @@ impl FrameMsg {
         let wheels = frame.wheels.unwrap_or_default();
         let scan = frame.scan.as_ref();
         let pose = frame.initial_pose.unwrap_or_default();
+        let goal = frame.goal.unwrap_or_default();
         let camera = frame.camera.as_ref();
         Self {
             time,
@@ -129,6 +132,8 @@ impl FrameMsg {
             camera_rejected: camera.map_or(0, |c| c.rejected as u32),
             camera_latency: camera.and_then(|c| c.latency).unwrap_or(-1.0),
             camera_error: camera.and_then(|c| c.error.clone()).unwrap_or_default(),
+            has_goal: frame.goal.is_some(),
+            goal: [goal.x, goal.y, goal.theta],
         }
     }
 
@@ -138,6 +143,7 @@ impl FrameMsg {
             return Err(self.failure.clone());
         }
         let [x, y, theta] = self.initial_pose;
+        let [gx, gy, gtheta] = self.goal;
         Ok(SensorFrame {
             stamp: self.stamp,
             elapsed: self.elapsed,
@@ -167,6 +173,7 @@ impl FrameMsg {
                 error: (!self.camera_error.is_empty()).then(|| self.camera_error.clone()),
             }),
             initial_pose: self.has_initial_pose.then_some(Pose2::new(x, y, theta)),
+            goal: self.has_goal.then_some(Pose2::new(gx, gy, gtheta)),
             arm: self.has_arm.then_some(ArmState {
                 joints: self.arm_joints,
             }),
@@ -300,23 +307,8 @@ impl TruthMsg {
     }
 }
 
-/// rcl_interfaces/Log.
-#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
-pub struct LogMsg {
-    pub stamp: Time,
-    pub level: u8,
-    pub name: String,
-    pub msg: String,
-    pub file: String,
-    pub function: String,
-    pub line: u32,
-}
-
-/// std_msgs/String.
-#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
-pub struct StringMsg {
-    pub data: String,
-}
+/// rcl_interfaces/Log and std_msgs/String, as the ROS 2 link carries them.
+pub use crate::link::ros2::msgs::{Log as LogMsg, StringMsg};
 
 #[cfg(test)]
 mod tests {
@@ -346,6 +338,7 @@ mod tests {
             gripper: Some(GripperState::Holding),
             camera: None,
             initial_pose: Some(Pose2::new(1.0, 2.0, 0.5)),
+            goal: Some(Pose2::new(-1.0, 0.25, 3.0)),
             arm: Some(ArmState {
                 joints: [0.1, 0.2, 0.3, 0.4],
             }),

@@ -30,6 +30,8 @@ pub struct LogLine {
     pub time: f64,
     pub level: Level,
     pub text: String,
+    /// The robot's node that said it, or None for navdeck's own line.
+    pub source: Option<String>,
 }
 
 /// Everything a replay uses, in time order, times in session seconds.
@@ -163,15 +165,12 @@ impl Recorded {
             }
             Topic::Log => {
                 let msg: LogMsg = decode(&m.data)?;
-                let level = match msg.level {
-                    ..=20 => Level::Info,
-                    21..=30 => Level::Warn,
-                    _ => Level::Error,
-                };
+                let level = crate::link::ros2::rosout::level(msg.level);
                 self.logs.push(LogLine {
                     time: t,
                     level,
                     text: msg.msg,
+                    source: (msg.name != "navdeck").then_some(msg.name),
                 });
             }
             Topic::Mode => {

@@ -219,7 +219,9 @@ const DEFINITIONS: &[Definition] = &[
                uint32 camera_accepted\n\
                uint32 camera_rejected\n\
                float64 camera_latency   # seconds; negative when not timed\n\
-               string camera_error\n",
+               string camera_error\n\
+               bool has_goal\n\
+               float64[3] goal          # x, y (m), theta (rad) in the map frame: a goal pose\n",
         uses: &["navdeck_msgs/MarkerSighting"],
     },
     Definition {

@@ -218,6 +218,7 @@ impl Twin {
             gripper: Some(self.gripper.state()),
             camera: self.camera_status.take(),
             initial_pose: None,
+            goal: None,
             arm: self.arm.as_ref().map(|a| a.state()),
         }
     }

@@ -21,6 +21,40 @@ pub enum Distro {
     Jazzy,
 }
 
+impl Distro {
+    /// The distribution navdeck was built for (cargo feature `humble` or `jazzy`).
+    pub const BUILT: Distro = if cfg!(feature = "jazzy") {
+        Distro::Jazzy
+    } else {
+        Distro::Humble
+    };
+}
+
+/// How much of the robot's /rosout reaches the console's log.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum RosoutLevel {
+    Debug,
+    Info,
+    Warn,
+    Error,
+    /// None of it.
+    Off,
+}
+
+impl RosoutLevel {
+    /// The lowest rcl_interfaces/Log severity shown (above FATAL for `off`).
+    pub fn lowest(self) -> u8 {
+        match self {
+            RosoutLevel::Debug => 10,
+            RosoutLevel::Info => 20,
+            RosoutLevel::Warn => 30,
+            RosoutLevel::Error => 40,
+            RosoutLevel::Off => u8::MAX,
+        }
+    }
+}
+
 /// The robot's RMW implementation, where ROS 2 services (an action's goals) differ on the
 /// wire: Fast DDS (ROS 2's default) carries the request id beside the data, rmw_cyclonedds
 /// in front of it (ros2-client's "Enhanced" and "Cyclone" service mappings).
@@ -86,6 +120,14 @@ pub struct Ros2Config {
     pub initial_pose_topic: String,
     /// Where MCL's particles go out (geometry_msgs/PoseArray, best effort as AMCL's).
     pub particle_cloud_topic: String,
+    /// Where RViz's "2D Goal Pose" arrives (geometry_msgs/PoseStamped): plan and drive.
+    pub goal_topic: String,
+    /// Where the mission's state goes out (std_msgs/String holding JSON, latched).
+    pub state_topic: String,
+    /// The console's log lines go out on /rosout (rcl_interfaces/Log).
+    pub rosout: bool,
+    /// The robot's /rosout lines from this severity up reach the log pane.
+    pub rosout_level: RosoutLevel,
     pub map_frame: String,
     pub odom_frame: String,
     /// Wheel joints in /joint_states and the wheel radius, metres (TurtleBot3: 0.033).
@@ -147,13 +189,17 @@ impl Default for Ros2Config {
             pose_topic: "navdeck/pose".into(),
             initial_pose_topic: "initialpose".into(),
             particle_cloud_topic: "particlecloud".into(),
+            goal_topic: "goal_pose".into(),
+            state_topic: "navdeck/state".into(),
+            rosout: true,
+            rosout_level: RosoutLevel::Info,
             map_frame: "map".into(),
             odom_frame: "odom".into(),
             left_wheel_joint: "wheel_left_joint".into(),
             right_wheel_joint: "wheel_right_joint".into(),
             wheel_radius: 0.033,
             odom_timeout: 0.5,
-            distro: Distro::Jazzy,
+            distro: Distro::BUILT,
             qos: Qos::default(),
             scan_qos: Qos::SENSOR_DATA,
             interfaces: Vec::new(),

@@ -1,36 +1,59 @@
-//! RViz's "2D Pose Estimate": a geometry_msgs/PoseWithCovarianceStamped on /initialpose,
-//! checked before it places navdeck's estimate, as Nav2's AMCL reads it. A pose that is
-//! not finite, has no rotation, or is in another frame is refused, naming the value.
+//! RViz's "2D Pose Estimate" (geometry_msgs/PoseWithCovarianceStamped on /initialpose,
+//! checked before it places navdeck's estimate, as Nav2's AMCL reads it) and "2D Goal
+//! Pose" (geometry_msgs/PoseStamped on /goal_pose). A pose that is not finite, has no
+//! rotation, or is in another frame is refused, naming the value.
 
 use super::msgs;
 use crate::geometry::Pose2;
 
-/// Why a /initialpose message was not applied.
+/// Why a pose from RViz (/initialpose, /goal_pose) was not applied.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
-pub enum BadInitialPose {
+pub enum BadPose {
     #[error("header.frame_id = {found:?}, expected {expected:?} (or empty)")]
     Frame { found: String, expected: String },
-    #[error("pose.pose.{field} = {value} is not finite")]
-    NonFinite { field: &'static str, value: f64 },
-    #[error("pose.pose.orientation = (x {x}, y {y}, z {z}, w {w}) is a zero quaternion")]
-    ZeroQuaternion { x: f64, y: f64, z: f64, w: f64 },
+    #[error("{field} = {value} is not finite")]
+    NonFinite { field: String, value: f64 },
+    #[error("{path}orientation = (x {x}, y {y}, z {z}, w {w}) is a zero quaternion")]
+    ZeroQuaternion {
+        path: &'static str,
+        x: f64,
+        y: f64,
+        z: f64,
+        w: f64,
+    },
 }
 
-/// The planar pose in `msg`, which must be in `map_frame` (an empty frame_id counts as
-/// the map, as some RViz set-ups send it).
+/// The planar pose in an /initialpose message, which must be in `map_frame` (an empty
+/// frame_id counts as the map, as some RViz set-ups send it).
 pub fn initial_pose(
     msg: &msgs::PoseWithCovarianceStamped,
     map_frame: &str,
-) -> Result<Pose2, BadInitialPose> {
-    let frame = msg.header.frame_id.as_str();
+) -> Result<Pose2, BadPose> {
+    planar_pose(&msg.header, &msg.pose.pose, map_frame, "pose.pose.")
+}
+
+/// The planar pose in a /goal_pose message (RViz's "2D Goal Pose"), checked the same way.
+pub fn goal_pose(msg: &msgs::PoseStamped, map_frame: &str) -> Result<Pose2, BadPose> {
+    planar_pose(&msg.header, &msg.pose, map_frame, "pose.")
+}
+
+/// `pose` under `header` as x, y and yaw in `map_frame`; `path` is where the pose sits in
+/// its message, for the refusal's wording.
+fn planar_pose(
+    header: &msgs::Header,
+    pose: &msgs::Pose,
+    map_frame: &str,
+    path: &'static str,
+) -> Result<Pose2, BadPose> {
+    let frame = header.frame_id.as_str();
     if !frame.is_empty() && frame != map_frame {
-        return Err(BadInitialPose::Frame {
+        return Err(BadPose::Frame {
             found: frame.to_string(),
             expected: map_frame.to_string(),
         });
     }
-    let p = msg.pose.pose.position;
-    let q = msg.pose.pose.orientation;
+    let p = pose.position;
+    let q = pose.orientation;
     let values = [
         ("position.x", p.x),
         ("position.y", p.y),
@@ -41,9 +64,13 @@ pub fn initial_pose(
         ("orientation.w", q.w),
     ];
     if let Some(&(field, value)) = values.iter().find(|(_, v)| !v.is_finite()) {
-        return Err(BadInitialPose::NonFinite { field, value });
+        return Err(BadPose::NonFinite {
+            field: format!("{path}{field}"),
+            value,
+        });
     }
-    let unit = unit(q).ok_or(BadInitialPose::ZeroQuaternion {
+    let unit = unit(q).ok_or(BadPose::ZeroQuaternion {
+        path,
         x: q.x,
         y: q.y,
         z: q.z,
@@ -74,14 +101,15 @@ fn unit(q: msgs::Quaternion) -> Option<msgs::Quaternion> {
 
 /// The newest acceptable pose among `messages` (oldest first), and what was wrong with
 /// each refused one, in order.
-pub fn newest(
-    messages: &[msgs::PoseWithCovarianceStamped],
+pub fn newest<M>(
+    messages: &[M],
     map_frame: &str,
-) -> (Option<Pose2>, Vec<BadInitialPose>) {
+    read: fn(&M, &str) -> Result<Pose2, BadPose>,
+) -> (Option<Pose2>, Vec<BadPose>) {
     let mut pose = None;
     let mut refused = Vec::new();
     for msg in messages {
-        match initial_pose(msg, map_frame) {
+        match read(msg, map_frame) {
             Ok(p) => pose = Some(p),
             Err(why) => refused.push(why),
         }
@@ -166,10 +194,7 @@ mod tests {
             w: 0.0,
         };
         let err = initial_pose(&estimate("map", 0.0, 0.0, zero), "map").unwrap_err();
-        assert!(
-            matches!(err, BadInitialPose::ZeroQuaternion { .. }),
-            "{err}"
-        );
+        assert!(matches!(err, BadPose::ZeroQuaternion { .. }), "{err}");
     }
 
     #[test]
@@ -181,9 +206,24 @@ mod tests {
             estimate("odom", 3.0, 0.0, Default::default()),
             good(f64::NAN),
         ];
-        let (pose, refused) = newest(&messages, "map");
+        let (pose, refused) = newest(&messages, "map", initial_pose);
         assert_eq!(pose.map(|p| p.x), Some(2.0));
         assert_eq!(refused.len(), 2);
-        assert_eq!(newest(&[], "map"), (None, vec![]));
+        assert_eq!(newest(&[], "map", initial_pose), (None, vec![]));
+    }
+
+    #[test]
+    fn a_goal_pose_is_read_and_refused_as_an_estimate_is_with_its_own_field_names() {
+        let mut goal = msgs::PoseStamped {
+            header: msgs::Header::new(msgs::Time::default(), "map"),
+            ..Default::default()
+        };
+        goal.pose.position.x = 1.25;
+        goal.pose.orientation = msgs::Quaternion::from_yaw(-1.0);
+        let p = goal_pose(&goal, "map").unwrap();
+        assert!((p.x - 1.25).abs() < 1e-12 && (p.theta + 1.0).abs() < 1e-12);
+        goal.pose.position.y = f64::NAN;
+        let err = goal_pose(&goal, "map").unwrap_err().to_string();
+        assert_eq!(err, "pose.position.y = NaN is not finite");
     }
 }

@@ -11,8 +11,11 @@
 mod arm;
 pub mod arm_joints;
 pub mod arm_msgs;
+pub mod beside;
 pub mod cmd_vel;
 pub mod config;
+pub mod environment;
+pub mod graph;
 #[cfg(feature = "vision")]
 pub mod image;
 pub mod inbound;
@@ -20,7 +23,15 @@ pub mod initial_pose;
 pub mod msgs;
 pub mod participant;
 pub mod picture;
+mod presence;
+pub mod raw;
+pub mod rosout;
 mod rviz;
+
+#[cfg(not(any(feature = "humble", feature = "jazzy")))]
+compile_error!(
+    "navdeck's ROS 2 link needs a distribution: the default feature `jazzy`, or `--no-default-features --features humble`"
+);
 
 use super::{
     Command, GripperCommand, LinkError, Notice, Picture, RobotLink, SensorFrame, WheelTravel,
@@ -28,21 +39,19 @@ use super::{
 use crate::geometry::Pose2;
 use crate::link::rate::RateMeter;
 use cmd_vel::CmdVelPolicy;
-use config::{CmdVelType, Qos, Ros2Config};
+use config::{CmdVelType, Ros2Config};
+use environment::{RosEnvironment, built_distro};
 use inbound::Refusal;
 use participant::{Factory, fail, join, qos_profile, take_all, topic_name};
 pub use participant::{dds_type, domain_from};
+use presence::Presence;
 use ros2_client::{Context, Node, NodeName, Publisher, Subscription};
-use rviz::RvizPublishers;
 use std::collections::BTreeMap;
 
 /// How often discovery is asked which type cmd_vel's subscribers read, seconds: often
 /// until one is found, then now and again.
 const DISCOVERY_SEARCH: f64 = 0.05;
 const DISCOVERY_EVERY: f64 = 1.0;
-
-/// Refused /initialpose messages logged one by one in a poll; the rest are counted.
-const INITIAL_POSE_NOTES: usize = 3;
 
 /// Where and how to reach the robot.
 #[derive(Clone, Debug)]
@@ -86,14 +95,14 @@ pub struct Ros2Link {
     odom: Subscription<msgs::Odometry>,
     joints: Subscription<msgs::JointState>,
     scan: Subscription<msgs::LaserScan>,
-    initial_pose_sub: Subscription<msgs::PoseWithCovarianceStamped>,
     twist: Option<Publisher<msgs::Twist>>,
     stamped: Option<Publisher<msgs::TwistStamped>>,
     gripper: Publisher<msgs::Float64>,
     /// The arm and its gripper action, when `[ros2] arm` is on.
     arm: Option<arm::Arm>,
     warned_no_arm: bool,
-    rviz: RvizPublishers,
+    /// navdeck on the graph: RViz's topics, goals, /rosout, the mission's state.
+    presence: Presence,
     cmd_vel_dds: String,
     odom_dds: String,
     scan_dds: String,
@@ -112,8 +121,6 @@ pub struct Ros2Link {
     /// The newest odometry pose and its stamp, for the fallback and the transform.
     odom_pose: Option<(Pose2, f64)>,
     joint_angles: Option<((f64, f64), f64)>,
-    /// The newest good /initialpose, until a frame carries it.
-    initial_pose: Option<Pose2>,
     travel: WheelTravel,
     elapsed: f64,
     dropped: BTreeMap<&'static str, u64>,
@@ -133,7 +140,6 @@ impl Ros2Link {
             namespace: &namespace,
         };
         let qos = f.qos();
-        let latched = qos_profile(c.qos, true);
         let odom = f.subscription(
             "odom_topic",
             &c.odom_topic,
@@ -154,14 +160,6 @@ impl Ros2Link {
             "sensor_msgs",
             "LaserScan",
             qos_profile(c.scan_qos, false),
-        )?;
-        // Reliable, volatile, keep-last 10: what RViz's pose tool writes and AMCL reads.
-        let initial_pose_sub = f.subscription(
-            "initial_pose_topic",
-            &c.initial_pose_topic,
-            "geometry_msgs",
-            "PoseWithCovarianceStamped",
-            qos_profile(Qos::default(), false),
         )?;
         let twist = match c.cmd_vel_type {
             CmdVelType::TwistStamped => None,
@@ -190,7 +188,7 @@ impl Ros2Link {
             "Float64",
             qos.clone(),
         )?;
-        let rviz = RvizPublishers::open(&mut f, qos.clone(), latched)?;
+        let presence = Presence::open(&mut f, rosout::logger_name(&namespace, "navdeck"))?;
         let node_name = NodeName::new(&namespace, "navdeck").expect("checked above");
         let arm = match c.arm {
             true => Some(arm::Arm::open(&mut f, &node_name)?),
@@ -220,13 +218,12 @@ impl Ros2Link {
             odom,
             joints,
             scan,
-            initial_pose_sub,
             twist,
             stamped,
             gripper,
             arm,
             warned_no_arm: false,
-            rviz,
+            presence,
             cmd_vel_dds,
             odom_dds,
             scan_dds,
@@ -242,11 +239,10 @@ impl Ros2Link {
             odom_at: None,
             odom_pose: None,
             joint_angles: None,
-            initial_pose: None,
             travel: WheelTravel::default(),
             elapsed: 0.0,
             dropped: BTreeMap::new(),
-            notices: Vec::new(),
+            notices: RosEnvironment::from_process().scope(built_distro()).notes,
             config,
         })
     }
@@ -358,32 +354,6 @@ impl Ros2Link {
             }
         }
         newest
-    }
-
-    /// RViz's "2D Pose Estimate": the newest good one waits for the next frame; each
-    /// refused one is logged with what was wrong (a few a poll, then a count).
-    fn take_initial_pose(&mut self) {
-        let topic = &self.config.initial_pose_topic;
-        let messages = take_all(&self.initial_pose_sub, topic, &mut self.notices);
-        let (pose, refused) = initial_pose::newest(&messages, &self.config.map_frame);
-        if pose.is_some() {
-            self.initial_pose = pose;
-        }
-        if refused.is_empty() {
-            return;
-        }
-        *self.dropped.entry("bad initial pose").or_insert(0) += refused.len() as u64;
-        for why in refused.iter().take(INITIAL_POSE_NOTES) {
-            self.notices.push(Notice::warn(format!(
-                "ROS 2: ignored a pose estimate on {topic}: {why}"
-            )));
-        }
-        if refused.len() > INITIAL_POSE_NOTES {
-            self.notices.push(Notice::warn(format!(
-                "ROS 2: ignored {} more pose estimates on {topic}",
-                refused.len() - INITIAL_POSE_NOTES
-            )));
-        }
     }
 
     /// Asks discovery which type the robot's cmd_vel subscriber reads, and says so.
@@ -558,7 +528,8 @@ impl RobotLink for Ros2Link {
         self.take_joints(now);
         self.take_odometry(now);
         let scan = self.take_scan(now);
-        self.take_initial_pose();
+        self.presence
+            .poll(&self.config, &mut self.notices, &mut self.dropped);
         if let Some(arm) = &mut self.arm {
             arm.poll(now, &self.context, &mut self.notices);
         }
@@ -598,7 +569,8 @@ impl RobotLink for Ros2Link {
             scan,
             gripper: None,
             camera: None,
-            initial_pose: self.initial_pose.take(),
+            initial_pose: self.presence.take_initial_pose(),
+            goal: self.presence.take_goal(),
             arm: self.arm.as_mut().and_then(arm::Arm::take_state),
         })
     }
@@ -660,14 +632,22 @@ impl RobotLink for Ros2Link {
 
     fn show(&mut self, picture: &Picture) {
         let odom = self.odom_pose.map(|(pose, _)| pose);
-        self.rviz.show(picture, odom, &self.config);
+        self.presence.show(picture, odom, &self.config);
+    }
+
+    fn takes_log(&self) -> bool {
+        true
+    }
+
+    fn log(&mut self, lines: &[super::ConsoleLine]) {
+        self.presence.log(lines);
     }
 }
 
 /// How long a closing link keeps its DDS participant after the last zero cmd_vel, so the
 /// participant's own thread sends it before the writer goes (ros2-client offers no wait
 /// for acknowledgements). Well inside the console's exit deadline.
-const STOP_DELIVERY: std::time::Duration = std::time::Duration::from_millis(100);
+pub(super) const STOP_DELIVERY: std::time::Duration = std::time::Duration::from_millis(100);
 
 impl Drop for Ros2Link {
     fn drop(&mut self) {

@@ -273,6 +273,24 @@ pub struct Float64 {
     pub data: f64,
 }
 
+/// std_msgs/String.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct StringMsg {
+    pub data: String,
+}
+
+/// rcl_interfaces/Log: a line on /rosout (severities in `rosout.rs`).
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct Log {
+    pub stamp: Time,
+    pub level: u8,
+    pub name: String,
+    pub msg: String,
+    pub file: String,
+    pub function: String,
+    pub line: u32,
+}
+
 /// nav_msgs/MapMetaData.
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 pub struct MapMetaData {

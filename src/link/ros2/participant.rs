@@ -3,6 +3,7 @@
 //! configured QoS, and bounded reads.
 
 use super::config::{Qos, Reliability, Ros2Config};
+use super::environment::{RosEnvironment, built_distro};
 use crate::link::{LinkError, Notice};
 use ros2_client::{
     Context, MessageTypeName, Name, Node, NodeName, NodeOptions, Publisher, QosProfile,
@@ -34,7 +35,8 @@ pub fn domain_from(flag: Option<u16>, env: Option<String>) -> Result<u16, String
     }
 }
 
-pub(super) fn take_all<M: DeserializeOwned + 'static>(
+/// Every message waiting on `sub` (at most MAX_TAKE); an unreadable one is a warning.
+pub fn take_all<M: DeserializeOwned + 'static>(
     sub: &Subscription<M>,
     topic: &str,
     notices: &mut Vec<Notice>,
@@ -50,7 +52,7 @@ pub(super) fn take_all<M: DeserializeOwned + 'static>(
     out
 }
 
-pub(super) fn qos_profile(q: Qos, durable: bool) -> QosProfile {
+pub fn qos_profile(q: Qos, durable: bool) -> QosProfile {
     use ros2_client::qos::{Durability, History, WhenFull};
     let p = QosProfile::publisher_default()
         .history(History::KeepLast {
@@ -91,14 +93,16 @@ pub(super) fn topic_name(namespace: &str, field: &str, text: &str) -> Result<Nam
     .map_err(|e| bad(&e))
 }
 
-pub(super) struct Factory<'a> {
-    pub(super) node: &'a mut Node,
-    pub(super) config: &'a Ros2Config,
-    pub(super) namespace: &'a str,
+/// Makes navdeck's topics, publishers and subscriptions on one node, names resolved
+/// against the namespace, refusals naming the config field.
+pub struct Factory<'a> {
+    pub node: &'a mut Node,
+    pub config: &'a Ros2Config,
+    pub namespace: &'a str,
 }
 
 impl Factory<'_> {
-    pub(super) fn topic(
+    pub fn topic(
         &mut self,
         field: &str,
         name: &str,
@@ -115,7 +119,7 @@ impl Factory<'_> {
             .map_err(|e| fail(format!("create topic {name}"), e))
     }
 
-    pub(super) fn publisher<M: Serialize>(
+    pub fn publisher<M: Serialize>(
         &mut self,
         field: &str,
         name: &str,
@@ -129,7 +133,7 @@ impl Factory<'_> {
             .map_err(|e| fail(format!("publish {name}"), e))
     }
 
-    pub(super) fn subscription<M: DeserializeOwned + 'static>(
+    pub fn subscription<M: DeserializeOwned + 'static>(
         &mut self,
         field: &str,
         name: &str,
@@ -143,20 +147,24 @@ impl Factory<'_> {
             .map_err(|e| fail(format!("subscribe {name}"), e))
     }
 
-    pub(super) fn qos(&self) -> QosProfile {
+    pub fn qos(&self) -> QosProfile {
         qos_profile(self.config.qos, false)
     }
 }
 
 /// Joins the DDS domain on the configured interfaces and makes a node `name` in the
 /// configured namespace: (context, namespace, node).
-pub(super) fn join(
+pub fn join(
     config: &Ros2Config,
     domain: u16,
     name: &str,
 ) -> Result<(Context, String, Node), LinkError> {
     let mut builder = ros2_client::dds::rustdds::DomainParticipantBuilder::new(domain);
-    if !config.interfaces.is_empty() {
+    let scope = RosEnvironment::from_process().scope(built_distro());
+    if scope.localhost_only {
+        // ROS_LOCALHOST_ONLY=1 / ROS_AUTOMATIC_DISCOVERY_RANGE=LOCALHOST: loopback only.
+        builder = builder.with_only_networks([std::net::IpAddr::from([127, 0, 0, 1])]);
+    } else if !config.interfaces.is_empty() {
         let mut addresses = Vec::new();
         for text in &config.interfaces {
             let ip: std::net::IpAddr = text.parse().map_err(|_| {

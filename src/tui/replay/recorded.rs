@@ -131,9 +131,13 @@ pub fn log(
         .map(|l| {
             let stamp = format!("{} ", format_time(l.time));
             let room = width.saturating_sub(stamp.chars().count());
+            let text = match &l.source {
+                Some(node) => format!("[{node}] {}", l.text),
+                None => l.text.clone(),
+            };
             Line::from(vec![
                 Span::styled(stamp, theme.label()),
-                Span::styled(fit(&l.text, room), theme.level(l.level)),
+                Span::styled(fit(&text, room), theme.level(l.level)),
             ])
         })
         .collect()

@@ -107,6 +107,7 @@ fn view_key(replay: &mut Replay, key: crate::keymap::Key) {
                 | Action::ToggleScan
                 | Action::ToggleTrail
                 | Action::LogFilter
+                | Action::LogSource
         )
     );
     if let (true, Some(action)) = (shown, action) {

@@ -4,6 +4,7 @@
 use super::text::wrap_rows;
 use crate::app::App;
 use crate::app::log::{Entry, format_time};
+use crate::app::view::SourceFilter;
 use crate::data::Level;
 use crate::tui::theme::Theme;
 use ratatui::text::{Line, Span};
@@ -16,6 +17,11 @@ pub fn title(app: &App) -> String {
         Some(Level::Error) => parts.push("errors only".into()),
         Some(_) => parts.push("warnings+".into()),
         None => {}
+    }
+    match view.source {
+        SourceFilter::Navdeck => parts.push("navdeck".into()),
+        SourceFilter::Robot => parts.push("robot".into()),
+        SourceFilter::All => {}
     }
     if let Some(text) = &view.search {
         parts.push(format!("/{text}"));
@@ -57,7 +63,10 @@ fn entry_lines(e: &Entry, theme: Theme, width: usize) -> Vec<Line<'static>> {
     let style = theme.level(e.level);
     let time = format_time(e.time);
     let head = time.chars().count() + e.level.tag().chars().count() + 2;
-    let mut text = e.text.clone();
+    let mut text = match &e.source {
+        Some(node) => format!("[{node}] {}", e.text),
+        None => e.text.clone(),
+    };
     if e.repeats > 1 {
         text.push_str(&format!("  ×{}", e.repeats));
     }

@@ -1,0 +1,263 @@
+//! `navdeck ros2 topics` against a small ROS 2 graph on Eclipse Cyclone DDS, played by
+//! tests/interop/topics_peer.py with ROS 2's wire types: /odom at 20 Hz, and the three
+//! mismatches that silently break a link (two types on /cmd_vel, a reliable subscriber
+//! of a best-effort /scan, a transient-local subscriber of a volatile /map). Also the
+//! refusals of a bad domain or config, which need no peer.
+//!
+//! Needs a Python with the PyPI `cyclonedds` package: `NAVDECK_PYTHON` names it
+//! (./scripts/test sets it, with NAVDECK_REQUIRE_INTEROP=1 so that a missing peer fails
+//! the run instead of skipping).
+
+mod python_support;
+
+use serde_json::Value;
+use std::io::{BufRead, BufReader};
+use std::path::PathBuf;
+use std::process::{Command, Output, Stdio};
+
+/// A domain no other test joins.
+const DOMAIN: u16 = 147;
+
+/// Cyclone on loopback only: no multicast, unicast discovery to 127.0.0.1 (as
+/// tests/ros2_interop.rs).
+const CYCLONE_CONFIG: &str = "<CycloneDDS><Domain Id=\"any\"><General><Interfaces>\
+<NetworkInterface name=\"lo\"/></Interfaces><AllowMulticast>false</AllowMulticast>\
+</General><Discovery><ParticipantIndex>auto</ParticipantIndex>\
+<MaxAutoParticipantIndex>20</MaxAutoParticipantIndex><Peers><Peer address=\"127.0.0.1\"/>\
+</Peers></Discovery></Domain></CycloneDDS>";
+
+/// navdeck on loopback only, as the peer.
+const LOOPBACK: &str = "[ros2]\ninterfaces = [\"127.0.0.1\"]\n";
+
+/// Upper bound on the wait for the peer's "ready" (it starts in well under a second).
+const PATIENCE: f64 = 20.0;
+
+fn scratch(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("navdeck-topics-{}-{name}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+fn config(name: &str, text: &str) -> PathBuf {
+    let path = scratch(name).join("navdeck.toml");
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
+fn navdeck(args: &[&str]) -> Command {
+    let mut c = Command::new(env!("CARGO_BIN_EXE_navdeck"));
+    c.args(args).env_remove("ROS_DOMAIN_ID");
+    c
+}
+
+fn run(c: &mut Command) -> Output {
+    c.output().expect("run navdeck")
+}
+
+/// The peer on `DOMAIN`, ready; closing its stdin (on drop) makes it leave.
+struct Peer(std::process::Child);
+
+impl Peer {
+    fn start() -> Option<Peer> {
+        let python = python_support::python("the Cyclone DDS peer", "cyclonedds")?;
+        let script = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/interop/topics_peer.py");
+        let mut child = Command::new(python)
+            .arg(script)
+            .arg(DOMAIN.to_string())
+            .env("CYCLONEDDS_URI", CYCLONE_CONFIG)
+            .stdin(Stdio::piped())
+            .stdout(Stdio::piped())
+            .spawn()
+            .expect("start the Cyclone DDS peer");
+        let out = BufReader::new(child.stdout.take().unwrap());
+        let (tx, rx) = std::sync::mpsc::channel();
+        std::thread::spawn(move || {
+            for line in out.lines().map_while(Result::ok) {
+                if tx.send(line).is_err() {
+                    break;
+                }
+            }
+        });
+        let peer = Peer(child);
+        let line = rx
+            .recv_timeout(std::time::Duration::from_secs_f64(PATIENCE))
+            .expect("the peer did not start");
+        assert_eq!(line, "ready", "the peer did not start");
+        Some(peer)
+    }
+}
+
+impl Drop for Peer {
+    fn drop(&mut self) {
+        drop(self.0.stdin.take());
+        let _ = self.0.wait();
+    }
+}
+
+fn topic<'a>(report: &'a Value, name: &str) -> &'a Value {
+    (report["topics"].as_array().unwrap().iter())
+        .find(|t| t["name"] == name)
+        .unwrap_or_else(|| panic!("no {name} in {report:#}"))
+}
+
+fn flags(topic: &Value) -> Vec<&str> {
+    (topic["flags"].as_array().unwrap().iter())
+        .map(|f| f.as_str().unwrap())
+        .collect()
+}
+
+#[test]
+fn the_table_shows_every_topic_its_rate_and_each_mismatch() {
+    let Some(_peer) = Peer::start() else {
+        return;
+    };
+    let cfg = config("graph", LOOPBACK);
+    let domain = DOMAIN.to_string();
+    let out = run(navdeck(&[
+        "ros2",
+        "topics",
+        "--domain",
+        &domain,
+        "--duration",
+        "2",
+        "--json",
+        "--config",
+    ])
+    .arg(&cfg));
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "navdeck failed: {stderr}");
+    let report: Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(report["domain"], DOMAIN);
+    // Only ROS topics without --all: no DDS built-ins, no ros_discovery_info, no services.
+    for t in report["topics"].as_array().unwrap() {
+        let name = t["name"].as_str().unwrap();
+        assert!(name.starts_with('/'), "{name} is not a ROS topic");
+    }
+
+    let odom = topic(&report, "/odom");
+    assert_eq!(odom["types"], serde_json::json!(["nav_msgs/msg/Odometry"]));
+    assert_eq!(
+        (odom["publishers"].as_u64(), odom["subscribers"].as_u64()),
+        (Some(1), Some(0))
+    );
+    let rate = odom["rate_hz"].as_f64().expect("a rate for /odom");
+    assert!(
+        (12.0..=28.0).contains(&rate),
+        "/odom at {rate} Hz, the peer sends 20"
+    );
+    assert_eq!(odom["qos"]["publishers"][0]["reliability"], "reliable");
+    assert_eq!(odom["qos"]["publishers"][0]["durability"], "volatile");
+    assert!(flags(odom).is_empty(), "{odom:#}");
+
+    let cmd_vel = topic(&report, "/cmd_vel");
+    assert_eq!(
+        cmd_vel["types"],
+        serde_json::json!(["geometry_msgs/msg/Twist", "geometry_msgs/msg/TwistStamped"])
+    );
+    assert_eq!(
+        (
+            cmd_vel["publishers"].as_u64(),
+            cmd_vel["subscribers"].as_u64()
+        ),
+        (Some(1), Some(1))
+    );
+    assert_eq!(flags(cmd_vel), ["type: Twist pub vs TwistStamped sub"]);
+
+    let scan = topic(&report, "/scan");
+    assert_eq!(scan["qos"]["publishers"][0]["reliability"], "best_effort");
+    assert_eq!(scan["qos"]["subscribers"][0]["reliability"], "reliable");
+    assert_eq!(
+        flags(scan),
+        ["reliability: reliable sub vs best-effort pub (never match)"]
+    );
+
+    let map = topic(&report, "/map");
+    assert_eq!(
+        map["qos"]["subscribers"][0]["durability"],
+        "transient_local"
+    );
+    assert_eq!(
+        flags(map),
+        ["durability: transient-local sub vs volatile pub (never match)"]
+    );
+
+    // A subscriber alone is counted, not flagged, and has no rate.
+    let goal = topic(&report, "/goal_pose");
+    assert_eq!(
+        (goal["publishers"].as_u64(), goal["subscribers"].as_u64()),
+        (Some(0), Some(1))
+    );
+    assert!(flags(goal).is_empty(), "{goal:#}");
+    assert!(goal["rate_hz"].is_null());
+
+    // The same as a table.
+    let out = run(navdeck(&[
+        "ros2",
+        "topics",
+        "--domain",
+        &domain,
+        "--duration",
+        "2",
+        "--config",
+    ])
+    .arg(&cfg));
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let mut lines = text.lines();
+    let header = lines.next().unwrap();
+    for column in ["TOPIC", "TYPE", "PUB", "SUB", "HZ", "QOS", "FLAGS"] {
+        assert!(header.contains(column), "{text}");
+    }
+    let odom = lines
+        .find(|l| l.starts_with("/odom "))
+        .unwrap_or_else(|| panic!("{text}"));
+    assert!(odom.contains("nav_msgs/msg/Odometry"), "{text}");
+    assert!(
+        text.contains("type: Twist pub vs TwistStamped sub"),
+        "{text}"
+    );
+}
+
+#[test]
+fn a_bad_domain_or_config_is_refused_by_name() {
+    let refused = |out: Output, names: &[&str]| {
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(!out.status.success(), "accepted; stderr {err}");
+        assert!(!err.contains("panicked"), "{err}");
+        for name in names {
+            assert!(err.contains(name), "{name} not in: {err}");
+        }
+    };
+    refused(
+        run(&mut navdeck(&["ros2", "topics", "--domain", "999"])),
+        &["--domain", "999"],
+    );
+    refused(
+        run(navdeck(&["ros2", "topics"]).env("ROS_DOMAIN_ID", "lab")),
+        &["ROS_DOMAIN_ID", "lab"],
+    );
+    refused(
+        run(&mut navdeck(&["--domain", "5", "ros2", "topics"])),
+        &["--domain", "ros2 topics"],
+    );
+    refused(
+        run(&mut navdeck(&["ros2", "topics", "--duration", "0"])),
+        &["--duration"],
+    );
+    let cfg = config("bad", "[ros2]\ninterfaces = [\"lab-router\"]\n");
+    refused(
+        run(navdeck(&[
+            "ros2",
+            "topics",
+            "--domain",
+            &DOMAIN.to_string(),
+            "--config",
+        ])
+        .arg(&cfg)),
+        &["interfaces", "lab-router"],
+    );
+}

@@ -9,7 +9,10 @@
 //! (./scripts/test makes a virtualenv and sets it, with NAVDECK_REQUIRE_INTEROP=1 so
 //! that a missing peer fails the run instead of skipping).
 
+mod cyclone_peer;
 mod python_support;
+
+use cyclone_peer::{CYCLONE_CONFIG, LinePeer, PATIENCE, python};
 
 use navdeck::config::Config;
 use navdeck::data::{ArmState, ArmTarget, GripperCommand};
@@ -22,17 +25,6 @@ use std::io::{BufRead, BufReader};
 use std::path::PathBuf;
 use std::process::{Command, Stdio};
 use std::time::Instant;
-
-/// Cyclone on loopback only: no multicast, unicast discovery to 127.0.0.1.
-const CYCLONE_CONFIG: &str = "<CycloneDDS><Domain Id=\"any\"><General><Interfaces>\
-<NetworkInterface name=\"lo\"/></Interfaces><AllowMulticast>false</AllowMulticast>\
-</General><Discovery><ParticipantIndex>auto</ParticipantIndex>\
-<MaxAutoParticipantIndex>20</MaxAutoParticipantIndex><Peers><Peer address=\"127.0.0.1\"/>\
-</Peers></Discovery></Domain></CycloneDDS>";
-
-fn python() -> Option<String> {
-    python_support::python("the Cyclone DDS peer", "cyclonedds")
-}
 
 fn scratch(name: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("navdeck-interop-{}-{name}", std::process::id()));
@@ -148,71 +140,6 @@ fn a_jazzy_style_peer_gets_twist_stamped() {
         "no warnings on a matched link: {warnings:?}"
     );
 }
-
-/// A peer script on `domain` whose stdout lines arrive on a channel; closing its stdin
-/// (on drop) makes it leave.
-struct LinePeer {
-    child: std::process::Child,
-    lines: std::sync::mpsc::Receiver<String>,
-}
-
-impl LinePeer {
-    fn start(script: &str, domain: u16) -> Option<LinePeer> {
-        Self::start_with(script, domain, &[])
-    }
-
-    /// `start` with arguments after the domain.
-    fn start_with(script: &str, domain: u16, args: &[&str]) -> Option<LinePeer> {
-        let python = python()?;
-        let path = format!("{}/tests/interop/{script}", env!("CARGO_MANIFEST_DIR"));
-        let mut child = Command::new(&python)
-            .arg(path)
-            .arg(domain.to_string())
-            .args(args)
-            .env("CYCLONEDDS_URI", CYCLONE_CONFIG)
-            .stdin(Stdio::piped())
-            .stdout(Stdio::piped())
-            .spawn()
-            .expect("start the Cyclone DDS peer");
-        let out = BufReader::new(child.stdout.take().unwrap());
-        let (tx, lines) = std::sync::mpsc::channel();
-        std::thread::spawn(move || {
-            for line in out.lines().map_while(Result::ok) {
-                if tx.send(line).is_err() {
-                    break;
-                }
-            }
-        });
-        let mut peer = LinePeer { child, lines };
-        assert_eq!(peer.next_line("ready"), "ready", "the peer did not start");
-        Some(peer)
-    }
-
-    fn say(&mut self, line: &str) {
-        use std::io::Write;
-        let stdin = self.child.stdin.as_mut().unwrap();
-        writeln!(stdin, "{line}")
-            .and_then(|_| stdin.flush())
-            .unwrap();
-    }
-
-    /// The peer's next line, waiting at most PATIENCE for `what`.
-    fn next_line(&mut self, what: &str) -> String {
-        self.lines
-            .recv_timeout(std::time::Duration::from_secs_f64(PATIENCE))
-            .unwrap_or_else(|e| panic!("no {what} from the peer: {e}"))
-    }
-}
-
-impl Drop for LinePeer {
-    fn drop(&mut self) {
-        drop(self.child.stdin.take());
-        let _ = self.child.wait();
-    }
-}
-
-/// Upper bound on any wait for DDS (discovery on loopback takes well under a second).
-const PATIENCE: f64 = 20.0;
 
 /// navdeck's ROS 2 link on loopback, as `LOOPBACK` configures the headless runs, with
 /// `tweak` applied to its config.

@@ -8,29 +8,19 @@
 //! (./scripts/test sets it, with NAVDECK_REQUIRE_INTEROP=1 so that a missing peer fails
 //! the run instead of skipping).
 
+mod cyclone_peer;
 mod python_support;
 
+use cyclone_peer::LinePeer;
 use serde_json::Value;
-use std::io::{BufRead, BufReader};
 use std::path::PathBuf;
-use std::process::{Command, Output, Stdio};
+use std::process::{Command, Output};
 
 /// A domain no other test joins.
 const DOMAIN: u16 = 147;
 
-/// Cyclone on loopback only: no multicast, unicast discovery to 127.0.0.1 (as
-/// tests/ros2_interop.rs).
-const CYCLONE_CONFIG: &str = "<CycloneDDS><Domain Id=\"any\"><General><Interfaces>\
-<NetworkInterface name=\"lo\"/></Interfaces><AllowMulticast>false</AllowMulticast>\
-</General><Discovery><ParticipantIndex>auto</ParticipantIndex>\
-<MaxAutoParticipantIndex>20</MaxAutoParticipantIndex><Peers><Peer address=\"127.0.0.1\"/>\
-</Peers></Discovery></Domain></CycloneDDS>";
-
 /// navdeck on loopback only, as the peer.
 const LOOPBACK: &str = "[ros2]\ninterfaces = [\"127.0.0.1\"]\n";
-
-/// Upper bound on the wait for the peer's "ready" (it starts in well under a second).
-const PATIENCE: f64 = 20.0;
 
 fn scratch(name: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("navdeck-topics-{}-{name}", std::process::id()));
@@ -54,46 +44,6 @@ fn run(c: &mut Command) -> Output {
     c.output().expect("run navdeck")
 }
 
-/// The peer on `DOMAIN`, ready; closing its stdin (on drop) makes it leave.
-struct Peer(std::process::Child);
-
-impl Peer {
-    fn start() -> Option<Peer> {
-        let python = python_support::python("the Cyclone DDS peer", "cyclonedds")?;
-        let script = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/interop/topics_peer.py");
-        let mut child = Command::new(python)
-            .arg(script)
-            .arg(DOMAIN.to_string())
-            .env("CYCLONEDDS_URI", CYCLONE_CONFIG)
-            .stdin(Stdio::piped())
-            .stdout(Stdio::piped())
-            .spawn()
-            .expect("start the Cyclone DDS peer");
-        let out = BufReader::new(child.stdout.take().unwrap());
-        let (tx, rx) = std::sync::mpsc::channel();
-        std::thread::spawn(move || {
-            for line in out.lines().map_while(Result::ok) {
-                if tx.send(line).is_err() {
-                    break;
-                }
-            }
-        });
-        let peer = Peer(child);
-        let line = rx
-            .recv_timeout(std::time::Duration::from_secs_f64(PATIENCE))
-            .expect("the peer did not start");
-        assert_eq!(line, "ready", "the peer did not start");
-        Some(peer)
-    }
-}
-
-impl Drop for Peer {
-    fn drop(&mut self) {
-        drop(self.0.stdin.take());
-        let _ = self.0.wait();
-    }
-}
-
 fn topic<'a>(report: &'a Value, name: &str) -> &'a Value {
     (report["topics"].as_array().unwrap().iter())
         .find(|t| t["name"] == name)
@@ -108,7 +58,7 @@ fn flags(topic: &Value) -> Vec<&str> {
 
 #[test]
 fn the_table_shows_every_topic_its_rate_and_each_mismatch() {
-    let Some(_peer) = Peer::start() else {
+    let Some(_peer) = LinePeer::start("topics_peer.py", DOMAIN) else {
         return;
     };
     let cfg = config("graph", LOOPBACK);

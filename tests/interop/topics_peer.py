@@ -25,89 +25,10 @@ from cyclonedds.sub import DataReader
 from cyclonedds.topic import Topic
 from cyclonedds.util import duration
 
+from graph_peer import PoseStamped
+from turtlebot_peer import Header, OccupancyGrid, Odometry, Twist, TwistStamped, ros, stamp_now
+
 ODOM_PERIOD = 0.05
-
-
-def ros(pkg, name):
-    return f"{pkg}::msg::dds_::{name}_"
-
-
-@dataclass
-class Time(IdlStruct, typename=ros("builtin_interfaces", "Time")):
-    sec: t.int32 = 0
-    nanosec: t.uint32 = 0
-
-
-@dataclass
-class Header(IdlStruct, typename=ros("std_msgs", "Header")):
-    stamp: Time = field(default_factory=Time)
-    frame_id: str = ""
-
-
-@dataclass
-class Vector3(IdlStruct, typename=ros("geometry_msgs", "Vector3")):
-    x: t.float64 = 0.0
-    y: t.float64 = 0.0
-    z: t.float64 = 0.0
-
-
-@dataclass
-class Point(IdlStruct, typename=ros("geometry_msgs", "Point")):
-    x: t.float64 = 0.0
-    y: t.float64 = 0.0
-    z: t.float64 = 0.0
-
-
-@dataclass
-class Quaternion(IdlStruct, typename=ros("geometry_msgs", "Quaternion")):
-    x: t.float64 = 0.0
-    y: t.float64 = 0.0
-    z: t.float64 = 0.0
-    w: t.float64 = 1.0
-
-
-@dataclass
-class Pose(IdlStruct, typename=ros("geometry_msgs", "Pose")):
-    position: Point = field(default_factory=Point)
-    orientation: Quaternion = field(default_factory=Quaternion)
-
-
-@dataclass
-class PoseStamped(IdlStruct, typename=ros("geometry_msgs", "PoseStamped")):
-    header: Header = field(default_factory=Header)
-    pose: Pose = field(default_factory=Pose)
-
-
-@dataclass
-class PoseWithCovariance(IdlStruct, typename=ros("geometry_msgs", "PoseWithCovariance")):
-    pose: Pose = field(default_factory=Pose)
-    covariance: t.array[t.float64, 36] = field(default_factory=lambda: [0.0] * 36)
-
-
-@dataclass
-class Twist(IdlStruct, typename=ros("geometry_msgs", "Twist")):
-    linear: Vector3 = field(default_factory=Vector3)
-    angular: Vector3 = field(default_factory=Vector3)
-
-
-@dataclass
-class TwistStamped(IdlStruct, typename=ros("geometry_msgs", "TwistStamped")):
-    header: Header = field(default_factory=Header)
-    twist: Twist = field(default_factory=Twist)
-
-
-@dataclass
-class TwistWithCovariance(IdlStruct, typename=ros("geometry_msgs", "TwistWithCovariance")):
-    twist: Twist = field(default_factory=Twist)
-    covariance: t.array[t.float64, 36] = field(default_factory=lambda: [0.0] * 36)
-
-
-@dataclass
-class Odometry(IdlStruct, typename=ros("nav_msgs", "Odometry")):
-    header: Header = field(default_factory=Header)
-    child_frame_id: str = ""
-    pose: PoseWithCovariance = field(default_factory=PoseWithCovariance)
-    twist: TwistWithCovariance = field(default_factory=TwistWithCovariance)
 
 
 @dataclass
@@ -122,22 +43,6 @@ class LaserScan(IdlStruct, typename=ros("sensor_msgs", "LaserScan")):
     range_max: t.float32 = 0.0
     ranges: t.sequence[t.float32] = field(default_factory=list)
     intensities: t.sequence[t.float32] = field(default_factory=list)
-
-
-@dataclass
-class MapMetaData(IdlStruct, typename=ros("nav_msgs", "MapMetaData")):
-    map_load_time: Time = field(default_factory=Time)
-    resolution: t.float32 = 0.0
-    width: t.uint32 = 0
-    height: t.uint32 = 0
-    origin: Pose = field(default_factory=Pose)
-
-
-@dataclass
-class OccupancyGrid(IdlStruct, typename=ros("nav_msgs", "OccupancyGrid")):
-    header: Header = field(default_factory=Header)
-    info: MapMetaData = field(default_factory=MapMetaData)
-    data: t.sequence[t.int8] = field(default_factory=list)
 
 
 def qos(reliable, latched=False):
@@ -186,8 +91,7 @@ def main():
         next_odom += ODOM_PERIOD
         if next_odom < now - 1.0:
             next_odom = now + ODOM_PERIOD
-        sec = time.time()
-        header = Header(stamp=Time(sec=int(sec), nanosec=int((sec % 1.0) * 1e9)), frame_id="odom")
+        header = Header(stamp=stamp_now(), frame_id="odom")
         odom.write(Odometry(header=header, child_frame_id="base_footprint"))
     del endpoints
 

@@ -207,10 +207,15 @@ impl Pilot {
             return false;
         };
         let (target, label) = (route.target, route.label.clone());
+        // A path planned from where the robot stands, on the map as it is, is followed
+        // as it is (a goal from RViz plans and starts at once); any other is planned again.
+        let here = self.pose().position();
+        let fresh = self.nav.checked_revision == self.belief.revision()
+            && (route.plan.waypoints.first()).is_some_and(|p| p.distance(here) < 1e-6);
         self.nav.arrived = false;
         self.nav.true_cross_track = Rms::default();
         self.nav.cross_track = Rms::default();
-        if !self.plan_route(target) {
+        if !fresh && !self.plan_route(target) {
             return false;
         }
         if let Some(route) = &self.nav.route {

@@ -300,9 +300,11 @@ impl App {
         if r.map_revision != Some(belief.revision()) && t - r.map_at >= config.map_period - 1e-9 {
             r.map_at = t;
             r.map_revision = Some(belief.revision());
-            let grid = belief.occupancy_grid();
-            r.recorder
-                .publish_with(Topic::Map, t, move || picture::grid(&grid, stamp, MAP));
+            // Two arrays copied here; the grid is made on the writer's thread.
+            let evidence = belief.evidence_snapshot();
+            r.recorder.publish_with(Topic::Map, t, move || {
+                picture::grid(&evidence.into_grid(), stamp, MAP)
+            });
         }
     }
 }

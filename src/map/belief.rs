@@ -222,20 +222,23 @@ impl BeliefMap {
     /// or unknown (the cost rings are not saved; they are worked out again on load).
     pub fn occupancy_grid(&self) -> OccupancyGrid {
         let c = &self.costmap;
-        let mut grid = OccupancyGrid::new(c.width, c.height, c.resolution, c.origin, -1);
-        // Zipped slices, no indexing: the loop vectorises (a recording converts the map
-        // every few seconds on the control loop).
-        let cells = (self.evidence.occupied().iter()).zip(self.evidence.log_odds());
-        for (cell, (&occupied, &log_odds)) in grid.cells.iter_mut().zip(cells) {
-            *cell = if occupied {
-                OCCUPIED
-            } else if log_odds != 0.0 {
-                0
-            } else {
-                -1
-            };
+        let grid = OccupancyGrid::new(c.width, c.height, c.resolution, c.origin, -1);
+        fill_grid(grid, self.evidence.occupied(), self.evidence.log_odds())
+    }
+
+    /// A copy of the evidence the occupancy grid is made from (a plain copy of two
+    /// arrays): a recording makes the grid from it on its writer's thread, off the
+    /// control loop.
+    pub fn evidence_snapshot(&self) -> EvidenceSnapshot {
+        let c = &self.costmap;
+        EvidenceSnapshot {
+            width: c.width,
+            height: c.height,
+            resolution: c.resolution,
+            origin: c.origin,
+            occupied: self.evidence.occupied().to_vec(),
+            log_odds: self.evidence.log_odds().to_vec(),
         }
-        grid
     }
 
     /// Takes a whole occupancy grid as certain evidence: its occupied cells become
@@ -339,4 +342,38 @@ fn merged(rects: impl Iterator<Item = CellRect>) -> Vec<CellRect> {
         out.push(r);
     }
     out
+}
+/// The evidence behind an occupancy grid, copied out of a belief map.
+#[derive(Clone, Debug)]
+pub struct EvidenceSnapshot {
+    width: usize,
+    height: usize,
+    resolution: f64,
+    origin: Point2,
+    occupied: Vec<bool>,
+    log_odds: Vec<f32>,
+}
+
+impl EvidenceSnapshot {
+    /// Occupied, known free (evidence either way) or unknown, cell by cell.
+    pub fn into_grid(self) -> OccupancyGrid {
+        let grid = OccupancyGrid::new(self.width, self.height, self.resolution, self.origin, -1);
+        fill_grid(grid, &self.occupied, &self.log_odds)
+    }
+}
+
+/// `grid`'s cells from the evidence: occupied, known free (evidence either way) or unknown.
+fn fill_grid(mut grid: OccupancyGrid, occupied: &[bool], log_odds: &[f32]) -> OccupancyGrid {
+    // Zipped slices, no indexing: the loop vectorises.
+    let cells = occupied.iter().zip(log_odds);
+    for (cell, (&occupied, &log_odds)) in grid.cells.iter_mut().zip(cells) {
+        *cell = if occupied {
+            OCCUPIED
+        } else if log_odds != 0.0 {
+            0
+        } else {
+            -1
+        };
+    }
+    grid
 }

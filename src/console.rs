@@ -106,10 +106,21 @@ pub fn run_replay_console(
             &mut stats,
         )
     })?;
+    let outcome = signalled_failure(outcome, &signals);
     if let Err(e) = &outcome {
         let _ = writeln!(std::io::stderr(), "navdeck: replay ended: {e}");
     }
     Ok(exit_status(&outcome) as u8)
+}
+
+/// A terminal that failed because it hung up: the kernel's SIGHUP may reach the process
+/// a moment after the failed read or write. Asked once the loop has ended and the robot
+/// has been stopped, a signal that has arrived by then is why the console ended.
+fn signalled_failure(outcome: Result<Exit, RunError>, signals: &Signals) -> Result<Exit, RunError> {
+    match (&outcome, signals.pending()) {
+        (Err(_), Some(n)) => Ok(Exit::Signal(n)),
+        _ => outcome,
+    }
 }
 
 /// Runs `loop_body` on the real terminal and its input. When it returns the robot has
@@ -200,6 +211,7 @@ pub fn run_console(
     let recorded = app.finish_recording();
     // Closes the link: the serial port, the DDS participant.
     drop(app);
+    let outcome = signalled_failure(outcome, &signals);
     let why = match &outcome {
         Ok(Exit::Quit) => "quit by user".to_string(),
         Ok(Exit::InputClosed) => "the terminal hung up".to_string(),

@@ -1,6 +1,7 @@
 //! Running navdeck without a terminal: play keys on simulated time, report the outcome.
 //! The single way scripts and tests run a whole session.
 
+use crate::app::log::Entry;
 use crate::app::{App, KeyKind, LinkStatus};
 use crate::geometry::Pose2;
 use crate::keymap::Key;
@@ -178,12 +179,7 @@ pub fn report(app: &App, keys: usize) -> Report {
         true_cross_track_rms: app.pilot().true_cross_track_rms(),
         quit: app.should_quit(),
         // A robot node's line (its /rosout) names the node.
-        warnings: (app.log_book().problems())
-            .map(|e| match &e.source {
-                Some(node) => format!("[{node}] {}", e.text),
-                None => e.text.clone(),
-            })
-            .collect(),
+        warnings: app.log_book().problems().map(Entry::sourced_text).collect(),
         wall_time_s: None,
         realtime_factor: None,
         recording: None,

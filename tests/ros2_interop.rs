@@ -622,7 +622,7 @@ fn pixels(count: usize, seed: usize) -> Vec<u8> {
 /// publisher and camera subscription, and the link's endpoints for the rest.
 fn big_messages(domain: u16, reliability: Reliability) {
     use navdeck::link::ros2::msgs;
-    use navdeck::link::ros2::participant::{Factory, join, qos_profile, take_all};
+    use navdeck::link::ros2::participant::{Factory, Joined, join, qos_profile, take_all};
     let name = match reliability {
         Reliability::Reliable => "reliable",
         Reliability::BestEffort => "best_effort",
@@ -637,8 +637,12 @@ fn big_messages(domain: u16, reliability: Reliability) {
     let mut link = connect_loopback(domain, |c| c.ros2.qos = qos).expect("ROS 2 link");
     let mut config = Config::default();
     config.ros2.interfaces = vec!["127.0.0.1".into()];
-    let (_context, namespace, mut node) =
-        join(&config.ros2, domain, "navdeck_big").expect("a second node");
+    let Joined {
+        context: _context,
+        namespace,
+        mut node,
+        ..
+    } = join(&config.ros2, domain, "navdeck_big").expect("a second node");
     let mut factory = Factory {
         node: &mut node,
         config: &config.ros2,

@@ -27,7 +27,8 @@ pub struct LogBook {
     /// Lines ever written, so a view can tell something new arrived.
     written: u64,
     sink: Option<Sink>,
-    /// Lines written since the last `take_fresh`, when something (a recording) takes them.
+    /// Lines written since the last `take_fresh`, when something takes them (a recording,
+    /// a link that passes the log on to /rosout).
     fresh: Option<Vec<Entry>>,
 }
 
@@ -58,6 +59,13 @@ fn shape(text: &str) -> String {
         in_number = numeric;
     }
     out
+}
+
+impl Entry {
+    /// The text as the log shows it: a robot node's line names the node.
+    pub fn sourced_text(&self) -> String {
+        sourced(self.source.as_deref(), &self.text)
+    }
 }
 
 impl LogBook {
@@ -188,16 +196,21 @@ impl LogBook {
     }
 }
 
-/// One line of the log file; a robot node's line names the node.
+/// One line of the log file.
 fn file_line(e: &Entry) -> String {
-    match &e.source {
-        Some(node) => format!(
-            "{} {} [{node}] {}",
-            format_time(e.time),
-            e.level.tag(),
-            e.text
-        ),
-        None => format!("{} {} {}", format_time(e.time), e.level.tag(), e.text),
+    format!(
+        "{} {} {}",
+        format_time(e.time),
+        e.level.tag(),
+        e.sourced_text()
+    )
+}
+
+/// `text` as the log shows it: `[node] text` for a robot node's line.
+pub fn sourced(source: Option<&str>, text: &str) -> String {
+    match source {
+        Some(node) => format!("[{node}] {text}"),
+        None => text.to_string(),
     }
 }
 

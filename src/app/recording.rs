@@ -12,7 +12,7 @@ use crate::link::ConsoleLine;
 use crate::link::drive::Stepped;
 use crate::link::ros2::msgs::{self, Header};
 use crate::link::ros2::picture;
-use crate::link::ros2::rosout;
+use crate::link::ros2::{NODE_NAME, rosout};
 use crate::record::msgs::{
     BlockMsg, FrameMsg, InputMsg, LogMsg, SightingMsg, SightingsMsg, StringMsg, TruthMsg,
 };
@@ -156,7 +156,7 @@ impl App {
             let msg = LogMsg {
                 stamp: r.recorder.stamp(e.time),
                 level: rosout::severity(e.level),
-                name: e.source.unwrap_or_else(|| "navdeck".into()),
+                name: e.source.unwrap_or_else(|| NODE_NAME.into()),
                 msg: e.text,
                 ..LogMsg::default()
             };

@@ -170,7 +170,7 @@ impl Recorded {
                     time: t,
                     level,
                     text: msg.msg,
-                    source: (msg.name != "navdeck").then_some(msg.name),
+                    source: (msg.name != crate::link::ros2::NODE_NAME).then_some(msg.name),
                 });
             }
             Topic::Mode => {

@@ -27,14 +27,8 @@ from cyclonedds.sub import DataReader
 from cyclonedds.topic import Topic
 from cyclonedds.util import duration
 
-from turtlebot_peer import Header, MapMetaData, ros, stamp_now
-
-
-@dataclass
-class Grid(IdlStruct, typename=ros("nav_msgs", "OccupancyGrid")):
-    header: Header = field(default_factory=Header)
-    info: MapMetaData = field(default_factory=MapMetaData)
-    data: t.sequence[t.int8] = field(default_factory=list)
+from turtlebot_peer import Header, ros, stamp_now
+from turtlebot_peer import OccupancyGrid as Grid
 
 
 @dataclass

@@ -4,8 +4,7 @@
 //! follow its state. The robot itself is still driven by the link it wraps.
 
 use super::config::Ros2Config;
-use super::environment::{RosEnvironment, built_distro};
-use super::participant::{Factory, join};
+use super::participant::{Factory, Joined, join};
 use super::presence::Presence;
 use super::rosout;
 use crate::geometry::Pose2;
@@ -32,8 +31,13 @@ impl Ros2Beside {
         config: Ros2Config,
         domain: u16,
     ) -> Result<Self, LinkError> {
-        let (context, namespace, mut node) = join(&config, domain, "navdeck")?;
-        let logger = rosout::logger_name(&namespace, "navdeck");
+        let Joined {
+            context,
+            namespace,
+            mut node,
+            mut notes,
+        } = join(&config, domain, super::NODE_NAME)?;
+        let logger = rosout::logger_name(&namespace, super::NODE_NAME);
         let presence = Presence::open(
             &mut Factory {
                 node: &mut node,
@@ -42,8 +46,7 @@ impl Ros2Beside {
             },
             logger,
         )?;
-        let mut notices = RosEnvironment::from_process().scope(built_distro()).notes;
-        notices.push(Notice::info(format!(
+        notes.push(Notice::info(format!(
             "ROS 2: on domain {domain} beside {}: goals on {}, pose estimates on {}",
             inner.label(),
             config.goal_topic,
@@ -57,7 +60,7 @@ impl Ros2Beside {
             _node: node,
             _context: context,
             dropped: BTreeMap::new(),
-            notices,
+            notices: notes,
         })
     }
 }

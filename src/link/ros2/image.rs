@@ -3,7 +3,7 @@
 
 use super::config::Ros2Config;
 use super::msgs;
-use super::participant::{Factory, join, qos_profile, take_all};
+use super::participant::{Factory, Joined, join, qos_profile, take_all};
 use crate::link::LinkError;
 use crate::perception::frame::GrayFrame;
 use crate::perception::pipeline::FrameSource;
@@ -22,7 +22,12 @@ pub struct Ros2ImageSource {
 impl Ros2ImageSource {
     /// Subscribes to `topic` (sensor-data QoS, `[ros2] scan_qos`).
     pub fn connect(config: &Ros2Config, domain: u16, topic: &str) -> Result<Self, LinkError> {
-        let (context, namespace, mut node) = join(config, domain, "navdeck_camera")?;
+        let Joined {
+            context,
+            namespace,
+            mut node,
+            ..
+        } = join(config, domain, "navdeck_camera")?;
         let images = Factory {
             node: &mut node,
             config,

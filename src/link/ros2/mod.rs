@@ -40,13 +40,15 @@ use crate::geometry::Pose2;
 use crate::link::rate::RateMeter;
 use cmd_vel::CmdVelPolicy;
 use config::{CmdVelType, Ros2Config};
-use environment::{RosEnvironment, built_distro};
 use inbound::Refusal;
-use participant::{Factory, fail, join, qos_profile, take_all, topic_name};
+use participant::{Factory, Joined, fail, join, qos_profile, take_all, topic_name};
 pub use participant::{dds_type, domain_from};
 use presence::Presence;
 use ros2_client::{Context, Node, NodeName, Publisher, Subscription};
 use std::collections::BTreeMap;
+
+/// navdeck's node on the graph, and its name on /rosout (under its namespace).
+pub const NODE_NAME: &str = "navdeck";
 
 /// How often discovery is asked which type cmd_vel's subscribers read, seconds: often
 /// until one is found, then now and again.
@@ -132,7 +134,12 @@ impl Ros2Link {
     /// first command.
     pub fn connect(options: Ros2Options) -> Result<Self, LinkError> {
         let config = options.config;
-        let (context, namespace, mut node) = join(&config, options.domain, "navdeck")?;
+        let Joined {
+            context,
+            namespace,
+            mut node,
+            notes,
+        } = join(&config, options.domain, NODE_NAME)?;
         let c = &config;
         let mut f = Factory {
             node: &mut node,
@@ -188,8 +195,8 @@ impl Ros2Link {
             "Float64",
             qos.clone(),
         )?;
-        let presence = Presence::open(&mut f, rosout::logger_name(&namespace, "navdeck"))?;
-        let node_name = NodeName::new(&namespace, "navdeck").expect("checked above");
+        let presence = Presence::open(&mut f, rosout::logger_name(&namespace, NODE_NAME))?;
+        let node_name = NodeName::new(&namespace, NODE_NAME).expect("checked above");
         let arm = match c.arm {
             true => Some(arm::Arm::open(&mut f, &node_name)?),
             false => None,
@@ -242,7 +249,7 @@ impl Ros2Link {
             travel: WheelTravel::default(),
             elapsed: 0.0,
             dropped: BTreeMap::new(),
-            notices: RosEnvironment::from_process().scope(built_distro()).notes,
+            notices: notes,
             config,
         })
     }

@@ -152,13 +152,19 @@ impl Factory<'_> {
     }
 }
 
-/// Joins the DDS domain on the configured interfaces and makes a node `name` in the
-/// configured namespace: (context, namespace, node).
-pub fn join(
-    config: &Ros2Config,
-    domain: u16,
-    name: &str,
-) -> Result<(Context, String, Node), LinkError> {
+/// A node on the graph, and what the log should say about how it joined.
+pub struct Joined {
+    pub context: Context,
+    /// The namespace the node is in ("/" for the root).
+    pub namespace: String,
+    pub node: Node,
+    /// The environment's distribution and discovery settings, where they need a word.
+    pub notes: Vec<Notice>,
+}
+
+/// Joins the DDS domain on the configured interfaces (or loopback alone, when the ROS 2
+/// environment asks) and makes a node `name` in the configured namespace.
+pub fn join(config: &Ros2Config, domain: u16, name: &str) -> Result<Joined, LinkError> {
     let mut builder = ros2_client::dds::rustdds::DomainParticipantBuilder::new(domain);
     let scope = RosEnvironment::from_process().scope(built_distro());
     if scope.localhost_only {
@@ -193,7 +199,12 @@ pub fn join(
     let node = context
         .new_node(node_name, NodeOptions::new().enable_rosout(false))
         .map_err(|e| fail(format!("create the {name} node"), e))?;
-    Ok((context, namespace, node))
+    Ok(Joined {
+        context,
+        namespace,
+        node,
+        notes: scope.notes,
+    })
 }
 
 #[cfg(test)]

@@ -6,7 +6,7 @@
 
 use super::config::Ros2Config;
 use super::graph::{self, Endpoint};
-use super::participant::{fail, join};
+use super::participant::{Joined, fail, join};
 use crate::link::LinkError;
 use ros2_client::dds::rustdds::no_key::{DataReader, Decode, DefaultDecoder, DeserializerAdapter};
 use ros2_client::dds::rustdds::{
@@ -165,7 +165,7 @@ impl Listener {
     /// Joins `domain` on the configured interfaces (`[ros2] interfaces`), as the link
     /// does, with a node named `navdeck_topics`.
     pub fn join(config: &Ros2Config, domain: u16, all: bool) -> Result<Listener, LinkError> {
-        let (context, _namespace, node) = join(config, domain, "navdeck_topics")?;
+        let Joined { context, node, .. } = join(config, domain, "navdeck_topics")?;
         let participant = context.domain_participant();
         let subscriber = participant
             .create_subscriber(&rate_qos())

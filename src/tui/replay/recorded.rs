@@ -131,10 +131,7 @@ pub fn log(
         .map(|l| {
             let stamp = format!("{} ", format_time(l.time));
             let room = width.saturating_sub(stamp.chars().count());
-            let text = match &l.source {
-                Some(node) => format!("[{node}] {}", l.text),
-                None => l.text.clone(),
-            };
+            let text = crate::app::log::sourced(l.source.as_deref(), &l.text);
             Line::from(vec![
                 Span::styled(stamp, theme.label()),
                 Span::styled(fit(&text, room), theme.level(l.level)),

@@ -63,10 +63,7 @@ fn entry_lines(e: &Entry, theme: Theme, width: usize) -> Vec<Line<'static>> {
     let style = theme.level(e.level);
     let time = format_time(e.time);
     let head = time.chars().count() + e.level.tag().chars().count() + 2;
-    let mut text = match &e.source {
-        Some(node) => format!("[{node}] {}", e.text),
-        None => e.text.clone(),
-    };
+    let mut text = e.sourced_text();
     if e.repeats > 1 {
         text.push_str(&format!("  ×{}", e.repeats));
     }

@@ -1,30 +1,27 @@
 //! navdeck: a terminal teleop-and-autonomy console for small differential-drive robots.
+//!
+//! This crate is the top of the house: the console, the keymap, the command line and its
+//! runners. The layers below are crates of their own (`crates/`), re-exported here under
+//! the names the rest of navdeck and its tests use.
+
+pub use navdeck_core::{
+    arm, clock, control, data, geometry, map, mission, perception, plan, sim, slam,
+};
+pub use navdeck_link::{self as link, record};
+pub use navdeck_msgs as msgs;
+pub use navdeck_pilot as pilot;
 
 pub mod app;
-pub mod arm;
 pub mod arm_pick;
-pub mod clock;
 pub mod config;
 pub mod console;
-pub mod control;
-pub mod data;
-pub mod geometry;
 pub mod headless;
 pub mod keymap;
-pub mod link;
-pub mod map;
 pub mod map_report;
-pub mod mission;
 pub mod mission_runner;
-pub mod perception;
-pub mod pilot;
-pub mod plan;
 pub mod plan_report;
-pub mod record;
 pub mod replay;
 pub mod session;
-pub mod sim;
-pub mod slam;
 pub mod tour;
 pub mod tui;
 pub mod world_fit;

@@ -64,7 +64,7 @@ pub fn run(args: &ReplayArgs) -> Result<ExitCode> {
         .recorded()
         .inputs
         .iter()
-        .filter(|i| i.kind == navdeck::record::msgs::INPUT_KEY)
+        .filter(|i| i.kind == navdeck::msgs::record::INPUT_KEY)
         .count();
     let mut report = headless::report(replay.app(), keys);
     let wall = started.elapsed().as_secs_f64();

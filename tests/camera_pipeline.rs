@@ -10,7 +10,7 @@ use navdeck::geometry::{Point2, Pose2};
 use navdeck::link::RobotLink;
 use navdeck::link::camera::WithCamera;
 use navdeck::link::ros2::image::Ros2ImageSource;
-use navdeck::link::ros2::msgs;
+use navdeck::msgs::ros as msgs;
 use navdeck::perception::aruco::Detector;
 use navdeck::perception::config::VisionConfig;
 use navdeck::perception::frame::GrayFrame;

@@ -64,7 +64,7 @@ fn a_record_folder_in_the_config_records_each_console_session_under_a_dated_name
     let keys: Vec<&str> = session
         .inputs
         .iter()
-        .filter(|i| i.kind == navdeck::record::msgs::INPUT_KEY)
+        .filter(|i| i.kind == navdeck::msgs::record::INPUT_KEY)
         .map(|i| i.key.as_str())
         .collect();
     assert!(keys.contains(&"w") && keys.last() == Some(&"q"), "{keys:?}");

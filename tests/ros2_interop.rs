@@ -621,8 +621,8 @@ fn pixels(count: usize, seed: usize) -> Vec<u8> {
 /// A full-size map and VGA images both ways with `reliability`: navdeck's own map
 /// publisher and camera subscription, and the link's endpoints for the rest.
 fn big_messages(domain: u16, reliability: Reliability) {
-    use navdeck::link::ros2::msgs;
     use navdeck::link::ros2::participant::{Factory, Joined, join, qos_profile, take_all};
+    use navdeck::msgs::ros as msgs;
     let name = match reliability {
         Reliability::Reliable => "reliable",
         Reliability::BestEffort => "best_effort",

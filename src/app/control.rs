@@ -43,7 +43,7 @@ impl ControlClock {
 impl App {
     /// Runs every control step due up to `now` (periodic ticks and deadman expiries).
     pub fn update(&mut self, now: f64) {
-        self.record_input(crate::record::msgs::InputMsg::update(now));
+        self.record_input(crate::msgs::record::InputMsg::update(now));
         self.advance_to(now);
         // Between control steps, still bring what the robot reports up to date.
         self.sense(now);

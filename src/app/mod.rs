@@ -156,7 +156,7 @@ impl App {
 
     /// Resolves a key through the active mode's keymap and acts on it.
     pub fn handle_key(&mut self, key: Key, kind: KeyKind, now: f64) {
-        let event = crate::record::msgs::InputMsg::key(now, key.to_string(), kind as u8);
+        let event = crate::msgs::record::InputMsg::key(now, key.to_string(), kind as u8);
         self.record_input(event);
         self.handle_key_inner(key, kind, now);
         self.pass_log();
@@ -527,7 +527,7 @@ impl App {
 
     /// Tells the console the terminal's size (the map scale depends on it).
     pub fn resize(&mut self, width: u16, height: u16) {
-        self.record_input(crate::record::msgs::InputMsg::resize(
+        self.record_input(crate::msgs::record::InputMsg::resize(
             self.now, width, height,
         ));
         self.screen = (width, height);

@@ -10,12 +10,12 @@ use crate::data::{Command, SensorFrame};
 use crate::geometry::{Point2, Pose2};
 use crate::link::ConsoleLine;
 use crate::link::drive::Stepped;
-use crate::link::ros2::msgs::{self, Header};
-use crate::link::ros2::picture;
 use crate::link::ros2::{NODE_NAME, rosout};
-use crate::record::msgs::{
+use crate::msgs::picture;
+use crate::msgs::record::{
     BlockMsg, FrameMsg, InputMsg, LogMsg, SightingMsg, SightingsMsg, StringMsg, TruthMsg,
 };
+use crate::msgs::ros::{self as msgs, Header};
 use crate::record::{Recorder, Summary, Topic};
 use std::collections::BTreeMap;
 use std::sync::Arc;

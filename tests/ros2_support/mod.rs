@@ -5,7 +5,7 @@
 
 #![allow(dead_code)]
 
-use navdeck::link::ros2::msgs;
+use navdeck::msgs::ros as msgs;
 use ros2_client::{
     Context, MessageTypeName, Name, NodeName, NodeOptions, QosProfile, Subscription,
     qos::{Durability, History, WhenFull},

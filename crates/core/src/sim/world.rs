@@ -1,0 +1,174 @@
+//! The twin's world: static walls and obstacles, markers, gates and movable blocks,
+//! as loaded from a world file (see `maps/arena.toml` for the format).
+
+use super::{WorldError, build, raster, world_file, world_toml};
+use crate::geometry::{Point2, Pose2, Segment};
+use crate::map::grid::OccupancyGrid;
+use serde::{Deserialize, Serialize};
+use std::path::Path;
+
+/// The built-in arena of seed 001, compiled into the binary.
+const ARENA_TOML: &str = include_str!("../../../../maps/arena.toml");
+
+/// Colour of a block and of the gate it belongs to (seed 001 section 1).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum BlockColor {
+    Red,
+    Blue,
+}
+
+impl BlockColor {
+    pub fn label(self) -> &'static str {
+        match self {
+            Self::Red => "red",
+            Self::Blue => "blue",
+        }
+    }
+}
+
+/// A fiducial marker fixed in the world.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Marker {
+    pub id: u32,
+    pub position: Point2,
+    /// Direction the marker faces (its surface normal), radians.
+    pub normal: f64,
+}
+
+/// A delivery gate: two gate markers of its colour mounted on a wall.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Gate {
+    pub color: BlockColor,
+    pub markers: [u32; 2],
+}
+
+/// A block as placed in the world file: a square of side `size` carrying the odd marker
+/// `markers[0]` on its local +x face and the even `markers[1]` on its local +y face.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Block {
+    pub color: BlockColor,
+    pub pose: Pose2,
+    pub size: f64,
+    pub markers: [u32; 2],
+}
+
+/// A box obstacle: a `width` x `height` rectangle (along its local x and y) at `pose`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Obstacle {
+    pub pose: Pose2,
+    pub width: f64,
+    pub height: f64,
+}
+
+/// A world spanning [-width/2, width/2] x [-height/2, height/2] metres.
+#[derive(Clone, Debug, PartialEq)]
+pub struct World {
+    pub name: String,
+    pub width: f64,
+    pub height: f64,
+    pub start: Pose2,
+    /// Every static solid segment: boundary and inner walls, then obstacle outlines.
+    pub walls: Vec<Segment>,
+    /// Every fixed marker: generated along walls, on obstacle faces, explicit, and gates'.
+    /// Block markers travel with their blocks and are not listed here.
+    pub markers: Vec<Marker>,
+    pub blocks: Vec<Block>,
+    pub gates: Vec<Gate>,
+    /// The box obstacles whose outlines are also in `walls`.
+    pub obstacles: Vec<Obstacle>,
+}
+
+impl World {
+    /// Parses and validates world-file text; `source` only names the file in errors.
+    pub fn from_toml(text: &str, source: &Path) -> Result<World, WorldError> {
+        let file = world_file::parse(text, source)?;
+        build::build(file, text, source)
+    }
+
+    /// Reads and validates a world file.
+    pub fn load(path: &Path) -> Result<World, WorldError> {
+        let text = crate::data::files::read_text_limited(path, crate::data::files::WORLD_LIMIT)
+            .map_err(|source| WorldError::Read {
+                path: path.to_path_buf(),
+                error: source,
+            })?;
+        Self::from_toml(&text, path)
+    }
+
+    /// The world as world-file text, which `from_toml` reads back as the same world.
+    pub fn to_toml(&self) -> String {
+        world_toml::to_toml(self)
+    }
+
+    /// Seed 001's 4 m x 4 m arena (`maps/arena.toml`, embedded at build time).
+    pub fn default_arena() -> World {
+        Self::from_toml(ARENA_TOML, Path::new("maps/arena.toml"))
+            .expect("the embedded maps/arena.toml is valid (checked by a test)")
+    }
+
+    /// Static geometry as an occupancy grid: walls and obstacles occupied, the rest free.
+    /// Cell (0, 0) sits at the world's lower-left corner. A resolution that is not a
+    /// positive number gives an empty grid.
+    pub fn rasterize(&self, resolution: f64) -> OccupancyGrid {
+        raster::rasterize(self, resolution)
+    }
+
+    /// Every static solid segment (the same as `walls`).
+    pub fn static_segments(&self) -> &[Segment] {
+        &self.walls
+    }
+
+    /// The fixed marker with this id, if any.
+    pub fn marker(&self, id: u32) -> Option<&Marker> {
+        self.markers.iter().find(|m| m.id == id)
+    }
+
+    /// Midpoint of a gate's two markers and the direction it faces, radians.
+    pub fn gate_pose(&self, gate: &Gate) -> Option<Pose2> {
+        let (a, b) = (self.marker(gate.markers[0])?, self.marker(gate.markers[1])?);
+        let mid = Point2::new(
+            (a.position.x + b.position.x) / 2.0,
+            (a.position.y + b.position.y) / 2.0,
+        );
+        Some(Pose2::new(mid.x, mid.y, a.normal))
+    }
+
+    /// What a robot of footprint `radius` at the start pose runs into: its centre inside
+    /// an obstacle or a block, or within `radius` of a wall or a block's side; `None`
+    /// when it stands clear.
+    pub fn start_conflict(&self, radius: f64) -> Option<String> {
+        use super::shapes::{rect_contains, rect_edges};
+        let start = self.start.position();
+        if let Some(i) = self
+            .obstacles
+            .iter()
+            .position(|o| rect_contains(o.pose, o.width, o.height, start))
+        {
+            return Some(format!("lies inside obstacles[{i}]"));
+        }
+        for (i, b) in self.blocks.iter().enumerate() {
+            if rect_contains(b.pose, b.size, b.size, start) {
+                return Some(format!("lies inside blocks[{i}]"));
+            }
+            let edges = rect_edges(b.pose, b.size, b.size);
+            if let Some(d) = edges
+                .iter()
+                .map(|e| e.distance_to(start))
+                .find(|&d| d < radius)
+            {
+                return Some(format!("is {d:.3} m from blocks[{i}], under {radius} m"));
+            }
+        }
+        self.walls
+            .iter()
+            .map(|w| w.distance_to(start))
+            .find(|&d| d < radius)
+            .map(|d| format!("is {d:.3} m from a wall, under {radius} m"))
+    }
+
+    /// True when `p` lies within the world's bounds.
+    pub fn contains(&self, p: Point2) -> bool {
+        p.x.abs() <= self.width / 2.0 && p.y.abs() <= self.height / 2.0
+    }
+}

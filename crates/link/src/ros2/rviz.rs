@@ -1,0 +1,141 @@
+//! What navdeck believes, published for RViz: the estimated pose, the map -> odom
+//! transform, the plan, the map (latched), the landmarks in the distribution's Marker
+//! layout and MCL's particle cloud.
+
+use super::config::{Distro, Qos, Ros2Config};
+use super::participant::{Factory, qos_profile};
+use super::{msgs, now_stamp, picture};
+use crate::{LinkError, Picture};
+use navdeck_core::geometry::Pose2;
+use ros2_client::{Publisher, QosProfile};
+
+/// The RViz markers in the distribution's layout.
+enum LandmarkPublisher {
+    Humble(Publisher<msgs::MarkerArray<msgs::MarkerHumble>>),
+    Jazzy(Publisher<msgs::MarkerArray<msgs::MarkerJazzy>>),
+}
+
+/// The publishers RViz reads.
+pub(super) struct RvizPublishers {
+    map: Publisher<msgs::OccupancyGrid>,
+    plan: Publisher<msgs::Path>,
+    landmarks: LandmarkPublisher,
+    pose: Publisher<msgs::PoseWithCovarianceStamped>,
+    tf: Publisher<msgs::TfMessage>,
+    particles: Publisher<msgs::PoseArray>,
+}
+
+impl RvizPublishers {
+    /// Sets up every RViz topic: `qos` for the streams, `latched` for the map.
+    pub(super) fn open(
+        f: &mut Factory<'_>,
+        qos: QosProfile,
+        latched: QosProfile,
+    ) -> Result<Self, LinkError> {
+        let c = f.config;
+        let map = f.publisher(
+            "map_topic",
+            &c.map_topic,
+            "nav_msgs",
+            "OccupancyGrid",
+            latched.clone(),
+        )?;
+        let plan = f.publisher("plan_topic", &c.plan_topic, "nav_msgs", "Path", qos.clone())?;
+        let landmarks = match c.distro {
+            Distro::Humble => LandmarkPublisher::Humble(f.publisher(
+                "landmarks_topic",
+                &c.landmarks_topic,
+                "visualization_msgs",
+                "MarkerArray",
+                qos.clone(),
+            )?),
+            Distro::Jazzy => LandmarkPublisher::Jazzy(f.publisher(
+                "landmarks_topic",
+                &c.landmarks_topic,
+                "visualization_msgs",
+                "MarkerArray",
+                qos.clone(),
+            )?),
+        };
+        let pose = f.publisher(
+            "pose_topic",
+            &c.pose_topic,
+            "geometry_msgs",
+            "PoseWithCovarianceStamped",
+            qos.clone(),
+        )?;
+        let tf = f.publisher(
+            "tf",
+            "/tf",
+            "tf2_msgs",
+            "TFMessage",
+            qos_profile(
+                Qos {
+                    depth: 100,
+                    ..c.qos
+                },
+                false,
+            ),
+        )?;
+        // Best effort, as AMCL publishes its cloud (RViz's display must ask for best effort).
+        let particles = f.publisher(
+            "particle_cloud_topic",
+            &c.particle_cloud_topic,
+            "geometry_msgs",
+            "PoseArray",
+            qos_profile(Qos::SENSOR_DATA, false),
+        )?;
+        Ok(Self {
+            map,
+            plan,
+            landmarks,
+            pose,
+            tf,
+            particles,
+        })
+    }
+
+    /// The pose (and, with odometry, the map -> odom transform) every call; the plan, the
+    /// map, the landmarks and the particles when the picture carries them.
+    pub(super) fn show(&self, picture: &Picture, odom: Option<Pose2>, config: &Ros2Config) {
+        let stamp = now_stamp();
+        let frame = config.map_frame.clone();
+        let _ = self.pose.publish(picture::pose_with_covariance(
+            picture.pose,
+            &picture.pose_covariance,
+            stamp,
+            &frame,
+        ));
+        if let Some(in_odom) = odom {
+            let t = picture::map_to_odom(picture.pose, in_odom);
+            let _ = self
+                .tf
+                .publish(picture::transform(&frame, &config.odom_frame, t, stamp));
+        }
+        if let Some(particles) = &picture.particles {
+            let _ = self
+                .particles
+                .publish(picture::particle_cloud(particles, stamp, &frame));
+        }
+        if let Some(path) = &picture.path {
+            let _ = self.plan.publish(picture::path(path, stamp, &frame));
+        }
+        if let Some(grid) = &picture.map {
+            let _ = self.map.publish(picture::grid(grid, stamp, &frame));
+        }
+        if let Some(list) = &picture.landmarks {
+            let markers = picture::landmarks(list, stamp, &frame);
+            let _ = match &self.landmarks {
+                LandmarkPublisher::Humble(p) => p
+                    .publish(msgs::MarkerArray { markers })
+                    .map(|_| ())
+                    .map_err(|_| ()),
+                LandmarkPublisher::Jazzy(p) => p
+                    .publish(msgs::MarkerArray {
+                        markers: markers.into_iter().map(Into::into).collect(),
+                    })
+                    .map_err(|_| ()),
+            };
+        }
+    }
+}

@@ -1,0 +1,123 @@
+//! Sense, decide, act: folding in what the robot reported and choosing the command.
+
+use super::Pilot;
+use super::mode::Mode;
+use navdeck_core::data::{Command, GripperState, Level, SensorFrame, WheelTravel};
+use navdeck_core::geometry::Twist;
+use navdeck_core::map::contact::JAWS;
+use navdeck_core::slam::odometry::twist_from_wheels;
+
+/// The measured twist, and the wheel travel and time since it was last worked out.
+#[derive(Clone, Debug, Default)]
+pub(super) struct Measuring {
+    pub measured: Twist,
+    travel: WheelTravel,
+    travel_time: f64,
+}
+
+impl Pilot {
+    /// Folds in what the robot reported up to `t`.
+    pub(super) fn sense(&mut self, t: f64, frame: &SensorFrame) {
+        self.link_answered(t);
+        if let Some(arm) = frame.arm {
+            self.arm_measured(arm.joints);
+        }
+        if let Some(pose) = frame.initial_pose {
+            self.set_pose(pose);
+        }
+        if let Some(goal) = frame.goal {
+            self.drive_to_goal(goal);
+        }
+        if let Some(wheels) = frame.wheels {
+            self.estimate_motion(wheels);
+            self.measuring.travel.left += wheels.left;
+            self.measuring.travel.right += wheels.right;
+            self.measuring.travel_time += frame.elapsed;
+        }
+        if let Some(s) = &frame.sightings {
+            self.estimate_sightings(s);
+            self.map_sightings(s);
+            self.note_frame(s.iter().map(|m| m.id).collect());
+        }
+        if let Some(scan) = &frame.scan {
+            self.localize_scan(scan);
+            self.map_scan(t, scan);
+        }
+        if let Some(g) = frame.gripper {
+            if self.hand.state.is_some() && self.hand.state != Some(g) {
+                self.log_at(t, Level::Info, format!("gripper {}", g.label()));
+            }
+            if g == GripperState::Holding && self.hand.state != Some(g) {
+                // What the lidar mapped in the jaws is the block, gone from that spot.
+                self.belief.clear_held(self.pose(), JAWS);
+            }
+            self.hand.state = Some(g);
+        }
+    }
+
+    /// Decides the command for `t`.
+    pub(super) fn act(&mut self, t: f64) -> Command {
+        let twist = self.decide(t);
+        self.commanded = twist;
+        Command {
+            twist,
+            gripper: self.hand.pending.take(),
+            arm: self.arm_command(t),
+        }
+    }
+
+    /// The measured twist over the last control period: whole periods, so that encoder
+    /// quantisation does not make it flicker.
+    pub(super) fn measure(&mut self) {
+        let period = self.settings.robot.control_period;
+        let m = &mut self.measuring;
+        if m.travel_time >= 0.5 * period {
+            m.measured = twist_from_wheels(m.travel, self.settings.robot.track, m.travel_time);
+            m.travel = WheelTravel::default();
+            m.travel_time = 0.0;
+        }
+    }
+
+    /// The twist the active mode asks for at `t`; zero whenever control is in doubt.
+    fn decide(&mut self, t: f64) -> Twist {
+        // The deadman always drops expired keys, even while the command is forced to zero,
+        // so its deadline moves on and the console's tick loop always progresses.
+        let keys = self.teleop.twist(t, self.brake_margin());
+        if self.gate.in_doubt() {
+            return Twist::ZERO;
+        }
+        match self.mode {
+            Mode::PathFollowing => self.follow(t),
+            Mode::Exploration => self.explore(t),
+            m if m.drives_by_keys() => keys,
+            _ => Twist::ZERO,
+        }
+    }
+
+    /// For an autonomous mode's step at `t` after its last one (`last`: when, and the twist
+    /// it gave): `Err(twist)` when that step was under half a period ago and its command
+    /// stands (decide also runs on key events between ticks), else `Ok(dt)`.
+    pub(super) fn step_due(&self, last: Option<(f64, Twist)>, t: f64) -> Result<f64, Twist> {
+        let period = self.settings.robot.control_period;
+        match last {
+            Some((at, twist)) if t - at < 0.5 * period => Err(twist),
+            Some((at, _)) => Ok(t - at),
+            None => Ok(period),
+        }
+    }
+
+    /// Seconds the robot needs to brake from the current command at its acceleration limits.
+    pub(super) fn brake_margin(&self) -> f64 {
+        let r = &self.settings.robot;
+        (self.commanded.linear.abs() / r.max_linear_accel)
+            .max(self.commanded.angular.abs() / r.max_angular_accel)
+    }
+
+    /// When the held keys' deadman cuts the drive command, no earlier than `now`: early
+    /// enough that the robot, braking at its acceleration limits, is at rest
+    /// `deadman_timeout` after the last key.
+    pub fn teleop_cutoff(&self, now: f64) -> Option<f64> {
+        let expiry = self.teleop.next_expiry(self.brake_margin())?;
+        Some(expiry.max(now))
+    }
+}

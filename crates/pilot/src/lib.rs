@@ -1,0 +1,303 @@
+//! The pilot: everything that decides how the robot moves, free of terminal, clock and
+//! link. Odometry and EKF-SLAM, the planning map, the planner and path follower, keyboard
+//! driving with its deadman, the mission, navigation, and the safety gate (e-stop, link
+//! in doubt) all live here.
+//!
+//! One entry point, in the shape of the mission's step: `step(Input) -> Output`. The
+//! input is the time, what the user asked (an `Intent`), what the link reported and
+//! whether a command is due; the output is the command to send and the log lines.
+//! The console (`app/`) owns the link and the screen and calls `step`; the headless
+//! mission runner calls it directly.
+
+pub mod arm;
+pub mod config;
+mod control;
+pub mod estimate;
+mod exploration;
+mod intent;
+pub mod localize;
+mod mapping;
+pub mod mode;
+pub mod navigation;
+mod safety;
+pub mod teleop;
+mod trail;
+
+use config::Settings;
+use mode::Mode;
+use nalgebra::Matrix3;
+use navdeck_core::clock::Clock;
+use navdeck_core::data::{Command, GripperCommand, GripperState, LaserScan, Level, SensorFrame};
+use navdeck_core::geometry::{Point2, Pose2, Twist};
+use navdeck_core::map::belief::BeliefMap;
+use navdeck_core::slam::ekf::EkfSlam;
+use navdeck_core::slam::odometry::Odometry;
+use std::sync::Arc;
+use teleop::{DriveKey, Teleop};
+
+pub use intent::Intent;
+pub use safety::LinkStatus;
+
+/// What the link reported since the last step.
+#[derive(Clone, Copy, Debug)]
+pub enum Report<'a> {
+    /// Nothing was asked of the link.
+    Nothing,
+    Frame(&'a SensorFrame),
+    /// The link failed: polling or sending did not work.
+    Failed(&'a str),
+}
+
+/// What the step should produce besides folding in the report.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Due {
+    /// No command: the report is folded in, the intent applied.
+    Nothing,
+    /// A command now (a key acted between control periods).
+    Command,
+    /// A command and the once-per-period upkeep (measured twist, footprint, accuracy).
+    Tick,
+}
+
+/// One step's input.
+#[derive(Debug)]
+pub struct Input<'a> {
+    /// Session time, seconds.
+    pub t: f64,
+    pub intent: Option<Intent>,
+    pub report: Report<'a>,
+    /// The robot's true pose when a simulator knows it: used to score, never to decide.
+    pub truth: Option<Pose2>,
+    pub due: Due,
+}
+
+impl<'a> Input<'a> {
+    /// An intent alone at `t`: no report, no command.
+    pub fn intent(t: f64, intent: Intent, truth: Option<Pose2>) -> Self {
+        Self {
+            t,
+            intent: Some(intent),
+            report: Report::Nothing,
+            truth,
+            due: Due::Nothing,
+        }
+    }
+
+    /// A report at `t`, with a command when `due` says so.
+    pub fn report(t: f64, report: Report<'a>, truth: Option<Pose2>, due: Due) -> Self {
+        Self {
+            t,
+            intent: None,
+            report,
+            truth,
+            due,
+        }
+    }
+}
+
+/// One log line of the pilot's.
+#[derive(Clone, Debug, PartialEq)]
+pub struct LogLine {
+    pub time: f64,
+    pub level: Level,
+    pub text: String,
+}
+
+/// One step's output.
+#[derive(Debug, Default)]
+pub struct Output {
+    /// The command to send, when one was due.
+    pub command: Option<Command>,
+    /// The intent changed what the robot should do: a command is due now.
+    pub act_now: bool,
+    pub log: Vec<LogLine>,
+}
+
+/// The gripper as last reported, and the command waiting for the next send.
+#[derive(Clone, Copy, Debug, Default)]
+struct Hand {
+    state: Option<GripperState>,
+    pending: Option<GripperCommand>,
+}
+
+/// The autonomy core; see the module comment.
+pub struct Pilot {
+    settings: Settings,
+    now: f64,
+    mode: Mode,
+    teleop: Teleop,
+    /// Manual mode's speeds, kept while race mode drives faster.
+    manual_speeds: (f64, f64),
+    odometry: Odometry,
+    ekf: EkfSlam,
+    /// Monte-Carlo localisation on a known map, when the session has one.
+    mcl: Option<navdeck_core::slam::mcl::Mcl>,
+    estimating: estimate::Estimating,
+    /// The planning map the robot builds from what it senses.
+    belief: BeliefMap,
+    upkeep: mapping::Upkeep,
+    planner: navdeck_core::plan::pipeline::Planner,
+    follower: navdeck_core::control::follower::Follower,
+    nav: navigation::Navigation,
+    exploring: exploration::Exploring,
+    gate: safety::Gate,
+    commanded: Twist,
+    measuring: control::Measuring,
+    hand: Hand,
+    /// The arm, when the config has one.
+    arm: Option<arm::ArmPilot>,
+    /// A monotonic clock, installed by the runner, to time planning for the log only.
+    stopwatch: Option<Arc<dyn Clock>>,
+    log: Vec<LogLine>,
+}
+
+impl Pilot {
+    /// A pilot starting at `start` at session time `now`, with a planning map of at least
+    /// `extent` (width, height) metres.
+    pub fn new(settings: Settings, start: Pose2, extent: (f64, f64), now: f64) -> Self {
+        let (robot, teleop) = (&settings.robot, &settings.teleop);
+        let teleop = Teleop::new(
+            teleop,
+            teleop.max_linear.min(robot.max_linear),
+            teleop.max_angular.min(robot.max_angular),
+        );
+        let m = &settings.map;
+        let mut pilot = Self {
+            now,
+            mode: Mode::Manual,
+            teleop,
+            manual_speeds: (0.0, 0.0),
+            odometry: Odometry::new(start, robot.track),
+            // The map frame starts at the robot: its pose is known exactly there.
+            ekf: EkfSlam::new(start, Matrix3::zeros(), &settings.slam, robot.track),
+            mcl: None,
+            estimating: estimate::Estimating::default(),
+            belief: BeliefMap::new(m, (m.width.max(extent.0), m.height.max(extent.1))),
+            upkeep: mapping::Upkeep::default(),
+            planner: navdeck_core::plan::pipeline::Planner::new(),
+            follower: navdeck_core::control::follower::Follower::new(
+                settings.follow.clone(),
+                settings.plan.max_speed.min(robot.max_linear),
+                robot.max_angular,
+            ),
+            nav: navigation::Navigation::default(),
+            exploring: exploration::Exploring::default(),
+            gate: safety::Gate::default(),
+            commanded: Twist::ZERO,
+            measuring: control::Measuring::default(),
+            hand: Hand::default(),
+            arm: settings.arm.clone().map(arm::ArmPilot::new),
+            stopwatch: None,
+            log: Vec::new(),
+            settings,
+        };
+        pilot.map_footprint();
+        pilot
+    }
+
+    /// The one entry point: applies the intent, folds in the report, and decides the
+    /// command when one is due.
+    pub fn step(&mut self, input: Input<'_>) -> Output {
+        let t = input.t;
+        self.now = self.now.max(t);
+        self.estimating.truth = input.truth;
+        let act_now = input.intent.is_some_and(|intent| self.apply(intent));
+        match input.report {
+            Report::Nothing => {}
+            Report::Frame(frame) => self.sense(t, frame),
+            Report::Failed(reason) => self.lose_link(t, reason.to_string()),
+        }
+        let command = (input.due != Due::Nothing).then(|| self.act(t));
+        if input.due == Due::Tick {
+            self.measure();
+            self.map_footprint();
+            self.sample_accuracy();
+            self.check_race_uncertainty();
+        }
+        Output {
+            command,
+            act_now,
+            log: std::mem::take(&mut self.log),
+        }
+    }
+
+    /// Installs the clock that times planning (seconds, monotonic), for the log only.
+    pub fn set_stopwatch(&mut self, stopwatch: Arc<dyn Clock>) {
+        self.stopwatch = Some(stopwatch);
+    }
+
+    fn log(&mut self, level: Level, text: impl Into<String>) {
+        self.log_at(self.now, level, text);
+    }
+
+    fn log_at(&mut self, time: f64, level: Level, text: impl Into<String>) {
+        self.log.push(LogLine {
+            time,
+            level,
+            text: text.into(),
+        });
+    }
+
+    // ----- read-only views for the console, the runners and the tests -----
+
+    pub fn settings(&self) -> &Settings {
+        &self.settings
+    }
+    pub fn mode(&self) -> Mode {
+        self.mode
+    }
+    pub fn teleop(&self) -> &Teleop {
+        &self.teleop
+    }
+    pub fn estimated_pose(&self) -> Pose2 {
+        self.pose()
+    }
+    /// Where wheel odometry alone puts the robot (dead reckoning).
+    pub fn odometry_pose(&self) -> Pose2 {
+        self.odometry.pose()
+    }
+    pub fn odometry_distance(&self) -> f64 {
+        self.odometry.distance()
+    }
+    pub fn commanded(&self) -> Twist {
+        self.commanded
+    }
+    pub fn measured(&self) -> Twist {
+        self.measuring.measured
+    }
+    pub fn gripper(&self) -> Option<GripperState> {
+        self.hand.state
+    }
+    pub fn estop(&self) -> bool {
+        self.gate.estop
+    }
+    pub fn link_status(&self) -> &LinkStatus {
+        &self.gate.link
+    }
+    pub fn slam(&self) -> &EkfSlam {
+        &self.ekf
+    }
+    /// The robot's planning map.
+    pub fn belief(&self) -> &BeliefMap {
+        &self.belief
+    }
+    /// The newest lidar scan and the estimated pose it was taken from.
+    pub fn newest_scan(&self) -> Option<(Pose2, &LaserScan)> {
+        self.upkeep.newest_scan.as_ref().map(|(p, s)| (*p, s))
+    }
+    /// Where the robot has driven (estimated positions, oldest first).
+    pub fn trail(&self) -> &[Point2] {
+        self.upkeep.trail.points()
+    }
+    /// Drive keys still held at `now`, for the status panel.
+    pub fn held_keys(&self, now: f64) -> Vec<DriveKey> {
+        self.teleop.clone().held_at(now, self.brake_margin())
+    }
+    /// Where a new goal cursor starts: the route's goal, else the robot.
+    pub fn cursor_start(&self) -> Point2 {
+        self.nav
+            .route
+            .as_ref()
+            .map_or(self.pose().position(), |r| r.goal)
+    }
+}

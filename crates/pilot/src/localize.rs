@@ -1,0 +1,270 @@
+//! Monte-Carlo localisation in the pilot: when the session gives a known map, the
+//! particle filter's pose is the one everything else uses (planning, following, the
+//! mission, the map, the status panel, the accuracy report), and the EKF is kept at that
+//! pose so that the landmarks it maps line up with the known map.
+
+use super::Pilot;
+use nalgebra::Matrix3;
+use navdeck_core::data::{LaserScan, Level};
+use navdeck_core::geometry::Pose2;
+use navdeck_core::map::grid::OccupancyGrid;
+use navdeck_core::slam::mcl::{KnownMap, Mcl};
+use std::sync::Arc;
+
+/// Where the filter starts.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum InitialPose {
+    /// Near a known pose (`--initial-pose X,Y,THETA`, RViz's "2D Pose Estimate").
+    At(Pose2),
+    /// Anywhere on the map's free space: global localisation.
+    Unknown,
+}
+
+impl std::str::FromStr for InitialPose {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        if s.trim() == "unknown" {
+            return Ok(InitialPose::Unknown);
+        }
+        navdeck_core::geometry::parse_pose_degrees(s).map(InitialPose::At)
+    }
+}
+
+impl Pilot {
+    /// Localises with MCL on `grid` from `initial`, the grid also becoming the planning
+    /// map's prior; `seed` seeds the filter's random numbers. Refused (with the reason)
+    /// for a map MCL cannot use or an initial pose off its free space.
+    pub fn use_mcl(
+        &mut self,
+        grid: &OccupancyGrid,
+        initial: InitialPose,
+        seed: u64,
+    ) -> Result<(), String> {
+        let map = Arc::new(KnownMap::new(grid).map_err(|e| e.to_string())?);
+        if let InitialPose::At(p) = initial {
+            check_on_free_space(&map, p)?;
+        }
+        self.cover(grid);
+        self.belief.absorb_grid(grid);
+        let mut mcl = Mcl::new(map, &self.settings.localization, seed);
+        self.place(&mut mcl, initial);
+        self.mcl = Some(mcl);
+        Ok(())
+    }
+
+    /// Makes the planning map cover `grid` (it is centred on the origin, as every map
+    /// navdeck builds); an empty planning map is simply made larger.
+    fn cover(&mut self, grid: &OccupancyGrid) {
+        let (w, h) = grid.extent();
+        let o = grid.origin;
+        let need = (
+            2.0 * o.x.abs().max((o.x + w).abs()),
+            2.0 * o.y.abs().max((o.y + h).abs()),
+        );
+        let c = self.belief.costmap();
+        let have = (
+            c.width as f64 * c.resolution,
+            c.height as f64 * c.resolution,
+        );
+        if need.0 > have.0 || need.1 > have.1 {
+            let extent = (need.0.max(have.0), need.1.max(have.1));
+            self.belief = navdeck_core::map::belief::BeliefMap::new(&self.settings.map, extent);
+        }
+    }
+
+    fn place(&mut self, mcl: &mut Mcl, initial: InitialPose) {
+        let c = &self.settings.localization;
+        match initial {
+            InitialPose::At(p) => mcl.init_at(p, c.initial_std, c.initial_std_deg.to_radians()),
+            InitialPose::Unknown => mcl.init_global(),
+        }
+    }
+
+    /// The localiser, when one runs.
+    pub fn mcl(&self) -> Option<&Mcl> {
+        self.mcl.as_ref()
+    }
+
+    /// The pose everything decides with: MCL's when it runs, else the EKF's.
+    pub fn pose(&self) -> Pose2 {
+        match &self.mcl {
+            Some(mcl) => mcl.pose(self.odometry.pose()),
+            None => self.ekf.pose(),
+        }
+    }
+
+    /// That pose's covariance (x, y, θ).
+    pub fn pose_covariance(&self) -> Matrix3<f64> {
+        match &self.mcl {
+            Some(mcl) => mcl.covariance(),
+            None => self.ekf.pose_covariance(),
+        }
+    }
+
+    /// Whether the pose can be trusted to map with: always for the EKF, for MCL once one
+    /// cluster holds the weight.
+    pub(super) fn localized(&self) -> bool {
+        self.mcl.as_ref().is_none_or(|m| m.status().converged)
+    }
+
+    /// Folds a scan into the filter.
+    pub(super) fn localize_scan(&mut self, scan: &LaserScan) {
+        let odom = self.odometry.pose();
+        let Some(mcl) = self.mcl.as_mut() else {
+            return;
+        };
+        let was = mcl.status().converged;
+        if !mcl.update(odom, scan) {
+            return;
+        }
+        let status = mcl.status();
+        let (pose, cov) = (mcl.pose(odom), mcl.covariance());
+        if status.converged {
+            self.ekf.relocate(pose, &cov);
+        }
+        if status.converged != was {
+            let (level, text) = if status.converged {
+                let text = format!(
+                    "localised at ({:.2}, {:.2}) {:.0}° ({} particles)",
+                    pose.x,
+                    pose.y,
+                    degrees(pose.theta),
+                    status.particles
+                );
+                (Level::Success, text)
+            } else if status.clusters > 1 {
+                let text = format!(
+                    "localisation uncertain: {} hypotheses, the best holds {:.0} % of the weight",
+                    status.clusters,
+                    100.0 * status.cluster_weight
+                );
+                (Level::Warn, text)
+            } else {
+                let text = format!(
+                    "localisation uncertain: the particles spread {:.2} m",
+                    self.mcl.as_ref().map_or(0.0, |m| m.position_std())
+                );
+                (Level::Warn, text)
+            };
+            self.log(level, text);
+        }
+    }
+
+    /// Places the estimate at `pose` (RViz's "2D Pose Estimate", `:pose`): MCL's particles
+    /// spread round it, or the EKF moved there.
+    pub(super) fn set_pose(&mut self, pose: Pose2) {
+        let c = &self.settings.localization;
+        let (sd, sa) = (c.initial_std, c.initial_std_deg.to_radians());
+        if let Some(mut mcl) = self.mcl.take() {
+            let checked = check_on_free_space(mcl.map(), pose);
+            if let Err(why) = checked {
+                self.mcl = Some(mcl);
+                self.log(Level::Error, format!("pose not set: {why}"));
+                return;
+            }
+            self.place(&mut mcl, InitialPose::At(pose));
+            self.mcl = Some(mcl);
+        }
+        let cov = Matrix3::from_diagonal(&nalgebra::Vector3::new(sd * sd, sd * sd, sa * sa));
+        self.ekf.relocate(pose, &cov);
+        self.log(
+            Level::Info,
+            format!(
+                "pose set to ({:.2}, {:.2}) {:.0}°",
+                pose.x,
+                pose.y,
+                degrees(pose.theta)
+            ),
+        );
+    }
+
+    /// Starts global localisation afresh (`:relocalize`).
+    pub(super) fn relocalize(&mut self) {
+        let Some(mut mcl) = self.mcl.take() else {
+            self.log(
+                Level::Warn,
+                "relocalize needs MCL: start with --estimator mcl and a map (--map or a Nav2 --world)",
+            );
+            return;
+        };
+        self.place(&mut mcl, InitialPose::Unknown);
+        let n = mcl.status().particles;
+        self.mcl = Some(mcl);
+        self.log(
+            Level::Info,
+            format!("global localisation: {n} particles over the free space; drive to localise"),
+        );
+    }
+}
+
+/// A pose for the filter must stand on a known free cell of its map.
+fn check_on_free_space(map: &KnownMap, p: Pose2) -> Result<(), String> {
+    if !(p.x.is_finite() && p.y.is_finite() && p.theta.is_finite()) {
+        return Err(format!(
+            "pose ({}, {}, {}) is not a number",
+            p.x, p.y, p.theta
+        ));
+    }
+    if map.is_free(p.position()) {
+        Ok(())
+    } else if map.index_of(p.x, p.y).is_none() {
+        Err(format!("({:.2}, {:.2}) is off the map", p.x, p.y))
+    } else {
+        Err(format!(
+            "({:.2}, {:.2}) is not on the map's known free space",
+            p.x, p.y
+        ))
+    }
+}
+
+/// A session's choice to localise with MCL: the map, where to start and the seed, checked
+/// before the console starts and applied to each pilot the session makes.
+#[derive(Clone, Debug)]
+pub struct Localizer {
+    pub grid: OccupancyGrid,
+    pub initial: InitialPose,
+    pub seed: u64,
+    /// The map's file, for the log.
+    pub source: String,
+}
+
+impl Localizer {
+    /// Checks that MCL can run on `grid` from `initial`.
+    pub fn new(
+        grid: OccupancyGrid,
+        initial: InitialPose,
+        seed: u64,
+        source: String,
+    ) -> Result<Self, String> {
+        let map = KnownMap::new(&grid).map_err(|e| format!("map {source}: {e}"))?;
+        if let InitialPose::At(p) = initial {
+            check_on_free_space(&map, p).map_err(|e| format!("--initial-pose: {e} of {source}"))?;
+        }
+        Ok(Self {
+            grid,
+            initial,
+            seed,
+            source,
+        })
+    }
+
+    /// Starts MCL in `pilot`.
+    pub fn apply(&self, pilot: &mut Pilot) -> Result<(), String> {
+        pilot.use_mcl(&self.grid, self.initial, self.seed)?;
+        let from = match self.initial {
+            InitialPose::At(p) => format!("from ({:.2}, {:.2}) {:.0}°", p.x, p.y, degrees(p.theta)),
+            InitialPose::Unknown => "anywhere: global localisation, drive to localise".into(),
+        };
+        let n = pilot.mcl().map_or(0, |m| m.status().particles);
+        pilot.log(
+            Level::Info,
+            format!("MCL on {}: {n} particles {from}", self.source),
+        );
+        Ok(())
+    }
+}
+
+/// A heading in whole degrees for the log, without a sign on zero.
+fn degrees(theta: f64) -> f64 {
+    theta.to_degrees().round() + 0.0
+}

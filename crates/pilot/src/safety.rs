@@ -1,0 +1,89 @@
+//! The safety gate: the robot is commanded nothing while the e-stop is on, the link is in
+//! doubt, or the console is ending; after a loss, control resumes only on the user's word.
+
+use super::Pilot;
+use navdeck_core::data::Level;
+use navdeck_core::geometry::Twist;
+
+/// Whether the robot link is answering.
+#[derive(Clone, Debug, PartialEq)]
+pub enum LinkStatus {
+    Ok,
+    Lost(String),
+    /// Data flows again, but the robot stays still until the user presses a key.
+    Back,
+}
+
+/// What keeps the robot still.
+#[derive(Clone, Debug)]
+pub(super) struct Gate {
+    pub estop: bool,
+    /// The console is ending: nothing more is commanded.
+    pub halted: bool,
+    pub link: LinkStatus,
+    /// Whether the link has ever answered: only a loss after that needs a key to resume.
+    pub link_was_up: bool,
+}
+
+impl Default for Gate {
+    fn default() -> Self {
+        Self {
+            estop: false,
+            halted: false,
+            link: LinkStatus::Ok,
+            link_was_up: false,
+        }
+    }
+}
+
+impl Gate {
+    /// Whether control is in doubt: the command is forced to zero.
+    pub fn in_doubt(&self) -> bool {
+        self.estop || self.halted || self.link != LinkStatus::Ok
+    }
+}
+
+impl Pilot {
+    /// The link answered at `t`.
+    pub(super) fn link_answered(&mut self, t: f64) {
+        if let LinkStatus::Lost(_) = self.gate.link {
+            if self.gate.link_was_up {
+                self.gate.link = LinkStatus::Back;
+                self.log_at(
+                    t,
+                    Level::Success,
+                    "link back: press any key to resume control",
+                );
+            } else {
+                // Control was never established, so there is nothing to resume.
+                self.gate.link = LinkStatus::Ok;
+                self.log_at(t, Level::Success, "link up");
+            }
+        }
+        self.gate.link_was_up = true;
+    }
+
+    /// Control is lost: drop held keys, command nothing further, say so once.
+    pub(super) fn lose_link(&mut self, t: f64, reason: String) {
+        if !matches!(self.gate.link, LinkStatus::Lost(_)) {
+            // Before the robot first answers, waiting is expected rather than an error.
+            let level = if self.gate.link_was_up {
+                Level::Error
+            } else {
+                Level::Info
+            };
+            self.log_at(t, level, reason.clone());
+        }
+        self.gate.link = LinkStatus::Lost(reason);
+        self.teleop.clear();
+        self.commanded = Twist::ZERO;
+    }
+
+    /// The user's word after the link came back.
+    pub(super) fn resume(&mut self) {
+        if self.gate.link == LinkStatus::Back {
+            self.gate.link = LinkStatus::Ok;
+            self.log(Level::Success, "control resumed");
+        }
+    }
+}

@@ -96,11 +96,6 @@ impl ReplayLink {
         link
     }
 
-    /// Frames not yet polled.
-    pub fn frames_left(&self) -> usize {
-        self.frames.len() - self.next_frame
-    }
-
     fn advance_truth(&mut self, now: f64) {
         let Some(truth) = self.truth.as_mut() else {
             return;

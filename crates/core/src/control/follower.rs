@@ -125,10 +125,6 @@ impl Follower {
         self.progress.as_ref()
     }
 
-    pub fn is_arrived(&self) -> bool {
-        self.arrived
-    }
-
     /// At the goal's position, still turning to its heading.
     pub fn is_turning_to_heading(&self) -> bool {
         self.at_goal && !self.arrived

@@ -6,9 +6,11 @@ use super::config::{
     POTENTIAL_LOOKS, POTENTIAL_VIEW, TARGET_TOO_CLOSE, TargetRule, UNSEEN_MIN_CELLS,
 };
 use super::drive::{Turn, towards};
+use super::explored::Unexplained;
 use super::leg::Leg;
-use super::machine::{Cause, Mission, Phase, Target, Unexplained};
+use super::machine::Mission;
 use super::objects::Block;
+use super::phase::{Cause, Phase, Target};
 use super::pickup::{Pickup, name};
 use super::step::{Inputs, Level};
 use super::targets::{frontiers, furthest_marker, reachable};
@@ -17,7 +19,7 @@ use crate::geometry::Point2;
 
 impl Mission {
     pub(super) fn choose(&mut self, inputs: &Inputs, log: &mut Vec<(Level, String)>) {
-        self.candidates.clear();
+        self.explored.candidates.clear();
         let robot = inputs.pose.position();
         let total = self.config.total_blocks as usize;
         if total > 0 && self.objects.delivered() >= total {
@@ -89,7 +91,7 @@ impl Mission {
             return;
         }
         if let Some((goal, i)) = self.object_look(inputs) {
-            let at = self.unexplained[i].at;
+            let at = self.explored.unexplained[i].at;
             let label = format!("unexplained object ({:.2}, {:.2})", at.x, at.y);
             self.phase = Phase::Explore {
                 leg: Leg::replaceable(goal, label),
@@ -99,19 +101,19 @@ impl Mission {
         }
         // Seed 001 "Path Planning Failure": turn a little and try again. navdeck turns once
         // for every target given up, then tries them all again, a few rounds at most.
-        if !self.given_up.is_empty() && self.retry_rounds < GIVE_UP_ROUNDS {
-            self.retry_rounds += 1;
+        if !self.given_up.goals.is_empty() && self.given_up.retry_rounds < GIVE_UP_ROUNDS {
+            self.given_up.retry_rounds += 1;
             self.ctx.recoveries += 1;
             log.push((
                 Level::Warn,
                 format!(
                     "No path to any of {} targets - turning {:.0}° and trying them again ({}/{GIVE_UP_ROUNDS})",
-                    self.given_up.len(),
+                    self.given_up.goals.len(),
                     self.config.retry_turn_deg,
-                    self.retry_rounds
+                    self.given_up.retry_rounds
                 ),
             ));
-            self.given_up.clear();
+            self.given_up.goals.clear();
             let angle = self.config.retry_turn_deg.to_radians();
             self.phase = Phase::Scan {
                 turn: Turn::new(inputs.pose, inputs.t, angle, self.config.scan_speed),
@@ -178,11 +180,12 @@ impl Mission {
                     .map(|f| f.target)
                     .filter(|p| p.distance(robot) >= TARGET_TOO_CLOSE)
                     .filter(|p| {
-                        (self.visited_goals.iter().chain(&self.given_up))
+                        (self.explored.visited_goals.iter())
+                            .chain(&self.given_up.goals)
                             .all(|v| v.distance(*p) >= TARGET_TOO_CLOSE)
                     })
                     .collect();
-                self.candidates.extend(&found);
+                self.explored.candidates.extend(&found);
                 (found.into_iter())
                     .min_by(|a, b| a.distance(robot).total_cmp(&b.distance(robot)))
                     .map(|p| {
@@ -192,8 +195,8 @@ impl Mission {
             }
             // Seed 001 "Marker Selection Heuristic"; the goal stops short of the wall.
             TargetRule::Markers => {
-                let mut skip = self.visited_markers.clone();
-                skip.extend(&self.given_up_markers);
+                let mut skip = self.explored.visited_markers.clone();
+                skip.extend(&self.given_up.markers);
                 furthest_marker(inputs.landmarks, robot, &skip).map(|(id, p)| {
                     let goal = towards(p, robot, TARGET_TOO_CLOSE);
                     (goal, Target::Marker(id), format!("marker {id}"))
@@ -213,17 +216,20 @@ impl Mission {
             return None;
         }
         let robot = inputs.pose.position();
-        let tried: Vec<Point2> = (self.visited_goals.iter().chain(&self.given_up))
+        let tried: Vec<Point2> = (self.explored.visited_goals.iter())
+            .chain(&self.given_up.goals)
             .copied()
             .collect();
-        let unseen = self.coverage.unseen(
+        let unseen = self.explored.coverage.unseen(
             inputs.map,
             reach,
             UNSEEN_MIN_CELLS,
             &tried,
             TARGET_TOO_CLOSE,
         );
-        self.candidates.extend(unseen.iter().map(|u| u.target));
+        self.explored
+            .candidates
+            .extend(unseen.iter().map(|u| u.target));
         (unseen.into_iter().map(|u| u.target))
             .min_by(|a, b| a.distance(robot).total_cmp(&b.distance(robot)))
             .map(|p| {
@@ -246,24 +252,25 @@ impl Mission {
             if explainers.iter().any(|e| e.distance(p) < EXPLAINED_WITHIN) {
                 continue;
             }
-            let known = (self.unexplained.iter()).position(|u| u.at.distance(p) < 2.0 * GATHER);
+            let known =
+                (self.explored.unexplained.iter()).position(|u| u.at.distance(p) < 2.0 * GATHER);
             let i = known.unwrap_or_else(|| {
-                self.unexplained.push(Unexplained {
+                self.explored.unexplained.push(Unexplained {
                     at: p,
                     first: (robot.y - p.y).atan2(robot.x - p.x),
                     looks: 0,
                 });
-                self.unexplained.len() - 1
+                self.explored.unexplained.len() - 1
             });
-            if self.unexplained[i].looks < OBJECT_LOOKS {
+            if self.explored.unexplained[i].looks < OBJECT_LOOKS {
                 open.push(i);
             }
         }
         let i = open.into_iter().min_by(|&a, &b| {
-            let d = |i: usize| self.unexplained[i].at.distance(robot);
+            let d = |i: usize| self.explored.unexplained[i].at.distance(robot);
             d(a).total_cmp(&d(b))
         })?;
-        let u = self.unexplained[i];
+        let u = self.explored.unexplained[i];
         let a = u.first + f64::from(u.looks) * std::f64::consts::FRAC_PI_2;
         let d = POTENTIAL_VIEW * self.config.staging_distance;
         Some((Point2::new(u.at.x + d * a.cos(), u.at.y + d * a.sin()), i))
@@ -271,29 +278,33 @@ impl Mission {
 
     /// Looks taken so far at the potential block with odd marker `odd`.
     fn looks_at(&self, odd: u32) -> u32 {
-        self.potential_looks.get(&odd).copied().unwrap_or(0)
+        self.explored
+            .potential_looks
+            .get(&odd)
+            .copied()
+            .unwrap_or(0)
     }
 
     /// Gives up an exploration goal the planner cannot reach, until the next retry round.
     pub(super) fn give_up(&mut self, goal: Point2, target: &Target) {
         match *target {
-            Target::Frontier | Target::Unseen => self.given_up.push(goal),
-            Target::Marker(id) => self.given_up_markers.push(id),
+            Target::Frontier | Target::Unseen => self.given_up.goals.push(goal),
+            Target::Marker(id) => self.given_up.markers.push(id),
             // A side that cannot be reached counts as a look: the next side is tried.
-            Target::Potential(odd) => *self.potential_looks.entry(odd).or_default() += 1,
-            Target::Object(i) => self.unexplained[i].looks += 1,
+            Target::Potential(odd) => *self.explored.potential_looks.entry(odd).or_default() += 1,
+            Target::Object(i) => self.explored.unexplained[i].looks += 1,
         }
     }
 
     /// Remembers an exploration goal reached so it is not chosen again.
     pub(super) fn arrived(&mut self, goal: Point2, target: Target) {
-        self.visited_goals.push(goal);
+        self.explored.visited_goals.push(goal);
         // Progress: targets given up may be reachable from here.
-        self.retry_rounds = 0;
+        self.given_up.retry_rounds = 0;
         match target {
-            Target::Marker(id) => self.visited_markers.push(id),
-            Target::Potential(odd) => *self.potential_looks.entry(odd).or_default() += 1,
-            Target::Object(i) => self.unexplained[i].looks += 1,
+            Target::Marker(id) => self.explored.visited_markers.push(id),
+            Target::Potential(odd) => *self.explored.potential_looks.entry(odd).or_default() += 1,
+            Target::Object(i) => self.explored.unexplained[i].looks += 1,
             Target::Frontier | Target::Unseen => {}
         }
     }

@@ -5,89 +5,18 @@ use super::arm_moves::ArmMoves;
 use super::config::{LOST_SCAN_AFTER, MissionConfig, RELOCATE_STANDOFF};
 use super::delivery::{Delivery, DropEvent};
 use super::drive::Turn;
+use super::explored::{Explored, GivenUp};
 use super::leg::{Ctx, Leg, LegStep};
 use super::objects::{Colour, Objects};
-use super::pickup::{PickEvent, Pickup, name};
+use super::phase::{Cause, Phase};
+use super::pickup::{PickEvent, name};
 use super::step::{Inputs, Level, Motion, Outputs};
-use crate::data::{GripperCommand, GripperState};
-use crate::geometry::{Point2, Twist};
+use crate::data::GripperCommand;
+use crate::geometry::Twist;
 use crate::perception::markers::MarkerCategory;
 use std::collections::{BTreeMap, BTreeSet};
 
-/// What exploration is heading for.
-#[derive(Clone, Debug, PartialEq)]
-pub(super) enum Target {
-    Frontier,
-    /// Free space the camera has not looked at yet.
-    Unseen,
-    Marker(u32),
-    /// A block seen by one marker only (odd marker).
-    Potential(u32),
-    /// An unexplained small object (index into `Mission::unexplained`).
-    Object(usize),
-}
-
-/// A small object the lidar mapped and no marker explains, and the looks taken at it.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub(super) struct Unexplained {
-    pub at: Point2,
-    /// Direction of the first look, from the object, radians; later looks turn 90° on.
-    pub first: f64,
-    pub looks: u32,
-}
-
-#[derive(Clone, Debug)]
-pub(super) enum Phase {
-    /// Before the first step.
-    Start,
-    Scan {
-        turn: Turn,
-        initial: bool,
-    },
-    Choose,
-    Explore {
-        leg: Leg,
-        target: Target,
-    },
-    /// Seed 001 "Robot Lost": rotating until a marker comes into view, since the time
-    /// given; after `lost_timeout` without markers, driving back towards the nearest
-    /// landmark known (navdeck's).
-    Lost(f64, Option<Leg>),
-    /// Backing away from a block the approach lost sight of (the robot may stand in its
-    /// lethal ring, facing it), since the time given; then choosing again.
-    BackOff(f64),
-    Pickup(Pickup),
-    Deliver(Delivery),
-    Done,
-    Manual,
-}
-
-/// Why a mission handed the robot to manual control.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(super) enum Cause {
-    /// A goal it needed had no path, after every retry.
-    Unreachable,
-    /// No landmarks for `lost_timeout`.
-    Lost,
-    /// A block could not be picked up (no path to it, or the gripper kept missing).
-    Pickup,
-    /// A held block could not be delivered (no path to its gate).
-    Delivery,
-    /// Exploration was complete with found blocks left (their gate never seen).
-    BlocksLeft,
-}
-
-impl Cause {
-    pub fn label(self) -> &'static str {
-        match self {
-            Cause::Unreachable => "unreachable target",
-            Cause::Lost => "lost",
-            Cause::Pickup => "pickup failed",
-            Cause::Delivery => "delivery failed",
-            Cause::BlocksLeft => "blocks left without a gate",
-        }
-    }
-}
+pub use super::resume::Resumed;
 
 /// One block's story: odd marker, found, picked up, delivered (session times).
 pub type TimelineEntry = (u32, f64, Option<f64>, Option<f64>);
@@ -101,22 +30,8 @@ pub struct Mission {
     pub(super) ctx: Ctx,
     /// Last time a camera frame showed any marker.
     pub(super) last_marker: f64,
-    pub(super) visited_markers: Vec<u32>,
-    pub(super) visited_goals: Vec<Point2>,
-    /// Looks taken at each potential block (odd marker), from different sides.
-    pub(super) potential_looks: BTreeMap<u32, u32>,
-    /// Small objects the lidar mapped that no marker explained when first met.
-    pub(super) unexplained: Vec<Unexplained>,
-    /// Exploration goals (frontier points, marker IDs) the planner could not reach, and
-    /// the rounds of turning and trying them again so far.
-    pub(super) given_up: Vec<Point2>,
-    pub(super) given_up_markers: Vec<u32>,
-    pub(super) retry_rounds: u32,
-    /// What the camera has looked at.
-    pub(super) coverage: super::coverage::Coverage,
-    /// The exploration targets the last choice weighed (frontiers, unseen space), for
-    /// the map.
-    pub(super) candidates: Vec<Point2>,
+    pub(super) explored: Explored,
+    pub(super) given_up: GivenUp,
     /// Why the mission handed over to manual, once it has.
     pub(super) handover: Option<&'static str>,
     /// Demoted blocks and when; attempts per block.
@@ -133,13 +48,6 @@ pub struct Mission {
     pub(super) arm: Option<ArmMoves>,
 }
 
-/// What resuming says, and the markers whose landmarks the filter should drop.
-#[derive(Clone, Debug, Default, PartialEq)]
-pub struct Resumed {
-    pub log: Vec<(Level, String)>,
-    pub forget: Vec<u32>,
-}
-
 pub(super) enum Tick {
     Out(Motion, Option<GripperCommand>),
     Again,
@@ -154,15 +62,8 @@ impl Mission {
             phase: Phase::Start,
             ctx: Ctx::default(),
             last_marker: t,
-            visited_markers: Vec::new(),
-            visited_goals: Vec::new(),
-            potential_looks: BTreeMap::new(),
-            unexplained: Vec::new(),
-            given_up: Vec::new(),
-            given_up_markers: Vec::new(),
-            retry_rounds: 0,
-            coverage: super::coverage::Coverage::default(),
-            candidates: Vec::new(),
+            explored: Explored::default(),
+            given_up: GivenUp::default(),
             handover: None,
             demoted: BTreeMap::new(),
             attempts: BTreeMap::new(),
@@ -191,7 +92,7 @@ impl Mission {
         }
         self.note_found(inputs, &mut log);
         let fov = self.config.view_fov_deg.to_radians();
-        (self.coverage).look(inputs.map, inputs.pose, self.config.view_range, fov);
+        (self.explored.coverage).look(inputs.map, inputs.pose, self.config.view_range, fov);
         let mut out = Outputs::new(Motion::Stop);
         for _ in 0..4 {
             if let Tick::Out(motion, gripper) = self.tick(inputs, &mut log) {
@@ -425,7 +326,7 @@ impl Mission {
     }
 
     /// Off to the gate with held block `odd`, or exploring on while its gate is unknown.
-    fn delivering(&self, odd: u32, colour: Colour, t: f64) -> Phase {
+    pub(super) fn delivering(&self, odd: u32, colour: Colour, t: f64) -> Phase {
         let Some(&gate) = self.objects.gate_for(colour) else {
             return Phase::Choose;
         };
@@ -433,58 +334,6 @@ impl Mission {
             .filter(|b| b.delivered && b.colour == colour)
             .count();
         Phase::Deliver(Delivery::new(odd, colour, gate, slot, &self.config, t))
-    }
-
-    /// Takes the mission up again at `t` after the user drove the robot: the blocks and
-    /// gates found and the deliveries stand; what to do next is chosen afresh from where
-    /// the robot now is (a handover's cause and the targets given up are cleared: the user
-    /// may have fixed what stopped it). A block held when the user took over goes on to
-    /// its gate if the gripper still holds it (or cannot tell); otherwise it was put down
-    /// somewhere and is forgotten, to be found again: its markers are returned so the
-    /// filter can drop their old places.
-    pub fn resume(&mut self, t: f64, gripper: Option<GripperState>) -> Resumed {
-        let mut log = Vec::new();
-        let mut forget = Vec::new();
-        self.handover = None;
-        self.relocated = false;
-        self.retry_rounds = 0;
-        self.given_up.clear();
-        self.given_up_markers.clear();
-        self.last_marker = t;
-        self.phase = Phase::Choose;
-        if let Some(odd) = self.held {
-            let block = self.objects.blocks().find(|b| b.markers[0] == odd).copied();
-            let holding = matches!(gripper, None | Some(GripperState::Holding));
-            match block {
-                Some(b) if holding => {
-                    log.push((
-                        Level::Info,
-                        format!("Still holding {} - on to its gate", name(b.colour, odd)),
-                    ));
-                    self.phase = self.delivering(odd, b.colour, t);
-                }
-                _ => {
-                    let what = block.map_or(format!("block {odd}"), |b| name(b.colour, odd));
-                    log.push((
-                        Level::Warn,
-                        format!("{what} is no longer in the gripper - looking for it again"),
-                    ));
-                    self.held = None;
-                    self.objects.forget(odd);
-                    self.demoted.remove(&odd);
-                    forget = vec![odd, odd + 1];
-                }
-            }
-        }
-        log.push((
-            Level::Info,
-            format!(
-                "Mission resumed: {} delivered, {} more known",
-                self.objects.delivered(),
-                self.objects.blocks().filter(|b| !b.delivered).count()
-            ),
-        ));
-        Resumed { log, forget }
     }
 
     pub(super) fn manual(&mut self, cause: Cause) -> Tick {

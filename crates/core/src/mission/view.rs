@@ -1,7 +1,8 @@
 //! Read-only views of the mission for the status panel.
 
 use super::config::{LOST_SCAN_AFTER, OBJECT_LOOKS, POTENTIAL_LOOKS};
-use super::machine::{Mission, Phase, Target, TimelineEntry};
+use super::machine::{Mission, TimelineEntry};
+use super::phase::{Phase, Target};
 use crate::geometry::Point2;
 
 impl Mission {
@@ -37,7 +38,7 @@ impl Mission {
     /// Why the mission is doing what `state_label` says, in two status rows at most,
     /// e.g. "camera has not looked there (4 left)".
     pub fn reason(&self) -> String {
-        let left = self.candidates.len();
+        let left = self.explored.candidates.len();
         match &self.phase {
             Phase::Start | Phase::Choose => String::new(),
             Phase::Scan { initial: true, .. } => "a look round before choosing".into(),
@@ -48,11 +49,11 @@ impl Mission {
                 Target::Marker(_) => "furthest marker not yet visited".into(),
                 Target::Potential(odd) => format!(
                     "1 marker seen; look {}/{POTENTIAL_LOOKS} for the other",
-                    self.potential_looks.get(odd).copied().unwrap_or(0) + 1
+                    self.explored.potential_looks.get(odd).copied().unwrap_or(0) + 1
                 ),
                 Target::Object(i) => format!(
                     "lidar sees it, no marker; look {}/{OBJECT_LOOKS}",
-                    self.unexplained.get(*i).map_or(0, |u| u.looks) + 1
+                    self.explored.unexplained.get(*i).map_or(0, |u| u.looks) + 1
                 ),
             },
             Phase::Lost(..) if self.config.lost_position_std > 0.0 => {
@@ -110,7 +111,7 @@ impl Mission {
             Phase::Explore { leg, .. } => Some(leg.goal),
             _ => None,
         };
-        (&self.candidates, heading)
+        (&self.explored.candidates, heading)
     }
 
     /// Why the mission handed the robot to manual control, if it has.

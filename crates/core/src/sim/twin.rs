@@ -1,21 +1,22 @@
 //! The twin itself: a differential-drive robot with encoders, camera, lidar and gripper in a
 //! world, advanced only by `step(dt)` and driven by one seeded random generator.
 
+mod grasp;
+mod sensors;
+
 use super::blocks::BlockState;
-use super::camera::Camera;
-use super::clock::SensorClock;
 use super::collision::{Collider, Disc};
 use super::config::{PhysicsConfig, SimConfig};
 use super::drive::{clamp_twist, integrate, ramp, wheel_travel};
 use super::encoders::Encoders;
 use super::gripper::Gripper;
-use super::lidar::Lidar;
 use super::{Marker, World};
 use crate::data::robot::RobotConfig;
-use crate::data::{GripperCommand, GripperState, LaserScan, MarkerSighting, SensorFrame};
+use crate::data::{GripperState, SensorFrame};
 use crate::geometry::{Pose2, Segment, Twist};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
+use sensors::Sensors;
 use std::sync::Arc;
 
 /// A simulated robot in a simulated world. Cloning copies the whole state, random
@@ -28,45 +29,56 @@ use std::sync::Arc;
 pub struct Twin {
     world: Arc<World>,
     robot: RobotConfig,
-    /// Physics step, seconds.
-    h: f64,
     rng: ChaCha8Rng,
-    /// Physics steps taken; twin time is `ticks * h`.
-    ticks: u64,
-    /// Requested time not yet simulated, always under one physics step.
-    carry: f64,
+    clock: PhysicsClock,
     pose: Pose2,
     command: Twist,
     /// The base's actual (speed- and acceleration-limited) twist.
     drive: Twist,
-    encoders: Encoders,
-    camera: Camera,
-    camera_clock: SensorClock,
-    lidar: Option<(Lidar, SensorClock)>,
-    gripper: Gripper,
-    blocks: Vec<BlockState>,
-    collider: Collider,
-    in_contact: bool,
-    collisions: u32,
+    /// True path length of the robot centre, metres.
     distance: f64,
-    sightings: Option<Vec<MarkerSighting>>,
-    camera_status: Option<crate::perception::frame::CameraStatus>,
-    /// The rendered camera and ArUco detector replacing the ideal marker sensor.
-    #[cfg(feature = "vision")]
-    rendered: Option<Box<super::rendered_camera::RenderedCamera>>,
-    scan: Option<LaserScan>,
-    /// `ticks` at the previous `take_frame`.
-    taken_at: u64,
-    discs: Vec<Disc>,
-    /// Outlines and markers of the free blocks, rebuilt only when a block moved.
-    block_edges: Vec<Segment>,
-    block_markers: Vec<Marker>,
-    blocks_moved: bool,
+    encoders: Encoders,
+    sensors: Sensors,
+    gripper: Gripper,
     /// An arm, when the robot has one.
     arm: Option<super::arm::TwinArm>,
+    blocks: Vec<BlockState>,
+    free_blocks: FreeBlocks,
     /// The block the jaws last let go of: it sits between them, so the robot may back
     /// away from it (or stand still) without touching it.
     released: Option<usize>,
+    contacts: Contacts,
+}
+
+/// Twin time, counted in whole physics steps.
+#[derive(Clone, Debug)]
+struct PhysicsClock {
+    /// Physics step, seconds.
+    h: f64,
+    /// Physics steps taken; twin time is `ticks * h`.
+    ticks: u64,
+    /// Requested time not yet simulated, always under one physics step.
+    carry: f64,
+    /// `ticks` at the previous `take_frame`.
+    taken_at: u64,
+}
+
+/// Outlines and markers of the free blocks, rebuilt only when a block moved.
+#[derive(Clone, Debug)]
+struct FreeBlocks {
+    edges: Vec<Segment>,
+    markers: Vec<Marker>,
+    moved: bool,
+}
+
+/// What the robot runs into: the collider, the blocks' discs in the current step,
+/// whether it rests against something, and the contacts so far.
+#[derive(Clone, Debug)]
+struct Contacts {
+    collider: Collider,
+    discs: Vec<Disc>,
+    in_contact: bool,
+    collisions: u32,
 }
 
 impl Twin {
@@ -79,40 +91,35 @@ impl Twin {
         } else {
             PhysicsConfig::default().step
         };
-        let lidar = sim
-            .lidar
-            .enabled
-            .then(|| (Lidar::new(&sim.lidar), SensorClock::new(sim.lidar.rate_hz)));
         Twin {
             pose: world.start,
             blocks: world.blocks.iter().map(BlockState::from_block).collect(),
             world: Arc::new(world),
             robot: robot.clone(),
-            h,
+            clock: PhysicsClock {
+                h,
+                ticks: 0,
+                carry: 0.0,
+                taken_at: 0,
+            },
             rng: ChaCha8Rng::seed_from_u64(seed),
-            ticks: 0,
-            carry: 0.0,
             command: Twist::ZERO,
             drive: Twist::ZERO,
             encoders: Encoders::new(robot, &sim.encoders),
-            camera: Camera::new(&sim.camera),
-            camera_clock: SensorClock::new(sim.camera.rate_hz),
-            lidar,
+            sensors: Sensors::new(sim),
             gripper: Gripper::new(&sim.gripper),
-            collider: Collider::new(robot.footprint_radius),
-            in_contact: false,
-            collisions: 0,
+            contacts: Contacts {
+                collider: Collider::new(robot.footprint_radius),
+                discs: Vec::new(),
+                in_contact: false,
+                collisions: 0,
+            },
             distance: 0.0,
-            sightings: None,
-            camera_status: None,
-            #[cfg(feature = "vision")]
-            rendered: None,
-            scan: None,
-            taken_at: 0,
-            discs: Vec::new(),
-            block_edges: Vec::new(),
-            block_markers: Vec::new(),
-            blocks_moved: true,
+            free_blocks: FreeBlocks {
+                edges: Vec::new(),
+                markers: Vec::new(),
+                moved: true,
+            },
             arm: None,
             released: None,
         }
@@ -124,7 +131,7 @@ impl Twin {
 
     /// Twin time in seconds: whole physics steps taken.
     pub fn time(&self) -> f64 {
-        self.ticks as f64 * self.h
+        self.clock.ticks as f64 * self.clock.h
     }
 
     /// True pose (ground truth).
@@ -172,19 +179,6 @@ impl Twin {
         self.command
     }
 
-    /// Starts the jaws moving; opening lets a held block go where it is.
-    pub fn command_gripper(&mut self, cmd: GripperCommand) {
-        let held = self.gripper.held();
-        if self.gripper.command(cmd) {
-            self.catch_block();
-        }
-        if let (Some(i), None) = (held, self.gripper.held()) {
-            self.blocks[i].held = false;
-            self.blocks_moved = true;
-            self.released = Some(i);
-        }
-    }
-
     /// Advances the twin by `dt` seconds in whole physics steps; the remainder under one
     /// step carries to the next call, so one call of 1.0 s equals ten calls of 0.1 s.
     /// A `dt` that is not a positive finite number does nothing.
@@ -192,13 +186,13 @@ impl Twin {
         if !(dt.is_finite() && dt > 0.0) {
             return;
         }
-        self.carry += dt;
+        self.clock.carry += dt;
         // Slack of a millionth of a step absorbs sums like 10 x 0.1 != 1.0.
-        let n = (self.carry / self.h + 1e-6).floor();
+        let n = (self.clock.carry / self.clock.h + 1e-6).floor();
         if n < 1.0 {
             return;
         }
-        self.carry = (self.carry - n * self.h).max(0.0);
+        self.clock.carry = (self.clock.carry - n * self.clock.h).max(0.0);
         for _ in 0..n as u64 {
             self.tick();
         }
@@ -207,16 +201,16 @@ impl Twin {
     /// What the robot reported since the previous take: wheel travel (always), the newest
     /// camera frame and scan (if any arrived) and the gripper state (always).
     pub fn take_frame(&mut self) -> SensorFrame {
-        let elapsed = (self.ticks - self.taken_at) as f64 * self.h;
-        self.taken_at = self.ticks;
+        let elapsed = (self.clock.ticks - self.clock.taken_at) as f64 * self.clock.h;
+        self.clock.taken_at = self.clock.ticks;
         SensorFrame {
             stamp: self.time(),
             elapsed,
             wheels: Some(self.encoders.take()),
-            sightings: self.sightings.take(),
-            scan: self.scan.take(),
+            sightings: self.sensors.take_sightings(),
+            scan: self.sensors.take_scan(),
             gripper: Some(self.gripper.state()),
-            camera: self.camera_status.take(),
+            camera: self.sensors.take_camera_status(),
             initial_pose: None,
             goal: None,
             arm: self.arm.as_ref().map(|a| a.state()),
@@ -234,13 +228,7 @@ impl Twin {
         stopwatch: Option<Arc<dyn crate::clock::Clock>>,
         frames: super::CameraFrames,
     ) -> Result<&crate::perception::aruco::Detector, crate::perception::aruco::VisionError> {
-        let mut camera = super::rendered_camera::RenderedCamera::new(
-            vision,
-            self.camera.max_range(),
-            stopwatch,
-        )?;
-        camera.set_frames(frames);
-        Ok(self.rendered.insert(Box::new(camera)).detector())
+        self.sensors.use_rendered_camera(vision, stopwatch, frames)
     }
 
     pub fn blocks(&self) -> &[BlockState] {
@@ -253,12 +241,12 @@ impl Twin {
 
     /// Contacts so far; a contact lasting many steps counts once.
     pub fn collisions(&self) -> u32 {
-        self.collisions
+        self.contacts.collisions
     }
 
     /// True while the robot rests against something it ran into.
     pub fn in_contact(&self) -> bool {
-        self.in_contact
+        self.contacts.in_contact
     }
 
     /// True path length of the robot centre, metres.
@@ -268,7 +256,7 @@ impl Twin {
 
     /// One physics step: gripper, drive, collision, then any sensor that is due.
     fn tick(&mut self) {
-        let h = self.h;
+        let h = self.clock.h;
         if let Some(arm) = self.arm.as_mut() {
             arm.step(h);
             self.carry_in_arm();
@@ -292,12 +280,12 @@ impl Twin {
         if !mean.is_zero() {
             self.move_base(mean);
         }
-        self.ticks += 1;
+        self.clock.ticks += 1;
         let now = self.time();
-        if self.camera_clock.due(now) {
+        if self.sensors.camera_due(now) {
             self.capture_camera();
         }
-        if self.lidar.as_mut().is_some_and(|(_, clock)| clock.due(now)) {
+        if self.sensors.lidar_due(now) {
             self.capture_scan();
         }
     }
@@ -305,10 +293,10 @@ impl Twin {
     /// Turns the wheels for one step, unless that would run the footprint into something.
     fn move_base(&mut self, twist: Twist) {
         let track = self.robot.track;
-        let (l, r) = wheel_travel(twist, track, self.h);
+        let (l, r) = wheel_travel(twist, track, self.clock.h);
         let wheels = self.encoders.sample(&mut self.rng, [l, r]);
         let next = integrate(self.pose, wheels.ground[0], wheels.ground[1], track);
-        self.discs.clear();
+        self.contacts.discs.clear();
         let reach = self.gripper.reach_far();
         if let Some(i) = self.released
             && (!self.gripper.jaws_open()
@@ -333,128 +321,50 @@ impl Twin {
             {
                 continue;
             }
-            self.discs.push(Disc {
+            self.contacts.discs.push(Disc {
                 center: b.pose.position(),
                 radius: b.radius(),
             });
         }
-        let verdict = self.collider.check(
+        let verdict = self.contacts.collider.check(
             &self.world.walls,
-            &self.discs,
+            &self.contacts.discs,
             self.pose.position(),
             next.position(),
-            self.in_contact,
+            self.contacts.in_contact,
         );
         if verdict.blocked {
             self.drive = Twist::ZERO;
-            if !self.in_contact {
-                self.collisions += 1;
-                self.in_contact = true;
+            if !self.contacts.in_contact {
+                self.contacts.collisions += 1;
+                self.contacts.in_contact = true;
             }
             return;
         }
         if verdict.moves_away {
-            self.in_contact = false;
+            self.contacts.in_contact = false;
         }
         self.encoders.commit(&wheels);
         self.distance += ((wheels.ground[0] + wheels.ground[1]) / 2.0).abs();
         self.pose = next;
         if let Some((i, pose)) = self.gripper.held_pose(self.pose) {
             self.blocks[i].pose = pose;
-            self.blocks_moved = true;
+            self.free_blocks.moved = true;
         }
         self.carry_in_arm();
     }
 
-    /// A block in an arm's jaws rides at the tool tip.
-    fn carry_in_arm(&mut self) {
-        let (Some(arm), Some(i)) = (&self.arm, self.gripper.held()) else {
-            return;
-        };
-        let [x, y, _] = arm.tool_in_robot();
-        let p = self
-            .pose
-            .transform_point(crate::geometry::Point2::new(x, y));
-        let theta = self.blocks[i].pose.theta;
-        self.blocks[i].pose = Pose2::new(p.x, p.y, theta);
-        self.blocks_moved = true;
-    }
-
-    /// At the end of closing: catch the free block nearest the middle of the jaw zone.
-    fn catch_block(&mut self) {
-        let pose = self.pose;
-        if let Some(arm) = &self.arm {
-            // An arm's jaws close round a block only when the tool tip is at it.
-            let [x, y, z] = arm.tool_in_robot();
-            let tip = pose.transform_point(crate::geometry::Point2::new(x, y));
-            let tol = super::arm::GRASP_TOLERANCE;
-            let caught = (self.blocks.iter().enumerate())
-                .filter(|(_, b)| !b.held)
-                .map(|(i, b)| (i, b.pose.position().distance(tip), b.size))
-                .filter(|&(_, d, size)| d <= size / 2.0 + tol && (-tol..=size + tol).contains(&z))
-                .min_by(|a, b| a.1.total_cmp(&b.1));
-            if let Some((i, _, _)) = caught {
-                self.gripper.grab(i, pose, self.blocks[i].pose);
-                self.blocks[i].held = true;
-                self.blocks_moved = true;
-            }
-            return;
-        }
-        let best = self
-            .blocks
-            .iter()
-            .enumerate()
-            .filter(|(_, b)| !b.held)
-            .filter_map(|(i, b)| {
-                self.gripper
-                    .jaw_offset(pose, b.pose.position())
-                    .map(|d| (i, d))
-            })
-            .min_by(|a, b| a.1.total_cmp(&b.1));
-        if let Some((i, _)) = best {
-            self.gripper.grab(i, pose, self.blocks[i].pose);
-            self.blocks[i].held = true;
-            self.blocks_moved = true;
-        }
-    }
-
-    /// Outlines and markers of the blocks not in the gripper (a held block is carried out
-    /// of sight of both sensors).
-    fn refresh_blocks(&mut self) {
-        if !self.blocks_moved {
-            return;
-        }
-        self.block_edges.clear();
-        self.block_markers.clear();
-        for b in self.blocks.iter().filter(|b| !b.held) {
-            self.block_edges.extend(b.edges());
-            self.block_markers.extend(b.current_markers());
-        }
-        self.blocks_moved = false;
-    }
-
     fn capture_camera(&mut self) {
         self.refresh_blocks();
-        let occluders: [&[Segment]; 2] = [&self.world.walls, &self.block_edges];
-        let markers = self.world.markers.iter().chain(&self.block_markers);
-        #[cfg(feature = "vision")]
-        if let Some(camera) = self.rendered.as_mut() {
-            let (sightings, status) = camera.capture(self.pose, markers, &occluders, &mut self.rng);
-            self.sightings = Some(sightings);
-            self.camera_status = Some(status);
-            return;
-        }
-        self.sightings = Some(
-            self.camera
-                .observe(self.pose, markers, &occluders, &mut self.rng),
-        );
+        let occluders: [&[Segment]; 2] = [&self.world.walls, &self.free_blocks.edges];
+        let markers = self.world.markers.iter().chain(&self.free_blocks.markers);
+        self.sensors
+            .capture_camera(self.pose, markers, &occluders, &mut self.rng);
     }
 
     fn capture_scan(&mut self) {
         self.refresh_blocks();
-        if let Some((lidar, _)) = self.lidar.as_mut() {
-            let solids: [&[Segment]; 2] = [&self.world.walls, &self.block_edges];
-            self.scan = Some(lidar.scan(self.pose, &solids, &mut self.rng));
-        }
+        let solids: [&[Segment]; 2] = [&self.world.walls, &self.free_blocks.edges];
+        self.sensors.capture_scan(self.pose, &solids, &mut self.rng);
     }
 }

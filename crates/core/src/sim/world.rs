@@ -114,11 +114,6 @@ impl World {
         raster::rasterize(self, resolution)
     }
 
-    /// Every static solid segment (the same as `walls`).
-    pub fn static_segments(&self) -> &[Segment] {
-        &self.walls
-    }
-
     /// The fixed marker with this id, if any.
     pub fn marker(&self, id: u32) -> Option<&Marker> {
         self.markers.iter().find(|m| m.id == id)

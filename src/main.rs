@@ -645,11 +645,11 @@ fn run_mission(args: &MissionArgs) -> Result<ExitCode> {
     let one = |seed: u64| -> Result<mission_runner::MissionReport> {
         let session = load(seed)?;
         let localizer = session.localizer.clone();
-        let (config, mut link) = session.into_link();
+        let (config, link) = session.into_link();
         let started = Instant::now();
         let mut report = mission_runner::run(
             &config,
-            link.as_mut(),
+            link,
             localizer.as_ref(),
             seed,
             args.time_limit,

@@ -4,13 +4,11 @@
 use crate::config::Config;
 use crate::data::Level;
 use crate::link::RobotLink;
-use crate::link::drive;
+use crate::link::runtime::{Runtime, Stepped};
 use crate::pilot::mode::Mode;
-use crate::pilot::{Due, Input, Intent, LogLine, Pilot};
+use crate::pilot::{Intent, LogLine, Pilot};
 use serde::Serialize;
 
-/// A simulated control step of the runner, seconds (seed 001's period).
-const STEP: f64 = 0.1;
 /// A delivered block lies within this of its gate's centre in the twin, metres.
 const AT_GATE: f64 = 0.3;
 
@@ -69,62 +67,44 @@ impl MissionReport {
 /// the session logged. With a `localizer`, MCL places the robot.
 pub fn run(
     config: &Config,
-    link: &mut dyn RobotLink,
+    link: Box<dyn RobotLink>,
     localizer: Option<&crate::pilot::localize::Localizer>,
     seed: u64,
     time_limit: f64,
     keep_log: bool,
 ) -> MissionReport {
-    let mut pilot = drive::pilot_for(link, config.pilot_settings(), 0.0);
-    let truth = link.ground_truth().map(|t| t.pose());
-    let mut run = Run::default();
-    if let Some(Err(why)) = localizer.map(|l| l.apply(&mut pilot)) {
+    let mut robot = Runtime::new(link, config.pilot_settings(), 0.0);
+    let mut log = Vec::new();
+    if let Some(Err(why)) = localizer.map(|l| l.apply(robot.pilot_mut())) {
         let (time, level, text) = (0.0, Level::Error, format!("MCL not started: {why}"));
-        run.log.push(LogLine { time, level, text });
+        log.push(LogLine { time, level, text });
     }
-    let out = pilot.step(Input::intent(0.0, Intent::Mode(Mode::Exploration), truth));
-    run.log.extend(out.log);
-    if out.act_now {
-        run.step(link, &mut pilot, 0.0, Due::Command);
-    }
+    take_log(&mut log, robot.intend(Intent::Mode(Mode::Exploration)));
     // The first control period starts at once, as the console's does.
-    run.step(link, &mut pilot, 0.0, Due::Tick);
+    take_log(&mut log, robot.tick(0.0, Vec::new()));
+    let period = config.robot.control_period;
     let mut t = 0.0;
-    while t < time_limit && pilot.mode() == Mode::Exploration && pilot.is_busy() {
-        t += STEP;
-        run.step(link, &mut pilot, t, Due::Tick);
+    while t < time_limit && robot.pilot().mode() == Mode::Exploration && robot.pilot().is_busy() {
+        t += period;
+        take_log(&mut log, robot.tick(t, Vec::new()));
     }
-    let mut report = report(&pilot, &*link, &run.log, config, seed, t);
+    let mut report = report(robot.pilot(), robot.link(), &log, config, seed, t);
     if keep_log {
-        report.log = (run.log.iter())
+        report.log = (log.iter())
             .map(|e| format!("{:7.1} s {} {}", e.time, e.level.tag(), e.text))
             .collect();
     }
     report
 }
 
-/// What the run logged, and the contacts already logged.
-#[derive(Default)]
-struct Run {
-    log: Vec<LogLine>,
-    collisions: u32,
-}
-
-impl Run {
-    fn step(&mut self, link: &mut dyn RobotLink, pilot: &mut Pilot, t: f64, due: Due) {
-        self.log.extend(drive::step(link, pilot, t, due).log);
-        let note = link
-            .ground_truth()
-            .and_then(|truth| crate::sim::collision_note(truth, &mut self.collisions));
-        if let Some(text) = note {
-            let (time, level) = (t, Level::Warn);
-            self.log.push(LogLine { time, level, text });
-        }
-        for note in link.take_notes() {
-            let (time, level, text) = (t, note.level, note.text);
-            self.log.push(LogLine { time, level, text });
-        }
-    }
+/// The log lines of what a runner's step brought.
+pub fn take_log(log: &mut Vec<LogLine>, stepped: Stepped) {
+    let lines = stepped.log_lines();
+    log.extend(lines.map(|(time, level, text)| LogLine {
+        time,
+        level,
+        text: text.to_string(),
+    }));
 }
 
 fn report(

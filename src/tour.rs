@@ -9,20 +9,20 @@
 use crate::config::Config;
 use crate::data::Level;
 use crate::geometry::{Point2, Pose2, Rms, wrap_angle};
-use crate::link::{RobotLink, drive};
+use crate::link::RobotLink;
+use crate::link::runtime::Runtime;
 use crate::map::grid::OccupancyGrid;
+use crate::mission_runner::take_log;
 use crate::pilot::localize::Localizer;
 use crate::pilot::mode::Mode;
 use crate::pilot::navigation::Target;
 use crate::pilot::teleop::DriveKey;
-use crate::pilot::{Due, Input, Intent, LogLine, Pilot};
+use crate::pilot::{Intent, LogLine, Pilot};
 use crate::slam::mcl::KnownMap;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use serde::Serialize;
 
-/// A simulated control step, seconds (seed 001's period).
-const STEP: f64 = 0.1;
 /// Localised means within these of the truth (the global-localisation bar).
 pub const LOCALISED_M: f64 = 0.10;
 pub const LOCALISED_DEG: f64 = 5.0;
@@ -92,7 +92,7 @@ pub struct TourReport {
 /// Runs a tour on `link` (the twin) with `config`'s pilot, localised by `localizer` when given.
 pub fn run(
     config: &Config,
-    link: &mut dyn RobotLink,
+    mut link: Box<dyn RobotLink>,
     localizer: Option<&Localizer>,
     options: &TourOptions,
 ) -> Result<TourReport, String> {
@@ -121,9 +121,9 @@ pub fn run(
             l.initial = crate::pilot::localize::InitialPose::At(start);
         }
     }
-    let mut pilot = drive::pilot_for(link, config.pilot_settings(), 0.0);
+    let mut robot = Runtime::new(link, config.pilot_settings(), 0.0);
     if let Some(l) = &localizer {
-        l.apply(&mut pilot)?;
+        l.apply(robot.pilot_mut())?;
     }
     let mut tour = Tour {
         rng,
@@ -133,30 +133,31 @@ pub fn run(
         arrivals: Vec::new(),
         given_up: 0,
         log: Vec::new(),
-        collisions: 0,
     };
     let mut scores = Scores::default();
-    tour.step(link, &mut pilot, 0.0, Due::Tick);
+    take_log(&mut tour.log, robot.tick(0.0, Vec::new()));
+    let period = config.robot.control_period;
     let mut t = 0.0;
     let mut kidnap = options.kidnap;
     while t < options.duration {
-        t += STEP;
+        t += period;
         if let Some((at, pose)) = kidnap
             && t >= at
         {
-            link.teleport(pose);
+            robot.link_mut().teleport(pose);
             scores.kidnapped_at = Some(t);
             scores.localised_again = None;
             kidnap = None;
         }
-        tour.steer(&mut pilot, t, options);
-        tour.step(link, &mut pilot, t, Due::Tick);
-        let truth = link.ground_truth().expect("checked above").pose();
-        scores.add(t, truth, &pilot);
-        tour.check_arrival(&pilot, truth, t);
+        // What the tour asks rides in the control step at `t`.
+        let intents = tour.steer(robot.pilot(), t, options);
+        take_log(&mut tour.log, robot.tick(t, intents));
+        let truth = robot.link().ground_truth().expect("checked above").pose();
+        scores.add(t, truth, robot.pilot());
+        tour.check_arrival(robot.pilot(), truth, t);
     }
-    let truth = link.ground_truth().expect("checked above");
-    let mcl = pilot.mcl().map(|m| m.status());
+    let truth = robot.link().ground_truth().expect("checked above");
+    let mcl = robot.pilot().mcl().map(|m| m.status());
     let worst = tour
         .arrivals
         .iter()
@@ -235,36 +236,20 @@ struct Tour {
     arrivals: Vec<Arrival>,
     given_up: usize,
     log: Vec<LogLine>,
-    collisions: u32,
 }
 
 impl Tour {
-    fn step(&mut self, link: &mut dyn RobotLink, pilot: &mut Pilot, t: f64, due: Due) {
-        self.log.extend(drive::step(link, pilot, t, due).log);
-        let note = link
-            .ground_truth()
-            .and_then(|truth| crate::sim::collision_note(truth, &mut self.collisions));
-        if let Some(text) = note {
-            let (time, level) = (t, Level::Warn);
-            self.log.push(LogLine { time, level, text });
-        }
-    }
-
-    fn intent(&mut self, pilot: &mut Pilot, t: f64, intent: Intent) {
-        self.log
-            .extend(pilot.step(Input::intent(t, intent, None)).log);
-    }
-
     /// Decides what the robot does next: wander until localised, then goal after goal.
-    fn steer(&mut self, pilot: &mut Pilot, t: f64, options: &TourOptions) {
+    fn steer(&mut self, pilot: &Pilot, t: f64, options: &TourOptions) -> Vec<Intent> {
+        let mut asked = Vec::new();
         let localised = pilot.mcl().is_none_or(|m| m.status().converged);
         if !localised {
             if self.goal.take().is_some() {
-                self.intent(pilot, t, Intent::Mode(Mode::Manual));
+                asked.push(Intent::Mode(Mode::Manual));
             }
             let key = wander_key(pilot);
-            self.intent(pilot, t, Intent::KeyDown { key, repeat: true });
-            return;
+            asked.push(Intent::KeyDown { key, repeat: true });
+            return asked;
         }
         let stale = self
             .goal
@@ -273,14 +258,14 @@ impl Tour {
             self.given_up += 1;
         }
         if self.goal.is_some() && pilot.mode() == Mode::PathFollowing && !stale {
-            return;
+            return asked;
         }
         if self.goal.is_some() && !pilot.arrived() {
             self.given_up += usize::from(!stale);
         }
         self.goal = None;
         if pilot.mode() != Mode::Manual {
-            self.intent(pilot, t, Intent::Mode(Mode::Manual));
+            asked.push(Intent::Mode(Mode::Manual));
         }
         let here = pilot.estimated_pose().position();
         let goal = if options.goals.is_empty() {
@@ -295,9 +280,10 @@ impl Tour {
             self.next_listed += 1;
             g
         };
-        self.intent(pilot, t, Intent::Goto(Target::Point(goal)));
-        self.intent(pilot, t, Intent::Mode(Mode::PathFollowing));
+        asked.push(Intent::Goto(Target::Point(goal)));
+        asked.push(Intent::Mode(Mode::PathFollowing));
         self.goal = Some((goal, t));
+        asked
     }
 
     fn check_arrival(&mut self, pilot: &Pilot, truth: Pose2, t: f64) {

@@ -164,7 +164,7 @@ pub fn run(args: &TourArgs) -> Result<ExitCode> {
     let one = |seed: u64| -> Result<TourReport> {
         let session = Session::load(&spec(seed))?;
         let localizer = session.localizer.clone();
-        let (config, mut link) = session.into_link();
+        let (config, link) = session.into_link();
         let options = TourOptions {
             seed,
             duration: args.duration,
@@ -173,8 +173,8 @@ pub fn run(args: &TourArgs) -> Result<ExitCode> {
             random_start: args.random_start,
         };
         let started = Instant::now();
-        let mut report = tour::run(&config, link.as_mut(), localizer.as_ref(), &options)
-            .map_err(anyhow::Error::msg)?;
+        let mut report =
+            tour::run(&config, link, localizer.as_ref(), &options).map_err(anyhow::Error::msg)?;
         let wall = started.elapsed().as_secs_f64();
         report.wall_time_s = Some(wall);
         report.realtime_factor = Some(report.sim_time / wall.max(1e-9));

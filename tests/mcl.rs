@@ -40,9 +40,9 @@ fn tour_of(
 ) -> TourReport {
     let session = Session::load(spec).expect("session loads");
     let localizer = session.localizer.clone();
-    let (mut config, mut link) = session.into_link();
+    let (mut config, link) = session.into_link();
     tweak(&mut config);
-    tour::run(&config, link.as_mut(), localizer.as_ref(), &options).expect("the tour runs")
+    tour::run(&config, link, localizer.as_ref(), &options).expect("the tour runs")
 }
 
 fn options(seed: u64, duration: f64) -> TourOptions {
@@ -244,9 +244,8 @@ fn the_mission_on_mcl_is_not_lost_for_want_of_markers() {
     // robot lost; MCL vouches for its pose, and exploration runs to its end.
     let session = Session::load(&spec(TB3, 1, None)).unwrap();
     let localizer = session.localizer.clone();
-    let (config, mut link) = session.into_link();
-    let r =
-        navdeck::mission_runner::run(&config, link.as_mut(), localizer.as_ref(), 1, 400.0, false);
+    let (config, link) = session.into_link();
+    let r = navdeck::mission_runner::run(&config, link, localizer.as_ref(), 1, 400.0, false);
     assert_eq!(r.outcome, "delivered all", "{r:?}");
     assert_eq!(r.collisions, Some(0));
     assert!(

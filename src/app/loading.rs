@@ -164,7 +164,7 @@ impl App {
 
     /// The picker's maps and the chosen one, in load mode.
     pub fn map_picker(&self) -> Option<(&[MapEntry], usize)> {
-        (self.pilot.mode() == Mode::Load)
+        (self.pilot().mode() == Mode::Load)
             .then_some((self.picker.entries.as_slice(), self.picker.selected))
     }
 }

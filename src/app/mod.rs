@@ -10,8 +10,6 @@ mod command;
 mod control;
 pub mod loading;
 pub mod log;
-pub mod mission_state;
-mod picture;
 mod pose_estimate;
 mod recording;
 mod revision;
@@ -26,6 +24,7 @@ use crate::geometry::{Point2, Pose2};
 use crate::keymap::Action;
 use crate::keymap::{Key, KeyCode, Keymap};
 use crate::link::RobotLink;
+use crate::link::runtime::Runtime;
 use crate::map::grid::OccupancyGrid;
 use crate::pilot::arm::{ArmAxis, ArmPose};
 use crate::pilot::navigation::Target;
@@ -56,19 +55,16 @@ pub const WORLD_RASTER: f64 = 0.02;
 pub struct App {
     config: Config,
     keymap: Keymap,
-    link: Box<dyn RobotLink>,
-    /// Everything that decides how the robot moves.
-    pilot: Pilot,
+    /// The robot: its link, its pilot (everything that decides how it moves), the control
+    /// schedule and the recording.
+    runtime: Runtime,
     log: LogBook,
     view: ViewState,
     /// Terminal size in cells, as last reported.
     screen: (u16, u16),
-    now: f64,
-    clock: control::ControlClock,
     quit: bool,
     /// Marker IDs and when each was last seen: the map marks them "in view" for a while.
     in_view: Vec<(u32, f64)>,
-    collisions_logged: u32,
     world_grid: Option<OccupancyGrid>,
     /// Thinking mode's goal cursor, and the command being typed after `:`.
     cursor: Option<Point2>,
@@ -78,11 +74,7 @@ pub struct App {
     files: saving::Files,
     picker: loading::Picker,
     redraw: revision::Redraw,
-    picture: picture::Shown,
     camera: camera_feed::CameraFeed,
-    recording: Option<recording::Recording>,
-    /// Each control tick's estimate, kept for a replay to compare (`watch_estimates`).
-    watched: Option<Vec<recording::TickEstimate>>,
 }
 
 impl App {
@@ -90,19 +82,15 @@ impl App {
     pub fn new(config: Config, keymap: Keymap, link: Box<dyn RobotLink>, now: f64) -> Self {
         let truth = link.ground_truth();
         let world_grid = truth.map(|t| t.world().rasterize(WORLD_RASTER));
-        let pilot = crate::link::drive::pilot_for(link.as_ref(), config.pilot_settings(), now);
+        let runtime = Runtime::new(link, config.pilot_settings(), now);
         let mut app = Self {
-            clock: control::ControlClock::new(now, config.robot.control_period),
-            pilot,
+            runtime,
             keymap,
-            link,
             log: LogBook::new(500),
             view: ViewState::default(),
             screen: (80, 24),
-            now,
             quit: false,
             in_view: Vec::new(),
-            collisions_logged: 0,
             world_grid,
             cursor: None,
             pose_anchor: None,
@@ -110,16 +98,13 @@ impl App {
             files: saving::Files::new(now),
             picker: loading::Picker::default(),
             redraw: revision::Redraw::default(),
-            picture: picture::Shown::default(),
             camera: camera_feed::CameraFeed::default(),
-            recording: None,
-            watched: None,
             config,
         };
-        if app.link.takes_log() {
+        if app.link().takes_log() {
             app.log.keep_fresh();
         }
-        let label = app.link.label();
+        let label = app.link().label();
         app.log(
             Level::Info,
             format!("navdeck {} on {label}", env!("CARGO_PKG_VERSION")),
@@ -132,12 +117,12 @@ impl App {
     }
 
     fn log(&mut self, level: Level, text: impl Into<String>) {
-        self.log.push(self.now, level, text);
+        self.log.push(self.now(), level, text);
     }
 
     /// Localises with MCL as the session chose (`--estimator mcl`).
     pub fn localize(&mut self, localizer: &crate::pilot::localize::Localizer) {
-        if let Err(why) = localizer.apply(&mut self.pilot) {
+        if let Err(why) = localizer.apply(self.runtime.pilot_mut()) {
             self.log(Level::Error, format!("MCL not started: {why}"));
         }
         self.refresh_revision();
@@ -164,13 +149,13 @@ impl App {
 
     fn handle_key_inner(&mut self, key: Key, kind: KeyKind, now: f64) {
         self.advance_to(now);
-        if kind == KeyKind::Press && self.pilot.link_status() == &LinkStatus::Back {
+        if kind == KeyKind::Press && self.pilot().link_status() == &LinkStatus::Back {
             // Control resumes only on the user's word after a loss (the key is not acted on).
             self.run_intent(pilot::Intent::Resume);
             self.refresh_revision();
             return;
         }
-        let mode = self.pilot.mode();
+        let mode = self.pilot().mode();
         let action = self.keymap.lookup(mode, key).or_else(|| {
             // In the autonomous modes the manual drive keys take control back.
             self.keymap
@@ -268,7 +253,7 @@ impl App {
         if let Some(change) = action.speed_change() {
             return self.run_intent(pilot::Intent::Speed(change));
         }
-        let load = self.pilot.mode() == Mode::Load;
+        let load = self.pilot().mode() == Mode::Load;
         let ask = match action {
             Action::ModeManual => pilot::Intent::Mode(Mode::Manual),
             Action::ModeExplore => pilot::Intent::Mode(Mode::Exploration),
@@ -297,7 +282,7 @@ impl App {
             Action::PlanToCursor if !load => {
                 let goal = self
                     .cursor
-                    .unwrap_or_else(|| self.pilot.estimated_pose().position());
+                    .unwrap_or_else(|| self.pilot().estimated_pose().position());
                 pilot::Intent::Goto(Target::Point(goal))
             }
             _ => return self.apply_to_console(action),
@@ -307,7 +292,7 @@ impl App {
 
     /// The actions that change only the console: the view, the picker, the prompt, files.
     fn apply_to_console(&mut self, action: Action) {
-        let load = self.pilot.mode() == Mode::Load;
+        let load = self.pilot().mode() == Mode::Load;
         match action {
             Action::Quit => {
                 self.shutdown("quit by user");
@@ -363,7 +348,7 @@ impl App {
             Action::LogSource => self.view.log.next_source(),
             Action::LogSearch => self.prompt = Some("/".to_string()),
             Action::ToggleTruth => {
-                if self.link.ground_truth().is_some() {
+                if self.link().ground_truth().is_some() {
                     self.view.show_truth = !self.view.show_truth;
                 } else {
                     self.log(Level::Warn, "true pose exists only in the twin");
@@ -402,7 +387,7 @@ impl App {
             Typed::SetPose(pose) => self.run_intent(pilot::Intent::SetPose(pose)),
             Typed::Relocalize => self.run_intent(pilot::Intent::Relocalize),
             Typed::WhichController => {
-                let now = self.pilot.follower().controller().label();
+                let now = self.pilot().follower().controller().label();
                 self.log(
                     Level::Info,
                     format!("path controller: {now} (:controller pid|pure_pursuit|hybrid)"),
@@ -419,30 +404,20 @@ impl App {
         let scale = self.view.scale(self.fitted_scale());
         let c = self
             .cursor
-            .unwrap_or_else(|| self.pilot.estimated_pose().position());
+            .unwrap_or_else(|| self.pilot().estimated_pose().position());
         // One screen cell: a row is twice as tall as a column is wide.
         self.cursor = Some(Point2::new(c.x + dx * scale, c.y + dy * 2.0 * scale));
     }
 
-    /// Hands `intent` to the pilot; a command follows at once when it changed the motion.
-    fn run_intent(&mut self, intent: pilot::Intent) {
-        let truth = self.true_pose();
-        let out = self.pilot_step(pilot::Input::intent(self.now, intent, truth));
-        if out.act_now {
-            self.control_step(self.now);
-        }
-    }
-
     /// Installs the clock that times planning (seconds, monotonic).
     pub fn set_stopwatch(&mut self, stopwatch: std::sync::Arc<dyn crate::clock::Clock>) {
-        self.pilot.set_stopwatch(stopwatch);
+        self.runtime.pilot_mut().set_stopwatch(stopwatch);
     }
 
     /// Commands the robot to stop and logs why; used on quit, signals and lost input.
     pub fn shutdown(&mut self, reason: &str) {
         self.run_intent(pilot::Intent::Halt);
-        self.link.stop();
-        self.record_stop();
+        self.runtime.stop();
         self.log(Level::Warn, format!("robot stopped: {reason}"));
     }
 
@@ -450,10 +425,10 @@ impl App {
 
     /// Everything that decides how the robot moves: mode, estimate, map, route, mission.
     pub fn pilot(&self) -> &Pilot {
-        &self.pilot
+        self.runtime.pilot()
     }
     pub fn now(&self) -> f64 {
-        self.now
+        self.runtime.now()
     }
     pub fn config(&self) -> &Config {
         &self.config
@@ -462,7 +437,7 @@ impl App {
         &self.keymap
     }
     pub fn link(&self) -> &dyn RobotLink {
-        self.link.as_ref()
+        self.runtime.link()
     }
     pub fn log_book(&self) -> &LogBook {
         &self.log
@@ -472,7 +447,7 @@ impl App {
     }
     /// The twin's true pose, when the link has a simulator behind it.
     pub fn true_pose(&self) -> Option<Pose2> {
-        self.link.ground_truth().map(|t| t.pose())
+        self.link().ground_truth().map(|t| t.pose())
     }
     pub fn should_quit(&self) -> bool {
         self.quit
@@ -506,14 +481,14 @@ impl App {
         self.world_grid.as_ref()
     }
     pub fn loop_rate(&self) -> f64 {
-        self.clock.rate()
+        self.runtime.loop_rate()
     }
     pub fn screen(&self) -> (u16, u16) {
         self.screen
     }
     /// Drive keys currently held, for the status panel.
     pub fn held_keys(&self) -> Vec<Action> {
-        let keys = self.pilot.held_keys(self.now);
+        let keys = self.pilot().held_keys(self.now());
         let name = |k: pilot::teleop::DriveKey| Action::from_name(k.name());
         keys.into_iter().filter_map(name).collect()
     }
@@ -528,7 +503,9 @@ impl App {
     /// Tells the console the terminal's size (the map scale depends on it).
     pub fn resize(&mut self, width: u16, height: u16) {
         self.record_input(crate::msgs::record::InputMsg::resize(
-            self.now, width, height,
+            self.now(),
+            width,
+            height,
         ));
         self.screen = (width, height);
         self.refresh_revision();
@@ -536,7 +513,7 @@ impl App {
 
     /// The world extent the map fits to: the twin's world, else 4 m x 4 m (seed 001's grid).
     pub fn world_extent(&self) -> (Point2, (f64, f64)) {
-        match self.link.ground_truth() {
+        match self.link().ground_truth() {
             Some(t) => (Point2::new(0.0, 0.0), (t.world().width, t.world().height)),
             None => (Point2::new(0.0, 0.0), (4.0, 4.0)),
         }
@@ -560,7 +537,7 @@ impl App {
         if self.view.zoom.is_none() {
             self.world_extent().0
         } else {
-            self.pilot.estimated_pose().position()
+            self.pilot().estimated_pose().position()
         }
     }
 
@@ -575,6 +552,6 @@ impl App {
 impl Drop for App {
     /// However the console ends, even by panic, the robot is told to stop.
     fn drop(&mut self) {
-        self.link.stop();
+        self.runtime.link_mut().stop();
     }
 }

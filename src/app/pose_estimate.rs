@@ -15,7 +15,7 @@ impl App {
     pub(super) fn pose_estimate_key(&mut self) {
         let cursor = self
             .cursor
-            .unwrap_or_else(|| self.pilot.estimated_pose().position());
+            .unwrap_or_else(|| self.pilot().estimated_pose().position());
         match self.pose_anchor.take() {
             None => {
                 self.pose_anchor = Some(cursor);
@@ -32,7 +32,7 @@ impl App {
                 let theta = if dx.hypot(dy) > LEAST_ARROW {
                     dy.atan2(dx)
                 } else {
-                    self.pilot.estimated_pose().theta
+                    self.pilot().estimated_pose().theta
                 };
                 self.cursor = Some(at);
                 self.run_intent(pilot::Intent::SetPose(Pose2::new(at.x, at.y, theta)));

@@ -75,20 +75,20 @@ impl App {
     /// changes a few cells at a time, mostly finer than a screen cell shows, so the map
     /// alone redraws only with the clock, once a second.
     fn shown_map_revision(&mut self) -> u64 {
-        let second = self.now.floor();
+        let second = self.now().floor();
         let shown = &mut self.redraw.map_shown;
         if second > shown.1 {
-            *shown = (self.pilot.belief().revision(), second);
+            *shown = (self.runtime.pilot().belief().revision(), second);
         }
         shown.0
     }
 
     pub(super) fn refresh_revision(&mut self) {
         let map = self.shown_map_revision();
-        let p: &Pilot = &self.pilot;
+        let p: &Pilot = self.pilot();
         let pose = p.estimated_pose();
         let deg = |t: f64| t.to_degrees().round() as i64;
-        let twin = self.link.ground_truth();
+        let twin = self.link().ground_truth();
         let (commanded, measured, teleop) = (p.commanded(), p.measured(), p.teleop());
         let visible = Visible {
             mode: p.mode(),
@@ -100,8 +100,8 @@ impl App {
             commanded: (centi(commanded.linear), centi(commanded.angular)),
             measured: (centi(measured.linear), centi(measured.angular)),
             speeds: (centi(teleop.linear_speed), centi(teleop.angular_speed)),
-            second: self.now.floor() as i64,
-            loop_rate: self.clock.rate().round() as i64,
+            second: self.now().floor() as i64,
+            loop_rate: self.runtime.loop_rate().round() as i64,
             log: self.log.written(),
             gripper: p.gripper(),
             estop: p.estop(),

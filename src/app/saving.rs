@@ -84,10 +84,8 @@ impl App {
             );
             return false;
         }
-        let pose = self.pilot.estimated_pose();
-        let landmarks: Vec<SavedLandmark> = self
-            .pilot
-            .slam()
+        let pose = self.pilot().estimated_pose();
+        let landmarks: Vec<SavedLandmark> = (self.pilot().slam())
             .landmarks()
             .map(|l| SavedLandmark {
                 id: l.id,
@@ -103,14 +101,14 @@ impl App {
         let count = landmarks.len();
         let (blocks, gates) = self.blocks_and_gates();
         let map = MapFile {
-            grid: self.pilot.belief().occupancy_grid(),
+            grid: self.pilot().belief().occupancy_grid(),
             extras: Some(Extras {
                 version: env!("CARGO_PKG_VERSION").to_string(),
                 created: self
                     .files
                     .date_source
                     .as_ref()
-                    .map_or_else(|| format!("session time {:.1} s", self.now), |d| d()),
+                    .map_or_else(|| format!("session time {:.1} s", self.now()), |d| d()),
                 pose: Some([pose.x, pose.y, pose.theta]),
                 landmarks,
                 blocks,
@@ -134,11 +132,11 @@ impl App {
 
     /// Blocks and gates as the landmarks show them (seed 001's marker pairs).
     fn blocks_and_gates(&self) -> (Vec<SavedBlock>, Vec<SavedGate>) {
-        let slam = self.pilot.slam();
+        let slam = self.pilot().slam();
         let landmarks = slam.landmarks().map(|l| (l.id, l.mean)).collect();
         let mut objects = Objects::default();
         let here = slam.pose().position();
-        let map = self.pilot.belief().costmap();
+        let map = self.pilot().belief().costmap();
         objects.update(&landmarks, here, self.config.mission.block_size, map);
         let blocks = objects
             .blocks()

@@ -22,7 +22,7 @@ impl App {
     /// The landmarks the table lists, in its order: all, or gates and blocks only.
     pub fn listed_landmarks(&self) -> Vec<LandmarkEstimate> {
         let targets_only = self.view.table.targets_only;
-        let mut landmarks: Vec<_> = (self.pilot.slam().landmarks())
+        let mut landmarks: Vec<_> = (self.pilot().slam().landmarks())
             .filter(|l| !targets_only || rank(l.id) <= 1)
             .collect();
         landmarks.sort_by_key(|l| (rank(l.id), l.id));

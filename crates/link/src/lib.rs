@@ -3,11 +3,12 @@
 
 #[cfg(feature = "vision")]
 pub mod camera;
-pub mod drive;
+
 pub mod rate;
 pub mod record;
 pub mod replay;
 pub mod ros2;
+pub mod runtime;
 pub mod serial;
 pub mod sim;
 

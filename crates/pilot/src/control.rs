@@ -7,9 +7,12 @@ use navdeck_core::geometry::Twist;
 use navdeck_core::map::contact::JAWS;
 use navdeck_core::slam::odometry::twist_from_wheels;
 
-/// The measured twist, and the wheel travel and time since it was last worked out.
+/// The commanded and measured twists, and the wheel travel and time since the measured
+/// one was last worked out.
 #[derive(Clone, Debug, Default)]
 pub(super) struct Measuring {
+    /// The twist last commanded, and the one the wheels measured.
+    pub commanded: Twist,
     pub measured: Twist,
     travel: WheelTravel,
     travel_time: f64,
@@ -58,7 +61,7 @@ impl Pilot {
     /// Decides the command for `t`.
     pub(super) fn act(&mut self, t: f64) -> Command {
         let twist = self.decide(t);
-        self.commanded = twist;
+        self.measuring.commanded = twist;
         Command {
             twist,
             gripper: self.hand.pending.take(),
@@ -109,8 +112,8 @@ impl Pilot {
     /// Seconds the robot needs to brake from the current command at its acceleration limits.
     pub(super) fn brake_margin(&self) -> f64 {
         let r = &self.settings.robot;
-        (self.commanded.linear.abs() / r.max_linear_accel)
-            .max(self.commanded.angular.abs() / r.max_angular_accel)
+        (self.measuring.commanded.linear.abs() / r.max_linear_accel)
+            .max(self.measuring.commanded.angular.abs() / r.max_angular_accel)
     }
 
     /// When the held keys' deadman cuts the drive command, no earlier than `now`: early

@@ -138,7 +138,7 @@ impl Pilot {
             }
             Intent::Halt => {
                 self.teleop.clear();
-                self.commanded = Twist::ZERO;
+                self.measuring.commanded = Twist::ZERO;
                 self.gate.halted = true;
                 false
             }

@@ -20,6 +20,7 @@ mod mapping;
 pub mod mode;
 pub mod navigation;
 mod safety;
+mod step;
 pub mod teleop;
 mod trail;
 
@@ -37,63 +38,7 @@ use teleop::{DriveKey, Teleop};
 
 pub use intent::Intent;
 pub use safety::LinkStatus;
-
-/// What the link reported since the last step.
-#[derive(Clone, Copy, Debug)]
-pub enum Report<'a> {
-    /// Nothing was asked of the link.
-    Nothing,
-    Frame(&'a SensorFrame),
-    /// The link failed: polling or sending did not work.
-    Failed(&'a str),
-}
-
-/// What the step should produce besides folding in the report.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Due {
-    /// No command: the report is folded in, the intent applied.
-    Nothing,
-    /// A command now (a key acted between control periods).
-    Command,
-    /// A command and the once-per-period upkeep (measured twist, footprint, accuracy).
-    Tick,
-}
-
-/// One step's input.
-#[derive(Debug)]
-pub struct Input<'a> {
-    /// Session time, seconds.
-    pub t: f64,
-    pub intent: Option<Intent>,
-    pub report: Report<'a>,
-    /// The robot's true pose when a simulator knows it: used to score, never to decide.
-    pub truth: Option<Pose2>,
-    pub due: Due,
-}
-
-impl<'a> Input<'a> {
-    /// An intent alone at `t`: no report, no command.
-    pub fn intent(t: f64, intent: Intent, truth: Option<Pose2>) -> Self {
-        Self {
-            t,
-            intent: Some(intent),
-            report: Report::Nothing,
-            truth,
-            due: Due::Nothing,
-        }
-    }
-
-    /// A report at `t`, with a command when `due` says so.
-    pub fn report(t: f64, report: Report<'a>, truth: Option<Pose2>, due: Due) -> Self {
-        Self {
-            t,
-            intent: None,
-            report,
-            truth,
-            due,
-        }
-    }
-}
+pub use step::{Due, Input, Robot};
 
 /// One log line of the pilot's.
 #[derive(Clone, Debug, PartialEq)]
@@ -106,10 +51,12 @@ pub struct LogLine {
 /// One step's output.
 #[derive(Debug, Default)]
 pub struct Output {
-    /// The command to send, when one was due.
+    /// The command sent, when one was due.
     pub command: Option<Command>,
-    /// The intent changed what the robot should do: a command is due now.
-    pub act_now: bool,
+    /// What the robot reported, when it was polled.
+    pub frame: Option<SensorFrame>,
+    /// Why polling the robot failed, when it did.
+    pub failure: Option<String>,
     pub log: Vec<LogLine>,
 }
 
@@ -136,12 +83,10 @@ pub struct Pilot {
     /// The planning map the robot builds from what it senses.
     belief: BeliefMap,
     upkeep: mapping::Upkeep,
-    planner: navdeck_core::plan::pipeline::Planner,
     follower: navdeck_core::control::follower::Follower,
     nav: navigation::Navigation,
     exploring: exploration::Exploring,
     gate: safety::Gate,
-    commanded: Twist,
     measuring: control::Measuring,
     hand: Hand,
     /// The arm, when the config has one.
@@ -174,7 +119,6 @@ impl Pilot {
             estimating: estimate::Estimating::default(),
             belief: BeliefMap::new(m, (m.width.max(extent.0), m.height.max(extent.1))),
             upkeep: mapping::Upkeep::default(),
-            planner: navdeck_core::plan::pipeline::Planner::new(),
             follower: navdeck_core::control::follower::Follower::new(
                 settings.follow.clone(),
                 settings.plan.max_speed.min(robot.max_linear),
@@ -183,7 +127,6 @@ impl Pilot {
             nav: navigation::Navigation::default(),
             exploring: exploration::Exploring::default(),
             gate: safety::Gate::default(),
-            commanded: Twist::ZERO,
             measuring: control::Measuring::default(),
             hand: Hand::default(),
             arm: settings.arm.clone().map(arm::ArmPilot::new),
@@ -193,32 +136,6 @@ impl Pilot {
         };
         pilot.map_footprint();
         pilot
-    }
-
-    /// The one entry point: applies the intent, folds in the report, and decides the
-    /// command when one is due.
-    pub fn step(&mut self, input: Input<'_>) -> Output {
-        let t = input.t;
-        self.now = self.now.max(t);
-        self.estimating.truth = input.truth;
-        let act_now = input.intent.is_some_and(|intent| self.apply(intent));
-        match input.report {
-            Report::Nothing => {}
-            Report::Frame(frame) => self.sense(t, frame),
-            Report::Failed(reason) => self.lose_link(t, reason.to_string()),
-        }
-        let command = (input.due != Due::Nothing).then(|| self.act(t));
-        if input.due == Due::Tick {
-            self.measure();
-            self.map_footprint();
-            self.sample_accuracy();
-            self.check_race_uncertainty();
-        }
-        Output {
-            command,
-            act_now,
-            log: std::mem::take(&mut self.log),
-        }
     }
 
     /// Installs the clock that times planning (seconds, monotonic), for the log only.
@@ -260,7 +177,7 @@ impl Pilot {
         self.odometry.distance()
     }
     pub fn commanded(&self) -> Twist {
-        self.commanded
+        self.measuring.commanded
     }
     pub fn measured(&self) -> Twist {
         self.measuring.measured

@@ -79,6 +79,8 @@ pub struct FollowView {
 /// Navigation state the pilot keeps.
 #[derive(Debug, Default)]
 pub(super) struct Navigation {
+    /// The planner, with its search buffers kept between plans.
+    pub planner: navdeck_core::plan::pipeline::Planner,
     pub route: Option<Route>,
     pub following: Option<FollowView>,
     pub arrived: bool,
@@ -125,7 +127,10 @@ impl Pilot {
             self.settings.map.lethal_radius,
         );
         let began = self.stopwatch.as_ref().map(|w| w.now());
-        let result = self.planner.plan(&map, start, goal, &self.settings.plan);
+        let result = self
+            .nav
+            .planner
+            .plan(&map, start, goal, &self.settings.plan);
         let took = began.zip(self.stopwatch.as_ref().map(|w| w.now()));
         match result {
             Ok(plan) => {

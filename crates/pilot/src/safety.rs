@@ -76,7 +76,7 @@ impl Pilot {
         }
         self.gate.link = LinkStatus::Lost(reason);
         self.teleop.clear();
-        self.commanded = Twist::ZERO;
+        self.measuring.commanded = Twist::ZERO;
     }
 
     /// The user's word after the link came back.

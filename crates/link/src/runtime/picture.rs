@@ -1,8 +1,8 @@
 //! What navdeck believes, handed to links that show it elsewhere (RViz over ROS 2).
 
-use super::App;
-use super::mission_state::MissionState;
-use crate::link::Picture;
+use super::Runtime;
+use super::state::MissionState;
+use crate::Picture;
 
 /// When the full picture last went to the link, and the map revision it carried.
 #[derive(Clone, Debug)]
@@ -23,19 +23,19 @@ impl Default for Shown {
     }
 }
 
-impl App {
+impl Runtime {
     /// The pose every control step; the map, landmarks and plan at the link's period.
     pub(super) fn show_picture(&mut self, t: f64) {
         let Some(period) = self.link.picture_period() else {
             return;
         };
-        let full = t - self.picture.at >= period - 1e-9;
+        let full = t - self.shown.at >= period - 1e-9;
         if full {
-            self.picture.at = t;
+            self.shown.at = t;
         }
         // The state goes out when it changed (its topic is latched for late joiners).
         let state = MissionState::of(&self.pilot);
-        let state_changed = self.picture.state.as_ref() != Some(&state);
+        let state_changed = self.shown.state.as_ref() != Some(&state);
         let (slam, belief) = (self.pilot.slam(), self.pilot.belief());
         let picture = Picture {
             stamp: t,
@@ -62,15 +62,15 @@ impl App {
             }),
             // The map goes out only when it changed: its topic is transient local, so a
             // display that joins later still gets the last one.
-            map: (full && self.picture.map != Some(belief.revision()))
+            map: (full && self.shown.map != Some(belief.revision()))
                 .then(|| belief.occupancy_grid()),
             state: state_changed.then(|| state.to_json()),
         };
         if state_changed {
-            self.picture.state = Some(state);
+            self.shown.state = Some(state);
         }
         if picture.map.is_some() {
-            self.picture.map = Some(belief.revision());
+            self.shown.map = Some(belief.revision());
         }
         self.link.show(&picture);
     }

@@ -1,8 +1,8 @@
 //! What the console is doing, in a form other programs can follow: published by the
 //! ROS 2 link on `[ros2] state_topic` as JSON in a std_msgs/String.
 
-use crate::pilot::Pilot;
-use crate::pilot::mode::Mode;
+use navdeck_pilot::Pilot;
+use navdeck_pilot::mode::Mode;
 use serde::Serialize;
 
 /// The console's state: its mode, the goal it drives to and how far it has come, and the

@@ -3,7 +3,6 @@
 //! with its types, publishers, subscribers, rate, QoS and mismatches (what
 //! `ros2 topic list -v` and `ros2 topic info -v` tell, in one table).
 
-use crate::ERROR_LINE;
 use anyhow::{Context, Result};
 use navdeck::config::Config;
 use navdeck::link::ros2::domain_from;

@@ -1,7 +1,7 @@
 //! `navdeck replay FILE.mcap`: the console on a recording, or (`--headless`) a re-run
 //! of it to the end with the same report as a headless run.
 
-use crate::tour_command::LocalizeArgs;
+use super::tour::LocalizeArgs;
 use anyhow::Result;
 use navdeck::headless;
 use navdeck::replay::{Replay, ReplayOptions};

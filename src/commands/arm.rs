@@ -1,7 +1,6 @@
 //! `navdeck arm ik|fk` (part of the binary, beside main.rs): the command line's side of
 //! `navdeck::arm`. The solve is timed here; the kinematics read no clock.
 
-use crate::ERROR_LINE;
 use anyhow::Result;
 use navdeck::arm::{self, ArmConfig, Joints, Solver, Target, Unreachable};
 use navdeck::config::Config;

@@ -1,0 +1,45 @@
+//! Value parsers shared by the command line's options.
+
+use navdeck::geometry::{Point2, Pose2};
+
+/// A number within lo..=hi, or why not.
+pub(crate) fn bounded(s: &str, lo: f64, hi: f64, unit: &str) -> Result<f64, String> {
+    let v: f64 = s
+        .trim()
+        .parse()
+        .map_err(|_| format!("`{s}` is not a number"))?;
+    if (lo..=hi).contains(&v) {
+        Ok(v)
+    } else {
+        Err(format!("{v:?} {unit} is outside {lo}..={hi}"))
+    }
+}
+
+/// Headless keys per second of simulated time: 0.1 to 1000.
+pub(crate) fn parse_key_rate(s: &str) -> Result<f64, String> {
+    bounded(s, 0.1, 1000.0, "keys a second")
+}
+
+/// A mission's time limit: up to two simulated hours.
+pub(crate) fn parse_time_limit(s: &str) -> Result<f64, String> {
+    bounded(s, 1.0, 7200.0, "s")
+}
+
+/// A pose as X,Y,THETA_DEG: metres and degrees, finite.
+pub(crate) fn parse_pose(s: &str) -> Result<Pose2, String> {
+    navdeck::geometry::parse_pose_degrees(s)
+}
+
+pub(crate) fn parse_point(s: &str) -> Result<Point2, String> {
+    let parts: Vec<&str> = s.split(',').map(str::trim).collect();
+    let [x, y] = parts.as_slice() else {
+        return Err(format!("`{s}` is not X,Y"));
+    };
+    let number = |v: &str| {
+        v.parse::<f64>()
+            .ok()
+            .filter(|n| n.is_finite())
+            .ok_or_else(|| format!("`{v}` in `{s}` is not a number of metres"))
+    };
+    Ok(Point2::new(number(x)?, number(y)?))
+}

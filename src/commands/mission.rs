@@ -1,0 +1,182 @@
+//! `navdeck mission`: the whole mission in the twin on simulated time, or a sweep of seeds.
+
+use super::args::{parse_pose, parse_time_limit};
+use super::tour::LocalizeArgs;
+use super::world::{ShapeArgs, generate_error};
+use anyhow::{Result, bail};
+use navdeck::geometry::Pose2;
+use navdeck::mission_runner;
+use navdeck::session::{LinkChoice, Session, SessionSpec};
+use navdeck::sim::CameraFrames;
+use navdeck::sim::generate::{self, GenerateOptions};
+use std::io::Write;
+use std::path::PathBuf;
+use std::process::ExitCode;
+use std::time::Instant;
+
+#[derive(Debug, clap::Args)]
+pub(crate) struct MissionArgs {
+    /// The twin's noise seed.
+    #[arg(
+        long,
+        default_value_t = 1,
+        value_name = "N",
+        allow_negative_numbers = true
+    )]
+    seed: u64,
+    /// Run every seed of a range, e.g. 1..50, on all cores, and print the summary.
+    #[arg(long, value_name = "A..B", conflicts_with = "seed")]
+    sweep: Option<String>,
+    /// World for the twin: a world file (TOML) or a Nav2 map (YAML + PGM); default: the
+    /// built-in arena.
+    #[arg(long, value_name = "FILE")]
+    world: Option<PathBuf>,
+    /// Where the robot starts: X,Y,THETA_DEG (default: the world's start).
+    #[arg(long, value_name = "X,Y,THETA_DEG", value_parser = parse_pose, allow_hyphen_values = true)]
+    start: Option<Pose2>,
+    #[command(flatten)]
+    localize: LocalizeArgs,
+    /// Each run on a world generated from its seed (as `navdeck world generate`).
+    #[arg(long, conflicts_with = "world")]
+    generated: bool,
+    #[command(flatten)]
+    shape: ShapeArgs,
+    /// Parameters (TOML), e.g. [mission] target_rule.
+    #[arg(long, value_name = "FILE")]
+    config: Option<PathBuf>,
+    /// Give up after this many simulated seconds.
+    #[arg(long, default_value_t = 1200.0, value_name = "S", value_parser = parse_time_limit,
+          allow_negative_numbers = true)]
+    time_limit: f64,
+    /// Print one JSON object.
+    #[arg(long)]
+    json: bool,
+    /// The twin sees through a rendered camera and the ArUco detector (feature `vision`).
+    #[arg(long)]
+    sim_camera: bool,
+    /// Also print every line the mission logged (one run; in the JSON as "log").
+    #[arg(long, conflicts_with = "sweep")]
+    log: bool,
+}
+
+pub(crate) fn run(args: &MissionArgs) -> Result<ExitCode> {
+    if !(args.time_limit.is_finite() && args.time_limit > 0.0) {
+        bail!(
+            "--time-limit {} must be a positive number of seconds",
+            args.time_limit
+        );
+    }
+    if let (false, Some(flag)) = (args.generated, args.shape.given()) {
+        bail!("{flag} needs --generated");
+    }
+    let generated = args.generated.then(|| args.shape.options(args.seed));
+    let spec = |seed| SessionSpec {
+        world: args.world.clone(),
+        seed,
+        start: args.start,
+        config: args.config.clone(),
+        keymap: None,
+        link: LinkChoice::Sim,
+        localize: args.localize.choice(),
+    };
+    let load = |seed: u64| -> Result<Session> {
+        let mut session = match &generated {
+            // Seed N: the world generated from N, and the twin's noise seeded with N.
+            Some(options) => {
+                let options = GenerateOptions {
+                    seed,
+                    ..options.clone()
+                };
+                let world = generate::generate(&options).map_err(generate_error)?;
+                Session::load_with_world(&spec(seed), world)?
+            }
+            None => Session::load(&spec(seed))?,
+        };
+        if args.sim_camera {
+            // No camera panel: only what the detector can read is drawn.
+            session.use_sim_camera(None, CameraFrames::Readable)?;
+        }
+        Ok(session)
+    };
+    // Load once up front so a bad file is refused before anything runs.
+    load(args.seed)?;
+    let one = |seed: u64| -> Result<mission_runner::MissionReport> {
+        let session = load(seed)?;
+        let localizer = session.localizer.clone();
+        let (config, link) = session.into_link();
+        let started = Instant::now();
+        let mut report = mission_runner::run(
+            &config,
+            link,
+            localizer.as_ref(),
+            seed,
+            args.time_limit,
+            args.log,
+        );
+        let wall = started.elapsed().as_secs_f64();
+        report.wall_time_s = Some(wall);
+        report.realtime_factor = Some(report.sim_time / wall.max(1e-9));
+        Ok(report)
+    };
+    let Some(range) = &args.sweep else {
+        let report = one(args.seed)?;
+        if args.json {
+            sayln!("{}", serde_json::to_string(&report)?);
+        } else {
+            say!("{}", mission_runner::human(&report));
+        }
+        return Ok(if report.success() {
+            ExitCode::SUCCESS
+        } else {
+            ExitCode::from(1)
+        });
+    };
+    let seeds = mission_runner::parse_seeds(range).map_err(anyhow::Error::msg)?;
+    let next = std::sync::atomic::AtomicUsize::new(0);
+    let workers = std::thread::available_parallelism().map_or(2, |n| n.get());
+    let results = std::sync::Mutex::new(Vec::new());
+    std::thread::scope(|scope| {
+        for _ in 0..workers {
+            scope.spawn(|| {
+                loop {
+                    let k = next.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+                    let Some(&seed) = seeds.get(k) else { break };
+                    let report = one(seed);
+                    results.lock().expect("no worker panicked").push(report);
+                }
+            });
+        }
+    });
+    let reports = results
+        .into_inner()
+        .expect("no worker panicked")
+        .into_iter()
+        .collect::<Result<Vec<_>>>()?;
+    let summary = mission_runner::summarise(reports);
+    if args.json {
+        sayln!("{}", serde_json::to_string(&summary)?);
+    } else {
+        sayln!(
+            "{} of {} runs delivered every block ({:.0} %); median {:.1} s simulated; worst seed {} at {:.1} s; {} collisions",
+            summary.successes,
+            summary.runs,
+            summary.success_rate * 100.0,
+            summary.median_sim_time,
+            summary.worst_seed.map_or("-".into(), |s| s.to_string()),
+            summary.worst_sim_time,
+            summary.collisions
+        );
+        if !summary.failed_seeds.is_empty() {
+            sayln!("failed seeds: {:?}", summary.failed_seeds);
+            let causes: Vec<String> = (summary.causes.iter())
+                .map(|(cause, n)| format!("{cause} {n}"))
+                .collect();
+            sayln!("causes: {}", causes.join(", "));
+        }
+    }
+    Ok(if summary.successes == summary.runs {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::from(1)
+    })
+}

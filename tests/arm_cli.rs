@@ -1,7 +1,11 @@
 //! `navdeck arm ik|fk` as a user runs them: the joints for a reachable target, a clear
 //! refusal for an unreachable one, the tool's pose for given joints, bad numbers refused.
 
-mod common;
+#[path = "common"]
+mod common {
+    pub mod binary;
+    pub use binary::*;
+}
 
 use common::navdeck;
 

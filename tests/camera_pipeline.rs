@@ -3,9 +3,19 @@
 //! topic.
 #![cfg(feature = "vision")]
 
-mod common;
-mod vision_support;
+#[path = "common"]
+mod common {
+    pub mod recording;
+    pub mod until;
+    pub use {recording::*, until::*};
+}
+#[path = "vision_support"]
+mod vision_support {
+    pub mod level;
+    pub use level::*;
+}
 
+use common::until;
 use navdeck::geometry::{Point2, Pose2};
 use navdeck::link::RobotLink;
 use navdeck::link::camera::WithCamera;
@@ -19,7 +29,7 @@ use navdeck::sim::Marker;
 use navdeck::sim::rendered_camera::Renderer;
 use rand::SeedableRng;
 use std::sync::atomic::Ordering;
-use std::time::{Duration, Instant};
+use std::time::Duration;
 use vision_support::level;
 
 /// The frame of a wall marker `id` 1 m straight ahead.
@@ -46,15 +56,6 @@ impl FrameSource for Burst {
             return Ok(None);
         }
         Ok(Some(self.0.remove(0)))
-    }
-}
-
-/// Waits (bounded) for `done`.
-fn until(what: &str, mut done: impl FnMut() -> bool) {
-    let give_up = Instant::now() + Duration::from_secs(20);
-    while !done() {
-        assert!(Instant::now() < give_up, "gave up waiting for {what}");
-        std::thread::sleep(Duration::from_millis(5));
     }
 }
 

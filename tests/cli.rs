@@ -1,8 +1,13 @@
 //! The binary from the outside: headless runs, help, and refusals of bad input.
 
-mod common;
+#[path = "common"]
+mod common {
+    pub mod binary;
+    pub mod scratch;
+    pub use {binary::*, scratch::*};
+}
 
-use common::navdeck;
+use common::{navdeck, scratch};
 
 use serde_json::Value;
 use std::path::PathBuf;
@@ -24,10 +29,9 @@ fn stderr(out: &Output) -> String {
     String::from_utf8_lossy(&out.stderr).into_owned()
 }
 
-fn scratch(name: &str, text: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("navdeck-cli-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let path = dir.join(name);
+/// A file `name` holding `text`, in a scratch folder of its own.
+fn scratch_file(name: &str, text: &str) -> PathBuf {
+    let path = scratch(name).join(name);
     std::fs::write(&path, text).unwrap();
     path
 }
@@ -93,7 +97,7 @@ fn help_documents_every_option() {
 
 #[test]
 fn bad_keymap_is_refused_with_file_and_line_before_the_terminal() {
-    let path = scratch(
+    let path = scratch_file(
         "bad-keymap.toml",
         "[manual]\nw = \"forward\"\nx = \"fly\"\n",
     );
@@ -108,7 +112,7 @@ fn bad_keymap_is_refused_with_file_and_line_before_the_terminal() {
 
 #[test]
 fn bad_world_and_config_are_refused_with_names() {
-    let world = scratch(
+    let world = scratch_file(
         "bad-world.toml",
         "name = \"w\"\nsize = [4.0, 4.0]\nbogus = 1\n",
     );
@@ -120,7 +124,7 @@ fn bad_world_and_config_are_refused_with_names() {
         "{err}"
     );
 
-    let config = scratch("bad-config.toml", "[teleop]\ndeadman_timeout = -1\n");
+    let config = scratch_file("bad-config.toml", "[teleop]\ndeadman_timeout = -1\n");
     let out = navdeck(&["--headless", "--config", config.to_str().unwrap()]);
     assert_eq!(out.status.code(), Some(2));
     let err = stderr(&out);
@@ -218,7 +222,7 @@ fn plan_says_why_there_is_no_path() {
 
 #[test]
 fn a_bad_nav2_map_is_refused_naming_the_field() {
-    let yaml = scratch(
+    let yaml = scratch_file(
         "bad.yaml",
         "image: room.pgm\nresolution: -0.05\norigin: [0, 0, 0]\noccupied_thresh: 0.65\nfree_thresh: 0.196\n",
     );
@@ -237,7 +241,7 @@ fn a_bad_nav2_map_is_refused_naming_the_field() {
         "{}",
         stderr(&out)
     );
-    let missing = scratch(
+    let missing = scratch_file(
         "missing.yaml",
         "image: nowhere.pgm\nresolution: 0.05\norigin: [0, 0, 0]\noccupied_thresh: 0.65\nfree_thresh: 0.196\n",
     );

@@ -1,6 +1,23 @@
 //! The console's behaviour as a user at the keyboard sees it, on the digital twin.
 
-mod common;
+#[path = "common"]
+mod common {
+    pub mod app_with;
+    pub mod default_app;
+    pub mod hold;
+    pub mod key;
+    pub mod logged;
+    pub mod press;
+    pub mod recording;
+    pub mod render;
+    pub mod render_at;
+    pub mod screen;
+    pub mod script;
+    pub use {
+        app_with::*, default_app::*, hold::*, key::*, logged::*, press::*, recording::*, render::*,
+        render_at::*, screen::*, script::*,
+    };
+}
 
 use common::*;
 use navdeck::app::mode::Mode;
@@ -649,15 +666,14 @@ fn with_the_link_down_keys_say_why_and_autonomy_waits_for_the_robot() {
     app.update(0.2);
     assert!(matches!(app.pilot().link_status(), LinkStatus::Lost(_)));
     app.handle_key(Key::char('w'), KeyKind::Press, 0.3);
-    let said = |app: &App, text: &str| app.log_book().iter().any(|e| e.text.contains(text));
     let log: Vec<String> = app.log_book().iter().map(|e| e.text.clone()).collect();
     assert!(
-        said(&app, "forward: nothing moves (link lost: no odometry"),
+        logged(&app, "forward: nothing moves (link lost: no odometry"),
         "{log:?}"
     );
     app.handle_key(key("e"), KeyKind::Press, 0.4);
     assert_eq!(app.pilot().mode(), navdeck::app::mode::Mode::Manual);
-    assert!(said(
+    assert!(logged(
         &app,
         "exploration mode needs the robot to answer first"
     ));

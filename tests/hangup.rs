@@ -2,13 +2,30 @@
 //! is driving, on every link: the robot is told to stop, the link is let go, and the
 //! process ends by itself with the status a shell expects (128 + the signal's number).
 
-mod pty_support;
+#[path = "common"]
+mod common {
+    pub mod until;
+    pub use until::*;
+}
+#[path = "pty_support"]
+mod pty_support {
+    pub mod console;
+    pub mod hang_up;
+    pub use console::*;
+}
 mod ros2_support;
-mod serial_emulator;
+#[path = "serial_emulator"]
+mod serial_emulator {
+    pub mod firmware;
+    pub mod mute;
+    pub mod requests;
+    pub use firmware::*;
+}
 
+use common::until;
 use pty_support::{Console, Finished, Terminal};
 use ros2_support::{FakeOptions, FakeRobot};
-use serial_emulator::{Emulator, until};
+use serial_emulator::Emulator;
 use std::path::PathBuf;
 
 /// How the console's terminal ends.

@@ -3,7 +3,12 @@
 //! protocol stop the robot at once; terminals that never send a release (tmux, or one
 //! that answered the probe and then sends none) are governed by the deadman.
 
-mod common;
+#[path = "common"]
+mod common {
+    pub mod app_with;
+    pub mod default_app;
+    pub use default_app::*;
+}
 
 use navdeck::app::App;
 use navdeck::tui::input::{Input, InputDecoder};

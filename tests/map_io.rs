@@ -1,17 +1,17 @@
 //! Map files as users meet them: Nav2 maps open, saved maps round-trip, saves are atomic,
 //! and a bad file is refused naming the file, the field and the value.
 
+#[path = "common"]
+mod common {
+    pub mod scratch;
+    pub use scratch::*;
+}
+
+use common::scratch;
 use navdeck::geometry::Point2;
 use navdeck::map::grid::{FREE, OCCUPIED, OccupancyGrid, UNKNOWN};
 use navdeck::map::io::{self, Extras, MapFile, SavedBlock, SavedGate, SavedLandmark};
 use std::path::{Path, PathBuf};
-
-fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("navdeck-io-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
 
 /// A 5 x 4 grid at 5 cm with every kind of cell, and one landmark.
 fn sample() -> MapFile {

@@ -1,8 +1,19 @@
 //! The mission end to end: exploration mode in the console and `navdeck mission`.
 
-mod common;
+#[path = "common"]
+mod common {
+    pub mod app_with;
+    pub mod binary;
+    pub mod default_app;
+    pub mod key;
+    pub mod logged;
+    pub mod render;
+    pub mod render_at;
+    pub mod screen;
+    pub use {binary::*, default_app::*, key::*, logged::*, render::*};
+}
 
-use common::{default_app, key, navdeck};
+use common::{default_app, key, logged, navdeck};
 use navdeck::app::KeyKind;
 use navdeck::app::mode::Mode;
 use navdeck::mission_runner;
@@ -217,9 +228,8 @@ fn taking_over_with_a_block_held_and_pressing_e_resumes_the_mission() {
         app.pilot().slam().landmark_count() >= landmarks,
         "the map is kept"
     );
-    let said = |text: &str| app.log_book().iter().any(|e| e.text.contains(text));
-    assert!(said("Still holding"), "goes on with the held block");
-    assert!(said("Mission resumed: 1 delivered"));
+    assert!(logged(&app, "Still holding"), "goes on with the held block");
+    assert!(logged(&app, "Mission resumed: 1 delivered"));
     let rejected = app.pilot().slam().rejected();
     let mut least = 1;
     while t < 1500.0 && !app.pilot().mission().unwrap().is_done() {
@@ -264,8 +274,10 @@ fn a_block_let_go_during_a_takeover_is_found_again() {
         app.update(t);
     }
     app.handle_key(key("e"), KeyKind::Press, t + 0.05);
-    let said = |text: &str| app.log_book().iter().any(|e| e.text.contains(text));
-    assert!(said("no longer in the gripper - looking for it again"));
+    assert!(logged(
+        &app,
+        "no longer in the gripper - looking for it again"
+    ));
     while t < 1500.0 && !app.pilot().mission().unwrap().is_done() {
         t += 0.1;
         app.update(t);

@@ -1,6 +1,11 @@
 //! Blocks and gates read from the filter's landmarks match where the twin put them.
 
-mod common;
+#[path = "common"]
+mod common {
+    pub mod app_with;
+    pub mod default_app;
+    pub use default_app::*;
+}
 
 use common::default_app;
 use navdeck::headless;

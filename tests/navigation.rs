@@ -1,9 +1,19 @@
 //! Thinking and path-following modes as a user meets them: plan by cursor or command,
 //! follow to "Destination arrived", refuse impossible goals, replan, and give control back.
 
-mod common;
+#[path = "common"]
+mod common {
+    pub mod app_with;
+    pub mod default_app;
+    pub mod key;
+    pub mod logged;
+    pub mod press;
+    pub mod screen;
+    pub mod script;
+    pub use {app_with::*, default_app::*, key::*, logged::*, press::*, screen::*, script::*};
+}
 
-use common::{app_with, default_app, key, run_script, screen};
+use common::{app_with, default_app, key, logged, run_script, screen};
 use navdeck::app::App;
 use navdeck::app::KeyKind;
 use navdeck::app::mode::Mode;
@@ -28,10 +38,6 @@ fn world_app(file: &str) -> App {
 /// Plays `keys` headless and returns the report.
 fn play(app: &mut App, keys: &str) -> headless::Report {
     headless::run(app, &parse_key_sequence(keys).unwrap(), 10.0)
-}
-
-fn logged(app: &App, needle: &str) -> bool {
-    app.log_book().iter().any(|e| e.text.contains(needle))
 }
 
 #[test]

@@ -1,16 +1,56 @@
 //! A* against a plain Dijkstra and the `pathfinding` crate: same costs, legal paths, and the
 //! errors a user sees when the goal is in an obstacle or cut off.
 
-mod plan_support;
+#[path = "plan_support"]
+mod plan_support {
+    pub mod arena;
+    pub mod random;
+    pub mod reference;
+    pub use {arena::*, random::*, reference::*};
+}
 
 use navdeck::geometry::Point2;
 use navdeck::map::costmap::Costmap;
 use navdeck::map::costmap::{LETHAL, NO_INFORMATION, is_lethal};
 use navdeck::plan::astar::{CARDINAL, DIAGONAL, PENALTY_PER_COST};
 use navdeck::plan::{AStar, PlanError, SearchOptions};
-use plan_support::{arena, dijkstra, pathfinding_astar, random_grid};
+use plan_support::{arena, moves, pathfinding_astar, penalty, random_grid};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
+use std::cmp::Reverse;
+use std::collections::BinaryHeap;
+
+/// A plain Dijkstra over the same moves: the cheapest cost, or None if the goal is blocked
+/// or unreachable.
+fn dijkstra(
+    map: &Costmap,
+    options: &SearchOptions,
+    start: (usize, usize),
+    goal: (usize, usize),
+) -> Option<u64> {
+    penalty(map, options, goal.0, goal.1)?;
+    let mut best = vec![u64::MAX; map.width * map.height];
+    let mut queue = BinaryHeap::new();
+    best[map.index(start.0, start.1)] = 0;
+    queue.push(Reverse((0u64, start)));
+    while let Some(Reverse((d, (x, y)))) = queue.pop() {
+        if (x, y) == goal {
+            return Some(d);
+        }
+        if d > best[map.index(x, y)] {
+            continue;
+        }
+        for ((nx, ny), c) in moves(map, options, x, y) {
+            let nd = d + u64::from(c);
+            let j = map.index(nx, ny);
+            if nd < best[j] {
+                best[j] = nd;
+                queue.push(Reverse((nd, (nx, ny))));
+            }
+        }
+    }
+    None
+}
 
 /// Recomputes a path's cost from its steps, checking each step is a legal move.
 fn walk_cost(map: &Costmap, options: &SearchOptions, cells: &[(usize, usize)]) -> u64 {

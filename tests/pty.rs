@@ -1,7 +1,11 @@
 //! The real binary in a pseudo-terminal: it draws, drives, quits on `q` and on SIGTERM,
 //! and leaves the terminal as it found it.
 
-mod pty_support;
+#[path = "pty_support"]
+mod pty_support {
+    pub mod console;
+    pub use console::*;
+}
 
 use pty_support::{Console, Terminal};
 

@@ -2,21 +2,22 @@
 //! file of its own, and a console killed outright (SIGKILL: no chance to finish the
 //! file) leaves a recording that plays up to its last chunk.
 
-mod pty_support;
+#[path = "common"]
+mod common {
+    pub mod scratch;
+    pub use scratch::*;
+}
+#[path = "pty_support"]
+mod pty_support {
+    pub mod console;
+    pub use console::*;
+}
 
+use common::scratch;
 use navdeck::record::reader::read;
 use navdeck::record::recorded::Recorded;
 use pty_support::{Console, Terminal};
-use std::path::PathBuf;
 use std::sync::Arc;
-
-fn scratch(name: &str) -> PathBuf {
-    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR"))
-        .join(format!("record-console-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
 
 fn recorded(path: &std::path::Path) -> Recorded {
     Recorded::decode(read(&std::fs::read(path).unwrap_or_default()))

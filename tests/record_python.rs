@@ -8,27 +8,22 @@
 //! (./scripts/test makes a virtualenv and sets it, with NAVDECK_REQUIRE_INTEROP=1 so that
 //! a missing Python fails the run instead of skipping).
 
+#[path = "common"]
+mod common {
+    pub mod scratch;
+    pub use scratch::*;
+}
 mod python_support;
 
+use common::scratch;
 use navdeck::config::Config;
 use serde_json::Value;
 use std::f64::consts::PI;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::Command;
 
 fn python() -> Option<String> {
     python_support::python("the MCAP reader in Python", "mcap and mcap-ros2-support")
-}
-
-/// An empty folder of this test process's own (the recorder never overwrites a file).
-fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!(
-        "navdeck-record-python-{}-{name}",
-        std::process::id()
-    ));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
 }
 
 /// Runs headless navdeck on the twin with `keys`, recording to `file`; its JSON report.

@@ -3,6 +3,13 @@
 //! scores both; files cut short, damaged or written by other tools play what they can
 //! and say where the damage is.
 
+#[path = "common"]
+mod common {
+    pub mod scratch;
+    pub use scratch::*;
+}
+
+use common::scratch;
 use navdeck::app::App;
 use navdeck::console::start_recording;
 use navdeck::headless;
@@ -16,14 +23,6 @@ use navdeck::slam::mcl::config::Estimator;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
-
-fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("navdeck-record-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let path = dir.join(name);
-    let _ = std::fs::remove_file(&path);
-    path
-}
 
 fn spec(world: Option<&str>) -> SessionSpec {
     SessionSpec::twin(world.map(PathBuf::from))
@@ -54,7 +53,7 @@ fn rerun(path: &Path, options: ReplayOptions) -> Replay {
 
 #[test]
 fn an_exploration_re_run_on_its_recording_is_the_same_bit_for_bit() {
-    let path = scratch("explore.mcap");
+    let path = scratch("explore").join("explore.mcap");
     let (_, original) = record(&spec(None), "e", &path);
     let summary = original.recording.as_ref().unwrap();
     assert_eq!(summary.dropped, 0);
@@ -90,7 +89,7 @@ fn an_exploration_re_run_on_its_recording_is_the_same_bit_for_bit() {
 
 #[test]
 fn a_re_run_on_another_estimator_scores_both_against_the_truth() {
-    let path = scratch("ekf-then-mcl.mcap");
+    let path = scratch("ekf-then-mcl").join("ekf-then-mcl.mcap");
     let world = "maps/turtlebot3_world.yaml";
     let (_, original) = record(&spec(Some(world)), ":goto 1.5 0<enter>p", &path);
     assert!(original.arrived);
@@ -121,7 +120,7 @@ fn a_re_run_on_another_estimator_scores_both_against_the_truth() {
 
 #[test]
 fn a_file_cut_anywhere_plays_up_to_the_cut_and_names_the_offset() {
-    let path = scratch("cut-source.mcap");
+    let path = scratch("cut-source").join("cut-source.mcap");
     record(&spec(None), "wwwwaaaawwww", &path);
     let bytes = std::fs::read(&path).unwrap();
     let whole = Recorded::decode(read(&bytes));
@@ -149,7 +148,7 @@ fn a_file_cut_anywhere_plays_up_to_the_cut_and_names_the_offset() {
 
 #[test]
 fn a_damaged_chunk_is_named_and_what_came_before_it_plays() {
-    let path = scratch("damaged.mcap");
+    let path = scratch("damaged").join("damaged.mcap");
     // An exploration: many chunks, so the damage lands with some before it.
     record(&spec(None), "e", &path);
     let mut bytes = std::fs::read(&path).unwrap();
@@ -170,7 +169,7 @@ fn a_damaged_chunk_is_named_and_what_came_before_it_plays() {
     for b in &mut bytes[middle + 200..middle + 264] {
         *b ^= 0x5a;
     }
-    let damaged = scratch("damaged-copy.mcap");
+    let damaged = scratch("damaged-copy").join("damaged-copy.mcap");
     std::fs::write(&damaged, &bytes).unwrap();
     let recorded = navdeck::replay::load(&damaged).unwrap();
     assert!(
@@ -195,12 +194,12 @@ fn a_damaged_chunk_is_named_and_what_came_before_it_plays() {
 
 #[test]
 fn files_that_hold_no_session_are_refused_with_the_reason() {
-    let text = scratch("not-mcap.mcap");
+    let text = scratch("not-mcap").join("not-mcap.mcap");
     std::fs::write(&text, "hello").unwrap();
     let err = format!("{:#}", navdeck::replay::load(&text).unwrap_err());
     assert!(err.contains("not an MCAP file"), "{err}");
     // Another tool's recording: a std_msgs/String topic.
-    let foreign = scratch("foreign.mcap");
+    let foreign = scratch("foreign").join("foreign.mcap");
     let mut writer = mcap::Writer::new(std::io::BufWriter::new(
         std::fs::File::create(&foreign).unwrap(),
     ))
@@ -231,7 +230,7 @@ fn files_that_hold_no_session_are_refused_with_the_reason() {
 
 #[test]
 fn a_recording_never_overwrites_a_file() {
-    let path = scratch("taken.mcap");
+    let path = scratch("taken").join("taken.mcap");
     std::fs::write(&path, "keep me").unwrap();
     let err = Recorder::create(&path, &RecordConfig::default(), 0.0)
         .err()
@@ -243,7 +242,7 @@ fn a_recording_never_overwrites_a_file() {
 
 #[test]
 fn seeking_back_re_runs_from_the_start_to_the_same_place() {
-    let path = scratch("seek.mcap");
+    let path = scratch("seek").join("seek.mcap");
     record(&spec(None), "e", &path);
     let recorded = Arc::new(navdeck::replay::load(&path).unwrap());
     let mut replay = Replay::new(recorded, ReplayOptions::default()).unwrap();
@@ -264,7 +263,7 @@ fn seeking_back_re_runs_from_the_start_to_the_same_place() {
 #[cfg(feature = "vision")]
 #[test]
 fn a_camera_session_records_its_pictures_at_the_image_period() {
-    let path = scratch("camera.mcap");
+    let path = scratch("camera").join("camera.mcap");
     let mut session = Session::load(&spec(None)).unwrap();
     session
         .use_sim_camera(None, navdeck::sim::CameraFrames::Whole)

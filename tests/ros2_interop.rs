@@ -9,9 +9,15 @@
 //! (./scripts/test makes a virtualenv and sets it, with NAVDECK_REQUIRE_INTEROP=1 so
 //! that a missing peer fails the run instead of skipping).
 
+#[path = "common"]
+mod common {
+    pub mod scratch;
+    pub use scratch::*;
+}
 mod cyclone_peer;
 mod python_support;
 
+use common::scratch;
 use cyclone_peer::{CYCLONE_CONFIG, LinePeer, PATIENCE, python};
 
 use navdeck::config::Config;
@@ -22,14 +28,18 @@ use navdeck::link::ros2::{Ros2Link, Ros2Options};
 use navdeck::link::{Picture, RobotLink, SensorFrame};
 use serde_json::Value;
 use std::io::{BufRead, BufReader};
-use std::path::PathBuf;
 use std::process::{Command, Stdio};
 use std::time::Instant;
 
-fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("navdeck-interop-{}-{name}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
+impl LinePeer {
+    /// Tells the peer `line` on its stdin.
+    fn say(&mut self, line: &str) {
+        use std::io::Write;
+        let stdin = self.stdin.as_mut().unwrap();
+        writeln!(stdin, "{line}")
+            .and_then(|_| stdin.flush())
+            .unwrap();
+    }
 }
 
 /// Runs the peer on `domain`, drives it with `keys` through headless navdeck, and

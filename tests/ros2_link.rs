@@ -2,8 +2,14 @@
 //! keys to cmd_vel to odometry and back, the watchdog, bad messages, and RViz output.
 //! Each test has its own DDS domain, so they run in parallel without cross-talk.
 
+#[path = "common"]
+mod common {
+    pub mod logged;
+    pub use logged::*;
+}
 mod ros2_support;
 
+use common::logged;
 use navdeck::app::{App, KeyKind, LinkStatus};
 use navdeck::config::Config;
 use navdeck::keymap::{Key, Keymap};
@@ -110,11 +116,6 @@ fn log_text(app: &App) -> String {
         .join("\n")
 }
 
-/// Whether the console's log has a line containing `text`.
-fn logged(app: &App, text: &str) -> bool {
-    app.log_book().iter().any(|e| e.text.contains(text))
-}
-
 #[test]
 fn holding_w_drives_the_robot_over_ros2_and_its_odometry_comes_back() {
     let robot = FakeRobot::start(FakeOptions::new(61));
@@ -205,13 +206,13 @@ fn a_jazzy_robot_gets_twist_stamped_and_a_wrong_setting_is_called_out() {
 
 #[test]
 fn odometry_silence_stops_the_robot_until_data_and_a_key_return() {
-    let robot = FakeRobot::start(FakeOptions::new(64));
+    let options = FakeOptions::new(64);
+    let odom_paused = options.odom_paused.clone();
+    let robot = FakeRobot::start(options);
     let mut c = Console::open(64, |_| {});
     c.until_up();
     c.run_for(0.5, Some('w'));
-    robot
-        .odom_paused
-        .store(true, std::sync::atomic::Ordering::SeqCst);
+    odom_paused.store(true, std::sync::atomic::Ordering::SeqCst);
     let paused_at = Instant::now();
     // Keys keep coming, but the watchdog wins.
     c.until("LINK LOST", |a| {
@@ -226,9 +227,7 @@ fn odometry_silence_stops_the_robot_until_data_and_a_key_return() {
         Some((0.0, 0.0)),
         "the last command the robot heard is a stop"
     );
-    robot
-        .odom_paused
-        .store(false, std::sync::atomic::Ordering::SeqCst);
+    odom_paused.store(false, std::sync::atomic::Ordering::SeqCst);
     c.until("data to return", |a| {
         a.pilot().link_status() == &LinkStatus::Back
     });

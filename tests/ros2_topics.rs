@@ -8,9 +8,15 @@
 //! (./scripts/test sets it, with NAVDECK_REQUIRE_INTEROP=1 so that a missing peer fails
 //! the run instead of skipping).
 
+#[path = "common"]
+mod common {
+    pub mod scratch;
+    pub use scratch::*;
+}
 mod cyclone_peer;
 mod python_support;
 
+use common::scratch;
 use cyclone_peer::LinePeer;
 use serde_json::Value;
 use std::path::PathBuf;
@@ -21,12 +27,6 @@ const DOMAIN: u16 = 147;
 
 /// navdeck on loopback only, as the peer.
 const LOOPBACK: &str = "[ros2]\ninterfaces = [\"127.0.0.1\"]\n";
-
-fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("navdeck-topics-{}-{name}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
 
 fn config(name: &str, text: &str) -> PathBuf {
     let path = scratch(name).join("navdeck.toml");

@@ -1,8 +1,21 @@
 //! The serial link against an emulated ROSArduinoBridge firmware on a pseudo-terminal:
 //! the same code a real port runs, with faults injected on the wire.
 
-mod serial_emulator;
+#[path = "common"]
+mod common {
+    pub mod until;
+    pub use until::*;
+}
+#[path = "serial_emulator"]
+mod serial_emulator {
+    pub mod faults;
+    pub mod firmware;
+    pub mod frames;
+    pub mod requests;
+    pub use firmware::*;
+}
 
+use common::until;
 use navdeck::app::{App, KeyKind, LinkStatus};
 use navdeck::config::Config;
 use navdeck::data::{ArmTarget, Command, GripperCommand, GripperState, WheelTravel};
@@ -11,7 +24,7 @@ use navdeck::keymap::{Key, Keymap};
 use navdeck::link::RobotLink;
 use navdeck::link::serial::SerialLink;
 use navdeck::link::serial::config::ArmServo;
-use serial_emulator::{Emulator, Options, until};
+use serial_emulator::{Emulator, Options};
 use std::io::{Read, Write};
 use std::time::Duration;
 

@@ -3,7 +3,12 @@
 //!
 //! cargo test --test serial_measure -- --ignored --nocapture
 
-mod serial_emulator;
+#[path = "serial_emulator"]
+mod serial_emulator {
+    pub mod firmware;
+    pub mod frames;
+    pub use firmware::*;
+}
 
 use navdeck::config::Config;
 use navdeck::link::serial::SerialLink;

@@ -1,6 +1,15 @@
 //! Headless snapshots of the console's screen (insta over ratatui's TestBackend).
 
-mod common;
+#[path = "common"]
+mod common {
+    pub mod app_with;
+    pub mod default_app;
+    pub mod hold;
+    pub mod press;
+    pub mod screen;
+    pub mod script;
+    pub use {default_app::*, hold::*, press::*, screen::*, script::*};
+}
 
 use common::*;
 use navdeck::tui::events::Step;

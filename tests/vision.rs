@@ -3,7 +3,12 @@
 //! is ever reported under a wrong ID.
 #![cfg(feature = "vision")]
 
-mod vision_support;
+#[path = "vision_support"]
+mod vision_support {
+    pub mod arena;
+    pub mod level;
+    pub use {arena::*, level::*};
+}
 
 use nalgebra::Vector3;
 use navdeck::geometry::Pose2;

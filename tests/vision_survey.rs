@@ -3,7 +3,12 @@
 //! category.
 #![cfg(feature = "vision")]
 
-mod vision_support;
+#[path = "vision_support"]
+mod vision_support {
+    pub mod arena;
+    pub mod level;
+    pub use {arena::*, level::*};
+}
 
 use navdeck::geometry::Pose2;
 use navdeck::perception::config::VisionConfig;

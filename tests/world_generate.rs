@@ -3,16 +3,21 @@
 //! the same file; the command line writes files the other commands load, and refuses bad
 //! options by name.
 
-mod common;
+#[path = "common"]
+mod common {
+    pub mod binary;
+    pub mod scratch;
+    pub use {binary::*, scratch::*};
+}
 
-use common::navdeck;
+use common::{navdeck, scratch};
 
 use navdeck::geometry::Point2;
 use navdeck::perception::markers::MarkerCategory;
 use navdeck::sim::World;
 use navdeck::sim::generate::{GenerateOptions, Style, check_reachable, generate};
 use std::collections::HashSet;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 const SEEDS: u64 = 200;
 
@@ -185,15 +190,9 @@ fn impossible_options_are_refused_by_name() {
     assert!("mazes".parse::<Style>().unwrap_err().contains("mazes"));
 }
 
-fn scratch_dir() -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("navdeck-generate-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
-
 #[test]
 fn world_generate_writes_a_file_the_twin_and_the_mission_load() {
-    let dir = scratch_dir();
+    let dir = scratch("generate");
     let file = dir.join("rooms-7.toml");
     let path = file.to_str().unwrap();
     let out = navdeck(&[
@@ -250,7 +249,7 @@ fn world_generate_writes_a_file_the_twin_and_the_mission_load() {
 
 #[test]
 fn bad_options_are_refused_naming_the_flag() {
-    let dir = scratch_dir();
+    let dir = scratch("bad-options");
     let file = dir.join("bad.toml");
     let path = file.to_str().unwrap();
     for (args, flag, value) in [

@@ -1,11 +1,9 @@
 //! A stand-in ROS 2 node on Eclipse Cyclone DDS (tests/interop/*.py), run with the
 //! interop Python: started on a domain, read line by line, told things on its stdin,
 //! and gone when its stdin closes.
-// Each test file that includes this uses only part of it.
-#![allow(dead_code)]
 
 use std::io::{BufRead, BufReader};
-use std::process::{Command, Stdio};
+use std::process::{ChildStdin, Command, Stdio};
 
 /// Cyclone on loopback only: no multicast, unicast discovery to 127.0.0.1.
 pub const CYCLONE_CONFIG: &str = "<CycloneDDS><Domain Id=\"any\"><General><Interfaces>\
@@ -22,10 +20,11 @@ pub fn python() -> Option<String> {
     crate::python_support::python("the Cyclone DDS peer", "cyclonedds")
 }
 
-/// A peer script on `domain` whose stdout lines arrive on a channel; closing its stdin
-/// (on drop) makes it leave.
+/// A peer script on `domain` whose stdout lines arrive on a channel and which reads lines
+/// on its stdin; closing its stdin (on drop) makes it leave.
 pub struct LinePeer {
     child: std::process::Child,
+    pub stdin: Option<ChildStdin>,
     pub lines: std::sync::mpsc::Receiver<String>,
 }
 
@@ -47,6 +46,7 @@ impl LinePeer {
             .stdout(Stdio::piped())
             .spawn()
             .expect("start the Cyclone DDS peer");
+        let stdin = child.stdin.take();
         let out = BufReader::new(child.stdout.take().unwrap());
         let (tx, lines) = std::sync::mpsc::channel();
         std::thread::spawn(move || {
@@ -56,17 +56,13 @@ impl LinePeer {
                 }
             }
         });
-        let mut peer = LinePeer { child, lines };
+        let mut peer = LinePeer {
+            child,
+            stdin,
+            lines,
+        };
         assert_eq!(peer.next_line("ready"), "ready", "the peer did not start");
         Some(peer)
-    }
-
-    pub fn say(&mut self, line: &str) {
-        use std::io::Write;
-        let stdin = self.child.stdin.as_mut().unwrap();
-        writeln!(stdin, "{line}")
-            .and_then(|_| stdin.flush())
-            .unwrap();
     }
 
     /// The peer's next line, waiting at most PATIENCE for `what`.
@@ -79,7 +75,7 @@ impl LinePeer {
 
 impl Drop for LinePeer {
     fn drop(&mut self) {
-        drop(self.child.stdin.take());
+        drop(self.stdin.take());
         let _ = self.child.wait();
     }
 }

@@ -3,8 +3,6 @@
 //! of a 4 m square room, on its own DDS participant in this process (loopback only).
 //! It also listens to what navdeck shows RViz.
 
-#![allow(dead_code)]
-
 use navdeck::msgs::ros as msgs;
 use ros2_client::{
     Context, MessageTypeName, Name, NodeName, NodeOptions, QosProfile, Subscription,
@@ -19,7 +17,7 @@ use std::time::{Duration, Instant};
 pub const WHEEL_RADIUS: f64 = 0.033;
 pub const TRACK: f64 = 0.160;
 
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Debug)]
 pub struct FakeOptions {
     pub domain: u16,
     /// Listen for TwistStamped (Jazzy) instead of Twist (Humble).
@@ -30,6 +28,9 @@ pub struct FakeOptions {
     /// Joins the domain on 127.0.0.1 only, as a navdeck process with
     /// `[ros2] interfaces = ["127.0.0.1"]` does.
     pub loopback: bool,
+    /// While set, no odometry goes out: a test keeps a clone to silence the robot and
+    /// bring it back.
+    pub odom_paused: Arc<AtomicBool>,
 }
 
 impl FakeOptions {
@@ -40,6 +41,7 @@ impl FakeOptions {
             joints: true,
             bad_odom_every: None,
             loopback: false,
+            odom_paused: Arc::new(AtomicBool::new(false)),
         }
     }
 }
@@ -61,7 +63,6 @@ pub struct Seen {
 
 pub struct FakeRobot {
     pub seen: Arc<Mutex<Seen>>,
-    pub odom_paused: Arc<AtomicBool>,
     stop: Arc<AtomicBool>,
     thread: Option<JoinHandle<()>>,
 }
@@ -123,12 +124,10 @@ impl FakeRobot {
     pub fn start(options: FakeOptions) -> FakeRobot {
         let seen = Arc::new(Mutex::new(Seen::default()));
         let stop = Arc::new(AtomicBool::new(false));
-        let odom_paused = Arc::new(AtomicBool::new(false));
-        let (s, st, p) = (seen.clone(), stop.clone(), odom_paused.clone());
-        let thread = std::thread::spawn(move || run(options, s, st, p));
+        let (s, st) = (seen.clone(), stop.clone());
+        let thread = std::thread::spawn(move || run(options, s, st));
         FakeRobot {
             seen,
-            odom_paused,
             stop,
             thread: Some(thread),
         }
@@ -145,12 +144,7 @@ fn drain<M: serde::de::DeserializeOwned + 'static>(sub: &Subscription<M>, mut ea
     }
 }
 
-fn run(
-    options: FakeOptions,
-    seen: Arc<Mutex<Seen>>,
-    stop: Arc<AtomicBool>,
-    paused: Arc<AtomicBool>,
-) {
+fn run(options: FakeOptions, seen: Arc<Mutex<Seen>>, stop: Arc<AtomicBool>) {
     let context = context(options.domain, options.loopback);
     let mut node = context
         .new_node(
@@ -300,7 +294,7 @@ fn run(
             });
             s.pose = (x, y, th);
         }
-        if now >= next_odom && !paused.load(Ordering::SeqCst) {
+        if now >= next_odom && !options.odom_paused.load(Ordering::SeqCst) {
             next_odom = now + Duration::from_millis(20);
             count += 1;
             let stamp = msgs::Time::from_seconds(1000.0 + (now - start).as_secs_f64());

@@ -7,7 +7,10 @@
 //! The device path handed to navdeck is a symlink to the terminal's slave side, so
 //! unplugging can remove it and plugging back in can point it at a new terminal, as a USB
 //! adapter re-enumerating does.
-#![allow(dead_code)]
+//!
+//! A file each beside this one, for the tests that use them: the fault switches
+//! (faults.rs), the firmware hanging (mute.rs), the motor requests read back
+//! (requests.rs), and waiting for PID frames and setting the encoder counts (frames.rs).
 
 use std::os::fd::{AsRawFd, FromRawFd, OwnedFd};
 use std::path::PathBuf;
@@ -31,16 +34,6 @@ const SERVO_STEP: f64 = 6.0;
 pub const SERVOS: usize = 16;
 /// Generous bound for a slow machine; reaching it fails the test.
 pub const PATIENCE: Duration = Duration::from_secs(20);
-
-/// Checks `done` every few milliseconds until it holds, failing the test after PATIENCE:
-/// for what a link's other side reports with no event to wait on.
-pub fn until(what: &str, mut done: impl FnMut() -> bool) {
-    let deadline = Instant::now() + PATIENCE;
-    while !done() {
-        assert!(Instant::now() < deadline, "never saw {what}");
-        std::thread::sleep(Duration::from_millis(5));
-    }
-}
 
 /// What the emulated firmware has and how it talks.
 #[derive(Clone, Copy, Debug)]
@@ -84,27 +77,16 @@ pub struct State {
     servo_target: [f64; SERVOS],
     last_motor: Instant,
     start: Instant,
-    garbage: Option<Vec<u8>>,
-    drop_next: bool,
-    delay_next: Option<Duration>,
+    pub(super) garbage: Option<Vec<u8>>,
+    pub(super) drop_next: bool,
+    pub(super) delay_next: Option<Duration>,
     /// Reads requests and answers none from now on (a firmware that hung).
-    muted: bool,
+    pub(super) muted: bool,
 }
 
 impl State {
     pub fn counts(&self) -> (i32, i32) {
         (wrap(self.left), wrap(self.right))
-    }
-
-    /// The `m L R` requests received, as (L, R), from request number `from` on.
-    pub fn motor_targets(&self, from: usize) -> Vec<(i32, i32)> {
-        self.requests[from.min(self.requests.len())..]
-            .iter()
-            .filter_map(|r| {
-                let mut it = r.strip_prefix("m ")?.split(' ');
-                Some((it.next()?.parse().ok()?, it.next()?.parse().ok()?))
-            })
-            .collect()
     }
 
     fn reset(&mut self) {
@@ -207,7 +189,9 @@ struct Shared {
     changed: Condvar,
 }
 
-enum Control {
+// Unplug and Replug come from the fault switches (faults.rs), which only some tests use.
+#[allow(dead_code)]
+pub(super) enum Control {
     Unplug,
     Replug,
     Quit,
@@ -216,7 +200,7 @@ enum Control {
 /// The firmware, running on its own thread until dropped.
 pub struct Emulator {
     shared: Arc<Shared>,
-    control: Sender<Control>,
+    pub(super) control: Sender<Control>,
     thread: Option<JoinHandle<()>>,
     dir: PathBuf,
     link: PathBuf,
@@ -302,52 +286,6 @@ impl Emulator {
             );
             state = self.shared.changed.wait_timeout(state, left).unwrap().0;
         }
-    }
-
-    /// Blocks until `n` more PID frames have run (real time passing on the robot).
-    pub fn wait_frames(&self, n: u64) {
-        let until = self.state().frames + n;
-        self.wait_for("the frames pass", |s| s.frames >= until);
-    }
-
-    pub fn inject_garbage(&self, bytes: &[u8]) {
-        self.state().garbage = Some(bytes.to_vec());
-    }
-
-    pub fn drop_next_reply(&self) {
-        self.state().drop_next = true;
-    }
-
-    pub fn delay_next_reply(&self, delay: Duration) {
-        self.state().delay_next = Some(delay);
-    }
-
-    /// The firmware hangs: it goes on reading requests but never answers again.
-    pub fn mute(&self) {
-        self.state().muted = true;
-    }
-
-    /// Adds `counts` to the left encoder at once, as a glitch or a reset would.
-    pub fn jump_left(&self, counts: f64) {
-        self.state().left += counts;
-    }
-
-    pub fn set_counts(&self, left: f64, right: f64) {
-        let mut s = self.state();
-        s.left = left;
-        s.right = right;
-    }
-
-    /// Pulls the cable: the terminal closes and the device path disappears.
-    pub fn unplug(&self) {
-        self.control.send(Control::Unplug).unwrap();
-        self.wait_for("the unplug", |s| !s.plugged);
-    }
-
-    /// Plugs it back in: a new terminal behind the same path, the board freshly reset.
-    pub fn replug(&self) {
-        self.control.send(Control::Replug).unwrap();
-        self.wait_for("the replug", |s| s.plugged);
     }
 }
 

@@ -1,7 +1,7 @@
 //! The real binary on a pseudo-terminal, as a user's terminal or SSH session holds it:
 //! keys in, the screen out, terminal queries answered, and the terminal hung up (every
 //! master descriptor closed, as sshd does when a connection drops) or the process signalled.
-#![allow(dead_code)]
+//! The hang-up is in hang_up.rs, for the tests that hang up.
 
 use portable_pty::{CommandBuilder, MasterPty, PtySize, native_pty_system};
 use std::fs::File;
@@ -17,6 +17,8 @@ use std::time::{Duration, Instant};
 pub const PATIENCE: Duration = Duration::from_secs(60);
 
 /// How the emulated terminal answers navdeck's keyboard probe (`CSI ? u`, `CSI c`).
+// Only the terminal tests ask for the kitty and the silent terminal.
+#[allow(dead_code)]
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Terminal {
     /// A VT220: device attributes only, no kitty keyboard protocol.
@@ -29,11 +31,12 @@ pub enum Terminal {
 
 pub struct Console {
     child: Option<Box<dyn portable_pty::Child + Send + Sync>>,
-    master: Option<Box<dyn MasterPty + Send>>,
-    writer: Option<File>,
-    output: mpsc::Receiver<Vec<u8>>,
-    reader: Option<JoinHandle<()>>,
-    stop_reading: Arc<AtomicBool>,
+    /// Held (never read) so that the master side stays open until the hang-up drops it.
+    pub(super) _master: Option<Box<dyn MasterPty + Send>>,
+    pub(super) writer: Option<File>,
+    pub(super) output: mpsc::Receiver<Vec<u8>>,
+    pub(super) reader: Option<JoinHandle<()>>,
+    pub(super) stop_reading: Arc<AtomicBool>,
     pub seen: Vec<u8>,
     terminal: Terminal,
     answered: bool,
@@ -102,7 +105,7 @@ impl Console {
         });
         Console {
             child: Some(child),
-            master: Some(pty.master),
+            _master: Some(pty.master),
             writer: Some(writer),
             output,
             reader: Some(reader_thread),
@@ -187,21 +190,6 @@ impl Console {
         assert_eq!(unsafe { libc::kill(self.pid(), signal) }, 0);
     }
 
-    /// The terminal goes away as it does when an SSH connection drops: every descriptor
-    /// of the master side is closed, and the kernel hangs up the session.
-    pub fn hang_up(&mut self) {
-        self.stop_reading.store(true, Ordering::SeqCst);
-        if let Some(reader) = self.reader.take() {
-            reader.join().expect("the reader thread ends");
-        }
-        while let Ok(chunk) = self.output.try_recv() {
-            self.seen.extend_from_slice(&chunk);
-        }
-        self.writer = None;
-        self.master = None;
-        self.ended_at = Some(Instant::now());
-    }
-
     /// Waits for navdeck to exit by itself; its exit code and the time it took from the
     /// hang-up or signal.
     pub fn finish(mut self) -> Finished {
@@ -265,6 +253,8 @@ pub struct Finished {
     pub code: u32,
     pub output: String,
     /// From the hang-up or signal to the exit, as seen from outside.
+    // Read by the tests that time the ending.
+    #[allow(dead_code)]
     pub took: Option<Duration>,
 }
 

@@ -1,6 +1,5 @@
-//! Shared by the vision tests: a level camera, and the arena as the rendered camera sees
-//! it (wall, obstacle, gate and block markers; walls and block faces hide what is behind).
-#![allow(dead_code)]
+//! The arena as the rendered camera sees it (wall, obstacle, gate and block markers; walls
+//! and block faces hide what is behind), and a camera rendering and detecting it.
 
 use navdeck::geometry::{Pose2, Segment};
 use navdeck::perception::aruco::Detector;
@@ -10,15 +9,6 @@ use navdeck::sim::rendered_camera::Renderer;
 use navdeck::sim::{BlockState, Marker, World};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
-
-/// A camera looking level ahead (x -90 degrees) 10 cm up, so markers up to 4 m away are
-/// in frame.
-pub fn level() -> VisionConfig {
-    let mut v = VisionConfig::default();
-    v.mount.rotation_deg = [-90.0, 0.0, -90.0];
-    v.mount.translation = [0.03, 0.0, 0.10];
-    v
-}
 
 /// The default arena with its blocks where the world file puts them.
 pub struct ArenaScene {

@@ -47,8 +47,9 @@ fn corner_to_corner(c: &mut Criterion) {
 /// rings, walls and boxes from the world; corner to corner round the three boxes.
 fn surveyed_arena(c: &mut Criterion) {
     let config = navdeck::config::Config::default();
-    let terrain = navdeck::plan_report::Terrain::World(navdeck::sim::World::default_arena());
-    let belief = navdeck::plan_report::survey(&terrain, &config.map);
+    let terrain =
+        navdeck::runners::plan_report::Terrain::World(navdeck::sim::World::default_arena());
+    let belief = navdeck::runners::plan_report::survey(&terrain, &config.map);
     let map = belief.costmap();
     let options = SearchOptions::default();
     let start = map

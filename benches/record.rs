@@ -135,7 +135,7 @@ fn replay_frame(c: &mut Criterion) {
         .unwrap()
         .into_app(0.0);
     navdeck::console::start_recording(&mut app, &path, Default::default(), true).unwrap();
-    navdeck::headless::run(&mut app, &[Key::char('e')], 10.0);
+    navdeck::runners::headless::run(&mut app, &[Key::char('e')], 10.0);
     app.finish_recording().unwrap().unwrap();
     eprintln!("replaying {:.1} s of session", app.now());
     let recorded = Arc::new(navdeck::replay::load(&path).unwrap());
@@ -162,7 +162,7 @@ fn replay_frame(c: &mut Criterion) {
                 replay.run_to(playback.position());
                 terminal.clear().unwrap();
                 terminal
-                    .draw(|f| navdeck::tui::replay::draw(f, &replay, &playback, theme))
+                    .draw(|f| navdeck::replay::screen::draw(f, &replay, &playback, theme))
                     .unwrap();
             })
         });

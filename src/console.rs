@@ -93,10 +93,10 @@ pub fn run_replay_console(
     };
     let step = replay.app().config().robot.control_period;
     let playback = Playback::new(replay.span(), speed, view, step);
-    let mut player = crate::tui::replay::run::Player { replay, playback };
+    let mut player = crate::replay::screen::run::Player { replay, playback };
     let mut stats = RunStats::default();
     let outcome = on_terminal(&signals, |terminal, events| {
-        crate::tui::replay::run::run(
+        crate::replay::screen::run::run(
             terminal,
             &mut player,
             events,

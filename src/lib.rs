@@ -12,16 +12,11 @@ pub use navdeck_msgs as msgs;
 pub use navdeck_pilot as pilot;
 
 pub mod app;
-pub mod arm_pick;
 pub mod config;
 pub mod console;
-pub mod headless;
 pub mod keymap;
-pub mod map_report;
-pub mod mission_runner;
-pub mod plan_report;
 pub mod replay;
+pub mod runners;
 pub mod session;
-pub mod tour;
 pub mod tui;
 pub mod world_fit;

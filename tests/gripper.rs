@@ -226,7 +226,8 @@ fn the_emergency_stop_holds_the_arm_where_it_is() {
 
 #[test]
 fn picks_from_the_camera_estimate_succeed_when_it_is_close_enough() {
-    let (picks, bands) = navdeck::arm_pick::run(&navdeck::config::Config::default(), 20, 3);
+    let (picks, bands) =
+        navdeck::runners::arm_pick::run(&navdeck::config::Config::default(), 20, 3);
     assert_eq!(bands.iter().map(|b| b.picks).sum::<usize>(), 20);
     let ok = picks.iter().filter(|p| p.success).count();
     assert!(ok >= 10, "{picks:?}");

@@ -260,7 +260,7 @@ fn the_console_saves_its_map_by_key_command_and_autosave() {
     .into_app(0.0);
     app.set_maps_dir(dir.clone());
     let keys = parse_key_sequence("wwwwwwwwwwS:save lab-1<enter>:save ../up<enter>").unwrap();
-    navdeck::headless::run(&mut app, &keys, 10.0);
+    navdeck::runners::headless::run(&mut app, &keys, 10.0);
     for name in ["saved", "lab-1"] {
         let map = io::load(&dir.join(format!("{name}.yaml"))).unwrap();
         let extras = map.extras.unwrap();
@@ -307,7 +307,7 @@ fn load_mode_picks_a_saved_map_and_seeds_the_filter_with_its_landmarks() {
         .into_app(0.0);
     first.set_maps_dir(dir.clone());
     let drive = ("w".repeat(20) + &"a".repeat(9)).repeat(4);
-    navdeck::headless::run(
+    navdeck::runners::headless::run(
         &mut first,
         &parse_key_sequence(&format!("{drive}:save arena<enter>")).unwrap(),
         10.0,
@@ -325,7 +325,7 @@ fn load_mode_picks_a_saved_map_and_seeds_the_filter_with_its_landmarks() {
         .unwrap()
         .into_app(0.0);
     second.set_maps_dir(dir.clone());
-    navdeck::headless::run(
+    navdeck::runners::headless::run(
         &mut second,
         &parse_key_sequence("l<down><enter>").unwrap(),
         10.0,
@@ -341,7 +341,7 @@ fn load_mode_picks_a_saved_map_and_seeds_the_filter_with_its_landmarks() {
         "{said:?}"
     );
     assert_eq!(second.pilot().mode(), navdeck::app::mode::Mode::Load);
-    navdeck::headless::run(
+    navdeck::runners::headless::run(
         &mut second,
         &parse_key_sequence("<up><enter>").unwrap(),
         10.0,

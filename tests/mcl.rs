@@ -18,9 +18,9 @@ use navdeck::config::Config;
 use navdeck::geometry::{Point2, Pose2};
 use navdeck::keymap::Key;
 use navdeck::pilot::localize::InitialPose;
+use navdeck::runners::tour::{self, TourOptions, TourReport};
 use navdeck::session::{LinkChoice, LocalizeChoice, Session, SessionSpec};
 use navdeck::slam::mcl::config::Estimator;
-use navdeck::tour::{self, TourOptions, TourReport};
 
 const TB3: &str = "maps/turtlebot3_world.yaml";
 const FLAT: &str = "maps/flat.yaml";
@@ -253,7 +253,7 @@ fn the_mission_on_mcl_is_not_lost_for_want_of_markers() {
     let session = Session::load(&spec(TB3, 1, None)).unwrap();
     let localizer = session.localizer.clone();
     let (config, link) = session.into_link();
-    let r = navdeck::mission_runner::run(&config, link, localizer.as_ref(), 1, 400.0, false);
+    let r = navdeck::runners::mission::run(&config, link, localizer.as_ref(), 1, 400.0, false);
     assert_eq!(r.outcome, "delivered all", "{r:?}");
     assert_eq!(r.collisions, Some(0));
     assert!(

@@ -16,7 +16,7 @@ mod common {
 use common::{default_app, key, logged, navdeck};
 use navdeck::app::KeyKind;
 use navdeck::app::mode::Mode;
-use navdeck::mission_runner;
+use navdeck::runners::mission as mission_runner;
 use serde_json::Value;
 
 #[test]

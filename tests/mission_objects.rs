@@ -8,9 +8,9 @@ mod common {
 }
 
 use common::default_app;
-use navdeck::headless;
 use navdeck::keymap::parse_key_sequence;
 use navdeck::mission::objects::Objects;
+use navdeck::runners::headless;
 use std::collections::BTreeMap;
 
 #[test]

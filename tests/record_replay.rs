@@ -12,12 +12,12 @@ mod common {
 use common::scratch;
 use navdeck::app::App;
 use navdeck::console::start_recording;
-use navdeck::headless;
 use navdeck::keymap::parse_key_sequence;
 use navdeck::record::reader::read;
 use navdeck::record::recorded::Recorded;
 use navdeck::record::{RecordConfig, Recorder};
 use navdeck::replay::{Replay, ReplayOptions};
+use navdeck::runners::headless;
 use navdeck::session::{Session, SessionSpec};
 use navdeck::slam::mcl::config::Estimator;
 use std::collections::BTreeMap;

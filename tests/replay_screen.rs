@@ -33,7 +33,7 @@ fn recording() -> std::path::PathBuf {
         let _ = std::fs::remove_file(&path);
         let mut app = default_app();
         navdeck::console::start_recording(&mut app, &path, Default::default(), true).unwrap();
-        navdeck::headless::run(&mut app, &[key("e")], 10.0);
+        navdeck::runners::headless::run(&mut app, &[key("e")], 10.0);
         app.finish_recording().unwrap().unwrap();
         path
     })
@@ -45,11 +45,11 @@ fn play(view: View, width: u16, height: u16, steps: Vec<Step>) -> (String, Playb
     let recorded = Arc::new(navdeck::replay::load(&recording()).unwrap());
     let replay = Replay::new(recorded, ReplayOptions::default()).unwrap();
     let playback = Playback::new(replay.span(), 1.0, view, 0.1);
-    let mut player = navdeck::tui::replay::run::Player { replay, playback };
+    let mut player = navdeck::replay::screen::run::Player { replay, playback };
     let mut terminal = Terminal::new(TestBackend::new(width, height)).unwrap();
     let clock = ManualClock::default();
     let mut events = ScriptedEvents::new(clock.clone(), steps);
-    let exit = navdeck::tui::replay::run::run(
+    let exit = navdeck::replay::screen::run::run(
         &mut terminal,
         &mut player,
         &mut events,

@@ -69,7 +69,7 @@ fn scripted_five_minute_loop_meets_seed_accuracy_with_consistent_covariance() {
             localize: Default::default(),
         };
         let mut app = Session::load(&spec).unwrap().into_app(0.0);
-        let r = navdeck::headless::run(&mut app, &keys, 10.0);
+        let r = navdeck::runners::headless::run(&mut app, &keys, 10.0);
         assert!(r.sim_time > 300.0);
         assert_eq!(r.collisions, Some(0), "the loop should stay clear of walls");
         let (pos, head, nees) = (
@@ -107,7 +107,7 @@ fn a_standing_start_then_goto_keeps_nees_finite_and_in_band() {
             localize: Default::default(),
         };
         let mut app = Session::load(&spec).unwrap().into_app(0.0);
-        let r = navdeck::headless::run(&mut app, &keys, 10.0);
+        let r = navdeck::runners::headless::run(&mut app, &keys, 10.0);
         let nees = r.mean_nees.unwrap();
         assert!(
             nees.is_finite() && nees > NEES_BAND_3DOF.0 && nees < NEES_BAND_3DOF.1,

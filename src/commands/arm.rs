@@ -137,7 +137,7 @@ fn pick_test(args: &PickTestArgs) -> Result<ExitCode> {
         None => navdeck::config::Config::default(),
     };
     let started = std::time::Instant::now();
-    let (picks, bands) = navdeck::arm_pick::run(&config, args.picks as usize, args.seed);
+    let (picks, bands) = navdeck::runners::arm_pick::run(&config, args.picks as usize, args.seed);
     let wall = started.elapsed().as_secs_f64();
     if args.json {
         let out = serde_json::json!({ "bands": bands, "picks": picks, "wall_time_s": wall });

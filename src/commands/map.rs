@@ -2,7 +2,7 @@
 
 use anyhow::{Result, bail};
 use navdeck::map::io as map_io;
-use navdeck::map_report;
+use navdeck::runners::map_report;
 use std::io::Write;
 use std::path::PathBuf;
 use std::process::ExitCode;

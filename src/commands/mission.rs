@@ -5,7 +5,7 @@ use super::tour::LocalizeArgs;
 use super::world::{ShapeArgs, generate_error};
 use anyhow::{Result, bail};
 use navdeck::geometry::Pose2;
-use navdeck::mission_runner;
+use navdeck::runners::mission as mission_runner;
 use navdeck::session::{LinkChoice, Session, SessionSpec};
 use navdeck::sim::CameraFrames;
 use navdeck::sim::generate::{self, GenerateOptions};

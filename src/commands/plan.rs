@@ -5,7 +5,7 @@ use anyhow::{Context, Result};
 use navdeck::config::Config;
 use navdeck::geometry::Point2;
 use navdeck::map::io as map_io;
-use navdeck::plan_report::{self, Terrain};
+use navdeck::runners::plan_report::{self, Terrain};
 use navdeck::sim::World;
 use std::io::Write;
 use std::path::PathBuf;

@@ -3,8 +3,8 @@
 
 use super::tour::LocalizeArgs;
 use anyhow::Result;
-use navdeck::headless;
 use navdeck::replay::{Replay, ReplayOptions};
+use navdeck::runners::headless;
 use std::io::Write;
 use std::path::PathBuf;
 use std::process::ExitCode;

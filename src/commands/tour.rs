@@ -1,12 +1,12 @@
 //! `navdeck tour` and the localisation options the console and the runners share (part
-//! of the binary, beside main.rs): the command line's side of `navdeck::tour`.
+//! of the binary, beside main.rs): the command line's side of `navdeck::runners::tour`.
 
 use anyhow::{Result, bail};
 use navdeck::geometry::{Point2, Pose2};
 use navdeck::pilot::localize::InitialPose;
+use navdeck::runners::tour::{self, TourOptions, TourReport};
 use navdeck::session::{LinkChoice, LocalizeChoice, Session, SessionSpec};
 use navdeck::slam::mcl::config::Estimator;
-use navdeck::tour::{self, TourOptions, TourReport};
 use std::io::Write;
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -181,7 +181,7 @@ pub fn run(args: &TourArgs) -> Result<ExitCode> {
         Ok(report)
     };
     let seeds = match &args.sweep {
-        Some(range) => navdeck::mission_runner::parse_seeds(range).map_err(anyhow::Error::msg)?,
+        Some(range) => navdeck::runners::mission::parse_seeds(range).map_err(anyhow::Error::msg)?,
         None => vec![args.seed],
     };
     let next = std::sync::atomic::AtomicUsize::new(0);

@@ -4,6 +4,7 @@
 //! at the time stays at hand (`recorded()`) for the as-recorded view and to compare.
 
 pub mod playback;
+pub mod screen;
 
 use crate::app::{App, KeyKind};
 use crate::config::Config;

@@ -4,7 +4,6 @@
 pub mod draw;
 pub mod events;
 pub mod input;
-pub mod replay;
 pub mod run;
 pub mod signals;
 pub mod terminal;

@@ -5,11 +5,11 @@ pub mod bar;
 pub mod recorded;
 pub mod run;
 
-use super::draw::draw_in;
-use super::theme::Theme;
 use crate::app::screen::{Area, MIN_SIZE, layout};
 use crate::replay::Replay;
 use crate::replay::playback::{Playback, View};
+use crate::tui::draw::draw_in;
+use crate::tui::theme::Theme;
 use ratatui::Frame;
 use ratatui::layout::Rect;
 use ratatui::text::{Line, Span};

@@ -1,0 +1,9 @@
+//! The runners: navdeck without a terminal. Each drives one robot's runtime (or a
+//! console, for `--headless`) on simulated time and reports for people or as JSON.
+
+pub mod arm_pick;
+pub mod headless;
+pub mod map_report;
+pub mod mission;
+pub mod plan_report;
+pub mod tour;

@@ -5,6 +5,7 @@
 //! Free of terminal and clock: time is passed in as `now` (seconds on the session
 //! clock). The TUI passes wall time, the headless runner and the tests simulated time.
 
+mod actions;
 mod camera_feed;
 mod command;
 mod control;
@@ -19,17 +20,14 @@ mod table;
 pub mod view;
 
 use crate::config::Config;
-use crate::data::{GripperCommand, MarkerSighting};
+use crate::data::MarkerSighting;
 use crate::geometry::{Point2, Pose2};
 use crate::keymap::Action;
 use crate::keymap::{Key, KeyCode, Keymap};
 use crate::link::RobotLink;
 use crate::link::runtime::Runtime;
 use crate::map::grid::OccupancyGrid;
-use crate::pilot::arm::{ArmAxis, ArmPose};
-use crate::pilot::navigation::Target;
 use crate::pilot::{self, Pilot};
-use command::{Intent, Typed};
 use log::{Level, LogBook};
 use mode::Mode;
 use view::ViewState;
@@ -241,174 +239,6 @@ impl App {
         }
     }
 
-    /// The one place the console's state changes: a key's action or a typed command.
-    pub fn apply(&mut self, intent: impl Into<Intent>) {
-        let action = match intent.into() {
-            Intent::Action(action) => action,
-            Intent::Typed(typed) => return self.apply_typed(typed),
-        };
-        if let Some(key) = action.motion() {
-            return self.run_intent(pilot::Intent::KeyDown { key, repeat: false });
-        }
-        if let Some(change) = action.speed_change() {
-            return self.run_intent(pilot::Intent::Speed(change));
-        }
-        let load = self.pilot().mode() == Mode::Load;
-        let ask = match action {
-            Action::ModeManual => pilot::Intent::Mode(Mode::Manual),
-            Action::ModeExplore => pilot::Intent::Mode(Mode::Exploration),
-            Action::ModeThink => pilot::Intent::Mode(Mode::Thinking),
-            Action::ModeFollow => pilot::Intent::Mode(Mode::PathFollowing),
-            Action::ModeRace => pilot::Intent::Mode(Mode::Race),
-            Action::ModeLoad => pilot::Intent::Mode(Mode::Load),
-            Action::ModeGripper => pilot::Intent::Mode(Mode::Gripper),
-            Action::ArmForward => pilot::Intent::ArmKey(ArmAxis::Reach, 1.0),
-            Action::ArmBack => pilot::Intent::ArmKey(ArmAxis::Reach, -1.0),
-            Action::ArmLeft => pilot::Intent::ArmKey(ArmAxis::Turn, 1.0),
-            Action::ArmRight => pilot::Intent::ArmKey(ArmAxis::Turn, -1.0),
-            Action::ArmUp => pilot::Intent::ArmKey(ArmAxis::Lift, 1.0),
-            Action::ArmDown => pilot::Intent::ArmKey(ArmAxis::Lift, -1.0),
-            Action::ArmPitchUp => pilot::Intent::ArmKey(ArmAxis::Pitch, 1.0),
-            Action::ArmPitchDown => pilot::Intent::ArmKey(ArmAxis::Pitch, -1.0),
-            Action::ArmHome => pilot::Intent::ArmPose(ArmPose::Home),
-            Action::ArmReady => pilot::Intent::ArmPose(ArmPose::Ready),
-            Action::ArmStow => pilot::Intent::ArmPose(ArmPose::Stow),
-            Action::GripperOpen => pilot::Intent::Gripper(GripperCommand::Open),
-            Action::GripperClose => pilot::Intent::Gripper(GripperCommand::Close),
-            Action::Stop => pilot::Intent::Stop,
-            Action::EmergencyStop => pilot::Intent::EmergencyStop,
-            Action::ClearRoute => pilot::Intent::ClearRoute,
-            Action::NextController => pilot::Intent::NextController,
-            Action::PlanToCursor if !load => {
-                let goal = self
-                    .cursor
-                    .unwrap_or_else(|| self.pilot().estimated_pose().position());
-                pilot::Intent::Goto(Target::Point(goal))
-            }
-            _ => return self.apply_to_console(action),
-        };
-        self.run_intent(ask);
-    }
-
-    /// The actions that change only the console: the view, the picker, the prompt, files.
-    fn apply_to_console(&mut self, action: Action) {
-        let load = self.pilot().mode() == Mode::Load;
-        match action {
-            Action::Quit => {
-                self.shutdown("quit by user");
-                self.quit = true;
-            }
-            Action::Help => self.view.help = !self.view.help,
-            Action::ZoomIn | Action::ZoomOut => {
-                let fitted = self.fitted_scale();
-                self.view.zoom_step(fitted, action == Action::ZoomIn);
-            }
-            Action::PanLeft | Action::PanRight | Action::PanUp | Action::PanDown => {
-                let (dx, dy) = match action {
-                    Action::PanLeft => (-1.0, 0.0),
-                    Action::PanRight => (1.0, 0.0),
-                    Action::PanUp => (0.0, 1.0),
-                    _ => (0.0, -1.0),
-                };
-                let from = self.map_center();
-                let span = self.map_span();
-                self.view.pan(from, span, dx, dy);
-            }
-            Action::CenterView => {
-                self.view.center = None;
-                self.view.zoom = None;
-            }
-            Action::ToggleBraille => self.view.braille = !self.view.braille,
-            // Off, all landmarks, gates and blocks only, off.
-            Action::ToggleLandmarks => {
-                let table = &mut self.view.table;
-                match (self.view.landmarks, table.targets_only) {
-                    (false, _) => {
-                        self.view.landmarks = true;
-                        table.targets_only = false;
-                    }
-                    (true, false) => table.targets_only = true,
-                    (true, true) => self.view.landmarks = false,
-                }
-                table.selected = 0;
-            }
-            Action::ToggleCamera => self.view.camera = self.view.camera.next(),
-            Action::ToggleScan => self.view.scan = !self.view.scan,
-            Action::ToggleTrail => self.view.trail = !self.view.trail,
-            Action::LogOlder => {
-                let shown = self.log.iter().filter(|e| self.view.log.shows(e)).count();
-                let page = self.log_page();
-                let back = self.view.log.back + page;
-                self.view.log.back = back.min(shown.saturating_sub(page));
-            }
-            Action::LogNewer => {
-                self.view.log.back = self.view.log.back.saturating_sub(self.log_page());
-            }
-            Action::LogFilter => self.view.log.next_level(),
-            Action::LogSource => self.view.log.next_source(),
-            Action::LogSearch => self.prompt = Some("/".to_string()),
-            Action::ToggleTruth => {
-                if self.link().ground_truth().is_some() {
-                    self.view.show_truth = !self.view.show_truth;
-                } else {
-                    self.log(Level::Warn, "true pose exists only in the twin");
-                }
-            }
-            Action::CursorUp if load => self.pick(-1),
-            Action::CursorDown if load => self.pick(1),
-            Action::PlanToCursor if load => self.load_selected(),
-            Action::PoseEstimate => self.pose_estimate_key(),
-            Action::CursorLeft => self.move_cursor(-1.0, 0.0),
-            Action::CursorRight => self.move_cursor(1.0, 0.0),
-            Action::CursorUp => self.move_cursor(0.0, 1.0),
-            Action::CursorDown => self.move_cursor(0.0, -1.0),
-            Action::CommandLine => self.prompt = Some(String::new()),
-            Action::SaveMap => {
-                self.save_map(saving::SAVE_KEY_NAME);
-            }
-            _ => {}
-        }
-    }
-
-    /// Acts on a typed command.
-    fn apply_typed(&mut self, typed: Typed) {
-        match typed {
-            Typed::GotoPoint(p) => {
-                self.cursor = self.cursor.map(|_| p);
-                self.run_intent(pilot::Intent::Goto(Target::Point(p)));
-            }
-            Typed::GotoPose(pose) => {
-                self.cursor = self.cursor.map(|_| pose.position());
-                self.run_intent(pilot::Intent::Goto(Target::Pose(pose)));
-            }
-            Typed::GotoMarker(id) => self.run_intent(pilot::Intent::Goto(Target::Marker(id))),
-            Typed::Controller(kind) => self.run_intent(pilot::Intent::Controller(kind)),
-            Typed::RestartMission => self.run_intent(pilot::Intent::RestartMission),
-            Typed::SetPose(pose) => self.run_intent(pilot::Intent::SetPose(pose)),
-            Typed::Relocalize => self.run_intent(pilot::Intent::Relocalize),
-            Typed::WhichController => {
-                let now = self.pilot().follower().controller().label();
-                self.log(
-                    Level::Info,
-                    format!("path controller: {now} (:controller pid|pure_pursuit|hybrid)"),
-                );
-            }
-            Typed::Save(name) => {
-                self.save_map(&name);
-            }
-        }
-    }
-
-    /// Moves thinking mode's goal cursor by one screen cell.
-    fn move_cursor(&mut self, dx: f64, dy: f64) {
-        let scale = self.view.scale(self.fitted_scale());
-        let c = self
-            .cursor
-            .unwrap_or_else(|| self.pilot().estimated_pose().position());
-        // One screen cell: a row is twice as tall as a column is wide.
-        self.cursor = Some(Point2::new(c.x + dx * scale, c.y + dy * 2.0 * scale));
-    }
-
     /// Installs the clock that times planning (seconds, monotonic).
     pub fn set_stopwatch(&mut self, stopwatch: std::sync::Arc<dyn crate::clock::Clock>) {
         self.runtime.pilot_mut().set_stopwatch(stopwatch);
@@ -489,8 +319,7 @@ impl App {
     /// Drive keys currently held, for the status panel.
     pub fn held_keys(&self) -> Vec<Action> {
         let keys = self.pilot().held_keys(self.now());
-        let name = |k: pilot::teleop::DriveKey| Action::from_name(k.name());
-        keys.into_iter().filter_map(name).collect()
+        keys.into_iter().filter_map(Action::driving).collect()
     }
 
     /// Log lines a page-back key moves: the pane's rows (its height less the two border

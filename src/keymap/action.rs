@@ -1,334 +1,208 @@
-//! The one enum through which keys change the console's state.
+//! The one enum through which keys change the console's state, declared once: each
+//! action's variant, keymap name, help line and route sit on one row of `actions!`.
 
+use crate::data::GripperCommand;
+use crate::pilot::Intent;
+use crate::pilot::arm::{ArmAxis, ArmPose};
+use crate::pilot::mode::Mode;
 use crate::pilot::teleop::{DriveKey, SpeedChange};
 
-/// Everything a key can ask for. Keymap files name these in snake_case.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
-pub enum Action {
-    // Modes of seed 001 ("Operating Modes").
-    ModeManual,
-    ModeExplore,
-    ModeThink,
-    ModeFollow,
-    ModeRace,
-    ModeLoad,
-    ModeGripper,
-    GripperOpen,
-    GripperClose,
+/// Where an action goes: to the pilot (as a held drive key, a speed change or a
+/// request), or to one of the console's own handlers.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Route {
+    /// A drive key: held, it moves the robot.
+    Drive(DriveKey),
+    /// A speed key.
+    Speed(SpeedChange),
+    /// A request the pilot takes as it is.
+    Pilot(Intent),
+    /// Something only the console does: the view, the log, the cursor, the prompt, files.
+    Console(Handler),
+}
+
+/// The console's own handlers (run by `App::apply_to_console`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Handler {
+    /// Stop the robot and end the session.
     Quit,
-    // Driving: held keys move the robot; the deadman stops it when keys stop.
-    Forward,
-    Backward,
-    TurnLeft,
-    TurnRight,
-    ForwardLeft,
-    ForwardRight,
-    BackwardLeft,
-    BackwardRight,
-    Stop,
-    EmergencyStop,
-    SpeedUp,
-    SpeedDown,
-    LinearUp,
-    LinearDown,
-    AngularUp,
-    AngularDown,
-    // The arm, in gripper mode: held keys move the tool.
-    ArmForward,
-    ArmBack,
-    ArmLeft,
-    ArmRight,
-    ArmUp,
-    ArmDown,
-    ArmPitchUp,
-    ArmPitchDown,
-    ArmHome,
-    ArmReady,
-    ArmStow,
-    // The view.
     Help,
-    ZoomIn,
-    ZoomOut,
-    PanLeft,
-    PanRight,
-    PanUp,
-    PanDown,
+    /// Zoom in (`true`) or out.
+    Zoom(bool),
+    /// Pan the map by one step in (x, y).
+    Pan(f64, f64),
     CenterView,
     ToggleBraille,
     ToggleTruth,
-    ToggleLandmarks,
-    ToggleCamera,
+    /// Off, all landmarks, gates and blocks only, off.
+    CycleLandmarks,
+    CycleCamera,
     ToggleScan,
     ToggleTrail,
-    // The log.
     LogOlder,
     LogNewer,
     LogFilter,
     LogSource,
     LogSearch,
-    // Planning and following.
-    CursorLeft,
-    CursorRight,
-    CursorUp,
-    CursorDown,
+    /// Move the goal cursor one cell in (x, y); up and down pick a map in load mode.
+    Cursor(f64, f64),
+    /// Plan to the cursor; in load mode, load the picked map.
     PlanToCursor,
-    /// RViz's "2D Pose Estimate": first press the position, second the heading.
     PoseEstimate,
     CommandLine,
-    ClearRoute,
-    NextController,
     SaveMap,
+    /// Nothing at all.
+    Nothing,
+}
+
+/// Declares every action once, each row `Variant: name, "help line" => route;`, and
+/// generates the enum, `ALL` (in row order, the help overlay's), `name`, `from_name`,
+/// `description` and `route`. Routes may use `Route`'s and `Handler`'s variants bare.
+macro_rules! actions {
+    ($(
+        $(#[$attr:meta])*
+        $variant:ident: $name:expr, $description:literal => $route:expr;
+    )*) => {
+        /// Everything a key can ask for. Keymap files name these in snake_case.
+        #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+        pub enum Action {
+            $($(#[$attr])* $variant,)*
+        }
+
+        impl Action {
+            const COUNT: usize = [$(stringify!($variant)),*].len();
+
+            /// Every action, in the order the help overlay lists them.
+            pub const ALL: [Action; Action::COUNT] = [$(Action::$variant),*];
+
+            /// The name keymap files use.
+            pub fn name(self) -> &'static str {
+                match self {
+                    $(Action::$variant => $name,)*
+                }
+            }
+
+            /// One line for the help overlay.
+            pub fn description(self) -> &'static str {
+                match self {
+                    $(Action::$variant => $description,)*
+                }
+            }
+
+            /// Where the action goes.
+            pub fn route(self) -> Route {
+                use Handler::*;
+                use Route::*;
+                match self {
+                    $(Action::$variant => $route,)*
+                }
+            }
+        }
+    };
+}
+
+actions! {
+    // Modes of seed 001 ("Operating Modes").
+    ModeManual: "mode_manual", "manual mode (drive by keys)" => Pilot(Intent::Mode(Mode::Manual));
+    ModeExplore: "mode_explore", "exploration mode" => Pilot(Intent::Mode(Mode::Exploration));
+    ModeThink: "mode_think", "thinking mode (plan a path)" => Pilot(Intent::Mode(Mode::Thinking));
+    ModeFollow: "mode_follow", "path-following mode" => Pilot(Intent::Mode(Mode::PathFollowing));
+    ModeRace: "mode_race", "race mode (fast, less SLAM)" => Pilot(Intent::Mode(Mode::Race));
+    ModeLoad: "mode_load", "load a saved map" => Pilot(Intent::Mode(Mode::Load));
+    ModeGripper: "mode_gripper", "gripper mode: the arm" => Pilot(Intent::Mode(Mode::Gripper));
+    GripperOpen: "gripper_open", "open the gripper" => Pilot(Intent::Gripper(GripperCommand::Open));
+    GripperClose: "gripper_close", "close the gripper" => Pilot(Intent::Gripper(GripperCommand::Close));
+    Quit: "quit", "stop the robot and quit" => Console(Quit);
+    // Driving: held keys move the robot; the deadman stops it when keys stop. Their
+    // names are the pilot's own names for the drive keys.
+    Forward: DriveKey::Forward.name(), "drive forward" => Drive(DriveKey::Forward);
+    Backward: DriveKey::Backward.name(), "drive backward" => Drive(DriveKey::Backward);
+    TurnLeft: DriveKey::TurnLeft.name(), "turn left on the spot" => Drive(DriveKey::TurnLeft);
+    TurnRight: DriveKey::TurnRight.name(), "turn right on the spot" => Drive(DriveKey::TurnRight);
+    ForwardLeft: DriveKey::ForwardLeft.name(), "forward, turning left" => Drive(DriveKey::ForwardLeft);
+    ForwardRight: DriveKey::ForwardRight.name(), "forward, turning right" => Drive(DriveKey::ForwardRight);
+    BackwardLeft: DriveKey::BackwardLeft.name(), "backward, turning left" => Drive(DriveKey::BackwardLeft);
+    BackwardRight: DriveKey::BackwardRight.name(), "backward, turning right" => Drive(DriveKey::BackwardRight);
+    Stop: "stop", "stop (autonomy: pause)" => Pilot(Intent::Stop);
+    EmergencyStop: "emergency_stop", "emergency stop (any mode)" => Pilot(Intent::EmergencyStop);
+    SpeedUp: "speed_up", "all speeds +10 %" => Speed(SpeedChange::SpeedUp);
+    SpeedDown: "speed_down", "all speeds -10 %" => Speed(SpeedChange::SpeedDown);
+    LinearUp: "linear_up", "linear speed +10 %" => Speed(SpeedChange::LinearUp);
+    LinearDown: "linear_down", "linear speed -10 %" => Speed(SpeedChange::LinearDown);
+    AngularUp: "angular_up", "turn rate +10 %" => Speed(SpeedChange::AngularUp);
+    AngularDown: "angular_down", "turn rate -10 %" => Speed(SpeedChange::AngularDown);
+    // The arm, in gripper mode: held keys move the tool.
+    ArmForward: "arm_forward", "tool forward" => Pilot(Intent::ArmKey(ArmAxis::Reach, 1.0));
+    ArmBack: "arm_back", "tool back" => Pilot(Intent::ArmKey(ArmAxis::Reach, -1.0));
+    ArmLeft: "arm_left", "arm left (base joint)" => Pilot(Intent::ArmKey(ArmAxis::Turn, 1.0));
+    ArmRight: "arm_right", "arm right (base joint)" => Pilot(Intent::ArmKey(ArmAxis::Turn, -1.0));
+    ArmUp: "arm_up", "tool up" => Pilot(Intent::ArmKey(ArmAxis::Lift, 1.0));
+    ArmDown: "arm_down", "tool down" => Pilot(Intent::ArmKey(ArmAxis::Lift, -1.0));
+    ArmPitchUp: "arm_pitch_up", "tool pitch up" => Pilot(Intent::ArmKey(ArmAxis::Pitch, 1.0));
+    ArmPitchDown: "arm_pitch_down", "tool pitch down" => Pilot(Intent::ArmKey(ArmAxis::Pitch, -1.0));
+    ArmHome: "arm_home", "arm to home" => Pilot(Intent::ArmPose(ArmPose::Home));
+    ArmReady: "arm_ready", "arm ready to pick" => Pilot(Intent::ArmPose(ArmPose::Ready));
+    ArmStow: "arm_stow", "arm stowed" => Pilot(Intent::ArmPose(ArmPose::Stow));
+    // The view.
+    Help: "help", "show or hide this help" => Console(Help);
+    ZoomIn: "zoom_in", "zoom in" => Console(Zoom(true));
+    ZoomOut: "zoom_out", "zoom out" => Console(Zoom(false));
+    PanLeft: "pan_left", "pan the map left" => Console(Pan(-1.0, 0.0));
+    PanRight: "pan_right", "pan the map right" => Console(Pan(1.0, 0.0));
+    PanUp: "pan_up", "pan the map up" => Console(Pan(0.0, 1.0));
+    PanDown: "pan_down", "pan the map down" => Console(Pan(0.0, -1.0));
+    CenterView: "center_view", "fit the whole world" => Console(CenterView);
+    ToggleBraille: "toggle_braille", "braille / ASCII map" => Console(ToggleBraille);
+    ToggleTruth: "toggle_truth", "show/hide the twin's truth" => Console(ToggleTruth);
+    ToggleLandmarks: "toggle_landmarks", "landmarks: all/targets/off" => Console(CycleLandmarks);
+    ToggleCamera: "toggle_camera", "camera panel, braille, off" => Console(CycleCamera);
+    ToggleScan: "toggle_scan", "lidar scan on the map" => Console(ToggleScan);
+    ToggleTrail: "toggle_trail", "driven trail on the map" => Console(ToggleTrail);
+    // The log.
+    LogOlder: "log_older", "log: page back" => Console(LogOlder);
+    LogNewer: "log_newer", "log: page forward" => Console(LogNewer);
+    LogFilter: "log_filter", "log: all, warnings, errors" => Console(LogFilter);
+    LogSource: "log_source", "log: all, navdeck, robot" => Console(LogSource);
+    LogSearch: "log_search", "log: lines containing …" => Console(LogSearch);
+    // Planning and following.
+    CursorLeft: "cursor_left", "goal cursor left" => Console(Cursor(-1.0, 0.0));
+    CursorRight: "cursor_right", "goal cursor right" => Console(Cursor(1.0, 0.0));
+    CursorUp: "cursor_up", "goal cursor up" => Console(Cursor(0.0, 1.0));
+    CursorDown: "cursor_down", "goal cursor down" => Console(Cursor(0.0, -1.0));
+    PlanToCursor: "plan_to_cursor", "plan a path to the cursor" => Console(PlanToCursor);
+    /// RViz's "2D Pose Estimate": first press the position, second the heading.
+    PoseEstimate: "pose_estimate", "set the pose at the cursor" => Console(PoseEstimate);
+    CommandLine: "command_line", "command (:goto x y …)" => Console(CommandLine);
+    ClearRoute: "clear_route", "forget the planned path" => Pilot(Intent::ClearRoute);
+    NextController: "next_controller", "next path controller" => Pilot(Intent::NextController);
+    SaveMap: "save_map", "save the map (maps/saved)" => Console(SaveMap);
     /// Unbinds a key that a lower layer of the keymap bound.
-    Unbound,
+    Unbound: "none", "(unbound)" => Console(Nothing);
 }
 
 impl Action {
-    /// Every action, in the order the help overlay lists them.
-    pub const ALL: [Action; 67] = [
-        Action::ModeManual,
-        Action::ModeExplore,
-        Action::ModeThink,
-        Action::ModeFollow,
-        Action::ModeRace,
-        Action::ModeLoad,
-        Action::ModeGripper,
-        Action::GripperOpen,
-        Action::GripperClose,
-        Action::Quit,
-        Action::Forward,
-        Action::Backward,
-        Action::TurnLeft,
-        Action::TurnRight,
-        Action::ForwardLeft,
-        Action::ForwardRight,
-        Action::BackwardLeft,
-        Action::BackwardRight,
-        Action::Stop,
-        Action::EmergencyStop,
-        Action::SpeedUp,
-        Action::SpeedDown,
-        Action::LinearUp,
-        Action::LinearDown,
-        Action::AngularUp,
-        Action::AngularDown,
-        Action::ArmForward,
-        Action::ArmBack,
-        Action::ArmLeft,
-        Action::ArmRight,
-        Action::ArmUp,
-        Action::ArmDown,
-        Action::ArmPitchUp,
-        Action::ArmPitchDown,
-        Action::ArmHome,
-        Action::ArmReady,
-        Action::ArmStow,
-        Action::Help,
-        Action::ZoomIn,
-        Action::ZoomOut,
-        Action::PanLeft,
-        Action::PanRight,
-        Action::PanUp,
-        Action::PanDown,
-        Action::CenterView,
-        Action::ToggleBraille,
-        Action::ToggleTruth,
-        Action::ToggleLandmarks,
-        Action::ToggleCamera,
-        Action::ToggleScan,
-        Action::ToggleTrail,
-        Action::LogOlder,
-        Action::LogNewer,
-        Action::LogFilter,
-        Action::LogSource,
-        Action::LogSearch,
-        Action::CursorLeft,
-        Action::CursorRight,
-        Action::CursorUp,
-        Action::CursorDown,
-        Action::PlanToCursor,
-        Action::PoseEstimate,
-        Action::CommandLine,
-        Action::ClearRoute,
-        Action::NextController,
-        Action::SaveMap,
-        Action::Unbound,
-    ];
-
-    /// The name keymap files use.
-    pub fn name(self) -> &'static str {
-        match self {
-            Action::ModeManual => "mode_manual",
-            Action::ModeExplore => "mode_explore",
-            Action::ModeThink => "mode_think",
-            Action::ModeFollow => "mode_follow",
-            Action::ModeRace => "mode_race",
-            Action::ModeLoad => "mode_load",
-            Action::ModeGripper => "mode_gripper",
-            Action::ArmForward => "arm_forward",
-            Action::ArmBack => "arm_back",
-            Action::ArmLeft => "arm_left",
-            Action::ArmRight => "arm_right",
-            Action::ArmUp => "arm_up",
-            Action::ArmDown => "arm_down",
-            Action::ArmPitchUp => "arm_pitch_up",
-            Action::ArmPitchDown => "arm_pitch_down",
-            Action::ArmHome => "arm_home",
-            Action::ArmReady => "arm_ready",
-            Action::ArmStow => "arm_stow",
-            Action::GripperOpen => "gripper_open",
-            Action::GripperClose => "gripper_close",
-            Action::Quit => "quit",
-            Action::Forward => "forward",
-            Action::Backward => "backward",
-            Action::TurnLeft => "turn_left",
-            Action::TurnRight => "turn_right",
-            Action::ForwardLeft => "forward_left",
-            Action::ForwardRight => "forward_right",
-            Action::BackwardLeft => "backward_left",
-            Action::BackwardRight => "backward_right",
-            Action::Stop => "stop",
-            Action::EmergencyStop => "emergency_stop",
-            Action::SpeedUp => "speed_up",
-            Action::SpeedDown => "speed_down",
-            Action::LinearUp => "linear_up",
-            Action::LinearDown => "linear_down",
-            Action::AngularUp => "angular_up",
-            Action::AngularDown => "angular_down",
-            Action::Help => "help",
-            Action::ZoomIn => "zoom_in",
-            Action::ZoomOut => "zoom_out",
-            Action::PanLeft => "pan_left",
-            Action::PanRight => "pan_right",
-            Action::PanUp => "pan_up",
-            Action::PanDown => "pan_down",
-            Action::CenterView => "center_view",
-            Action::ToggleBraille => "toggle_braille",
-            Action::ToggleTruth => "toggle_truth",
-            Action::ToggleLandmarks => "toggle_landmarks",
-            Action::ToggleCamera => "toggle_camera",
-            Action::ToggleScan => "toggle_scan",
-            Action::ToggleTrail => "toggle_trail",
-            Action::LogOlder => "log_older",
-            Action::LogNewer => "log_newer",
-            Action::LogFilter => "log_filter",
-            Action::LogSource => "log_source",
-            Action::LogSearch => "log_search",
-            Action::CursorLeft => "cursor_left",
-            Action::CursorRight => "cursor_right",
-            Action::CursorUp => "cursor_up",
-            Action::CursorDown => "cursor_down",
-            Action::PlanToCursor => "plan_to_cursor",
-            Action::PoseEstimate => "pose_estimate",
-            Action::CommandLine => "command_line",
-            Action::ClearRoute => "clear_route",
-            Action::NextController => "next_controller",
-            Action::SaveMap => "save_map",
-            Action::Unbound => "none",
-        }
-    }
-
     /// Looks an action up by its keymap name.
     pub fn from_name(name: &str) -> Option<Action> {
         Action::ALL.into_iter().find(|a| a.name() == name)
     }
 
-    /// One line for the help overlay.
-    pub fn description(self) -> &'static str {
-        match self {
-            Action::ModeManual => "manual mode (drive by keys)",
-            Action::ModeExplore => "exploration mode",
-            Action::ModeThink => "thinking mode (plan a path)",
-            Action::ModeFollow => "path-following mode",
-            Action::ModeRace => "race mode (fast, less SLAM)",
-            Action::ModeLoad => "load a saved map",
-            Action::ModeGripper => "gripper mode: the arm",
-            Action::ArmForward => "tool forward",
-            Action::ArmBack => "tool back",
-            Action::ArmLeft => "arm left (base joint)",
-            Action::ArmRight => "arm right (base joint)",
-            Action::ArmUp => "tool up",
-            Action::ArmDown => "tool down",
-            Action::ArmPitchUp => "tool pitch up",
-            Action::ArmPitchDown => "tool pitch down",
-            Action::ArmHome => "arm to home",
-            Action::ArmReady => "arm ready to pick",
-            Action::ArmStow => "arm stowed",
-            Action::GripperOpen => "open the gripper",
-            Action::GripperClose => "close the gripper",
-            Action::Quit => "stop the robot and quit",
-            Action::Forward => "drive forward",
-            Action::Backward => "drive backward",
-            Action::TurnLeft => "turn left on the spot",
-            Action::TurnRight => "turn right on the spot",
-            Action::ForwardLeft => "forward, turning left",
-            Action::ForwardRight => "forward, turning right",
-            Action::BackwardLeft => "backward, turning left",
-            Action::BackwardRight => "backward, turning right",
-            Action::Stop => "stop (autonomy: pause)",
-            Action::EmergencyStop => "emergency stop (any mode)",
-            Action::SpeedUp => "all speeds +10 %",
-            Action::SpeedDown => "all speeds -10 %",
-            Action::LinearUp => "linear speed +10 %",
-            Action::LinearDown => "linear speed -10 %",
-            Action::AngularUp => "turn rate +10 %",
-            Action::AngularDown => "turn rate -10 %",
-            Action::Help => "show or hide this help",
-            Action::ZoomIn => "zoom in",
-            Action::ZoomOut => "zoom out",
-            Action::PanLeft => "pan the map left",
-            Action::PanRight => "pan the map right",
-            Action::PanUp => "pan the map up",
-            Action::PanDown => "pan the map down",
-            Action::CenterView => "fit the whole world",
-            Action::ToggleBraille => "braille / ASCII map",
-            Action::ToggleTruth => "show/hide the twin's truth",
-            Action::ToggleLandmarks => "landmarks: all/targets/off",
-            Action::ToggleCamera => "camera panel, braille, off",
-            Action::ToggleScan => "lidar scan on the map",
-            Action::ToggleTrail => "driven trail on the map",
-            Action::LogOlder => "log: page back",
-            Action::LogNewer => "log: page forward",
-            Action::LogFilter => "log: all, warnings, errors",
-            Action::LogSource => "log: all, navdeck, robot",
-            Action::LogSearch => "log: lines containing …",
-            Action::CursorLeft => "goal cursor left",
-            Action::CursorRight => "goal cursor right",
-            Action::CursorUp => "goal cursor up",
-            Action::CursorDown => "goal cursor down",
-            Action::PlanToCursor => "plan a path to the cursor",
-            Action::PoseEstimate => "set the pose at the cursor",
-            Action::CommandLine => "command (:goto x y …)",
-            Action::ClearRoute => "forget the planned path",
-            Action::NextController => "next path controller",
-            Action::SaveMap => "save the map (maps/saved)",
-            Action::Unbound => "(unbound)",
-        }
-    }
-
     /// For drive keys: which one.
     pub fn motion(self) -> Option<DriveKey> {
-        match self {
-            Action::Forward => Some(DriveKey::Forward),
-            Action::Backward => Some(DriveKey::Backward),
-            Action::TurnLeft => Some(DriveKey::TurnLeft),
-            Action::TurnRight => Some(DriveKey::TurnRight),
-            Action::ForwardLeft => Some(DriveKey::ForwardLeft),
-            Action::ForwardRight => Some(DriveKey::ForwardRight),
-            Action::BackwardLeft => Some(DriveKey::BackwardLeft),
-            Action::BackwardRight => Some(DriveKey::BackwardRight),
+        match self.route() {
+            Route::Drive(key) => Some(key),
             _ => None,
         }
     }
 
+    /// The action that holds `key` down: the table's drive routes, read backwards.
+    pub fn driving(key: DriveKey) -> Option<Action> {
+        Action::ALL.into_iter().find(|a| a.motion() == Some(key))
+    }
+
     /// The speed change a speed key asks for.
     pub fn speed_change(self) -> Option<SpeedChange> {
-        match self {
-            Action::SpeedUp => Some(SpeedChange::SpeedUp),
-            Action::SpeedDown => Some(SpeedChange::SpeedDown),
-            Action::LinearUp => Some(SpeedChange::LinearUp),
-            Action::LinearDown => Some(SpeedChange::LinearDown),
-            Action::AngularUp => Some(SpeedChange::AngularUp),
-            Action::AngularDown => Some(SpeedChange::AngularDown),
+        match self.route() {
+            Route::Speed(change) => Some(change),
             _ => None,
         }
     }
@@ -346,6 +220,20 @@ mod tests {
                 "{:?}",
                 a.description()
             );
+        }
+    }
+
+    #[test]
+    fn every_drive_key_has_one_action_named_as_the_pilot_names_it() {
+        let drives: Vec<Action> = Action::ALL
+            .into_iter()
+            .filter(|a| a.motion().is_some())
+            .collect();
+        assert_eq!(drives.len(), 8);
+        for a in drives {
+            let key = a.motion().unwrap();
+            assert_eq!(Action::driving(key), Some(a));
+            assert_eq!(a.name(), key.name());
         }
     }
 

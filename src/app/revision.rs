@@ -30,31 +30,49 @@ impl Default for Redraw {
 /// The rounded values the screen shows; a change means a redraw is due.
 #[derive(Clone, Debug, PartialEq)]
 struct Visible {
+    robot: RobotShown,
+    route: RouteShown,
+    console: ConsoleShown,
+}
+
+/// The robot's rows: mode, pose, speeds, gripper, link, contacts.
+#[derive(Clone, Debug, PartialEq)]
+struct RobotShown {
     mode: Mode,
     pose: (i64, i64, i64),
     truth: Option<(i64, i64, i64)>,
     commanded: (i64, i64),
     measured: (i64, i64),
     speeds: (i64, i64),
-    second: i64,
     loop_rate: i64,
-    log: u64,
     gripper: Option<GripperState>,
     estop: bool,
     held: usize,
     link: LinkStatus,
-    view: ViewState,
-    screen: (u16, u16),
     collisions: u32,
+}
+
+/// The map's contents and the route on it.
+#[derive(Clone, Debug, PartialEq)]
+struct RouteShown {
     sightings: Vec<u32>,
     blocks: Vec<(i64, i64)>,
     map: u64,
-    cursor: Option<(i64, i64)>,
-    prompt: Option<String>,
     following: Option<(i64, i64, i64)>,
     route: Option<(i64, String)>,
     controller: ControllerKind,
     arrived: bool,
+}
+
+/// The console's own state: clock, log, view, cursor, prompt, map picker, camera panel.
+#[derive(Clone, Debug, PartialEq)]
+struct ConsoleShown {
+    second: i64,
+    log: u64,
+    view: ViewState,
+    screen: (u16, u16),
+    cursor: Option<(i64, i64)>,
+    prompt: Option<String>,
     picked: usize,
     maps: usize,
     /// Camera frames, while the camera panel shows them.
@@ -90,7 +108,7 @@ impl App {
         let deg = |t: f64| t.to_degrees().round() as i64;
         let twin = self.link().ground_truth();
         let (commanded, measured, teleop) = (p.commanded(), p.measured(), p.teleop());
-        let visible = Visible {
+        let robot = RobotShown {
             mode: p.mode(),
             pose: (centi(pose.x), centi(pose.y), deg(pose.theta)),
             truth: twin.map(|t| {
@@ -100,16 +118,22 @@ impl App {
             commanded: (centi(commanded.linear), centi(commanded.angular)),
             measured: (centi(measured.linear), centi(measured.angular)),
             speeds: (centi(teleop.linear_speed), centi(teleop.angular_speed)),
-            second: self.now().floor() as i64,
             loop_rate: self.runtime.loop_rate().round() as i64,
-            log: self.log.written(),
             gripper: p.gripper(),
             estop: p.estop(),
             held: self.held_keys().len(),
             link: p.link_status().clone(),
+            collisions: twin.map_or(0, |t| t.collisions()),
+        };
+        let route = RouteShown {
+            sightings: self.in_view(),
+            blocks: twin.map_or(Vec::new(), |t| {
+                t.blocks()
+                    .iter()
+                    .map(|b| (centi(b.pose.x), centi(b.pose.y)))
+                    .collect()
+            }),
             map,
-            cursor: self.cursor.map(|c| (centi(c.x), centi(c.y))),
-            prompt: self.prompt.clone(),
             following: p.following().map(|f| {
                 (
                     centi(f.remaining),
@@ -120,20 +144,23 @@ impl App {
             route: p.route().map(|r| (centi(r.plan.length), r.label.clone())),
             controller: p.follower().controller(),
             arrived: p.arrived(),
-            picked: self.picker.selected,
-            maps: self.picker.entries.len(),
+        };
+        let console = ConsoleShown {
+            second: self.now().floor() as i64,
+            log: self.log.written(),
             view: self.view.clone(),
             screen: self.screen,
-            collisions: twin.map_or(0, |t| t.collisions()),
-            sightings: self.in_view(),
-            blocks: twin.map_or(Vec::new(), |t| {
-                t.blocks()
-                    .iter()
-                    .map(|b| (centi(b.pose.x), centi(b.pose.y)))
-                    .collect()
-            }),
+            cursor: self.cursor.map(|c| (centi(c.x), centi(c.y))),
+            prompt: self.prompt.clone(),
+            picked: self.picker.selected,
+            maps: self.picker.entries.len(),
             camera: (self.view.camera != super::view::CameraPanel::Off)
                 .then_some(self.camera.frames),
+        };
+        let visible = Visible {
+            robot,
+            route,
+            console,
         };
         if self.redraw.visible.as_ref() != Some(&visible) {
             self.redraw.visible = Some(visible);

@@ -140,7 +140,7 @@ impl Runtime {
             }
         }
         for intent in intents {
-            self.run(self.now, vec![intent], Due::IfActing, &mut stepped);
+            self.ask(intent, &mut stepped);
         }
         self.now = now;
         stepped
@@ -150,8 +150,12 @@ impl Runtime {
     /// once when it changed the motion (a key, a goal, a mode).
     pub fn intend(&mut self, intent: Intent) -> Stepped {
         let mut stepped = Stepped::default();
-        self.run(self.now, vec![intent], Due::IfActing, &mut stepped);
+        self.ask(intent, &mut stepped);
         stepped
+    }
+
+    fn ask(&mut self, intent: Intent, stepped: &mut Stepped) {
+        self.run(self.now, vec![intent], Due::IfActing, stepped);
     }
 
     /// Polls the robot at `now` and folds in what it reported, deciding nothing: what a
@@ -181,12 +185,11 @@ impl Runtime {
         };
         let mut out = self.pilot.step(input, &mut Port(self.link.as_mut()));
         log.append(&mut out.log);
-        out.log = log;
         let polled = out.frame.is_some() || out.failure.is_some();
         if polled && let Some(r) = self.recording.as_mut() {
             r.step(t, &out, self.link.ground_truth());
         }
-        for line in std::mem::take(&mut out.log) {
+        for line in log {
             stepped.log(line.time, line.level, line.text);
         }
         if self.pilot.mode() != before {
@@ -242,10 +245,7 @@ impl Runtime {
     /// Session seconds until the runtime next needs to run: the next control step or
     /// the deadman's expiry.
     pub fn next_deadline(&self) -> f64 {
-        let tick = self.schedule.next_tick();
-        self.pilot
-            .teleop_cutoff(self.now)
-            .map_or(tick, |c| c.min(tick))
+        self.schedule.next_due(self.pilot.teleop_cutoff(self.now))
     }
 
     /// Tells the robot to stop now, outside a control step (quit, signal, lost input).

@@ -43,9 +43,10 @@ impl Schedule {
         self.rate
     }
 
-    /// When the next periodic step is due.
-    pub(super) fn next_tick(&self) -> f64 {
-        self.next_tick
+    /// When the next step is due: the next periodic one, or `cutoff` (the deadman's
+    /// expiry) when that comes first.
+    pub(super) fn next_due(&self, cutoff: Option<f64>) -> f64 {
+        cutoff.map_or(self.next_tick, |c| c.min(self.next_tick))
     }
 
     /// Before catching up to `now`: a warning when the loop overran its period (at most
@@ -72,7 +73,7 @@ impl Schedule {
     /// off the schedule; None when nothing is.
     pub(super) fn take_due(&mut self, now: f64, cutoff: Option<f64>) -> Option<Next> {
         let tick = self.next_tick;
-        let due = cutoff.map_or(tick, |c| c.min(tick));
+        let due = self.next_due(cutoff);
         // A tick due a rounding error after `now` is due now: sums of 0.1 s drift apart.
         if due > now + TICK_SLACK {
             return None;

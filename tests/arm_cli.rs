@@ -1,11 +1,7 @@
 //! `navdeck arm ik|fk` as a user runs them: the joints for a reachable target, a clear
 //! refusal for an unreachable one, the tool's pose for given joints, bad numbers refused.
 
-#[path = "common"]
-mod common {
-    pub mod binary;
-    pub use binary::*;
-}
+use crate::common;
 
 use common::navdeck;
 

@@ -1,13 +1,7 @@
 //! The camera panel: `v` shows the camera's rate, detection latency and IDs in view with
 //! a thumbnail in half blocks, again in braille, and once more hides it.
 
-#[path = "common"]
-mod common {
-    pub mod render;
-    pub mod render_at;
-    pub mod screen;
-    pub use render::*;
-}
+use crate::common;
 
 use common::render;
 use navdeck::app::{App, KeyKind};

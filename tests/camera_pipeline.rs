@@ -3,17 +3,8 @@
 //! topic.
 #![cfg(feature = "vision")]
 
-#[path = "common"]
-mod common {
-    pub mod recording;
-    pub mod until;
-    pub use {recording::*, until::*};
-}
-#[path = "vision_support"]
-mod vision_support {
-    pub mod level;
-    pub use level::*;
-}
+use crate::common;
+use crate::vision_support;
 
 use common::until;
 use navdeck::geometry::{Point2, Pose2};

@@ -1,11 +1,6 @@
 //! The binary from the outside: headless runs, help, and refusals of bad input.
 
-#[path = "common"]
-mod common {
-    pub mod binary;
-    pub mod scratch;
-    pub use {binary::*, scratch::*};
-}
+use crate::common;
 
 use common::{navdeck, scratch};
 

@@ -1,23 +1,6 @@
 //! The console's behaviour as a user at the keyboard sees it, on the digital twin.
 
-#[path = "common"]
-mod common {
-    pub mod app_with;
-    pub mod default_app;
-    pub mod hold;
-    pub mod key;
-    pub mod logged;
-    pub mod press;
-    pub mod recording;
-    pub mod render;
-    pub mod render_at;
-    pub mod screen;
-    pub mod script;
-    pub use {
-        app_with::*, default_app::*, hold::*, key::*, logged::*, press::*, recording::*, render::*,
-        render_at::*, screen::*, script::*,
-    };
-}
+use crate::common;
 
 use common::*;
 use navdeck::app::mode::Mode;

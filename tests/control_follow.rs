@@ -6,7 +6,6 @@ use navdeck::geometry::{Pose2, Twist, wrap_angle};
 use navdeck::plan::trajectory::Trajectory;
 use std::f64::consts::{FRAC_PI_2, PI};
 
-#[path = "control_follow/sim.rs"]
 mod sim;
 use sim::{Unicycle, line, s_curve};
 

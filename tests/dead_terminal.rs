@@ -1,14 +1,7 @@
 //! A terminal that dies under the console, on the output side (writes fail with EIO) or
 //! the input side (reads fail): the loop stops the robot and returns, it never spins.
 
-#[path = "common"]
-mod common {
-    pub mod hold;
-    pub mod press;
-    pub mod recording;
-    pub mod run_loop;
-    pub use {hold::*, recording::*, run_loop::*};
-}
+use crate::common;
 
 use common::{RecordingLink, hold, recording_app};
 use navdeck::tui::events::{Event, EventSource, ManualClock, ScriptedEvents};

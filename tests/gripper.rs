@@ -2,18 +2,7 @@
 //! a jog stopped at the edge of the reach, the side view at 80x24 and 120x40, and the
 //! mode refused without an arm.
 
-#[path = "common"]
-mod common {
-    pub mod app_with;
-    pub mod binary;
-    pub mod default_app;
-    pub mod hold;
-    pub mod key;
-    pub mod press;
-    pub mod screen;
-    pub mod script;
-    pub use {binary::*, default_app::*, hold::*, key::*, press::*, screen::*, script::*};
-}
+use crate::common;
 
 use common::{hold, press, run_script};
 use navdeck::app::App;

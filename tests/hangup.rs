@@ -2,25 +2,10 @@
 //! is driving, on every link: the robot is told to stop, the link is let go, and the
 //! process ends by itself with the status a shell expects (128 + the signal's number).
 
-#[path = "common"]
-mod common {
-    pub mod until;
-    pub use until::*;
-}
-#[path = "pty_support"]
-mod pty_support {
-    pub mod console;
-    pub mod hang_up;
-    pub use console::*;
-}
-mod ros2_support;
-#[path = "serial_emulator"]
-mod serial_emulator {
-    pub mod firmware;
-    pub mod mute;
-    pub mod requests;
-    pub use firmware::*;
-}
+use crate::common;
+use crate::pty_support;
+use crate::ros2_support;
+use crate::serial_emulator;
 
 use common::until;
 use pty_support::{Console, Finished, Terminal};
@@ -224,7 +209,7 @@ fn a_second_signal_during_shutdown_ends_it_at_once() {
 }
 
 /// The figures for the README and the issue: how long each link takes to end after each
-/// ending, five runs each. `cargo test --release --test hangup -- --ignored --nocapture`
+/// ending, five runs each. `cargo test --release --test suite hangup:: -- --ignored --nocapture`
 #[test]
 #[ignore = "a measurement: prints exit times by link and ending"]
 fn exit_times_by_link_and_ending() {

@@ -3,12 +3,7 @@
 //! protocol stop the robot at once; terminals that never send a release (tmux, or one
 //! that answered the probe and then sends none) are governed by the deadman.
 
-#[path = "common"]
-mod common {
-    pub mod app_with;
-    pub mod default_app;
-    pub use default_app::*;
-}
+use crate::common;
 
 use navdeck::app::App;
 use navdeck::tui::input::{Input, InputDecoder};

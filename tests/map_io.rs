@@ -1,11 +1,7 @@
 //! Map files as users meet them: Nav2 maps open, saved maps round-trip, saves are atomic,
 //! and a bad file is refused naming the file, the field and the value.
 
-#[path = "common"]
-mod common {
-    pub mod scratch;
-    pub use scratch::*;
-}
+use crate::common;
 
 use common::scratch;
 use navdeck::geometry::Point2;

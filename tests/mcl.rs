@@ -2,15 +2,7 @@
 //! kidnapped robot in the twin (scored against its truth by the tour runner), a `:goto`
 //! on MCL alone, the console's pose commands, and bad input refused.
 
-#[path = "common"]
-mod common {
-    pub mod app_with;
-    pub mod binary;
-    pub mod key;
-    pub mod render_at;
-    pub mod screen;
-    pub use {app_with::*, binary::*, key::*, render_at::*};
-}
+use crate::common;
 
 use common::navdeck;
 use navdeck::app::{App, KeyKind};

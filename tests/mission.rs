@@ -1,17 +1,6 @@
 //! The mission end to end: exploration mode in the console and `navdeck mission`.
 
-#[path = "common"]
-mod common {
-    pub mod app_with;
-    pub mod binary;
-    pub mod default_app;
-    pub mod key;
-    pub mod logged;
-    pub mod render;
-    pub mod render_at;
-    pub mod screen;
-    pub use {binary::*, default_app::*, key::*, logged::*, render::*};
-}
+use crate::common;
 
 use common::{default_app, key, logged, navdeck};
 use navdeck::app::KeyKind;

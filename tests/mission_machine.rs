@@ -1,7 +1,7 @@
 //! The mission state machine driven by scripted inputs: the initial scan, choosing
 //! targets, the pick-up and delivery sequences and finishing.
 
-mod mission_rig;
+use crate::mission_rig;
 
 use mission_rig::{DT, Rig, all_free, all_seeing, config, half_known, plan_to};
 use navdeck::data::GripperCommand;

@@ -1,11 +1,6 @@
 //! Blocks and gates read from the filter's landmarks match where the twin put them.
 
-#[path = "common"]
-mod common {
-    pub mod app_with;
-    pub mod default_app;
-    pub use default_app::*;
-}
+use crate::common;
 
 use common::default_app;
 use navdeck::keymap::parse_key_sequence;

@@ -1,7 +1,7 @@
 //! The mission's recoveries driven by scripted inputs (seed 001 "Failure Modes &
 //! Recovery"): empty gripper, block lost, robot lost, no path, stuck.
 
-mod mission_rig;
+use crate::mission_rig;
 
 use mission_rig::{DT, Rig, all_free, config, half_known, plan_to};
 use navdeck::data::GripperCommand;

@@ -1,11 +1,7 @@
 //! The twin inside a Nav2 map: TurtleBot3's own world (map_server YAML + PGM, shipped in
 //! maps/) becomes walls the lidar sees and the robot runs into, in the map's own frame.
 
-#[path = "common"]
-mod common {
-    pub mod binary;
-    pub use binary::*;
-}
+use crate::common;
 
 use common::navdeck;
 

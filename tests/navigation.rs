@@ -1,17 +1,7 @@
 //! Thinking and path-following modes as a user meets them: plan by cursor or command,
 //! follow to "Destination arrived", refuse impossible goals, replan, and give control back.
 
-#[path = "common"]
-mod common {
-    pub mod app_with;
-    pub mod default_app;
-    pub mod key;
-    pub mod logged;
-    pub mod press;
-    pub mod screen;
-    pub mod script;
-    pub use {app_with::*, default_app::*, key::*, logged::*, press::*, screen::*, script::*};
-}
+use crate::common;
 
 use common::{app_with, default_app, key, logged, run_script, screen};
 use navdeck::app::App;

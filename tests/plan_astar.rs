@@ -1,13 +1,7 @@
 //! A* against a plain Dijkstra and the `pathfinding` crate: same costs, legal paths, and the
 //! errors a user sees when the goal is in an obstacle or cut off.
 
-#[path = "plan_support"]
-mod plan_support {
-    pub mod arena;
-    pub mod random;
-    pub mod reference;
-    pub use {arena::*, random::*, reference::*};
-}
+use crate::plan_support;
 
 use navdeck::geometry::Point2;
 use navdeck::map::costmap::Costmap;

@@ -2,12 +2,7 @@
 //! cost, smoothing keeps the ends and the curvature of a circle, the velocity profile keeps
 //! its limits, and the whole pipeline lands on the goal.
 
-#[path = "plan_support"]
-mod plan_support {
-    pub mod arena;
-    pub mod random;
-    pub use {arena::*, random::*};
-}
+use crate::plan_support;
 
 use navdeck::geometry::Point2;
 use navdeck::map::costmap::{Costmap, LETHAL, is_lethal};

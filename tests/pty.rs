@@ -1,11 +1,7 @@
 //! The real binary in a pseudo-terminal: it draws, drives, quits on `q` and on SIGTERM,
 //! and leaves the terminal as it found it.
 
-#[path = "pty_support"]
-mod pty_support {
-    pub mod console;
-    pub use console::*;
-}
+use crate::pty_support;
 
 use pty_support::{Console, Terminal};
 

@@ -2,16 +2,8 @@
 //! file of its own, and a console killed outright (SIGKILL: no chance to finish the
 //! file) leaves a recording that plays up to its last chunk.
 
-#[path = "common"]
-mod common {
-    pub mod scratch;
-    pub use scratch::*;
-}
-#[path = "pty_support"]
-mod pty_support {
-    pub mod console;
-    pub use console::*;
-}
+use crate::common;
+use crate::pty_support;
 
 use common::scratch;
 use navdeck::record::reader::read;

@@ -8,12 +8,8 @@
 //! (./scripts/test makes a virtualenv and sets it, with NAVDECK_REQUIRE_INTEROP=1 so that
 //! a missing Python fails the run instead of skipping).
 
-#[path = "common"]
-mod common {
-    pub mod scratch;
-    pub use scratch::*;
-}
-mod python_support;
+use crate::common;
+use crate::python_support;
 
 use common::scratch;
 use navdeck::config::Config;

@@ -3,11 +3,7 @@
 //! scores both; files cut short, damaged or written by other tools play what they can
 //! and say where the damage is.
 
-#[path = "common"]
-mod common {
-    pub mod scratch;
-    pub use scratch::*;
-}
+use crate::common;
 
 use common::scratch;
 use navdeck::app::App;

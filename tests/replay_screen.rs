@@ -1,15 +1,7 @@
 //! Snapshots of the replay console (`navdeck replay`): paused half way through a recorded
 //! exploration, as recorded and re-run, with the time bar along the bottom.
 
-#[path = "common"]
-mod common {
-    pub mod app_with;
-    pub mod default_app;
-    pub mod key;
-    pub mod press;
-    pub mod screen;
-    pub use {default_app::*, key::*, press::*, screen::*};
-}
+use crate::common;
 
 use common::*;
 use navdeck::replay::playback::{Playback, View};

@@ -2,12 +2,8 @@
 //! keys to cmd_vel to odometry and back, the watchdog, bad messages, and RViz output.
 //! Each test has its own DDS domain, so they run in parallel without cross-talk.
 
-#[path = "common"]
-mod common {
-    pub mod logged;
-    pub use logged::*;
-}
-mod ros2_support;
+use crate::common;
+use crate::ros2_support;
 
 use common::logged;
 use navdeck::app::{App, KeyKind, LinkStatus};

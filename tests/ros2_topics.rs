@@ -8,13 +8,8 @@
 //! (./scripts/test sets it, with NAVDECK_REQUIRE_INTEROP=1 so that a missing peer fails
 //! the run instead of skipping).
 
-#[path = "common"]
-mod common {
-    pub mod scratch;
-    pub use scratch::*;
-}
-mod cyclone_peer;
-mod python_support;
+use crate::common;
+use crate::cyclone_peer;
 
 use common::scratch;
 use cyclone_peer::LinePeer;

@@ -1,19 +1,8 @@
 //! The serial link against an emulated ROSArduinoBridge firmware on a pseudo-terminal:
 //! the same code a real port runs, with faults injected on the wire.
 
-#[path = "common"]
-mod common {
-    pub mod until;
-    pub use until::*;
-}
-#[path = "serial_emulator"]
-mod serial_emulator {
-    pub mod faults;
-    pub mod firmware;
-    pub mod frames;
-    pub mod requests;
-    pub use firmware::*;
-}
+use crate::common;
+use crate::serial_emulator;
 
 use common::until;
 use navdeck::app::{App, KeyKind, LinkStatus};

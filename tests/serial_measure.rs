@@ -1,14 +1,9 @@
 //! Measurements of the serial link on the emulated firmware, which takes the wire time of
 //! every byte at its baud rate. Not a pass/fail test: run it by hand and read the figures.
 //!
-//! cargo test --test serial_measure -- --ignored --nocapture
+//! cargo test --test suite serial_measure:: -- --ignored --nocapture
 
-#[path = "serial_emulator"]
-mod serial_emulator {
-    pub mod firmware;
-    pub mod frames;
-    pub use firmware::*;
-}
+use crate::serial_emulator;
 
 use navdeck::config::Config;
 use navdeck::link::serial::SerialLink;

@@ -1,15 +1,6 @@
 //! Headless snapshots of the console's screen (insta over ratatui's TestBackend).
 
-#[path = "common"]
-mod common {
-    pub mod app_with;
-    pub mod default_app;
-    pub mod hold;
-    pub mod press;
-    pub mod screen;
-    pub mod script;
-    pub use {default_app::*, hold::*, press::*, screen::*, script::*};
-}
+use crate::common;
 
 use common::*;
 use navdeck::tui::events::Step;

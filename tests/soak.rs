@@ -6,16 +6,7 @@
 //!
 //! Alone in its file: resident memory is the process's, and no other test may share it.
 
-#[path = "common"]
-mod common {
-    pub mod app_with;
-    pub mod default_app;
-    pub mod hold;
-    pub mod key;
-    pub mod press;
-    pub mod run_loop;
-    pub use {default_app::*, hold::*, key::*, press::*, run_loop::*};
-}
+use crate::common;
 
 use common::{hold, key, press};
 use navdeck::keymap::{Key, KeyCode};

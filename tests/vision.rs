@@ -3,12 +3,7 @@
 //! is ever reported under a wrong ID.
 #![cfg(feature = "vision")]
 
-#[path = "vision_support"]
-mod vision_support {
-    pub mod arena;
-    pub mod level;
-    pub use {arena::*, level::*};
-}
+use crate::vision_support;
 
 use nalgebra::Vector3;
 use navdeck::geometry::Pose2;

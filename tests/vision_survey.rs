@@ -3,12 +3,7 @@
 //! category.
 #![cfg(feature = "vision")]
 
-#[path = "vision_support"]
-mod vision_support {
-    pub mod arena;
-    pub mod level;
-    pub use {arena::*, level::*};
-}
+use crate::vision_support;
 
 use navdeck::geometry::Pose2;
 use navdeck::perception::config::VisionConfig;

@@ -3,12 +3,7 @@
 //! the same file; the command line writes files the other commands load, and refuses bad
 //! options by name.
 
-#[path = "common"]
-mod common {
-    pub mod binary;
-    pub mod scratch;
-    pub use {binary::*, scratch::*};
-}
+use crate::common;
 
 use common::{navdeck, scratch};
 

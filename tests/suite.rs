@@ -1,0 +1,108 @@
+//! navdeck's integration tests, one binary: each file beside this one is a module, and the
+//! helpers they share are declared here once. One binary links navdeck once instead of
+//! once per file, which keeps the test build and `target/` small. `ros2_interop` stays a
+//! binary of its own, because the suite also builds it for ROS 2 Humble.
+//!
+//! Run one file's tests with its module name: `cargo test --test suite console::`.
+
+// Helpers, a file each (see common/README.md).
+#[path = "common"]
+mod common {
+    pub mod app_with;
+    pub mod binary;
+    pub mod default_app;
+    pub mod hold;
+    pub mod key;
+    pub mod logged;
+    pub mod press;
+    pub mod recording;
+    pub mod render;
+    pub mod render_at;
+    pub mod run_loop;
+    pub mod scratch;
+    pub mod screen;
+    pub mod script;
+    pub mod until;
+    pub use {
+        app_with::*, binary::*, default_app::*, hold::*, key::*, logged::*, press::*, recording::*,
+        render::*, render_at::*, run_loop::*, scratch::*, screen::*, script::*, until::*,
+    };
+}
+#[path = "plan_support"]
+mod plan_support {
+    pub mod arena;
+    pub mod random;
+    pub mod reference;
+    pub use {arena::*, random::*, reference::*};
+}
+#[path = "pty_support"]
+mod pty_support {
+    pub mod console;
+    pub mod hang_up;
+    pub use console::*;
+}
+#[path = "serial_emulator"]
+mod serial_emulator {
+    pub mod faults;
+    pub mod firmware;
+    pub mod frames;
+    pub mod mute;
+    pub mod requests;
+    pub use firmware::*;
+}
+#[cfg(feature = "vision")]
+#[path = "vision_support"]
+mod vision_support {
+    pub mod arena;
+    pub mod level;
+    pub use {arena::*, level::*};
+}
+mod cyclone_peer;
+mod mission_rig;
+mod python_support;
+mod ros2_support;
+
+// The tests, a file each.
+mod arm_cli;
+mod camera_panel;
+mod camera_pipeline;
+mod cli;
+mod console;
+mod control_follow;
+mod dead_terminal;
+mod gripper;
+mod hangup;
+mod hostile;
+mod key_bytes;
+mod keymaps;
+mod map_belief;
+mod map_io;
+mod mcl;
+mod mission;
+mod mission_machine;
+mod mission_objects;
+mod mission_recovery;
+mod nav2_world;
+mod navigation;
+mod pilot;
+mod plan_astar;
+mod plan_post;
+mod pty;
+mod readme;
+mod record_console;
+mod record_python;
+mod record_replay;
+mod replay_screen;
+mod ros2_link;
+mod ros2_topics;
+mod serial_link;
+mod serial_measure;
+mod sim_camera_readable;
+mod sim_twin;
+mod sim_world;
+mod slam_ekf;
+mod snapshots;
+mod soak;
+mod vision;
+mod vision_survey;
+mod world_generate;

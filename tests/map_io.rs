@@ -276,13 +276,13 @@ fn the_console_saves_its_map_by_key_command_and_autosave() {
     let said: Vec<String> = app.log_book().iter().map(|e| e.text.clone()).collect();
     assert!(said.iter().any(|l| l.contains("name `../up`")), "{said:?}");
     assert!(!dir.join("../up.yaml").exists());
-    // Exploring saves autosave.yaml every 30 s.
+    // Exploring saves the arena's autosave every 30 s.
     let t = app.now();
     app.handle_key("e".parse().unwrap(), KeyKind::Press, t);
     for k in 1..=320 {
         app.update(t + 0.1 * f64::from(k));
     }
-    assert!(io::load(&dir.join("autosave.yaml")).is_ok());
+    assert!(io::load(&dir.join("autosave-arena.yaml")).is_ok());
 }
 
 #[test]
@@ -342,7 +342,16 @@ fn load_mode_picks_a_saved_map_and_seeds_the_filter_with_its_landmarks() {
         &parse_key_sequence("<up><enter>").unwrap(),
         10.0,
     );
-    assert_eq!(second.pilot().mode(), navdeck::app::mode::Mode::Manual);
+    assert_eq!(
+        second.pilot().mode(),
+        navdeck::app::mode::Mode::Manual,
+        "{:?}",
+        second
+            .log_book()
+            .iter()
+            .map(|e| e.text.clone())
+            .collect::<Vec<_>>()
+    );
     assert!(
         second.pilot().slam().landmark_count() >= saved,
         "the saved landmarks are the prior"

@@ -77,6 +77,7 @@ mod key_bytes;
 mod keymaps;
 mod map_belief;
 mod map_io;
+mod map_load;
 mod mcl;
 mod mission;
 mod mission_machine;

@@ -3,7 +3,8 @@
 
 use super::App;
 use super::log::Level;
-use crate::map::io;
+use crate::map::agreement::mismatches;
+use crate::map::io::{self, MapFile};
 use crate::pilot::{self, mode::Mode};
 use std::path::{Path, PathBuf};
 use std::sync::mpsc::{Receiver, RecvTimeoutError, TryRecvError, channel};
@@ -24,6 +25,8 @@ pub(super) struct Picker {
     pub entries: Vec<MapEntry>,
     pub selected: usize,
     pending: Option<(PathBuf, Receiver<Vec<MapEntry>>)>,
+    /// A map that does not fit the robot's, read and waiting for a second enter.
+    confirming: Option<(usize, Box<MapFile>)>,
 }
 
 /// How long a key that needs the list waits for it, seconds.
@@ -132,29 +135,68 @@ impl App {
             self.picker.selected =
                 (self.picker.selected as isize + step).rem_euclid(n as isize) as usize;
         }
+        self.picker.confirming = None;
     }
 
-    /// Loads the chosen map; a file that cannot be read leaves the current map as it is.
+    /// Loads the chosen map; a file that cannot be read leaves the current map as it is,
+    /// and one that disagrees with what the robot has sensed waits for a second enter.
     pub(super) fn load_selected(&mut self) {
         self.poll_picker(true);
-        let Some(entry) = self.picker.entries.get(self.picker.selected).cloned() else {
+        let selected = self.picker.selected;
+        let Some(entry) = self.picker.entries.get(selected).cloned() else {
             self.log(Level::Warn, "no map to load");
             return;
         };
-        let map = match io::load(&entry.path) {
-            Ok(map) => map,
-            Err(e) => {
-                self.log(
-                    Level::Error,
-                    format!("map not loaded, the current one stays: {e}"),
-                );
-                return;
-            }
+        let (map, asked) = match self.picker.confirming.take() {
+            Some((index, map)) if index == selected => (map, true),
+            _ => match io::load(&entry.path) {
+                Ok(map) => (Box::new(map), false),
+                Err(e) => {
+                    self.log(
+                        Level::Error,
+                        format!("map not loaded, the current one stays: {e}"),
+                    );
+                    return;
+                }
+            },
         };
+        if !asked && !self.fits(&entry, &map) {
+            self.picker.confirming = Some((selected, map));
+            return;
+        }
         self.run_intent(pilot::Intent::AdoptMap {
-            map: Box::new(map),
+            map,
             source: entry.path.display().to_string(),
         });
+    }
+
+    /// Whether `map` may be loaded at once: true when nothing speaks against it, else it
+    /// says why in the log and asks for enter again.
+    fn fits(&mut self, entry: &MapEntry, map: &MapFile) -> bool {
+        let pilot = self.pilot();
+        let own = pilot.belief().sensed_grid();
+        let found = mismatches(&map.grid, &own, pilot.estimated_pose().position());
+        if found.is_empty() {
+            return true;
+        }
+        let why: Vec<String> = found.iter().map(ToString::to_string).collect();
+        self.log(
+            Level::Warn,
+            format!(
+                "{} does not fit this robot's map: {}. Enter again loads it anyway (u undoes a load), esc keeps the current map",
+                entry.name,
+                why.join("; ")
+            ),
+        );
+        false
+    }
+
+    /// Whether the chosen map waits for a second enter.
+    pub fn picker_confirming(&self) -> bool {
+        self.picker
+            .confirming
+            .as_ref()
+            .is_some_and(|(index, _)| *index == self.picker.selected)
     }
 
     /// Whether the picker's list is still being made.

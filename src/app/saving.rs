@@ -7,9 +7,31 @@ use crate::mission::objects::Objects;
 use crate::perception::markers::MarkerCategory;
 use std::path::PathBuf;
 
-/// The file the save key writes, and the one exploration keeps up to date.
+/// The file the save key writes, and the start of the name of the one exploration keeps
+/// up to date for each world (`autosave-arena`, `autosave-serial-dev-ttyusb0`).
 pub const SAVE_KEY_NAME: &str = "saved";
 pub const AUTOSAVE_NAME: &str = "autosave";
+/// The longest place name an autosave's file name carries.
+const PLACE_CHARS: usize = 40;
+
+/// `text` as a file name's part: lower-case letters and digits, runs of anything else one
+/// `-`, at most `PLACE_CHARS` long.
+fn file_name_part(text: &str) -> String {
+    let mut part = String::new();
+    for c in text.chars().flat_map(char::to_lowercase) {
+        if c.is_ascii_alphanumeric() {
+            part.push(c);
+        } else if !part.is_empty() && !part.ends_with('-') {
+            part.push('-');
+        }
+    }
+    let part: String = part
+        .trim_end_matches('-')
+        .chars()
+        .take(PLACE_CHARS)
+        .collect();
+    part.trim_end_matches('-').to_string()
+}
 
 /// Where maps are saved, how they are dated, and when exploration last saved one.
 #[derive(Default)]
@@ -159,8 +181,22 @@ impl App {
         (blocks, gates)
     }
 
-    /// While exploring, saves `autosave.yaml` every `[map] autosave_every` seconds; the
-    /// previous one stays as its `.bak`.
+    /// The name exploration autosaves under: one file per place, so that exploring one
+    /// world never overwrites another's map. The twin's place is its world; a robot's is
+    /// its link (the ROS 2 domain or the serial port).
+    pub fn autosave_name(&self) -> String {
+        let place = match self.link().ground_truth() {
+            Some(truth) => truth.world().name.clone(),
+            None => self.link().label(),
+        };
+        match file_name_part(&place) {
+            part if part.is_empty() => AUTOSAVE_NAME.to_string(),
+            part => format!("{AUTOSAVE_NAME}-{part}"),
+        }
+    }
+
+    /// While exploring, saves `autosave-PLACE.yaml` every `[map] autosave_every` seconds;
+    /// the previous one stays as its `.bak`.
     pub(super) fn autosave(&mut self, t: f64) {
         let every = self.config.map.autosave_every;
         let files = &mut self.files;
@@ -168,6 +204,24 @@ impl App {
             return;
         }
         files.last_autosave = t;
-        self.save_map(AUTOSAVE_NAME);
+        let name = self.autosave_name();
+        self.save_map(&name);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::file_name_part;
+
+    #[test]
+    fn a_place_becomes_a_safe_file_name_part() {
+        assert_eq!(file_name_part("walled garden"), "walled-garden");
+        assert_eq!(
+            file_name_part("serial:/dev/ttyUSB0@57600"),
+            "serial-dev-ttyusb0-57600"
+        );
+        assert_eq!(file_name_part("../../etc/passwd"), "etc-passwd");
+        assert_eq!(file_name_part("  "), "");
+        assert!(file_name_part(&"x".repeat(300)).len() <= super::PLACE_CHARS);
     }
 }

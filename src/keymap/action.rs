@@ -176,6 +176,7 @@ actions! {
     ClearRoute: "clear_route", "forget the planned path" => Pilot(Intent::ClearRoute);
     NextController: "next_controller", "next path controller" => Pilot(Intent::NextController);
     SaveMap: "save_map", "save the map (maps/saved)" => Console(SaveMap);
+    UndoMapLoad: "undo_map_load", "undo the last map load" => Pilot(Intent::UndoMapLoad);
     /// Unbinds a key that a lower layer of the keymap bound.
     Unbound: "none", "(unbound)" => Console(Nothing);
 }

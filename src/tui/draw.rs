@@ -91,6 +91,7 @@ pub fn draw_in(frame: &mut Frame, size: Rect, app: &App, theme: Theme) {
             entries,
             selected,
             app.picker_listing(),
+            app.picker_confirming(),
             theme,
             map_rect,
         );
@@ -106,6 +107,7 @@ fn draw_picker(
     entries: &[crate::app::loading::MapEntry],
     selected: usize,
     listing: bool,
+    confirming: bool,
     theme: Theme,
     map: Rect,
 ) {
@@ -144,9 +146,12 @@ fn draw_picker(
         };
         lines.push(Line::styled(text, theme.label()));
     }
-    let block = Block::bordered()
-        .title(" Load a map: up/down, enter loads, m leaves ")
-        .border_style(theme.border());
+    let title = if confirming {
+        " It does not fit (see the log): enter loads it anyway, esc keeps the map "
+    } else {
+        " Load a map: up/down, enter loads, u undoes a load, esc leaves "
+    };
+    let block = Block::bordered().title(title).border_style(theme.border());
     frame.render_widget(Clear, area);
     frame.render_widget(Paragraph::new(lines).block(block), area);
 }

@@ -5,10 +5,9 @@ use super::mode::Mode;
 use super::navigation::Target;
 use super::safety::LinkStatus;
 use super::teleop::{DriveKey, SpeedChange};
-use nalgebra::Matrix2;
 use navdeck_core::control::config::ControllerKind;
 use navdeck_core::data::{GripperCommand, Level};
-use navdeck_core::geometry::{Point2, Pose2, Twist};
+use navdeck_core::geometry::{Pose2, Twist};
 use navdeck_core::map::io::MapFile;
 
 /// A request to the pilot, from a key or a typed command.
@@ -45,6 +44,9 @@ pub enum Intent {
         map: Box<MapFile>,
         source: String,
     },
+    /// Put the planning map and the filter's landmarks back as they were before the last
+    /// `AdoptMap`.
+    UndoMapLoad,
     /// Place the estimate here (RViz's "2D Pose Estimate", `:pose`, ROS 2 /initialpose).
     SetPose(Pose2),
     /// Start global localisation afresh (`:relocalize`).
@@ -145,6 +147,10 @@ impl Pilot {
             Intent::AdoptMap { map, source } => {
                 self.adopt_map(&map, &source);
                 self.set_mode(Mode::Manual)
+            }
+            Intent::UndoMapLoad => {
+                self.undo_map_load();
+                false
             }
             Intent::SetPose(pose) => {
                 self.set_pose(pose);
@@ -346,36 +352,5 @@ impl Pilot {
         self.nav.following = None;
         self.nav.last_step = None;
         self.exploring.last_step = None;
-    }
-
-    /// Takes a saved map's occupancy and landmarks (as priors the filter may refine).
-    fn adopt_map(&mut self, map: &MapFile, source: &str) {
-        self.belief.absorb_grid(&map.grid);
-        let mut added = 0;
-        let landmarks = map
-            .extras
-            .as_ref()
-            .map(|e| e.landmarks.as_slice())
-            .unwrap_or_default();
-        for l in landmarks {
-            let c = &l.covariance;
-            let cov = Matrix2::new(c[0][0], c[0][1], c[1][0], c[1][1]);
-            let mean = Point2::new(l.mean[0], l.mean[1]);
-            if self.ekf.add_prior(l.id, mean, cov, l.sightings) {
-                added += 1;
-            }
-        }
-        let estimates: Vec<_> = self.ekf.landmarks().map(|l| (l.id, l.mean)).collect();
-        self.belief.update_landmarks(estimates);
-        self.log(
-            Level::Success,
-            format!(
-                "loaded {source}: {} x {} cells at {} m, {} landmarks ({added} new to the filter)",
-                map.grid.width,
-                map.grid.height,
-                map.grid.resolution,
-                landmarks.len()
-            ),
-        );
     }
 }

@@ -16,6 +16,7 @@ pub mod estimate;
 mod exploration;
 mod intent;
 pub mod localize;
+mod map_load;
 mod mapping;
 pub mod mode;
 pub mod navigation;

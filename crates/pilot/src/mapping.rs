@@ -21,11 +21,13 @@ const SIGHT_LINE_MARGIN: f64 = 0.1;
 pub(super) struct Upkeep {
     last_footprint: Option<Point2>,
     /// Where and when the last scan was folded into the map.
-    last_scan_pose: Option<(Pose2, f64)>,
+    pub last_scan_pose: Option<(Pose2, f64)>,
     /// The newest scan and the estimated pose it was taken from, for the map view.
     pub newest_scan: Option<(Pose2, LaserScan)>,
     /// Where the robot has driven.
     pub trail: super::trail::Trail,
+    /// What the last map load changed, for undoing it.
+    pub before_load: Option<Box<super::map_load::BeforeLoad>>,
 }
 
 impl Pilot {

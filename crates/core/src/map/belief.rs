@@ -226,6 +226,18 @@ impl BeliefMap {
         fill_grid(grid, self.evidence.occupied(), self.evidence.log_odds())
     }
 
+    /// As `occupancy_grid`, but a cell is free only where the evidence says free (more
+    /// rays passed through it than ended in it): what a map to be loaded is held against.
+    pub fn sensed_grid(&self) -> OccupancyGrid {
+        let mut grid = self.occupancy_grid();
+        for (cell, &log_odds) in grid.cells.iter_mut().zip(self.evidence.log_odds()) {
+            if *cell == 0 && log_odds > 0.0 {
+                *cell = -1;
+            }
+        }
+        grid
+    }
+
     /// A copy of the evidence the occupancy grid is made from (a plain copy of two
     /// arrays): a recording makes the grid from it on its writer's thread, off the
     /// control loop.

@@ -1,6 +1,7 @@
 //! Maps: the planning costmap the robot builds from landmarks and scans, occupancy grids,
 //! and, later, their files.
 
+pub mod agreement;
 pub mod belief;
 pub mod config;
 pub mod contact;

@@ -136,11 +136,31 @@ fn on_terminal(
         &mut TtyEvents,
     ) -> Result<Exit, RunError>,
 ) -> Result<Result<Exit, RunError>> {
-    let mut guard = TerminalGuard::enter().context("cannot set up the terminal")?;
-    let mut events = TtyEvents::open(signals).context("cannot read the terminal")?;
+    use std::io::IsTerminal;
+    if !std::io::stdout().is_terminal() {
+        anyhow::bail!("{NEEDS_A_TERMINAL}: its output is not a terminal{FOR_SCRIPTS}");
+    }
+    // Without a terminal to read keys from, the OS says only "Not a typewriter" or "No
+    // such device or address": say what is missing instead.
+    let mut guard = TerminalGuard::enter().map_err(|e| no_keyboard(&e))?;
+    let mut events = TtyEvents::open(signals).map_err(|e| no_keyboard(&e))?;
     let outcome = loop_body(&mut guard.terminal, &mut events);
     signals.arm_immediate_exit(exit_deadline(), exit_status(&outcome));
     Ok(outcome)
+}
+
+const NEEDS_A_TERMINAL: &str = "navdeck's console needs a terminal";
+const FOR_SCRIPTS: &str = "; run it in a terminal, or use --headless for scripts";
+
+/// Why the console could not take the keyboard, naming what was missing.
+fn no_keyboard(e: &std::io::Error) -> anyhow::Error {
+    use std::io::IsTerminal;
+    let missing = if std::io::stdin().is_terminal() {
+        format!("its terminal cannot be set up to read keys ({e})")
+    } else {
+        "its input is not a terminal and it has no terminal to read keys from".to_string()
+    };
+    anyhow::anyhow!("{NEEDS_A_TERMINAL}: {missing}{FOR_SCRIPTS}")
 }
 
 /// Opens a new `dir/navdeck-STAMP-PID.log` (`dated_file`), making `dir` if needed.

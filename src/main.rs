@@ -2,7 +2,7 @@
 
 use anyhow::{Result, bail};
 use clap::Parser;
-use commands::args::{parse_key_rate, parse_pose};
+use commands::args::{parse_domain, parse_key_rate, parse_pose, whole};
 use commands::arm::ArmCommand;
 use commands::map::MapCommand;
 use commands::mission::MissionArgs;
@@ -43,7 +43,7 @@ struct Cli {
     ros2: bool,
 
     /// ROS 2: DDS domain ID (default: ROS_DOMAIN_ID, else 0).
-    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u16).range(0..=232))]
+    #[arg(long, value_name = "N", value_parser = parse_domain)]
     domain: Option<u16>,
 
     /// World for the twin: a world file (TOML, see maps/) or a Nav2 map (map_server
@@ -64,7 +64,8 @@ struct Cli {
         long,
         default_value_t = 1,
         value_name = "N",
-        allow_negative_numbers = true
+        allow_negative_numbers = true,
+        value_parser = whole::<u64>
     )]
     seed: u64,
 

@@ -156,12 +156,15 @@ impl Session {
                 let world = match (given, &spec.world) {
                     (Some(world), _) => world,
                     (None, Some(path)) if is_nav2_map(path) => {
-                        crate::sim::nav2_world::load(path, spec.start).with_context(|| {
-                            format!("cannot use map {} as a world", path.display())
+                        // One sentence naming the file and what is wrong with it.
+                        crate::sim::nav2_world::load(path, spec.start).map_err(|e| {
+                            let file = path.display();
+                            anyhow::anyhow!("cannot use map {file} as a world: {}", e.reason())
                         })?
                     }
-                    (None, Some(path)) => World::load(path)
-                        .with_context(|| format!("cannot use world {}", path.display()))?,
+                    (None, Some(path)) => World::load(path).map_err(|e| {
+                        anyhow::anyhow!("cannot use world {}: {}", path.display(), e.reason())
+                    })?,
                     (None, None) => World::default_arena(),
                 };
                 let mut world = world;
@@ -377,8 +380,9 @@ fn localizer_for(
              or a Nav2 map as the twin's --world"
         );
     };
-    let map = crate::map::io::load(path)
-        .with_context(|| format!("cannot read the map {} for MCL", path.display()))?;
+    let map = crate::map::io::load(path).map_err(|e| {
+        anyhow::anyhow!("cannot use map {} for MCL: {}", path.display(), e.reason())
+    })?;
     let initial = match (choice.initial_pose, robot) {
         (Some(initial), _) => initial,
         // The twin starts where its world says, as the EKF does; a real robot is looked for.

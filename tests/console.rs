@@ -651,7 +651,7 @@ fn with_the_link_down_keys_say_why_and_autonomy_waits_for_the_robot() {
     app.handle_key(Key::char('w'), KeyKind::Press, 0.3);
     let log: Vec<String> = app.log_book().iter().map(|e| e.text.clone()).collect();
     assert!(
-        logged(&app, "forward: nothing moves (link lost: no odometry"),
+        logged(&app, "forward: nothing moves while the link is lost"),
         "{log:?}"
     );
     app.handle_key(key("e"), KeyKind::Press, 0.4);

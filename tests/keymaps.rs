@@ -162,7 +162,7 @@ fn help_lists_what_each_mode_really_does() {
 }
 
 #[test]
-fn teleop_layout_drives_with_ijkl_and_keeps_the_mode_keys() {
+fn teleop_layout_drives_with_ijkl_and_changes_speeds_with_q_z_w_x_e_c() {
     let map = shipped("teleop_twist_keyboard.toml");
     let manual = [
         ("u", Action::ForwardLeft),
@@ -174,8 +174,13 @@ fn teleop_layout_drives_with_ijkl_and_keeps_the_mode_keys() {
         ("m", Action::BackwardLeft),
         (",", Action::Backward),
         (".", Action::BackwardRight),
+        ("q", Action::SpeedUp),
+        ("z", Action::SpeedDown),
         ("w", Action::LinearUp),
         ("x", Action::LinearDown),
+        ("e", Action::AngularUp),
+        ("c", Action::AngularDown),
+        ("E", Action::ModeExplore),
         ("O", Action::GripperOpen),
         ("C", Action::GripperClose),
         ("L", Action::ModeLoad),
@@ -183,11 +188,13 @@ fn teleop_layout_drives_with_ijkl_and_keeps_the_mode_keys() {
     for (name, action) in manual {
         assert_eq!(map.lookup(Mode::Manual, key(name)), Some(action), "{name}");
     }
-    assert_eq!(
-        map.lookup(Mode::Manual, key("e")),
-        Some(Action::ModeExplore)
-    );
     assert_eq!(map.lookup(Mode::Manual, key("s")), None);
+    // q raises the speeds in every mode, so it never quits; ctrl-c still does.
+    assert_eq!(
+        map.lookup(Mode::Exploration, key("q")),
+        Some(Action::SpeedUp)
+    );
+    assert_eq!(map.lookup(Mode::Manual, key("ctrl-c")), Some(Action::Quit));
     assert_eq!(
         map.lookup(Mode::Exploration, key("o")),
         Some(Action::GripperOpen)

@@ -52,7 +52,7 @@ fn a_deliverable_block_beats_exploring_and_interrupts_it() {
     assert!(goal.distance(Point2::new(0.7, 0.0)) < 1e-6, "{goal:?}");
     assert!(rig.logged("Found red block 421"));
     assert!(rig.logged("Found red gate"));
-    assert!(rig.logged("Found red gate and blocks - switching to thinking"));
+    assert!(rig.logged("Found red gate and blocks - planning a delivery"));
     assert_eq!(rig.mission.state_label(), "travel to red block 421");
     assert_eq!(rig.mission.known_blocks(), 1);
 

@@ -112,7 +112,7 @@ fn a_gripper_key_in_manual_mode_goes_to_the_robot() {
     assert!(
         stepped
             .log_lines()
-            .any(|(_, _, text)| text == "closing gripper")
+            .any(|(_, _, text)| text == "gripper asked to close")
     );
     ticks(&mut robot, 0.0, 3.0);
     assert!(robot.pilot().gripper().is_some_and(|g| g.label() != "open"));

@@ -48,7 +48,7 @@ impl From<Typed> for Intent {
     }
 }
 
-pub const USAGE: &str = "goto X Y [THETA_DEG] | goto marker ID | controller [pid|pure_pursuit|hybrid] | clear | save [NAME] | mission restart | pose X Y THETA_DEG | relocalize";
+pub const USAGE: &str = "goto X Y [THETA_DEG] | goto marker ID | controller [pid|pure_pursuit|hybrid] | clear | save [NAME] | mission restart | pose X Y THETA_DEG | relocalize | quit";
 
 /// Reads one command line, or says what is wrong with it.
 pub fn parse(line: &str) -> Result<Intent, String> {
@@ -87,6 +87,8 @@ pub fn parse(line: &str) -> Result<Intent, String> {
             .map_err(|e| format!("pose: {e}")),
         ["pose", ..] => Err("pose wants X Y (metres) and THETA (degrees)".to_string()),
         ["relocalize"] => Ok(Typed::Relocalize.into()),
+        // vim's quit: stops the robot and ends the session, as the quit key does.
+        ["q" | "quit"] => Ok(Action::Quit.into()),
         ["mission", ..] => Err("mission wants `restart` (e resumes a paused mission)".to_string()),
         ["save", name] => Ok(Typed::Save(name.to_string()).into()),
         // The same as the save key: maps/saved.
@@ -129,6 +131,8 @@ mod tests {
             .into())
         );
         assert_eq!(parse("relocalize"), Ok(Typed::Relocalize.into()));
+        assert_eq!(parse("q"), Ok(Intent::Action(Action::Quit)));
+        assert_eq!(parse("quit"), Ok(Intent::Action(Action::Quit)));
     }
 
     #[test]

@@ -10,7 +10,8 @@ pub struct Entry {
     pub level: Level,
     pub text: String,
     /// How many lines of the same shape in a row this one stands for (routine lines such
-    /// as "new landmark 25 (boundary)" collapse into the last of them); 1 for most.
+    /// as "new landmark 25 (boundary)", and a held key's refusals such as "emergency stop
+    /// is on: …", collapse into the last of them); 1 for most.
     pub repeats: u32,
     /// The robot's node that said it (its /rosout), or None for navdeck's own line.
     pub source: Option<String>,
@@ -130,9 +131,11 @@ impl LogBook {
                 self.sink = None;
             }
         }
+        // Lines of one shape in a row collapse, whatever their level, except events
+        // (successes: "Found red block 421", "…423" are two finds).
         if let Some(last) = self.entries.back_mut()
-            && level == Level::Info
-            && last.level == Level::Info
+            && level != Level::Success
+            && last.level == level
             && last.source == entry.source
             && shape(&last.text) == shape(&entry.text)
         {
@@ -268,23 +271,28 @@ mod tests {
     }
 
     #[test]
-    fn routine_lines_of_one_shape_collapse_and_events_do_not() {
+    fn lines_of_one_shape_collapse_and_events_do_not() {
         let mut log = LogBook::new(10);
         for id in 25..37 {
             log.push(1.0, Level::Info, format!("new landmark {id} (boundary)"));
         }
         log.push(2.0, Level::Success, "Found red block 421");
         log.push(2.1, Level::Success, "Found red block 423");
+        for t in 0..50 {
+            let at = 3.0 + f64::from(t) / 30.0;
+            log.push(at, Level::Warn, "emergency stop is on: press it again");
+        }
         let lines: Vec<_> = log.iter().map(|e| (e.text.as_str(), e.repeats)).collect();
         assert_eq!(
             lines,
             [
                 ("new landmark 36 (boundary)", 12),
                 ("Found red block 421", 1),
-                ("Found red block 423", 1)
+                ("Found red block 423", 1),
+                ("emergency stop is on: press it again", 50)
             ]
         );
-        assert_eq!(log.written(), 14);
+        assert_eq!(log.written(), 64);
     }
 
     #[test]

@@ -174,10 +174,8 @@ impl App {
             return;
         }
         if self.view.help {
-            // A key that closes the help overlay does nothing else.
-            if drive.is_none() {
-                self.view.help = false;
-            }
+            // Any key closes the help overlay and does nothing else.
+            self.view.help = false;
             return;
         }
         if self.view.landmarks && self.table_key(key) {

@@ -15,6 +15,31 @@ pub(crate) fn bounded(s: &str, lo: f64, hi: f64, unit: &str) -> Result<f64, Stri
     }
 }
 
+/// A whole number (a seed, a count), or why not, naming the value: clap's own message
+/// for these is the standard library's bare "invalid digit found in string".
+pub(crate) fn whole<T: std::str::FromStr<Err = std::num::ParseIntError>>(
+    s: &str,
+) -> Result<T, String> {
+    use std::num::IntErrorKind;
+    s.trim()
+        .parse()
+        .map_err(|e: std::num::ParseIntError| match e.kind() {
+            IntErrorKind::Empty => "a whole number is missing".to_string(),
+            IntErrorKind::PosOverflow => format!("`{s}` is too large a number"),
+            _ => format!("`{s}` is not a whole number (0, 1, 2, …)"),
+        })
+}
+
+/// A ROS 2 domain ID: 0 to 232 (ROS 2's "ROS_DOMAIN_ID" page).
+pub(crate) fn parse_domain(s: &str) -> Result<u16, String> {
+    let d: u16 = whole(s).map_err(|_| format!("`{s}` is not a domain ID (0 to 232)"))?;
+    if d <= 232 {
+        Ok(d)
+    } else {
+        Err(format!("domain {d} is outside 0..=232"))
+    }
+}
+
 /// Headless keys per second of simulated time: 0.1 to 1000.
 pub(crate) fn parse_key_rate(s: &str) -> Result<f64, String> {
     bounded(s, 0.1, 1000.0, "keys a second")

@@ -29,7 +29,7 @@ pub struct PickTestArgs {
     #[arg(long, default_value_t = 200, value_name = "N", value_parser = clap::value_parser!(u64).range(1..=10_000))]
     picks: u64,
     /// Seed of the block placements and the twin's noise.
-    #[arg(long, default_value_t = 1, value_name = "N")]
+    #[arg(long, default_value_t = 1, value_name = "N", value_parser = super::args::whole::<u64>)]
     seed: u64,
     /// Robot, twin and [arm] parameters (TOML); without [arm], the default arm.
     #[arg(long, value_name = "FILE")]

@@ -20,7 +20,7 @@ pub(crate) enum MapCommand {
     Show {
         file: PathBuf,
         /// Columns of text.
-        #[arg(long, default_value_t = 80, value_name = "N")]
+        #[arg(long, default_value_t = 80, value_name = "N", value_parser = super::args::whole::<usize>)]
         width: usize,
     },
 }

@@ -21,7 +21,8 @@ pub(crate) struct MissionArgs {
         long,
         default_value_t = 1,
         value_name = "N",
-        allow_negative_numbers = true
+        allow_negative_numbers = true,
+        value_parser = super::args::whole::<u64>
     )]
     seed: u64,
     /// Run every seed of a range, e.g. 1..50, on all cores, and print the summary.

@@ -32,7 +32,7 @@ pub enum Ros2Command {
 #[derive(Debug, clap::Args)]
 pub struct TopicsArgs {
     /// DDS domain ID (default: ROS_DOMAIN_ID, else 0).
-    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u16).range(0..=232))]
+    #[arg(long, value_name = "N", value_parser = super::args::parse_domain)]
     domain: Option<u16>,
     /// Namespace of navdeck's own node (over [ros2] namespace); every topic is listed.
     #[arg(long, value_name = "NS")]

@@ -74,7 +74,7 @@ impl LocalizeArgs {
 #[derive(Debug, clap::Args)]
 pub struct TourArgs {
     /// The twin's noise seed, and the seed of the goals and the filter.
-    #[arg(long, default_value_t = 1, value_name = "N")]
+    #[arg(long, default_value_t = 1, value_name = "N", value_parser = super::args::whole::<u64>)]
     seed: u64,
     /// Run every seed of a range, e.g. 1..10, on all cores, one JSON line each.
     #[arg(long, value_name = "A..B", conflicts_with = "seed")]

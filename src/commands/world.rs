@@ -18,7 +18,7 @@ pub enum WorldCommand {
 #[derive(Debug, clap::Args)]
 pub struct GenerateArgs {
     /// Seed of the world: the same seed and options give the same world.
-    #[arg(long, value_name = "N")]
+    #[arg(long, value_name = "N", value_parser = super::args::whole::<u64>)]
     seed: u64,
     #[command(flatten)]
     shape: ShapeArgs,
@@ -34,10 +34,10 @@ pub struct ShapeArgs {
     #[arg(long, value_name = "W,H", value_parser = parse_size)]
     size: Option<(f64, f64)>,
     /// Blocks, red and blue in turn (default 3).
-    #[arg(long, value_name = "K", allow_negative_numbers = true)]
+    #[arg(long, value_name = "K", allow_negative_numbers = true, value_parser = super::args::whole::<usize>)]
     blocks: Option<usize>,
     /// Box obstacles (default 3).
-    #[arg(long, value_name = "K", allow_negative_numbers = true)]
+    #[arg(long, value_name = "K", allow_negative_numbers = true, value_parser = super::args::whole::<usize>)]
     obstacles: Option<usize>,
     /// rooms, boxes or corridors (default boxes).
     #[arg(long, value_name = "STYLE")]

@@ -112,7 +112,7 @@ actions! {
     ModeGripper: "mode_gripper", "gripper mode: the arm" => Pilot(Intent::Mode(Mode::Gripper));
     GripperOpen: "gripper_open", "open the gripper" => Pilot(Intent::Gripper(GripperCommand::Open));
     GripperClose: "gripper_close", "close the gripper" => Pilot(Intent::Gripper(GripperCommand::Close));
-    Quit: "quit", "stop the robot and quit" => Console(Quit);
+    Quit: "quit", "stop and quit (also :quit)" => Console(Quit);
     // Driving: held keys move the robot; the deadman stops it when keys stop. Their
     // names are the pilot's own names for the drive keys.
     Forward: DriveKey::Forward.name(), "drive forward" => Drive(DriveKey::Forward);
@@ -200,6 +200,21 @@ impl Action {
         Action::ALL.into_iter().find(|a| a.motion() == Some(key))
     }
 
+    /// The help line for this action in `mode`: where a key means something else in a
+    /// mode (speed keys jog the arm in gripper mode, the cursor picks a map in load
+    /// mode), that mode's meaning.
+    pub fn description_in(self, mode: Mode) -> &'static str {
+        use Action::*;
+        match (mode, self) {
+            (Mode::Gripper, SpeedUp | LinearUp | AngularUp) => "arm jog speed +10 %",
+            (Mode::Gripper, SpeedDown | LinearDown | AngularDown) => "arm jog speed -10 %",
+            (Mode::Load, CursorUp) => "choose the map above",
+            (Mode::Load, CursorDown) => "choose the map below",
+            (Mode::Load, PlanToCursor) => "load the chosen map",
+            _ => self.description(),
+        }
+    }
+
     /// The speed change a speed key asks for.
     pub fn speed_change(self) -> Option<SpeedChange> {
         match self.route() {
@@ -216,12 +231,24 @@ mod tests {
     #[test]
     fn descriptions_fit_a_help_column_at_80_columns() {
         for a in Action::ALL {
-            assert!(
-                a.description().chars().count() <= 27,
-                "{:?}",
-                a.description()
-            );
+            for mode in Mode::ALL {
+                let text = a.description_in(mode);
+                assert!(text.chars().count() <= 27, "{text:?}");
+            }
         }
+    }
+
+    #[test]
+    fn speed_keys_say_they_jog_the_arm_in_gripper_mode() {
+        assert_eq!(Action::SpeedUp.description(), "all speeds +10 %");
+        assert_eq!(
+            Action::SpeedUp.description_in(Mode::Gripper),
+            "arm jog speed +10 %"
+        );
+        assert_eq!(
+            Action::SpeedUp.description_in(Mode::Manual),
+            "all speeds +10 %"
+        );
     }
 
     #[test]

@@ -53,6 +53,8 @@ pub struct Playback {
     pub prompt: Option<String>,
     /// Why the last typed time was refused.
     pub refusal: Option<String>,
+    /// The replay's keys are shown over the screen (`?`).
+    pub help: bool,
 }
 
 impl Playback {
@@ -67,6 +69,7 @@ impl Playback {
             step,
             prompt: None,
             refusal: None,
+            help: false,
         }
     }
 
@@ -110,6 +113,11 @@ impl Playback {
 
     /// What `key` does: the replay's own keys, else a view key for the re-run.
     pub fn key(&mut self, key: Key) -> Asked {
+        if self.help {
+            // Any key closes the help and does nothing else, as in the console.
+            self.help = false;
+            return Asked::Nothing;
+        }
         if let Some(text) = self.prompt.as_mut() {
             match key.code {
                 KeyCode::Enter => {
@@ -140,6 +148,10 @@ impl Playback {
         match key.code {
             KeyCode::Char('q') => Asked::Quit,
             KeyCode::Char('c') if key.ctrl => Asked::Quit,
+            KeyCode::Char('?') => {
+                self.help = true;
+                Asked::Nothing
+            }
             KeyCode::Char(' ') => {
                 if self.paused && self.position >= self.end {
                     self.position = self.start;
@@ -259,5 +271,17 @@ mod tests {
         assert_eq!(p.key(key("r")), Asked::Nothing);
         assert_eq!(p.view, View::Rerun);
         assert_eq!(p.key(key("+")), Asked::View(key("+")));
+    }
+
+    #[test]
+    fn question_mark_shows_the_keys_and_any_key_closes_them_doing_nothing_else() {
+        let mut p = Playback::new((0.0, 600.0), 1.0, View::AsRecorded, 0.1);
+        assert_eq!(p.key(key("?")), Asked::Nothing);
+        assert!(p.help);
+        assert_eq!(p.key(key("q")), Asked::Nothing, "q closes the help only");
+        assert!(!p.help);
+        p.key(key("?"));
+        assert_eq!(p.key(key("5")), Asked::Nothing);
+        assert_eq!(p.position(), 0.0);
     }
 }

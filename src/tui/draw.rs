@@ -294,7 +294,7 @@ fn draw_help(frame: &mut Frame, app: &App, theme: Theme, size: Rect) {
     );
     let block = Block::bordered()
         .title(format!(
-            " Keys in {} mode ({}): any other key closes ",
+            " Keys in {} mode ({}): any key closes ",
             app.pilot().mode().label().to_lowercase(),
             app.keymap().source()
         ))

@@ -96,7 +96,10 @@ impl Pilot {
             Intent::Speed(change) => {
                 if self.teleop.adjust(change) {
                     let (v, w) = (self.teleop.linear_speed, self.teleop.angular_speed);
-                    self.log(Level::Info, format!("speed {v:.2} m/s, turn {w:.2} rad/s"));
+                    // teleop_twist_keyboard's line after a speed key ("currently: speed
+                    // 0.5 turn 1.0"), with units.
+                    let text = format!("currently: speed {v:.2} m/s turn {w:.2} rad/s");
+                    self.log(Level::Info, text);
                 } else {
                     // Routine, not a warning: repeated presses collapse in the log.
                     self.log(Level::Info, "speeds already at their limit");
@@ -253,11 +256,12 @@ impl Pilot {
             self.halt_arm();
             self.set_mode(Mode::Manual);
         }
-        if let LinkStatus::Lost(reason) = &self.gate.link {
-            // Nothing can move: say why rather than ignore the key.
+        if let LinkStatus::Lost(_) = &self.gate.link {
+            // Nothing can move: say so rather than ignore the key, in one short line (the
+            // status panel's Link row says why the link is lost).
             if !repeat {
                 let what = key.name().replace('_', " ");
-                let text = format!("{what}: nothing moves ({reason})");
+                let text = format!("{what}: nothing moves while the link is lost");
                 self.log(Level::Warn, text);
             }
             return;
@@ -313,11 +317,12 @@ impl Pilot {
             return false;
         }
         self.hand.pending = Some(cmd);
+        // The ask; the link's "gripper closing", "gripper closed" follow as they happen.
         let verb = match cmd {
-            GripperCommand::Open => "opening",
-            GripperCommand::Close => "closing",
+            GripperCommand::Open => "open",
+            GripperCommand::Close => "close",
         };
-        self.log(Level::Info, format!("{verb} gripper"));
+        self.log(Level::Info, format!("gripper asked to {verb}"));
         true
     }
 

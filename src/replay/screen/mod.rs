@@ -2,6 +2,7 @@
 //! recorded, with a time bar along the bottom; the loop that plays it.
 
 pub mod bar;
+pub mod help;
 pub mod recorded;
 pub mod run;
 
@@ -44,6 +45,9 @@ pub fn draw(frame: &mut Frame, replay: &Replay, playback: &Playback, theme: Them
         Paragraph::new(bar::line(playback, theme, usize::from(size.width))),
         bar_area,
     );
+    if playback.help {
+        help::draw(frame, body, theme);
+    }
 }
 
 fn draw_as_recorded(frame: &mut Frame, body: Rect, replay: &Replay, t: f64, theme: Theme) {

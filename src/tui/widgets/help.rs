@@ -2,6 +2,7 @@
 
 use crate::app::App;
 use crate::keymap::{Action, Key, KeyCode};
+use crate::pilot::mode::Mode;
 use crate::tui::theme::Theme;
 use ratatui::text::{Line, Span};
 
@@ -103,7 +104,8 @@ fn short(key: &Key) -> String {
 /// The help's entries for the active mode, as (keys, description), in `Action::ALL`
 /// order; a family whose keys and description fit in one entry is shown as one.
 pub fn entry_texts(app: &App) -> Vec<(String, String)> {
-    let bindings = app.keymap().bindings(app.pilot().mode());
+    let mode = app.pilot().mode();
+    let bindings = app.keymap().bindings(mode);
     let keys_of = |action: Action| {
         bindings
             .iter()
@@ -120,6 +122,7 @@ pub fn entry_texts(app: &App) -> Vec<(String, String)> {
             .iter()
             .find(|(members, _)| members.contains(action));
         if let Some((members, text)) = family {
+            let text = family_text(members, text, mode);
             let keys: Option<Vec<String>> = members.iter().map(|&m| keys_of(m)).collect();
             if let Some(keys) = keys {
                 let keys = keys.join(" ");
@@ -132,9 +135,30 @@ pub fn entry_texts(app: &App) -> Vec<(String, String)> {
             }
         }
         let names: Vec<String> = keys.iter().map(short).collect();
-        entries.push((names.join(" "), action.description().to_string()));
+        entries.push((names.join(" "), action.description_in(mode).to_string()));
     }
     entries
+}
+
+/// A family's description in `mode`, where its keys mean something else there: the
+/// speed keys jog the arm in gripper mode.
+fn family_text(members: &[Action], text: &'static str, mode: Mode) -> &'static str {
+    match (mode, members.first()) {
+        (Mode::Gripper, Some(Action::SpeedUp | Action::LinearUp | Action::AngularUp)) => {
+            "arm jog speed +/-10 %"
+        }
+        _ => text,
+    }
+}
+
+/// The keys that quit in the active mode, as the title and help write them (a plain
+/// key first), or the command when no key quits.
+pub fn quit_keys(app: &App) -> String {
+    let bindings = app.keymap().bindings(app.pilot().mode());
+    // `bindings` lists a plain key before ctrl- and alt- ones.
+    let quit = bindings.iter().find(|(a, _)| *a == Action::Quit);
+    quit.and_then(|(_, keys)| keys.first())
+        .map_or_else(|| ":quit".to_string(), short)
 }
 
 /// Lines of `key(s)  description`, one per entry.

@@ -26,6 +26,10 @@ pub fn line(app: &App, theme: Theme) -> Line<'static> {
         spans.push(Span::raw(" "));
         spans.push(Span::styled(" E-STOP ", theme.alert()));
     }
-    spans.push(Span::styled("  ? help  q quit", theme.label()));
+    let quit = super::help::quit_keys(app);
+    spans.push(Span::styled(
+        format!("  ? help  {quit} quit"),
+        theme.label(),
+    ));
     Line::from(spans)
 }

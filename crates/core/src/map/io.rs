@@ -13,12 +13,12 @@ use std::path::{Path, PathBuf};
 #[derive(Debug, thiserror::Error)]
 pub enum MapFileError {
     // The I/O error is part of the message, not a chained source, so it prints once.
-    #[error("cannot read map {path}: {error}")]
+    #[error("cannot read map {path}: {}", io_reason(error))]
     Read {
         path: PathBuf,
         error: std::io::Error,
     },
-    #[error("cannot write map {path}: {error}")]
+    #[error("cannot write map {path}: {}", io_reason(error))]
     Write {
         path: PathBuf,
         error: std::io::Error,
@@ -36,6 +36,48 @@ pub enum MapFileError {
     },
     #[error("map image {path}: {error}")]
     Image { path: PathBuf, error: PgmError },
+}
+
+impl MapFileError {
+    /// What is wrong, without the map file's name: for a message that names the file
+    /// itself ("cannot use map X as a world: …").
+    pub fn reason(&self) -> String {
+        match self {
+            MapFileError::Read { error, .. } => format!("cannot read it: {}", io_reason(error)),
+            MapFileError::Write { error, .. } => format!("cannot write it: {}", io_reason(error)),
+            MapFileError::Yaml { message, .. } => message.clone(),
+            MapFileError::Field {
+                line,
+                field,
+                value,
+                reason,
+                ..
+            } => {
+                let at = line.map(|l| format!("line {l}: ")).unwrap_or_default();
+                format!("{at}field `{field}` = {value}: {reason}")
+            }
+            MapFileError::Image { path, error } => format!("its image {}: {error}", path.display()),
+        }
+    }
+}
+
+/// An I/O error as a user reads it: what is wrong with the file, without the OS's
+/// "(os error 2)".
+pub fn io_reason(error: &std::io::Error) -> String {
+    use std::io::ErrorKind;
+    match error.kind() {
+        ErrorKind::NotFound => "there is no such file".to_string(),
+        ErrorKind::PermissionDenied => "permission denied".to_string(),
+        ErrorKind::IsADirectory => "it is a folder, not a file".to_string(),
+        _ => {
+            let text = error.to_string();
+            let text = text.split(" (os error").next().unwrap_or(&text);
+            let mut chars = text.chars();
+            chars.next().map_or_else(String::new, |first| {
+                first.to_lowercase().chain(chars).collect()
+            })
+        }
+    }
 }
 
 /// A landmark as saved: enough to seed the filter with it later.

@@ -57,10 +57,12 @@ impl Mission {
             if ready && self.announced.insert(colour) {
                 // Both a block and its gate known: stop exploring (seed 001 "Operating Modes /
                 // Autonomous Operation" and its "Found red gate and blocks" console line).
+                // The seed switches to its Thinking mode here; navdeck's mission plans the
+                // delivery itself and the mode stays exploration, so the line says that.
                 log.push((
                     Level::Info,
                     format!(
-                        "Found {} gate and blocks - switching to thinking",
+                        "Found {} gate and blocks - planning a delivery",
                         colour.label()
                     ),
                 ));

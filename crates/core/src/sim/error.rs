@@ -6,7 +6,7 @@ use std::path::PathBuf;
 /// A world file that could not be read, parsed or accepted.
 #[derive(Debug, thiserror::Error)]
 pub enum WorldError {
-    #[error("cannot read world {path}: {error}")]
+    #[error("cannot read world {path}: {}", crate::map::io::io_reason(error))]
     Read {
         path: PathBuf,
         error: std::io::Error,
@@ -23,6 +23,29 @@ pub enum WorldError {
         value: String,
         reason: String,
     },
+}
+
+impl WorldError {
+    /// What is wrong, without the world file's name: for a message that names the file
+    /// itself ("cannot use map X as a world: …").
+    pub fn reason(&self) -> String {
+        match self {
+            WorldError::Read { error, .. } => {
+                format!("cannot read it: {}", crate::map::io::io_reason(error))
+            }
+            WorldError::Parse { message, .. } => message.clone(),
+            WorldError::Invalid {
+                line,
+                field,
+                value,
+                reason,
+                ..
+            } => {
+                let at = line.map(|l| format!("line {l}: ")).unwrap_or_default();
+                format!("{at}field `{field}` = {value}: {reason}")
+            }
+        }
+    }
 }
 
 fn line_note(line: Option<usize>) -> String {

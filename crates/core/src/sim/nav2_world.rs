@@ -18,9 +18,10 @@ const SOLID: i8 = OCCUPIED / 2;
 /// The world of the Nav2 map at `path`, the robot starting at `start` or, without one,
 /// at the known-free cell farthest from anything else.
 pub fn load(path: &Path, start: Option<Pose2>) -> Result<World, WorldError> {
+    // The map's reason alone: the world error names the file already.
     let map = crate::map::io::load(path).map_err(|e| WorldError::Parse {
         path: path.to_path_buf(),
-        message: e.to_string(),
+        message: e.reason(),
     })?;
     from_grid(&map.grid, start, path)
 }

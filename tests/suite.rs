@@ -68,6 +68,7 @@ mod camera_panel;
 mod camera_pipeline;
 mod cli;
 mod console;
+mod console_truth;
 mod control_follow;
 mod dead_terminal;
 mod gripper;

@@ -69,6 +69,7 @@ mod camera_pipeline;
 mod cli;
 mod console;
 mod console_keys;
+mod console_truth;
 mod control_follow;
 mod dead_terminal;
 mod gripper;

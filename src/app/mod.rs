@@ -340,6 +340,12 @@ impl App {
 
     /// The world extent the map fits to: the twin's world, else 4 m x 4 m (seed 001's grid).
     pub fn world_extent(&self) -> (Point2, (f64, f64)) {
+        // On a known map, the place it maps: its walls' box, not the whole image.
+        if let Some(mcl) = self.pilot().mcl() {
+            let (lo, hi) = mcl.map().occupied_bounds();
+            let centre = Point2::new((lo.x + hi.x) / 2.0, (lo.y + hi.y) / 2.0);
+            return (centre, (hi.x - lo.x, hi.y - lo.y));
+        }
         match self.link().ground_truth() {
             Some(t) => (Point2::new(0.0, 0.0), (t.world().width, t.world().height)),
             None => (Point2::new(0.0, 0.0), (4.0, 4.0)),

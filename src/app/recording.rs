@@ -54,6 +54,13 @@ impl App {
         self.runtime.recording().map(|r| r.path())
     }
 
+    /// The recording in progress, for the header's mark: its size on disk so far, bytes,
+    /// and how long it has run, seconds.
+    pub fn recording_progress(&self) -> Option<(u64, f64)> {
+        let r = self.runtime.recording()?;
+        Some((r.bytes_written(), self.now() - r.started()))
+    }
+
     /// Waits until the recording's writer has written everything so far (benchmarks).
     pub fn wait_for_recording(&mut self) {
         if let Some(r) = self.runtime.recording_mut() {

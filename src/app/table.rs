@@ -29,6 +29,16 @@ impl App {
         landmarks
     }
 
+    /// Where the block carrying marker `id` was put down, when the mission delivered it:
+    /// the filter still holds the marker where it was picked up.
+    pub fn delivered_at(&self, id: u32) -> Option<crate::geometry::Point2> {
+        let mission = self.pilot().mission()?;
+        mission
+            .delivered_blocks()
+            .find(|b| b.markers.contains(&id))
+            .map(|b| b.position)
+    }
+
     /// While the landmark table is open it takes the arrows (and j, k, page keys) to
     /// choose a row, and enter to plan to it (as `:goto marker ID`); true when the key
     /// was its.

@@ -9,9 +9,12 @@ use ratatui::layout::Rect;
 use ratatui::text::Line;
 use ratatui::widgets::{Block, Clear, Paragraph};
 
-/// Columns inside the status panel's border.
-fn status_inner_width((_, _, w, _): Area) -> usize {
-    usize::from(w.saturating_sub(2))
+/// Columns and rows inside the status panel's border.
+fn status_inner((_, _, w, h): Area) -> (usize, usize) {
+    (
+        usize::from(w.saturating_sub(2)),
+        usize::from(h.saturating_sub(2)),
+    )
 }
 
 fn rect((x, y, w, h): Area) -> Rect {
@@ -55,12 +58,12 @@ pub fn draw_in(frame: &mut Frame, size: Rect, app: &App, theme: Theme) {
         frame.render_widget(Paragraph::new(line).style(theme.value()), bar);
     }
 
+    let (status_w, status_h) = status_inner(parts.status);
     let status_block = Block::bordered()
         .title(" Status ")
         .border_style(theme.border());
     frame.render_widget(
-        Paragraph::new(status::lines(app, theme, status_inner_width(parts.status)))
-            .block(status_block),
+        Paragraph::new(status::lines(app, theme, status_w, status_h)).block(status_block),
         rect(parts.status),
     );
 
@@ -117,18 +120,19 @@ fn draw_picker(
         map.width.saturating_sub(4),
         map.height.saturating_sub(2),
     );
+    // Columns as wide as the longest name (within reason) and the largest map.
+    let name_w =
+        (entries.iter().map(|e| e.name.chars().count()).max()).map_or(16, |n| n.clamp(8, 28));
     let mut lines: Vec<Line> = entries
         .iter()
         .enumerate()
         .map(|(i, e)| {
+            let name = text::fit(&e.name, name_w);
             let text = match &e.summary {
                 Ok((w, h, n, created)) => {
-                    format!(
-                        "{:<16} {w:.1} x {h:.1} m  {n:>3} landmarks  {created}",
-                        e.name
-                    )
+                    format!("{name:<name_w$} {w:>5.1} x {h:>5.1} m  {n:>3} landmarks  {created}")
                 }
-                Err(why) => format!("{:<16} unreadable: {why}", e.name),
+                Err(why) => format!("{name:<name_w$} unreadable: {why}"),
             };
             let style = if i == selected {
                 theme.mode()
@@ -191,12 +195,13 @@ fn draw_arm(frame: &mut Frame, app: &App, theme: Theme, map: Rect) {
     let inner = block.inner(area);
     frame.render_widget(Clear, area);
     let text = arm_view::lines(app, theme, usize::from(inner.width));
+    let text_rows = (text.len() as u16).min(inner.height);
     frame.render_widget(Paragraph::new(text).block(block), area);
     let drawing = Rect::new(
         inner.x,
-        inner.y + arm_view::TEXT_ROWS.min(inner.height),
+        inner.y + text_rows,
         inner.width,
-        inner.height.saturating_sub(arm_view::TEXT_ROWS),
+        inner.height - text_rows,
     );
     arm_view::drawing(app, theme, drawing, frame.buffer_mut());
 }
@@ -204,28 +209,30 @@ fn draw_arm(frame: &mut Frame, app: &App, theme: Theme, map: Rect) {
 /// The camera panel in the map's top-left corner: 32 columns of thumbnail (16:9).
 fn draw_camera(frame: &mut Frame, app: &App, theme: Theme, map: Rect) {
     let width = 34.min(map.width);
-    let thumb_rows = 9;
-    let height = (camera::TEXT_ROWS + thumb_rows + 2).min(map.height);
+    let thumb = app
+        .camera()
+        .status
+        .as_ref()
+        .and_then(|s| s.thumbnail.as_ref());
+    // No picture, no room kept for one.
+    let thumb_rows = if thumb.is_some() { 9 } else { 0 };
+    let text = camera::lines(app, theme, usize::from(width.saturating_sub(2)));
+    let height = (text.len() as u16 + thumb_rows + 2).min(map.height);
     let area = Rect::new(map.x, map.y, width, height);
     let block = Block::bordered()
         .title(" Camera (v) ")
         .border_style(theme.border());
     let inner = block.inner(area);
+    let text_rows = (text.len() as u16).min(inner.height);
     frame.render_widget(Clear, area);
-    let text = camera::lines(app, theme, usize::from(inner.width));
     frame.render_widget(Paragraph::new(text).block(block), area);
     let thumb_area = Rect::new(
         inner.x,
-        inner.y + camera::TEXT_ROWS.min(inner.height),
+        inner.y + text_rows,
         inner.width,
-        inner.height.saturating_sub(camera::TEXT_ROWS),
+        inner.height - text_rows,
     );
-    if let Some(thumb) = app
-        .camera()
-        .status
-        .as_ref()
-        .and_then(|s| s.thumbnail.as_ref())
-    {
+    if let Some(thumb) = thumb {
         camera::thumbnail(
             thumb,
             app.view().camera,

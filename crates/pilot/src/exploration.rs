@@ -111,6 +111,11 @@ impl Pilot {
             self.set_mode(Mode::Manual);
             return Twist::ZERO;
         }
+        if matches!(outputs.motion, Motion::Stop | Motion::Drive(_)) && self.nav.arrived {
+            // The mission has moved on from the goal it reached: its route is done.
+            self.drop_route();
+            self.nav.arrived = false;
+        }
         let twist = match outputs.motion {
             Motion::Stop => {
                 self.follower.clear_trajectory();

@@ -192,6 +192,11 @@ impl Pilot {
     pub fn link_status(&self) -> &LinkStatus {
         &self.gate.link
     }
+    /// Whether the robot has answered at least once this session: until it has, a link
+    /// that is not answering is still being waited for, not lost.
+    pub fn link_ever_up(&self) -> bool {
+        self.gate.link_was_up
+    }
     pub fn slam(&self) -> &EkfSlam {
         &self.ekf
     }

@@ -62,7 +62,17 @@ impl Pilot {
         }
         self.upkeep.last_scan_pose = Some((pose, t));
         let held = (self.hand.state == Some(GripperState::Holding)).then_some(JAWS);
-        self.belief.observe_scan_holding(pose, scan, held);
+        match self.mcl.as_ref().map(|m| m.map().clone()) {
+            // On a known map, scans fill in what it knows, never the unknown beyond its
+            // walls (a beam out through a gap would paint free space there).
+            Some(known) => {
+                let step = known.resolution / 2.0;
+                let mappable = move |p| known.is_known(p);
+                self.belief
+                    .observe_scan_within(pose, scan, held, (mappable, step));
+            }
+            None => self.belief.observe_scan_holding(pose, scan, held),
+        }
     }
 
     pub(super) fn map_footprint(&mut self) {

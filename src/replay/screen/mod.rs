@@ -37,7 +37,16 @@ pub fn draw(frame: &mut Frame, replay: &Replay, playback: &Playback, theme: Them
         return;
     }
     match playback.view {
-        View::Rerun => draw_in(frame, body, replay.app(), theme),
+        View::Rerun => {
+            draw_in(frame, body, replay.app(), theme);
+            // The re-run's header says it is a replay too, as the recorded view's does.
+            let mut title = crate::tui::widgets::title::line(replay.app(), theme);
+            title
+                .spans
+                .insert(1, Span::styled(" REPLAY · re-run ", theme.mode()));
+            frame.render_widget(ratatui::widgets::Clear, Rect::new(0, 0, body.width, 1));
+            frame.render_widget(Paragraph::new(title), Rect::new(0, 0, body.width, 1));
+        }
         View::AsRecorded => draw_as_recorded(frame, body, replay, playback.position(), theme),
     }
     let bar_area = Rect::new(0, body.height, size.width, BAR_ROWS);

@@ -12,14 +12,12 @@ use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
 use ratatui::text::Line;
 
-/// Text rows above the drawing.
-pub const TEXT_ROWS: u16 = 4;
 /// A joint within this of a limit is flagged, radians (5°).
 const NEAR_LIMIT: f64 = 0.0873;
 /// Manipulability under this share of the arm's stretched-out scale is "near singular".
 const NEAR_SINGULAR: f64 = 0.02;
 
-/// The panel's text, `width` columns at most.
+/// The panel's text, `width` columns at most; a warning wraps over up to three rows.
 pub fn lines(app: &App, theme: Theme, width: usize) -> Vec<Line<'static>> {
     let Some(arm) = app.pilot().arm() else {
         return Vec::new();
@@ -32,7 +30,7 @@ pub fn lines(app: &App, theme: Theme, width: usize) -> Vec<Line<'static>> {
             .collect();
     let tool = forward(&arm.config, &arm.target);
     let warning = warning(arm);
-    vec![
+    let mut lines = vec![
         fit(format!("J {}", degrees.join(" ")), theme.value()),
         fit(
             format!(
@@ -51,11 +49,17 @@ pub fn lines(app: &App, theme: Theme, width: usize) -> Vec<Line<'static>> {
             ),
             theme.value(),
         ),
-        match warning {
-            Some(w) => fit(w, theme.alert()),
-            None => fit("ok".into(), theme.label()),
-        },
-    ]
+    ];
+    // A warning says why in full, over up to three rows.
+    match warning {
+        Some(w) => lines.extend(
+            super::text::wrap_rows(&w, width, 3)
+                .into_iter()
+                .map(|l| Line::styled(l, theme.alert())),
+        ),
+        None => lines.push(fit("ok".into(), theme.label())),
+    }
+    lines
 }
 
 /// The most pressing warning about the arm, if any.

@@ -17,12 +17,15 @@ const BITS: [[u32; 4]; 2] = [[0x01, 0x02, 0x04, 0x40], [0x08, 0x10, 0x20, 0x80]]
 pub fn render(app: &App, vp: &Viewport, theme: Theme, buf: &mut Buffer) {
     let braille = app.view().braille;
     let slam = app.pilot().slam();
-    for l in slam.landmarks() {
+    // A delivered block's markers are drawn where it was put down, not where the filter
+    // last saw them (the mission ignores them once picked up).
+    let place = |id: u32| app.delivered_at(id);
+    for l in slam.landmarks().filter(|l| place(l.id).is_none()) {
         let style = theme.marker(MarkerCategory::of(l.id));
         draw_ellipse(l.mean, &l.covariance, vp, braille, style, buf);
     }
     for l in slam.landmarks() {
-        if let Some(cell) = vp.cell(l.mean) {
+        if let Some(cell) = vp.cell(place(l.id).unwrap_or(l.mean)) {
             let category = MarkerCategory::of(l.id);
             buf[cell]
                 .set_char(marker_glyph(category))

@@ -1,6 +1,7 @@
 //! The camera panel: frame rate, detection latency, the IDs in view, and a thumbnail of
 //! the newest frame in half blocks (two pixels a cell) or braille (eight dots a cell).
 
+use super::text::wrap_rows;
 use crate::app::App;
 use crate::app::view::CameraPanel;
 use crate::perception::frame::Thumbnail;
@@ -10,18 +11,31 @@ use ratatui::layout::Rect;
 use ratatui::style::{Color, Style};
 use ratatui::text::Line;
 
-/// Text rows above the thumbnail.
-pub const TEXT_ROWS: u16 = 2;
-
-/// The panel's text, `width` columns at most: rate and latency, then the IDs.
+/// The panel's text in `width` columns: rate and latency, then the IDs in view, wrapped
+/// over as many rows as they take (three at most).
 pub fn lines(app: &App, theme: Theme, width: usize) -> Vec<Line<'static>> {
     let feed = app.camera();
-    let fitted = |text: String, style| Line::styled(super::text::fit(&text, width), style);
+    let wrapped = |text: String, rows: usize, style| -> Vec<Line<'static>> {
+        wrap_rows(&text, width, rows)
+            .into_iter()
+            .map(|l| Line::styled(l, style))
+            .collect()
+    };
     let Some(status) = &feed.status else {
-        return vec![
-            fitted("no camera frames".into(), theme.label()),
-            fitted("(--sim-camera or --camera SRC)".into(), theme.label()),
-        ];
+        // Sightings may come without images: the twin's marker sensor gives them.
+        let source = if app.link().ground_truth().is_some() {
+            "markers in view come from the twin's marker sensor, not a camera"
+        } else {
+            "markers in view come from the link, not a camera"
+        };
+        let mut out = wrapped("no camera images".into(), 1, theme.label());
+        out.extend(wrapped(source.into(), 3, theme.label()));
+        out.extend(wrapped(
+            "(--sim-camera or --camera SRC shows them)".into(),
+            2,
+            theme.label(),
+        ));
+        return out;
     };
     let latency = status
         .latency
@@ -45,10 +59,48 @@ pub fn lines(app: &App, theme: Theme, width: usize) -> Vec<Line<'static>> {
         Some(e) => format!("{:.1} Hz  error: {e}", feed.rate),
         None => format!("{:.1} Hz  detect {latency}", feed.rate),
     };
-    vec![
-        fitted(first, theme.value()),
-        fitted(format!("IDs {ids}{refused}"), theme.value()),
-    ]
+    let mut out = wrapped(first, 2, theme.value());
+    out.extend(wrapped(format!("IDs {ids}{refused}"), 3, theme.value()));
+    out
+}
+
+/// Levels apart the darkest and lightest pixels must be for the picture to have ink.
+const MIN_CONTRAST: u8 = 12;
+
+/// The darkest and lightest levels of `pixels`, ignoring the extreme 1 % at each end so a
+/// stray pixel does not decide the stretch.
+fn levels(pixels: &[u8]) -> (u8, u8) {
+    let mut counts = [0usize; 256];
+    for &p in pixels {
+        counts[usize::from(p)] += 1;
+    }
+    let cut = pixels.len() / 100;
+    let level_at = |from_top: bool| {
+        let mut seen = 0;
+        let order: Box<dyn Iterator<Item = usize>> = if from_top {
+            Box::new((0..256).rev())
+        } else {
+            Box::new(0..256)
+        };
+        for level in order {
+            seen += counts[level];
+            if seen > cut {
+                return level as u8;
+            }
+        }
+        0
+    };
+    (level_at(false), level_at(true))
+}
+
+/// `p` with the levels `lo..=hi` stretched over 0..=255 (a flat picture stays as it is).
+fn stretch(p: u8, lo: u8, hi: u8) -> u8 {
+    if hi.saturating_sub(lo) < MIN_CONTRAST {
+        return p;
+    }
+    // Linear contrast stretch: (p - lo) * 255 / (hi - lo), clamped.
+    let v = (i32::from(p) - i32::from(lo)) * 255 / (i32::from(hi) - i32::from(lo));
+    v.clamp(0, 255) as u8
 }
 
 /// Draws the thumbnail into `area`, scaled to fill it.
@@ -68,14 +120,19 @@ pub fn thumbnail(
         _ => (1, 2),
     };
     let (px_w, px_h) = (cols * dots_x, rows * dots_y);
-    // Nearest-neighbour sampling of the thumbnail at the panel's resolution.
+    let (lo, hi) = levels(&thumb.pixels);
+    // Nearest-neighbour sampling of the thumbnail at the panel's resolution, its levels
+    // stretched to the full range (a contrast stretch, as an image viewer's "auto
+    // levels"): a marker a few levels darker than the floor shows as black on white.
     let sample = |x: usize, y: usize| {
-        thumb.at(
+        let p = thumb.at(
             x * thumb.width / px_w.max(1),
             y * thumb.height / px_h.max(1),
-        )
+        );
+        stretch(p, lo, hi)
     };
-    let mean = thumb.pixels.iter().map(|&p| u32::from(p)).sum::<u32>() / thumb.pixels.len() as u32;
+    // A picture with (almost) no contrast has no ink: stretching it would draw its noise.
+    let flat = hi.saturating_sub(lo) < MIN_CONTRAST;
     for row in 0..rows {
         for col in 0..cols {
             let cell = &mut buf[(area.x + col as u16, area.y + row as u16)];
@@ -88,7 +145,7 @@ pub fn thumbnail(
                     for (dx, column) in BITS.iter().enumerate() {
                         for (dy, bit) in column.iter().enumerate() {
                             // Dark pixels are ink: markers are black on white.
-                            if u32::from(sample(col * 2 + dx, row * 4 + dy)) < mean {
+                            if !flat && sample(col * 2 + dx, row * 4 + dy) < 128 {
                                 bits |= bit;
                             }
                         }
@@ -113,5 +170,28 @@ pub fn thumbnail(
                 }
             }
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_faint_marker_is_stretched_to_black_on_white() {
+        let mut pixels = vec![140u8; 400];
+        pixels[..40].fill(110);
+        let (lo, hi) = levels(&pixels);
+        assert_eq!((lo, hi), (110, 140));
+        assert_eq!(stretch(110, lo, hi), 0);
+        assert_eq!(stretch(140, lo, hi), 255);
+    }
+
+    #[test]
+    fn a_flat_picture_is_left_as_it_is() {
+        let mut pixels = vec![139u8; 400];
+        pixels[..200].fill(140);
+        let (lo, hi) = levels(&pixels);
+        assert_eq!(stretch(139, lo, hi), 139);
     }
 }

@@ -52,6 +52,20 @@ pub fn lines(
         } else {
             theme.value()
         };
+        if let Some(at) = app.delivered_at(l.id) {
+            // A delivered block's marker is where the block was put down.
+            out.push(Line::styled(
+                format!(
+                    "{:>4} {:<10} {:6.2} {:6.2} delivered",
+                    l.id,
+                    MarkerCategory::of(l.id).label(),
+                    at.x,
+                    at.y
+                ),
+                style,
+            ));
+            continue;
+        }
         out.push(Line::styled(
             format!(
                 "{:>4} {:<10} {:6.2} {:6.2} {:5.3} {:>5}",

@@ -10,6 +10,7 @@ pub mod log;
 pub mod map;
 pub mod particles;
 pub mod path;
+pub mod rows;
 pub mod sensing;
 pub mod status;
 pub mod text;

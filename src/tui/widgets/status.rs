@@ -1,18 +1,11 @@
 //! The status panel: mode, link, pose, velocities, limits, loop rate, sim time.
 
-use super::text::wrap_rows;
+use super::rows::{Need, Row, fit_rows};
 use crate::app::{App, LinkStatus};
 use crate::geometry::Pose2;
 use crate::pilot::mode::Mode;
 use crate::tui::theme::Theme;
-use ratatui::text::{Line, Span};
-
-fn row(theme: Theme, label: &str, value: String) -> Line<'static> {
-    Line::from(vec![
-        Span::styled(format!("{label:<LABEL$}"), theme.label()),
-        Span::styled(value, theme.value()),
-    ])
-}
+use ratatui::text::Line;
 
 fn pose_text(p: Pose2) -> String {
     // Rounded first, then + 0.0: a heading that rounds to zero shows no sign ("-0°").
@@ -41,75 +34,65 @@ fn dash_if_empty<T>(items: &[T], text: String) -> String {
     if items.is_empty() { "-".into() } else { text }
 }
 
-/// Columns a row's label takes.
-const LABEL: usize = 8;
-
-/// `line` cut to `width` columns, its last column `…` when anything was cut.
-fn fitted(line: Line<'static>, width: usize) -> Line<'static> {
-    if line.width() <= width {
-        return line;
-    }
-    let mut spans = Vec::new();
-    let mut room = width;
-    for span in line.spans {
-        let n = span.content.chars().count();
-        if n < room {
-            room -= n;
-            spans.push(span);
-            continue;
-        }
-        let cut: String = span.content.chars().take(room.saturating_sub(1)).collect();
-        spans.push(Span::styled(format!("{cut}…"), span.style));
-        break;
-    }
-    Line::from(spans)
+/// Status rows, fitted to `width` x `height`: long values wrap, and a short panel keeps
+/// the rows a user needs most (mode, link, pose, mission).
+pub fn lines(app: &App, theme: Theme, width: usize, height: usize) -> Vec<Line<'static>> {
+    fit_rows(rows(app), theme, width, height)
 }
 
-/// Status rows, most important first (a short panel shows the top ones), each fitted to
-/// `width` columns.
-pub fn lines(app: &App, theme: Theme, width: usize) -> Vec<Line<'static>> {
-    rows(app, theme, width)
-        .into_iter()
-        .map(|l| fitted(l, width))
-        .collect()
-}
-
-fn rows(app: &App, theme: Theme, width: usize) -> Vec<Line<'static>> {
+fn rows(app: &App) -> Vec<Row> {
+    let waiting = !app.pilot().link_ever_up();
     let link = match app.pilot().link_status() {
         LinkStatus::Ok => "ok".to_string(),
+        // Nothing was ever linked: the robot is awaited, not lost.
+        LinkStatus::Lost(_) if waiting => "waiting for robot".to_string(),
         LinkStatus::Lost(_) => "LOST".to_string(),
         LinkStatus::Back => "back, press a key".to_string(),
     };
     let (cmd, meas) = (app.pilot().commanded(), app.pilot().measured());
     let t = app.pilot().teleop();
     let (max_v, max_w) = t.limits();
-    let mut rows = vec![row(theme, "Mode", app.pilot().mode().label().to_string())];
-    rows.extend(navigation_rows(app, theme, width.saturating_sub(LABEL)));
-    rows.push(row(theme, "Link", format!("{} {link}", app.link().label())));
+    let mut rows = vec![Row::new("Mode", app.pilot().mode().label(), Need::Must)];
+    rows.extend(navigation_rows(app));
+    rows.push(Row::new("Link", format!("{} {link}", app.link().label()), Need::Must).wrapping(2));
     if let LinkStatus::Lost(reason) = app.pilot().link_status() {
         // Why, as the link says it now (its waiting time counts up), over up to three
-        // rows; the Link row already says it is lost.
+        // rows; the Link row already says it is lost or awaited.
         let reason = reason.strip_prefix("link lost: ").unwrap_or(reason);
-        let parts = wrap_rows(reason, width.saturating_sub(LABEL), 3);
-        rows.extend(parts.into_iter().map(|p| row(theme, "", p)));
+        rows.push(Row::new("", reason, Need::Must).wrapping(3));
     }
     for (label, value) in app.link().details(app.now()) {
-        rows.push(row(theme, label, value));
+        rows.push(Row::new(label, value, Need::Some).wrapping(3));
     }
-    rows.push(row(theme, "Pose", pose_text(app.pilot().estimated_pose())));
+    // Until MCL has found the robot, its mean may lie anywhere (inside a pillar): the
+    // pose is not known, and the row says so.
+    let lost = app.pilot().mcl().is_some_and(|m| !m.status().converged);
+    let pose = if lost {
+        "unknown: not localised yet".to_string()
+    } else {
+        pose_text(app.pilot().estimated_pose())
+    };
+    rows.push(Row::new("Pose", pose, Need::Must).wrapping(2));
     let (sx, sy, st) = app.pilot().pose_sigma();
-    rows.push(row(
-        theme,
+    rows.push(Row::new(
         "Sigma",
         format!("{sx:6.3} {sy:6.3} {:4.1}°", st.to_degrees()),
+        Need::Low,
     ));
     if let Some(mcl) = app.pilot().mcl() {
         let st = mcl.status();
-        rows.push(row(
-            theme,
-            "MCL",
-            format!("{} particles, ESS {:.0}", st.particles, st.effective),
-        ));
+        let c = mcl.config();
+        rows.push(
+            Row::new(
+                "MCL",
+                format!(
+                    "{} particles (KLD {}-{}), ESS {:.0}",
+                    st.particles, c.min_particles, c.max_particles, st.effective
+                ),
+                Need::Some,
+            )
+            .wrapping(2),
+        );
         let state = if st.converged {
             "converged".to_string()
         } else if st.clusters > 1 {
@@ -121,14 +104,13 @@ fn rows(app: &App, theme: Theme, width: usize) -> Vec<Line<'static>> {
         } else {
             format!("searching, spread {:.2} m", mcl.position_std())
         };
-        rows.push(row(theme, "Locate", state));
+        rows.push(Row::new("Locate", state, Need::High).wrapping(2));
     }
     if let Some(truth) = app.true_pose().filter(|_| app.view().show_truth) {
-        rows.push(row(theme, "Truth", pose_text(truth)));
+        rows.push(Row::new("Truth", pose_text(truth), Need::Low));
         let est = app.pilot().estimated_pose();
         let dtheta = crate::geometry::wrap_angle(truth.theta - est.theta);
-        rows.push(row(
-            theme,
+        rows.push(Row::new(
             "Error",
             format!(
                 "{:.3} m {:4.1}°",
@@ -136,62 +118,50 @@ fn rows(app: &App, theme: Theme, width: usize) -> Vec<Line<'static>> {
                 // An error that rounds to zero shows no sign.
                 (dtheta.to_degrees() * 10.0).round() / 10.0 + 0.0
             ),
+            Need::Some,
         ));
     }
     rows.extend([
-        row(
-            theme,
+        Row::new(
             "Cmd",
             format!("v {:5.2} w {:5.2}", cmd.linear, cmd.angular),
+            Need::Some,
         ),
-        row(
-            theme,
+        Row::new(
             "Meas",
             format!("v {:5.2} w {:5.2}", meas.linear, meas.angular),
+            Need::Low,
         ),
-        row(
-            theme,
+        Row::new(
             "Speed",
             format!(
                 "v {:.2}/{max_v:.2} w {:.1}/{max_w:.1}",
                 t.linear_speed, t.angular_speed
             ),
+            Need::High,
         ),
-        row(
-            theme,
-            "SLAM",
-            if app.pilot().mode() == crate::app::mode::Mode::Race {
-                format!(
-                    "{} lm, every {} frames",
-                    app.pilot().slam().landmark_count(),
-                    app.config().race.correct_every
-                )
-            } else {
-                format!(
-                    "{} lm, {} rejected",
-                    app.pilot().slam().landmark_count(),
-                    app.pilot().slam().rejected()
-                )
-            },
-        ),
-        row(
-            theme,
+    ]);
+    // Under MCL the pose comes from the known map, not from SLAM's landmarks.
+    if app.pilot().mcl().is_none() {
+        rows.push(Row::new("SLAM", slam_text(app), Need::Low));
+    }
+    rows.extend([
+        Row::new(
             "Gripper",
-            app.pilot()
-                .gripper()
-                .map_or("-".into(), |g| g.label().to_string()),
+            app.pilot().gripper().map_or("-", |g| g.label()),
+            Need::High,
         ),
-        row(
-            theme,
+        Row::new(
             "Loop",
             format!("{:.0} Hz  t {}", app.loop_rate(), clock_text(app.now())),
+            Need::Low,
         ),
     ]);
     if let Some(twin) = app.link().ground_truth() {
-        rows.push(row(
-            theme,
+        rows.push(Row::new(
             "Hits",
             format!("{} collisions", twin.collisions()),
+            Need::High,
         ));
     }
     // In words, as the help says them: "forward + turn left".
@@ -200,22 +170,54 @@ fn rows(app: &App, theme: Theme, width: usize) -> Vec<Line<'static>> {
         .iter()
         .map(|a| a.name().replace('_', " "))
         .collect();
-    rows.push(row(
-        theme,
-        "Driving",
-        dash_if_empty(&held, held.join(" + ")),
-    ));
+    rows.push(
+        Row::new(
+            "Driving",
+            dash_if_empty(&held, held.join(" + ")),
+            Need::Some,
+        )
+        .wrapping(2),
+    );
     let seen: Vec<String> = app.in_view().iter().map(|id| id.to_string()).collect();
-    rows.push(row(
-        theme,
-        "Seen",
-        dash_if_empty(&seen, format!("{}: {}", seen.len(), seen.join(" "))),
-    ));
+    rows.push(
+        Row::new(
+            "Seen",
+            dash_if_empty(&seen, format!("{}: {}", seen.len(), seen.join(" "))),
+            Need::Some,
+        )
+        .wrapping(3),
+    );
     rows
 }
 
+/// SLAM's landmarks and how often it corrects (racing) or what it rejected.
+fn slam_text(app: &App) -> String {
+    let count = app.pilot().slam().landmark_count();
+    if app.pilot().mode() == Mode::Race {
+        format!(
+            "{count} lm, every {} frames",
+            app.config().race.correct_every
+        )
+    } else {
+        format!("{count} lm, {} rejected", app.pilot().slam().rejected())
+    }
+}
+
+/// The mission's blocks in words: delivered (of how many, when the world says), found
+/// so far, and how long the mission has run.
+fn blocks_text(app: &App, delivered: usize, found: usize) -> String {
+    let of = match app.config().mission.total_blocks {
+        0 => String::new(),
+        n => format!(" of {n}"),
+    };
+    format!(
+        "{delivered}{of} delivered, {found} found (mission {})",
+        minutes_text(app.pilot().mission_elapsed())
+    )
+}
+
 /// The path and its progress, right under the mode: what an autonomous mode is doing.
-fn navigation_rows(app: &App, theme: Theme, room: usize) -> Vec<Line<'static>> {
+fn navigation_rows(app: &App) -> Vec<Row> {
     let mut rows = Vec::new();
     if let Some(m) = app.pilot().mission() {
         // Out of exploration the mission is paused, not running: `e` takes it up again.
@@ -228,37 +230,28 @@ fn navigation_rows(app: &App, theme: Theme, room: usize) -> Vec<Line<'static>> {
         // The state and its target, and why, can be long: two rows each, broken
         // between words.
         let reason = if paused { String::new() } else { m.reason() };
-        for (label, text) in [("Mission", state), ("Why", reason)] {
-            for (k, part) in wrap_rows(&text, room, 2).into_iter().enumerate() {
-                rows.push(row(theme, if k == 0 { label } else { "" }, part));
-            }
-        }
-        let total = match app.config().mission.total_blocks {
-            0 => "?".to_string(),
-            n => n.to_string(),
-        };
-        rows.push(row(
-            theme,
-            "Blocks",
-            format!(
-                "{}/{total} done {} seen {}",
-                m.delivered(),
-                m.known_blocks(),
-                minutes_text(app.pilot().mission_elapsed())
-            ),
-        ));
+        rows.push(Row::new("Mission", state, Need::Must).wrapping(2));
+        rows.push(Row::new("Why", reason, Need::High).wrapping(2));
+        rows.push(
+            Row::new(
+                "Blocks",
+                blocks_text(app, m.delivered(), m.known_blocks()),
+                Need::High,
+            )
+            .wrapping(2),
+        );
     }
     let controller = app.pilot().follower().controller().label();
     if let Some(f) = app.pilot().following() {
-        rows.push(row(
-            theme,
+        rows.push(Row::new(
             "Path",
             format!("{:.2} m, {:.0} s left", f.remaining, f.eta),
+            Need::High,
         ));
-        rows.push(row(
-            theme,
+        rows.push(Row::new(
             "XTE",
             format!("{:+.1} cm  {controller}", f.cross_track * 100.0),
+            Need::Low,
         ));
     } else if let Some(route) = app.pilot().route() {
         let state = if app.pilot().arrived() {
@@ -266,17 +259,20 @@ fn navigation_rows(app: &App, theme: Theme, room: usize) -> Vec<Line<'static>> {
         } else {
             "to"
         };
-        rows.push(row(
-            theme,
-            "Path",
-            format!("{:.2} m {state} {}", route.plan.length, route.label),
-        ));
+        rows.push(
+            Row::new(
+                "Path",
+                format!("{:.2} m {state} {}", route.plan.length, route.label),
+                Need::High,
+            )
+            .wrapping(2),
+        );
     }
     if let Some(c) = app.goal_cursor() {
-        rows.push(row(
-            theme,
+        rows.push(Row::new(
             "Cursor",
             format!("{:6.2} {:6.2}  {controller}", c.x, c.y),
+            Need::High,
         ));
     }
     rows
@@ -294,18 +290,6 @@ mod tests {
     #[test]
     fn clock_reads_hours_minutes_seconds() {
         assert_eq!(clock_text(3725.9), "1:02:05");
-    }
-
-    #[test]
-    fn a_row_too_long_ends_in_an_ellipsis_and_one_that_fits_is_kept() {
-        let theme = Theme::from_env(None);
-        let long = row(theme, "Path", "1.72 m arrived at (1.62, -0.53)".into());
-        let cut = fitted(long, 30);
-        let text: String = cut.spans.iter().map(|s| s.content.as_ref()).collect();
-        assert_eq!(text, "Path    1.72 m arrived at (1.…");
-        assert_eq!(cut.width(), 30);
-        let short = fitted(row(theme, "Mode", "MANUAL".into()), 30);
-        assert_eq!(short.width(), 14);
     }
 
     #[test]

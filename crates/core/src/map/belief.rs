@@ -149,6 +149,19 @@ impl BeliefMap {
     /// `observe_scan`, leaving out the beams that end in `held`: what the gripper holds
     /// moves with the robot and is not part of the world.
     pub fn observe_scan_holding(&mut self, pose: Pose2, scan: &LaserScan, held: Option<HeldZone>) {
+        self.observe_scan_within(pose, scan, held, (|_| true, f64::INFINITY));
+    }
+
+    /// `observe_scan_holding`, each beam cut where it first reaches a point `mappable`
+    /// refuses, checked every `step` metres along it (beyond a known map's walls): from
+    /// there on it adds nothing, not even its hit.
+    pub fn observe_scan_within(
+        &mut self,
+        pose: Pose2,
+        scan: &LaserScan,
+        held: Option<HeldZone>,
+        (mappable, step): (impl Fn(Point2) -> bool, f64),
+    ) {
         for (k, &range) in scan.ranges.iter().enumerate() {
             let range = f64::from(range);
             if range.is_nan() || range < scan.range_min {
@@ -161,7 +174,11 @@ impl BeliefMap {
             if hit && held.is_some_and(|z| z.contains(pose, end)) {
                 continue;
             }
-            self.observe_ray(pose.position(), end, hit);
+            let (end, hit) = match cut_at(pose.position(), end, step, &mappable) {
+                Some(stop) => (stop, false),
+                None => (end, hit),
+            };
+            self.observe_ray_within(pose.position(), end, hit, &mappable);
         }
     }
 
@@ -270,7 +287,19 @@ impl BeliefMap {
     }
 
     fn observe_ray(&mut self, from: Point2, to: Point2, hit: bool) {
+        self.observe_ray_within(from, to, hit, |_| true);
+    }
+
+    /// `observe_ray`, adding nothing to a cell whose centre `mappable` refuses.
+    fn observe_ray_within(
+        &mut self,
+        from: Point2,
+        to: Point2,
+        hit: bool,
+        mappable: impl Fn(Point2) -> bool,
+    ) {
         let map = &self.costmap;
+        let (origin, res) = (map.origin, map.resolution);
         let cell = |p: Point2| {
             (
                 ((p.x - map.origin.x) / map.resolution).floor() as i64,
@@ -283,6 +312,13 @@ impl BeliefMap {
         let (evidence, touched) = (&mut self.evidence, &mut self.touched);
         line_cells(x0, y0, x1, y1, |x, y| {
             if x < 0 || y < 0 || x >= w || y >= h {
+                return;
+            }
+            let centre = Point2::new(
+                origin.x + (x as f64 + 0.5) * res,
+                origin.y + (y as f64 + 0.5) * res,
+            );
+            if !mappable(centre) {
                 return;
             }
             let delta = if hit && (x, y) == (x1, y1) {
@@ -374,6 +410,28 @@ impl EvidenceSnapshot {
     }
 }
 
+/// The last point `step` apart along `from`-`to` before the first one `mappable` refuses,
+/// if any is refused (`from` itself refused: `from`).
+fn cut_at(
+    from: Point2,
+    to: Point2,
+    step: f64,
+    mappable: impl Fn(Point2) -> bool,
+) -> Option<Point2> {
+    let length = from.distance(to);
+    let n = (length / step).ceil().max(1.0) as usize;
+    let mut last = from;
+    for k in 0..=n {
+        let f = k as f64 / n as f64;
+        let p = Point2::new(from.x + f * (to.x - from.x), from.y + f * (to.y - from.y));
+        if !mappable(p) {
+            return Some(last);
+        }
+        last = p;
+    }
+    None
+}
+
 /// `grid`'s cells from the evidence: occupied, known free (evidence either way) or unknown.
 fn fill_grid(mut grid: OccupancyGrid, occupied: &[bool], log_odds: &[f32]) -> OccupancyGrid {
     // Zipped slices, no indexing: the loop vectorises.
@@ -388,4 +446,18 @@ fn fill_grid(mut grid: OccupancyGrid, occupied: &[bool], log_odds: &[f32]) -> Oc
         };
     }
     grid
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_beam_is_cut_before_the_first_point_outside() {
+        let inside = |p: Point2| p.x <= 1.0;
+        let from = Point2::new(0.0, 0.0);
+        assert_eq!(cut_at(from, Point2::new(0.8, 0.0), 0.1, inside), None);
+        let stop = cut_at(from, Point2::new(3.0, 0.0), 0.1, inside).unwrap();
+        assert!((stop.x - 1.0).abs() < 0.11 && stop.x <= 1.0, "{stop:?}");
+    }
 }

@@ -11,7 +11,7 @@ use super::objects::{Colour, Gate};
 use super::pickup::name;
 use super::step::{Inputs, Level, Motion};
 use crate::data::GripperCommand;
-use crate::geometry::{Twist, wrap_angle};
+use crate::geometry::{Point2, Twist, wrap_angle};
 
 #[derive(Clone, Debug)]
 enum Stage {
@@ -30,7 +30,8 @@ enum Stage {
 #[derive(Clone, Debug, PartialEq)]
 pub(crate) enum DropEvent {
     Go(Motion, Option<GripperCommand>),
-    Delivered,
+    /// Put down, its centre where it was let go.
+    Delivered(Point2),
     GiveUp,
 }
 
@@ -46,6 +47,8 @@ pub(crate) struct Delivery {
     slot: usize,
     stage: Stage,
     since: f64,
+    /// Where the block's centre was when the gripper opened.
+    let_go: Option<Point2>,
 }
 
 /// Drop places side by side across the 0.3 m gate, then a row further out: a block lies
@@ -53,6 +56,8 @@ pub(crate) struct Delivery {
 /// few centimetres off its place, so 0.2 m apart keeps the next drop clear of the last.
 const SLOT_OFFSETS: [f64; 2] = [-0.10, 0.10];
 const ROW_DEPTH: f64 = 0.12;
+/// How far ahead of the robot's centre a carried block's centre lies, metres.
+const CARRIED_AHEAD: f64 = 0.10;
 /// A gate estimate that moved or turned this much gets a new drop place (metres, radians).
 const REFRESH_MOVE: f64 = 0.05;
 const REFRESH_TURN: f64 = 20.0 * std::f64::consts::PI / 180.0;
@@ -92,6 +97,7 @@ impl Delivery {
             slot,
             stage: Stage::Travel(Leg::new(goal, label)),
             since: t,
+            let_go: None,
         }
     }
 
@@ -198,6 +204,11 @@ impl Delivery {
             Stage::Open => match opened(inputs.gripper, waited, config) {
                 Wait::Waiting => stop,
                 outcome => {
+                    let ahead = Point2::new(pose.theta.cos(), pose.theta.sin());
+                    self.let_go = Some(Point2::new(
+                        pose.x + CARRIED_AHEAD * ahead.x,
+                        pose.y + CARRIED_AHEAD * ahead.y,
+                    ));
                     if outcome == Wait::TimedOut {
                         log.push((Level::Warn, "Gripper did not report open".into()));
                     }
@@ -225,7 +236,8 @@ impl Delivery {
             }
             Stage::BackOff => {
                 if waited >= config.back_off_time - 1e-9 {
-                    return DropEvent::Delivered;
+                    let here = pose.position();
+                    return DropEvent::Delivered(self.let_go.unwrap_or(here));
                 }
                 DropEvent::Go(Motion::Drive(Twist::new(-BACK_OFF_SPEED, 0.0)), None)
             }

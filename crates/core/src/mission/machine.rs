@@ -284,8 +284,8 @@ impl Mission {
                 let arm = self.arm.as_mut();
                 match delivery.step(inputs, &self.config, &mut self.ctx, arm, log) {
                     DropEvent::Go(motion, gripper) => Tick::Out(motion, gripper),
-                    DropEvent::Delivered => {
-                        self.objects.deliver(odd);
+                    DropEvent::Delivered(at) => {
+                        self.objects.deliver(odd, at);
                         self.held = None;
                         self.delivered_markers.extend([odd, odd + 1]);
                         self.stamp(odd, t, 3);

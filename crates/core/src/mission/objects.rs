@@ -180,10 +180,12 @@ impl Objects {
         self.seen_from.remove(&odd);
     }
 
-    /// Marks a block delivered: it is no longer a target, wherever its markers turn up.
-    pub fn deliver(&mut self, odd: u32) {
+    /// Marks a block delivered, its centre now `at`: it is no longer a target, wherever
+    /// its markers turn up.
+    pub fn deliver(&mut self, odd: u32, at: Point2) {
         if let Some(b) = self.blocks.get_mut(&odd) {
             b.delivered = true;
+            b.position = at;
         }
     }
 
@@ -311,9 +313,15 @@ mod tests {
         let drop = gate.in_front(0.3);
         assert!(drop.distance(Point2::new(1.7, 1.0)) < 1e-9);
         assert!(gate.facing().abs() < 1e-9, "faces +x, towards the wall");
-        o.deliver(423);
+        o.deliver(423, Point2::new(1.6, 1.0));
         assert_eq!(o.delivered(), 1);
         o.update(&marks, Point2::new(0.0, 0.0), 0.05, &unknown());
         assert!(o.blocks().all(|b| b.delivered));
+        let moved = o.blocks().find(|b| b.markers[0] == 423).unwrap();
+        assert_eq!(
+            moved.position,
+            Point2::new(1.6, 1.0),
+            "drawn where it was put down"
+        );
     }
 }

@@ -76,6 +76,11 @@ impl Mission {
         self.objects.delivered()
     }
 
+    /// Blocks delivered so far, each where it was put down.
+    pub fn delivered_blocks(&self) -> impl Iterator<Item = &super::objects::Block> {
+        self.objects.blocks().filter(|b| b.delivered)
+    }
+
     /// Blocks confirmed by both markers, delivered ones included.
     pub fn known_blocks(&self) -> usize {
         self.objects

@@ -63,6 +63,8 @@ pub struct Recorder {
     /// Wait for the writer when its queue is full instead of dropping: for sessions on
     /// simulated time, where nothing real waits.
     waits: bool,
+    /// Bytes in the file so far, counted by the writer's thread.
+    written: Arc<std::sync::atomic::AtomicU64>,
 }
 
 /// A CDR message as ROS 2 carries it: the encapsulation header, then the body.
@@ -114,6 +116,12 @@ impl Recorder {
             level: config.level,
             chunk_period_ns: (config.chunk_period * 1e9) as u64,
         };
+        let written = Arc::new(std::sync::atomic::AtomicU64::new(0));
+        let file = writer::CountedFile {
+            file,
+            written: written.clone(),
+            position: 0,
+        };
         let mcap = writer::open(file, &options).map_err(|e| fail(e.to_string()))?;
         let (sender, packets) = std::sync::mpsc::sync_channel(QUEUE);
         let problem = Arc::new(Mutex::new(None));
@@ -134,11 +142,17 @@ impl Recorder {
             problem,
             reported: false,
             waits: false,
+            written,
         })
     }
 
     pub fn path(&self) -> &Path {
         &self.path
+    }
+
+    /// Bytes the writer has put in the file so far (it writes a chunk at a time).
+    pub fn bytes_written(&self) -> u64 {
+        self.written.load(std::sync::atomic::Ordering::Relaxed)
     }
 
     /// Nanoseconds since the epoch of session time `t`.

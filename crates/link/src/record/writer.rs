@@ -7,7 +7,8 @@ use super::topics::TOPICS;
 use mcap::records::MessageHeader;
 use std::collections::BTreeMap;
 use std::fs::File;
-use std::io::BufWriter;
+use std::io::{BufWriter, Write};
+use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::mpsc::Receiver;
 use std::sync::{Arc, Mutex};
 
@@ -54,10 +55,38 @@ pub(super) struct Options {
     pub chunk_period_ns: u64,
 }
 
-type McapWriter = mcap::Writer<BufWriter<File>>;
+/// The recording's file, keeping its length where the console can read it as it grows.
+pub(super) struct CountedFile {
+    pub file: File,
+    /// The file's length so far, bytes.
+    pub written: Arc<AtomicU64>,
+    /// Where the next write goes (the MCAP writer seeks back to fill in lengths).
+    pub position: u64,
+}
+
+impl Write for CountedFile {
+    fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+        let n = self.file.write(buf)?;
+        self.position += n as u64;
+        self.written.fetch_max(self.position, Ordering::Relaxed);
+        Ok(n)
+    }
+    fn flush(&mut self) -> std::io::Result<()> {
+        self.file.flush()
+    }
+}
+
+impl std::io::Seek for CountedFile {
+    fn seek(&mut self, pos: std::io::SeekFrom) -> std::io::Result<u64> {
+        self.position = self.file.seek(pos)?;
+        Ok(self.position)
+    }
+}
+
+type McapWriter = mcap::Writer<BufWriter<CountedFile>>;
 
 /// Opens the MCAP file on `file` and registers every topic.
-pub(super) fn open(file: File, options: &Options) -> Result<McapWriter, mcap::McapError> {
+pub(super) fn open(file: CountedFile, options: &Options) -> Result<McapWriter, mcap::McapError> {
     let compression = match options.compression {
         Compression::Zstd => Some(mcap::Compression::Zstd),
         Compression::Lz4 => Some(mcap::Compression::Lz4),
@@ -160,7 +189,7 @@ pub(super) fn run(
         .into_inner()
         .into_inner()
         .ok()
-        .and_then(|f| f.metadata().ok())
+        .and_then(|f| f.file.metadata().ok())
         .map_or(0, |m| m.len());
     if let Some(why) = failed
         && let Ok(mut slot) = problem.lock()

@@ -37,6 +37,8 @@ pub struct Recording {
     wheel_angles: [f64; 2],
     /// The newest body twist the wheels showed (nav_msgs/Odometry's twist).
     twist: (f64, f64),
+    /// Session time the recording started.
+    started: f64,
 }
 
 /// A path told apart from another: its points' count, first and last point, and the
@@ -70,6 +72,7 @@ impl Recording {
             path: None,
             blocks,
             truth_at: now,
+            started: now,
             wheel_angles: [0.0; 2],
             twist: (0.0, 0.0),
         }
@@ -82,6 +85,16 @@ impl Recording {
     /// Where the recording is being written.
     pub fn path(&self) -> &std::path::Path {
         self.recorder.path()
+    }
+
+    /// Session time the recording started.
+    pub fn started(&self) -> f64 {
+        self.started
+    }
+
+    /// Bytes in the recording's file so far.
+    pub fn bytes_written(&self) -> u64 {
+        self.recorder.bytes_written()
     }
 
     pub fn into_recorder(self) -> Recorder {
@@ -167,7 +180,12 @@ impl Recording {
             r.recorder.publish(Topic::Mode, t, StringMsg { data });
         }
         let config = &r.config;
-        if t - r.picture_at >= config.picture_period - 1e-9 {
+        // The first seconds are recorded more often, the gap doubling from half a second
+        // up to the period: a replay's first seconds then show the map and landmarks the
+        // log speaks of.
+        let started = r.started;
+        let ramp = |period: f64, last: f64| period.min((last - started).max(0.5));
+        if t - r.picture_at >= ramp(config.picture_period, r.picture_at) - 1e-9 {
             r.picture_at = t;
             let landmarks: Vec<_> = pilot.slam().landmarks().collect();
             r.recorder
@@ -191,7 +209,9 @@ impl Recording {
                 .publish_with(Topic::Plan, t, move || picture::path(&points, stamp, MAP));
         }
         let belief = pilot.belief();
-        if r.map_revision != Some(belief.revision()) && t - r.map_at >= config.map_period - 1e-9 {
+        if r.map_revision != Some(belief.revision())
+            && t - r.map_at >= ramp(config.map_period, r.map_at) - 1e-9
+        {
             r.map_at = t;
             r.map_revision = Some(belief.revision());
             // Two arrays copied here; the grid is made on the writer's thread.

@@ -25,7 +25,11 @@ pub struct Particle {
 /// What the status panel shows of the filter.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Status {
+    /// Particles now (KLD-sampling sets the count at each resampling).
     pub particles: usize,
+    /// The effective sample size 1 / Σ w² of the last scan's normalised weights, before
+    /// resampling (Probabilistic Robotics 4.3.4; AMCL resamples on it): how many
+    /// particles carry the belief. Equal to `particles` until a scan has weighed them.
     pub effective: f64,
     /// The share of the weight behind the estimate.
     pub cluster_weight: f64,
@@ -251,7 +255,8 @@ impl Mcl {
         self.particles = (poses.into_iter())
             .map(|pose| Particle { pose, weight: w })
             .collect();
-        self.effective = self.particles.len() as f64;
+        // `effective` stays the weighing's: after resampling it would always equal the
+        // count, and say nothing.
     }
 
     fn refresh_estimate(&mut self) {

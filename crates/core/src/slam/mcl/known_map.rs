@@ -17,6 +17,22 @@ pub enum KnownMapError {
     NoObstacles,
 }
 
+/// The corners of the box round the `occupied` cells of `grid` (at least one).
+fn bounds_of(occupied: &[bool], grid: &OccupancyGrid) -> (Point2, Point2) {
+    let (mut x0, mut y0, mut x1, mut y1) = (usize::MAX, usize::MAX, 0, 0);
+    for (i, _) in occupied.iter().enumerate().filter(|(_, o)| **o) {
+        let (cx, cy) = (i % grid.width, i / grid.width);
+        (x0, y0, x1, y1) = (x0.min(cx), y0.min(cy), x1.max(cx), y1.max(cy));
+    }
+    let corner = |cx: usize, cy: usize| {
+        Point2::new(
+            grid.origin.x + cx as f64 * grid.resolution,
+            grid.origin.y + cy as f64 * grid.resolution,
+        )
+    };
+    (corner(x0, y0), corner(x1 + 1, y1 + 1))
+}
+
 /// See the module comment.
 #[derive(Clone, Debug)]
 pub struct KnownMap {
@@ -29,6 +45,9 @@ pub struct KnownMap {
     free: Vec<u32>,
     /// Distance from each cell's centre to the nearest obstacle cell's centre, metres.
     distance: Vec<f32>,
+    /// The lower-left and upper-right corners of the occupied cells: the mapped place,
+    /// without the unknown margin round it.
+    occupied_bounds: (Point2, Point2),
 }
 
 impl KnownMap {
@@ -44,6 +63,7 @@ impl KnownMap {
         if !occupied.iter().any(|&o| o) {
             return Err(KnownMapError::NoObstacles);
         }
+        let occupied_bounds = bounds_of(&occupied, grid);
         let squared = squared_distance_transform(&occupied, grid.width, grid.height);
         let distance = squared
             .iter()
@@ -57,7 +77,13 @@ impl KnownMap {
             occupied,
             free,
             distance,
+            occupied_bounds,
         })
+    }
+
+    /// The lower-left and upper-right corners of the occupied cells.
+    pub fn occupied_bounds(&self) -> (Point2, Point2) {
+        self.occupied_bounds
     }
 
     /// The cell index holding `p`, if on the map.
@@ -84,6 +110,13 @@ impl KnownMap {
     pub fn is_free(&self, p: Point2) -> bool {
         self.index_of(p.x, p.y)
             .is_some_and(|i| !self.occupied[i] && self.free.binary_search(&(i as u32)).is_ok())
+    }
+
+    /// Whether the map says anything of `p`: an obstacle or known free, not unknown and
+    /// not off the map.
+    pub fn is_known(&self, p: Point2) -> bool {
+        self.index_of(p.x, p.y)
+            .is_some_and(|i| self.occupied[i] || self.free.binary_search(&(i as u32)).is_ok())
     }
 
     pub fn cells(&self) -> usize {
@@ -268,6 +301,21 @@ mod tests {
             g.set(19, y, 100);
         }
         g
+    }
+
+    #[test]
+    fn the_occupied_bounds_leave_out_the_unknown_margin() {
+        // The room drawn inside a larger image with unknown (-1) all round it.
+        let mut g = OccupancyGrid::new(40, 30, 0.1, Point2::new(-1.0, -1.0), -1);
+        let inner = room();
+        for y in 0..10 {
+            for x in 0..20 {
+                g.set(x + 5, y + 8, inner.get(x, y));
+            }
+        }
+        let (lo, hi) = KnownMap::new(&g).unwrap().occupied_bounds();
+        assert!(lo.distance(Point2::new(-0.5, -0.2)) < 1e-9, "{lo:?}");
+        assert!(hi.distance(Point2::new(1.5, 0.8)) < 1e-9, "{hi:?}");
     }
 
     #[test]

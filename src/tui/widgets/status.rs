@@ -272,6 +272,9 @@ fn navigation_rows(app: &App, theme: Theme, room: usize) -> Vec<Line<'static>> {
             format!("{:.2} m {state} {}", route.plan.length, route.label),
         ));
     }
+    if let Some(progress) = app.pilot().waypoints().progress() {
+        rows.push(row(theme, "Route", progress));
+    }
     if let Some(c) = app.goal_cursor() {
         rows.push(row(
             theme,

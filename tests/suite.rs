@@ -108,4 +108,5 @@ mod snapshots;
 mod soak;
 mod vision;
 mod vision_survey;
+mod waypoints;
 mod world_generate;

@@ -74,7 +74,7 @@ impl App {
             }
             Handler::LogFilter => self.view.log.next_level(),
             Handler::LogSource => self.view.log.next_source(),
-            Handler::LogSearch => self.prompt = Some("/".to_string()),
+            Handler::LogSearch => self.prompt.open("/"),
             Handler::ToggleTruth => {
                 if self.link().ground_truth().is_some() {
                     self.view.show_truth = !self.view.show_truth;
@@ -93,7 +93,8 @@ impl App {
                 self.run_intent(pilot::Intent::Goto(Target::Point(goal)));
             }
             Handler::PoseEstimate => self.pose_estimate_key(),
-            Handler::CommandLine => self.prompt = Some(String::new()),
+            Handler::AddWaypoint => self.add_waypoint(None),
+            Handler::CommandLine => self.prompt.open(""),
             Handler::SaveMap => {
                 self.save_map(saving::SAVE_KEY_NAME);
             }
@@ -127,16 +128,43 @@ impl App {
             Typed::Save(name) => {
                 self.save_map(&name);
             }
+            Typed::AddWaypoint(w) => self.add_waypoint(Some(w)),
+            Typed::AddCursorWaypoint => self.add_waypoint(None),
+            Typed::Route(ask) => self.run_intent(pilot::Intent::Route(ask)),
+            Typed::SaveRoute(name) => self.save_route(&name),
+            Typed::LoadRoute(name) => self.load_route(&name),
+            Typed::ShowRoute => self.show_route(),
         }
     }
 
-    /// Moves thinking mode's goal cursor by one screen cell.
+    /// Moves thinking mode's goal cursor by (dx, dy) screen cells; the map pans to keep
+    /// it in view.
     fn move_cursor(&mut self, dx: f64, dy: f64) {
         let scale = self.view.scale(self.fitted_scale());
         let c = self
             .cursor
             .unwrap_or_else(|| self.pilot().estimated_pose().position());
         // One screen cell: a row is twice as tall as a column is wide.
-        self.cursor = Some(Point2::new(c.x + dx * scale, c.y + dy * 2.0 * scale));
+        let moved = Point2::new(c.x + dx * scale, c.y + dy * 2.0 * scale);
+        self.cursor = Some(moved);
+        let (centre, (w, h)) = (self.map_center(), self.map_span());
+        // Off the map: pan by whole cells so the cursor stays one cell inside the edge.
+        let (half_w, half_h) = (w / 2.0 - scale, h / 2.0 - 2.0 * scale);
+        let shift = |d: f64, half: f64| {
+            if d > half {
+                d - half
+            } else if d < -half {
+                d + half
+            } else {
+                0.0
+            }
+        };
+        let (sx, sy) = (
+            shift(moved.x - centre.x, half_w),
+            shift(moved.y - centre.y, half_h),
+        );
+        if sx != 0.0 || sy != 0.0 {
+            self.view.center = Some(Point2::new(centre.x + sx, centre.y + sy));
+        }
     }
 }

@@ -4,6 +4,7 @@
 use crate::control::config::ControllerKind;
 use crate::geometry::Point2;
 use crate::keymap::Action;
+use crate::pilot::waypoints::{RouteAsk, Waypoint};
 
 /// The commands that take arguments, so no key can stand for them.
 #[derive(Clone, Debug, PartialEq)]
@@ -26,6 +27,18 @@ pub enum Typed {
     SetPose(crate::geometry::Pose2),
     /// `relocalize`: MCL's global localisation afresh.
     Relocalize,
+    /// `waypoint add X Y [THETA_DEG]` or `goto+ X Y [THETA_DEG]`: queue a waypoint.
+    AddWaypoint(Waypoint),
+    /// `waypoint add` alone: queue the goal cursor.
+    AddCursorWaypoint,
+    /// `route start|pause|skip|clear|loop N`.
+    Route(RouteAsk),
+    /// `route save NAME` and `route load NAME`: a route file (NAME.route.yaml in the maps
+    /// folder, or a path as it is when it has a `/` or ends in `.yaml`).
+    SaveRoute(String),
+    LoadRoute(String),
+    /// `route` or `route show`: list the waypoints in the log.
+    ShowRoute,
 }
 
 /// Everything that changes the console's state, through one door (`App::apply`): a key's
@@ -48,7 +61,56 @@ impl From<Typed> for Intent {
     }
 }
 
-pub const USAGE: &str = "goto X Y [THETA_DEG] | goto marker ID | controller [pid|pure_pursuit|hybrid] | clear | save [NAME] | mission restart | pose X Y THETA_DEG | relocalize | quit";
+pub const USAGE: &str = "goto X Y [THETA_DEG] | goto marker ID | goto+ X Y [THETA_DEG] | waypoint add [X Y [THETA_DEG]] | route start|pause|skip|clear|loop N|save NAME|load NAME | controller [pid|pure_pursuit|hybrid] | clear | save [NAME] | mission restart | pose X Y THETA_DEG | relocalize | quit";
+
+/// A waypoint from `X Y [THETA_DEG]` words; `what` names the command in errors.
+fn waypoint(what: &str, words: &[&str]) -> Result<Waypoint, String> {
+    let number = |s: &str| {
+        s.trim_end_matches(',')
+            .parse::<f64>()
+            .ok()
+            .filter(|v| v.is_finite() && v.abs() <= 1.0e5)
+            .ok_or_else(|| format!("{what}: `{s}` is not a number"))
+    };
+    match words {
+        [x, y] => Ok(Waypoint {
+            position: Point2::new(number(x)?, number(y)?),
+            yaw: None,
+        }),
+        [x, y, theta] => Ok(Waypoint {
+            position: Point2::new(number(x)?, number(y)?),
+            yaw: Some(number(theta)?.to_radians()),
+        }),
+        _ => Err(format!(
+            "{what} wants X Y in metres (and a heading in degrees)"
+        )),
+    }
+}
+
+/// `route …`.
+fn route(words: &[&str]) -> Result<Intent, String> {
+    let ask = match words {
+        [] | ["show"] => return Ok(Typed::ShowRoute.into()),
+        ["start"] => RouteAsk::Start,
+        ["pause"] => RouteAsk::Pause,
+        ["skip"] => RouteAsk::Skip,
+        ["clear"] => RouteAsk::Clear,
+        ["loop", n] => RouteAsk::Loop(
+            n.parse()
+                .ok()
+                .filter(|n| (1..=1000).contains(n))
+                .ok_or_else(|| format!("route loop: `{n}` is not a count from 1 to 1000"))?,
+        ),
+        ["save", name] => return Ok(Typed::SaveRoute(name.to_string()).into()),
+        ["load", name] => return Ok(Typed::LoadRoute(name.to_string()).into()),
+        _ => {
+            return Err(
+                "route wants start, pause, skip, clear, loop N, save NAME or load NAME".to_string(),
+            );
+        }
+    };
+    Ok(Typed::Route(ask).into())
+}
 
 /// Reads one command line, or says what is wrong with it.
 pub fn parse(line: &str) -> Result<Intent, String> {
@@ -74,6 +136,19 @@ pub fn parse(line: &str) -> Result<Intent, String> {
         ["goto", ..] => {
             Err("goto wants X Y in metres (and a heading in degrees), or marker ID".to_string())
         }
+        ["goto+", "marker", ..] => Err(
+            "goto+: waypoints are poses; goto+ X Y [THETA_DEG] (a marker is :goto marker ID)"
+                .to_string(),
+        ),
+        ["goto+", rest @ ..] => waypoint("goto+", rest).map(|w| Typed::AddWaypoint(w).into()),
+        ["waypoint", "add"] => Ok(Typed::AddCursorWaypoint.into()),
+        ["waypoint", "add", rest @ ..] => {
+            waypoint("waypoint add", rest).map(|w| Typed::AddWaypoint(w).into())
+        }
+        ["waypoint", ..] => {
+            Err("waypoint wants `add` (at the cursor) or `add X Y [THETA_DEG]`".to_string())
+        }
+        ["route", rest @ ..] => route(rest),
         ["controller"] => Ok(Typed::WhichController.into()),
         ["controller", name] => name
             .parse()
@@ -143,5 +218,29 @@ mod tests {
         assert!(parse("controller lqr").unwrap_err().contains("lqr"));
         assert!(parse("pose 1 2 nan").unwrap_err().contains("nan"));
         assert!(parse("pose 1 2").unwrap_err().contains("THETA"));
+        assert!(parse("route loop 0").unwrap_err().contains("`0`"));
+        assert!(parse("goto+ 1 east").unwrap_err().contains("`east`"));
+    }
+
+    #[test]
+    fn reads_waypoints_and_routes() {
+        let w = Waypoint {
+            position: Point2::new(1.0, 2.0),
+            yaw: Some(std::f64::consts::FRAC_PI_2),
+        };
+        assert_eq!(parse("goto+ 1 2 90"), Ok(Typed::AddWaypoint(w).into()));
+        assert_eq!(
+            parse("waypoint add 1 2 90"),
+            Ok(Typed::AddWaypoint(w).into())
+        );
+        assert_eq!(parse("waypoint add"), Ok(Typed::AddCursorWaypoint.into()));
+        assert_eq!(
+            parse("route loop 2"),
+            Ok(Typed::Route(RouteAsk::Loop(2)).into())
+        );
+        assert_eq!(
+            parse("route save r1"),
+            Ok(Typed::SaveRoute("r1".into()).into())
+        );
     }
 }

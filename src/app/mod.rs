@@ -12,8 +12,10 @@ mod control;
 pub mod loading;
 pub mod log;
 mod pose_estimate;
+mod prompt;
 mod recording;
 mod revision;
+mod route_file;
 mod saving;
 pub mod screen;
 mod table;
@@ -23,7 +25,7 @@ use crate::config::Config;
 use crate::data::MarkerSighting;
 use crate::geometry::{Point2, Pose2};
 use crate::keymap::Action;
-use crate::keymap::{Key, KeyCode, Keymap};
+use crate::keymap::{Key, Keymap};
 use crate::link::RobotLink;
 use crate::link::runtime::Runtime;
 use crate::map::grid::OccupancyGrid;
@@ -68,7 +70,7 @@ pub struct App {
     cursor: Option<Point2>,
     /// A pose estimate's position, placed and waiting for its heading.
     pose_anchor: Option<Point2>,
-    prompt: Option<String>,
+    prompt: prompt::Prompt,
     files: saving::Files,
     picker: loading::Picker,
     redraw: revision::Redraw,
@@ -92,7 +94,7 @@ impl App {
             world_grid,
             cursor: None,
             pose_anchor: None,
-            prompt: None,
+            prompt: prompt::Prompt::default(),
             files: saving::Files::new(now),
             picker: loading::Picker::default(),
             redraw: revision::Redraw::default(),
@@ -163,13 +165,13 @@ impl App {
         let drive = action.and_then(Action::motion);
         if kind == KeyKind::Release {
             // Only terminals speaking the kitty protocol send releases.
-            match drive.filter(|_| self.prompt.is_none()) {
+            match drive.filter(|_| self.prompt.line.is_none()) {
                 Some(key) => self.run_intent(pilot::Intent::KeyUp(key)),
                 None => self.run_intent(pilot::Intent::ReleasesReported),
             }
             return;
         }
-        if self.prompt.is_some() {
+        if self.prompt.line.is_some() {
             self.edit_prompt(key);
             return;
         }
@@ -193,40 +195,6 @@ impl App {
             None if kind == KeyKind::Press => self.apply(action),
             None => {}
         }
-    }
-
-    /// Keys typed after `:`: enter runs the command, esc (or backspace on empty) cancels.
-    fn edit_prompt(&mut self, key: Key) {
-        let Some(text) = self.prompt.as_mut() else {
-            return;
-        };
-        match key.code {
-            KeyCode::Enter => {
-                let line = self.prompt.take().unwrap_or_default();
-                match line.strip_prefix('/') {
-                    // A search: only matching lines, from the newest; empty shows all.
-                    Some(text) => {
-                        let text = text.trim();
-                        self.view.log.search = (!text.is_empty()).then(|| text.to_string());
-                        self.view.log.back = 0;
-                    }
-                    None => self.run_command(line.trim()),
-                }
-            }
-            KeyCode::Esc => self.prompt = None,
-            // Backspace deletes a character; on an empty line (or a bare `/`) it closes
-            // the prompt, as in vim.
-            KeyCode::Backspace => {
-                let search = text.starts_with('/');
-                if text.pop().is_none() || (search && text.is_empty()) {
-                    self.prompt = None;
-                }
-            }
-            KeyCode::Char(c) if !key.ctrl && !key.alt => text.push(c),
-            KeyCode::Char('c') if key.ctrl => self.prompt = None,
-            _ => {}
-        }
-        self.refresh_revision();
     }
 
     /// Runs a command typed after `:` through the same door as keys.
@@ -286,7 +254,7 @@ impl App {
     }
     /// The command being typed after `:`.
     pub fn prompt(&self) -> Option<&str> {
-        self.prompt.as_deref()
+        self.prompt.line.as_deref()
     }
     /// IDs seen within the last `IN_VIEW_HOLD` seconds, sorted: steadier than one frame,
     /// whose set flickers with every missed detection.

@@ -151,7 +151,7 @@ impl App {
             view: self.view.clone(),
             screen: self.screen,
             cursor: self.cursor.map(|c| (centi(c.x), centi(c.y))),
-            prompt: self.prompt.clone(),
+            prompt: self.prompt.line.clone(),
             picked: self.picker.selected,
             maps: self.picker.entries.len(),
             camera: (self.view.camera != super::view::CameraPanel::Off)

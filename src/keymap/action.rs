@@ -49,6 +49,8 @@ pub enum Handler {
     /// Plan to the cursor; in load mode, load the picked map.
     PlanToCursor,
     PoseEstimate,
+    /// Queue the goal cursor as a waypoint.
+    AddWaypoint,
     CommandLine,
     SaveMap,
     /// Nothing at all.
@@ -169,9 +171,15 @@ actions! {
     CursorRight: "cursor_right", "goal cursor right" => Console(Cursor(1.0, 0.0));
     CursorUp: "cursor_up", "goal cursor up" => Console(Cursor(0.0, 1.0));
     CursorDown: "cursor_down", "goal cursor down" => Console(Cursor(0.0, -1.0));
+    CursorLeftFast: "cursor_left_fast", "goal cursor 10 cells left" => Console(Cursor(-10.0, 0.0));
+    CursorRightFast: "cursor_right_fast", "goal cursor 10 cells right" => Console(Cursor(10.0, 0.0));
+    CursorUpFast: "cursor_up_fast", "goal cursor 10 cells up" => Console(Cursor(0.0, 10.0));
+    CursorDownFast: "cursor_down_fast", "goal cursor 10 cells down" => Console(Cursor(0.0, -10.0));
     PlanToCursor: "plan_to_cursor", "plan a path to the cursor" => Console(PlanToCursor);
     /// RViz's "2D Pose Estimate": first press the position, second the heading.
     PoseEstimate: "pose_estimate", "set the pose at the cursor" => Console(PoseEstimate);
+    /// Nav2's waypoint mode: the cursor joins the route (`:route start` drives it).
+    AddWaypoint: "add_waypoint", "cursor as the next waypoint" => Console(AddWaypoint);
     CommandLine: "command_line", "command (:goto x y …)" => Console(CommandLine);
     ClearRoute: "clear_route", "forget the planned path" => Pilot(Intent::ClearRoute);
     NextController: "next_controller", "next path controller" => Pilot(Intent::NextController);

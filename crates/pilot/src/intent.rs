@@ -55,6 +55,8 @@ pub enum Intent {
     ArmKey(super::arm::ArmAxis, f64),
     /// The arm to a named pose.
     ArmPose(super::arm::ArmPose),
+    /// The waypoint route: add, start, pause, skip, loop, clear, load.
+    Route(super::waypoints::RouteAsk),
 }
 
 impl Pilot {
@@ -107,7 +109,7 @@ impl Pilot {
                 false
             }
             Intent::Goto(target) => {
-                self.plan_route(target);
+                self.new_goal(target);
                 false
             }
             Intent::Controller(kind) => {
@@ -171,6 +173,7 @@ impl Pilot {
                 self.arm_pose(pose);
                 true
             }
+            Intent::Route(ask) => self.ask_route(ask),
         }
     }
 

@@ -24,6 +24,7 @@ mod safety;
 mod step;
 pub mod teleop;
 mod trail;
+pub mod waypoints;
 
 use config::Settings;
 use mode::Mode;

@@ -96,6 +96,13 @@ fn short(key: &Key) -> String {
         (true, KeyCode::Up) => "↑".into(),
         (true, KeyCode::Down) => "↓".into(),
         (true, KeyCode::PageUp) => "PgUp".into(),
+        (false, KeyCode::Left | KeyCode::Right | KeyCode::Up | KeyCode::Down) if !key.alt => {
+            let plain = Key {
+                ctrl: false,
+                ..*key
+            };
+            format!("^{}", short(&plain))
+        }
         (true, KeyCode::PageDown) => "PgDn".into(),
         _ => key.to_string(),
     }

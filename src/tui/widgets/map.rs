@@ -74,6 +74,7 @@ pub fn render(app: &App, theme: Theme, area: Rect, buf: &mut Buffer) {
     }
     super::sensing::footprint(app, &vp, theme, buf);
     draw_robot(app.pilot().estimated_pose(), '@', &vp, theme.robot(), buf);
+    super::path::cursor(app, &vp, theme, buf);
 }
 
 /// The twin's true walls, dimmed, under the robot's own map (`g`).

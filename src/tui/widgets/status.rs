@@ -268,6 +268,9 @@ fn navigation_rows(app: &App) -> Vec<Row> {
             .wrapping(2),
         );
     }
+    if let Some(progress) = app.pilot().waypoints().progress() {
+        rows.push(row(theme, "Route", progress));
+    }
     if let Some(c) = app.goal_cursor() {
         rows.push(Row::new(
             "Cursor",

@@ -13,6 +13,8 @@ use navdeck_core::map::reach::{approach_point, escape_map};
 use navdeck_core::perception::markers::MarkerCategory;
 use navdeck_core::plan::pipeline::Plan;
 
+mod views;
+
 /// Seed 001 "Path Recalculation": at most one replan per this many seconds.
 const REPLAN_EVERY: f64 = 0.5;
 /// Seed 001: replan when a new obstacle appears within 1 m of the path, a block within 0.5 m.
@@ -99,11 +101,38 @@ pub(super) struct Navigation {
     /// follower's own), over every path since following started.
     pub true_cross_track: Rms,
     pub cross_track: Rms,
+    /// The queued waypoints (Nav2's waypoint following) and the progress along them.
+    pub waypoints: super::waypoints::Waypoints,
+}
+
+/// What a failed plan does to the path there was before it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum OnFailure {
+    /// A replan, or a route's next waypoint: the old path is no longer any use.
+    Drop,
+    /// A new goal: refused, the old path (and its following) goes on.
+    Keep,
 }
 
 impl Pilot {
-    /// Plans from the robot's estimated position to `target`; logs the outcome.
+    /// Plans from the robot's estimated position to `target`; logs the outcome. A
+    /// failure drops the old path.
     pub(super) fn plan_route(&mut self, target: Target) -> bool {
+        self.plan_or(target, OnFailure::Drop)
+    }
+
+    /// A new goal from the user: planned as `plan_route`, but one that cannot be reached
+    /// is refused and the path there was (followed or not) is kept, as Nav2 keeps the
+    /// goal it has when a new one is rejected.
+    pub(super) fn new_goal(&mut self, target: Target) -> bool {
+        let planned = self.plan_or(target, OnFailure::Keep);
+        if planned {
+            self.goal_replaces_route();
+        }
+        planned
+    }
+
+    fn plan_or(&mut self, target: Target, on_failure: OnFailure) -> bool {
         let label = target.label();
         let start = self.pose().position();
         let goal = match target {
@@ -116,7 +145,7 @@ impl Pilot {
                         Level::Error,
                         format!("no path to marker {id}: it is not on the map yet"),
                     );
-                    self.drop_route();
+                    self.refuse(&label, on_failure);
                     return false;
                 }
             },
@@ -165,9 +194,26 @@ impl Pilot {
             }
             Err(e) => {
                 self.log(Level::Error, format!("no path to {label}: {e}"));
-                self.drop_route();
+                self.refuse(&label, on_failure);
                 false
             }
+        }
+    }
+
+    /// After a failed plan: drops the old path, or says the goal was refused and the old
+    /// one kept.
+    fn refuse(&mut self, label: &str, on_failure: OnFailure) {
+        let before = self.nav.route.as_ref().map(|r| r.label.clone());
+        match (on_failure, before) {
+            (OnFailure::Keep, Some(old)) => {
+                let kept = if self.mode == Mode::PathFollowing && !self.nav.arrived {
+                    format!("still following the path to {old}")
+                } else {
+                    format!("the path to {old} is kept")
+                };
+                self.log(Level::Warn, format!("goal {label} refused; {kept}"));
+            }
+            _ => self.drop_route(),
         }
     }
 
@@ -278,6 +324,7 @@ impl Pilot {
                             p.x, p.y
                         ),
                     );
+                    self.waypoint_arrived(t);
                 }
             }
             FollowStatus::Turning { .. } | FollowStatus::NoTrajectory => self.nav.following = None,
@@ -295,13 +342,13 @@ impl Pilot {
         );
         if self.mode == Mode::PathFollowing {
             // Following already: the new plan replaces the path being followed.
-            if self.plan_route(target) {
+            if self.new_goal(target) {
                 self.nav.true_cross_track = Rms::default();
                 self.nav.cross_track = Rms::default();
             }
             return;
         }
-        if self.plan_route(target) {
+        if self.new_goal(target) {
             self.set_mode(Mode::PathFollowing);
         }
     }
@@ -403,74 +450,9 @@ impl Pilot {
         }
     }
 
-    /// Cross-track error of the twin's true pose against the route, for the report.
-    fn sample_true_cross_track(&mut self) {
-        let (Some(truth), Some(route)) = (self.estimating.truth, &self.nav.route) else {
-            return;
-        };
-        let d = distance_to_polyline(&route.plan.trajectory.points, truth.position());
-        self.nav.true_cross_track.add(d);
-    }
-
     pub(super) fn set_controller(&mut self, kind: navdeck_core::control::config::ControllerKind) {
         self.follower.set_controller(kind);
         self.nav.last_step = None;
         self.log(Level::Info, format!("path controller: {}", kind.label()));
-    }
-
-    // ----- read-only views -----
-
-    /// The planned path, if any.
-    pub fn route(&self) -> Option<&Route> {
-        self.nav.route.as_ref()
-    }
-    /// Progress along the path while following.
-    pub fn following(&self) -> Option<FollowView> {
-        self.nav.following
-    }
-    pub fn arrived(&self) -> bool {
-        self.nav.arrived
-    }
-    pub fn follower(&self) -> &navdeck_core::control::follower::Follower {
-        &self.follower
-    }
-    /// RMS cross-track error of the estimated pose since following started, replans
-    /// included, metres.
-    pub fn cross_track_rms(&self) -> Option<f64> {
-        self.nav.cross_track.value()
-    }
-    /// RMS cross-track error of the twin's true pose over the last following, metres.
-    pub fn true_cross_track_rms(&self) -> Option<f64> {
-        self.nav.true_cross_track.value()
-    }
-    /// Paths the console planned again because the map changed under them.
-    pub fn replans(&self) -> usize {
-        self.nav.replans
-    }
-
-    /// Whether the robot is busy on its own (following a path).
-    pub fn is_busy(&self) -> bool {
-        match self.mode {
-            Mode::PathFollowing => self.follower.trajectory().is_some() && !self.nav.arrived,
-            Mode::Exploration => self.mission().is_some_and(|m| !m.is_done()),
-            _ => false,
-        }
-    }
-}
-
-/// Distance from `p` to the polyline through the trajectory's samples.
-fn distance_to_polyline(
-    points: &[navdeck_core::plan::trajectory::TrajectoryPoint],
-    p: Point2,
-) -> f64 {
-    match points {
-        [] => f64::INFINITY,
-        [only] => only.position.distance(p),
-        _ => points
-            .windows(2)
-            .map(|w| {
-                navdeck_core::geometry::Segment::new(w[0].position, w[1].position).distance_to(p)
-            })
-            .fold(f64::INFINITY, f64::min),
     }
 }

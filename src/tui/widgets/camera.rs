@@ -16,10 +16,13 @@ use ratatui::text::Line;
 pub fn lines(app: &App, theme: Theme, width: usize) -> Vec<Line<'static>> {
     let feed = app.camera();
     let wrapped = |text: String, rows: usize, style| -> Vec<Line<'static>> {
-        wrap_rows(&text, width, rows)
-            .into_iter()
-            .map(|l| Line::styled(l, style))
-            .collect()
+        // A text that fits keeps its own spacing ("10.0 Hz  detect").
+        let parts = if text.chars().count() <= width {
+            vec![text]
+        } else {
+            wrap_rows(&text, width, rows)
+        };
+        parts.into_iter().map(|l| Line::styled(l, style)).collect()
     };
     let Some(status) = &feed.status else {
         // Sightings may come without images: the twin's marker sensor gives them.

@@ -269,7 +269,7 @@ fn navigation_rows(app: &App) -> Vec<Row> {
         );
     }
     if let Some(progress) = app.pilot().waypoints().progress() {
-        rows.push(row(theme, "Route", progress));
+        rows.push(Row::new("Route", progress, Need::High));
     }
     if let Some(c) = app.goal_cursor() {
         rows.push(Row::new(

@@ -211,7 +211,7 @@ fn help_says_what_the_speed_keys_do_in_gripper_mode() {
     tap(&mut app, "h", 0.3);
     assert_eq!(app.pilot().mode(), Mode::Gripper);
     tap(&mut app, "?", 0.4);
-    for (w, h) in [(80, 24), (120, 40)] {
+    for (w, h) in [(80, 24), (120, 40), (240, 60)] {
         app.resize(w, h);
         let help = render_at(&app, w, h);
         assert!(help.contains("] ["), "{help}");

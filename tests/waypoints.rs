@@ -420,6 +420,11 @@ fn pose_arrow_120x40() {
     insta::assert_snapshot!(render_at(&arrow_app(), 120, 40));
 }
 
+#[test]
+fn pose_arrow_240x60() {
+    insta::assert_snapshot!(render_at(&arrow_app(), 240, 60));
+}
+
 fn numbered_app() -> App {
     let mut app = default_app();
     play(
@@ -432,6 +437,13 @@ fn numbered_app() -> App {
 #[test]
 fn numbered_waypoints_80x24() {
     let screen = render_at(&numbered_app(), 80, 24);
+    insta::assert_snapshot!(screen);
+}
+
+#[test]
+fn numbered_waypoints_240x60() {
+    let screen = render_at(&numbered_app(), 240, 60);
+    assert!(screen.contains("3 waypoints x2 loops"), "{screen}");
     insta::assert_snapshot!(screen);
 }
 

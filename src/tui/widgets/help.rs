@@ -190,9 +190,15 @@ pub const LEGEND: &str = "Map: @ robot (% its footprint, zoomed in)  o true pose
 /// How driving by keys works, for users of teleop_twist_keyboard and the like, where a
 /// key press sets a speed that holds until the next key.
 pub fn driving(app: &App) -> String {
+    let bindings = app.keymap().bindings(app.pilot().mode());
+    let stop = bindings
+        .iter()
+        .find(|(a, _)| *a == Action::Stop)
+        .and_then(|(_, keys)| keys.first())
+        .map_or_else(|| ":clear".to_string(), short);
     format!(
         "Driving: the robot moves only while a drive key is held; let go, or no key repeat \
-         for {:.1} s, and it stops (the deadman). x stops in every mode and pauses \
+         for {:.1} s, and it stops (the deadman). {stop} stops it here and pauses \
          autonomy; space is the emergency stop, and only space again releases it.",
         app.config().teleop.deadman_timeout
     )

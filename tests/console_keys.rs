@@ -8,7 +8,7 @@ use crate::common;
 use common::*;
 use navdeck::app::mode::Mode;
 use navdeck::app::{App, KeyKind};
-use navdeck::session::{LinkChoice, Session, SessionSpec};
+use navdeck::session::{Session, SessionSpec};
 use navdeck::tui::events::Step;
 use navdeck::tui::run::Exit;
 
@@ -16,13 +16,8 @@ use navdeck::tui::run::Exit;
 /// loads it (the path relative to the package, as the help's title shows it).
 fn teleop_app() -> App {
     app_with(SessionSpec {
-        world: None,
-        seed: 1,
-        start: None,
-        config: None,
         keymap: Some("keymaps/teleop_twist_keyboard.toml".into()),
-        link: LinkChoice::Sim,
-        localize: Default::default(),
+        ..SessionSpec::twin(None)
     })
 }
 
@@ -32,13 +27,8 @@ fn arm_app() -> App {
     let config = dir.join("arm.toml");
     std::fs::write(&config, "[arm]\n").unwrap();
     Session::load(&SessionSpec {
-        world: None,
-        seed: 1,
-        start: None,
         config: Some(config),
-        keymap: None,
-        link: LinkChoice::Sim,
-        localize: Default::default(),
+        ..SessionSpec::twin(None)
     })
     .unwrap()
     .into_app(0.0)

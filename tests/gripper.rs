@@ -7,7 +7,7 @@ use crate::common;
 use common::{hold, press, run_script};
 use navdeck::app::App;
 use navdeck::arm::forward;
-use navdeck::session::{LinkChoice, Session, SessionSpec};
+use navdeck::session::{Session, SessionSpec};
 use navdeck::tui::events::Step;
 
 fn arm_app() -> App {
@@ -23,13 +23,8 @@ fn arm_app_with(config_text: &str) -> App {
     let config = dir.join("arm.toml");
     std::fs::write(&config, config_text).unwrap();
     let app = Session::load(&SessionSpec {
-        world: None,
-        seed: 1,
-        start: None,
         config: Some(config),
-        keymap: None,
-        link: LinkChoice::Sim,
-        localize: Default::default(),
+        ..SessionSpec::twin(None)
     })
     .unwrap()
     .into_app(0.0);

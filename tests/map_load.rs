@@ -9,21 +9,14 @@ use navdeck::app::mode::Mode;
 use navdeck::keymap::parse_key_sequence;
 use navdeck::map::grid::OCCUPIED;
 use navdeck::map::io;
-use navdeck::session::{LinkChoice, Session, SessionSpec};
+use navdeck::session::{Session, SessionSpec};
 use std::path::PathBuf;
 
 /// The twin in `world` (the built-in arena when None), its maps in `dir`.
 fn console(world: Option<PathBuf>, dir: &std::path::Path) -> App {
-    let spec = SessionSpec {
-        world,
-        seed: 1,
-        start: None,
-        config: None,
-        keymap: None,
-        link: LinkChoice::Sim,
-        localize: Default::default(),
-    };
-    let mut app = Session::load(&spec).unwrap().into_app(0.0);
+    let mut app = Session::load(&SessionSpec::twin(world))
+        .unwrap()
+        .into_app(0.0);
     app.set_maps_dir(dir.to_path_buf());
     app
 }

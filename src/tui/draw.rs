@@ -293,12 +293,7 @@ fn draw_help(frame: &mut Frame, app: &App, theme: Theme, size: Rect) {
     lines.extend(notes.into_iter().map(|n| Line::styled(n, theme.label())));
     // As tall as what it holds, centred; the whole screen when that is more.
     let height = (lines.len() as u16 + 2).min(size.height);
-    let area = Rect::new(
-        (size.width - width) / 2,
-        (size.height - height) / 2,
-        width,
-        height,
-    );
+    let area = super::widgets::centred(size, width, height);
     let block = Block::bordered()
         .title(format!(
             " Keys in {} mode ({}): any key closes ",

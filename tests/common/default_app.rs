@@ -2,17 +2,9 @@
 
 use super::app_with::app_with;
 use navdeck::app::App;
-use navdeck::session::{LinkChoice, SessionSpec};
+use navdeck::session::SessionSpec;
 
 /// The default session: the built-in arena, seed 1.
 pub fn default_app() -> App {
-    app_with(SessionSpec {
-        world: None,
-        seed: 1,
-        start: None,
-        config: None,
-        keymap: None,
-        link: LinkChoice::Sim,
-        localize: Default::default(),
-    })
+    app_with(SessionSpec::twin(None))
 }

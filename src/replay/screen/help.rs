@@ -36,12 +36,7 @@ pub fn draw(frame: &mut Frame, size: Rect, theme: Theme) {
     lines.push(Line::styled("q or ctrl-c quits the replay", theme.label()));
     let width = size.width.min(52);
     let height = (lines.len() as u16 + 2).min(size.height);
-    let area = Rect::new(
-        (size.width - width) / 2,
-        (size.height - height) / 2,
-        width,
-        height,
-    );
+    let area = crate::tui::widgets::centred(size, width, height);
     let block = Block::bordered()
         .title(" Replay keys: any key closes ")
         .border_style(theme.border());

@@ -16,3 +16,17 @@ pub mod status;
 pub mod text;
 pub mod title;
 pub mod viewport;
+
+use ratatui::layout::Rect;
+
+/// A `width` x `height` rectangle centred on `size` (both no larger than `size`): where
+/// an overlay such as the help is drawn.
+pub fn centred(size: Rect, width: u16, height: u16) -> Rect {
+    let (width, height) = (width.min(size.width), height.min(size.height));
+    Rect::new(
+        size.x + (size.width - width) / 2,
+        size.y + (size.height - height) / 2,
+        width,
+        height,
+    )
+}

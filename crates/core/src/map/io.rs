@@ -52,13 +52,16 @@ impl MapFileError {
                 value,
                 reason,
                 ..
-            } => {
-                let at = line.map(|l| format!("line {l}: ")).unwrap_or_default();
-                format!("{at}field `{field}` = {value}: {reason}")
-            }
+            } => field_reason(*line, field, value, reason),
             MapFileError::Image { path, error } => format!("its image {}: {error}", path.display()),
         }
     }
+}
+
+/// A bad field as a user reads it, without the file's name: `line 3: field `x` = 5: …`.
+pub fn field_reason(line: Option<usize>, field: &str, value: &str, reason: &str) -> String {
+    let at = line.map(|l| format!("line {l}: ")).unwrap_or_default();
+    format!("{at}field `{field}` = {value}: {reason}")
 }
 
 /// An I/O error as a user reads it: what is wrong with the file, without the OS's

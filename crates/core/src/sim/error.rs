@@ -40,10 +40,7 @@ impl WorldError {
                 value,
                 reason,
                 ..
-            } => {
-                let at = line.map(|l| format!("line {l}: ")).unwrap_or_default();
-                format!("{at}field `{field}` = {value}: {reason}")
-            }
+            } => crate::map::io::field_reason(*line, field, value, reason),
         }
     }
 }

@@ -419,28 +419,11 @@ fn short_recording() -> std::path::PathBuf {
 /// Plays the short recording, paused at its start, in a 120x40 test terminal through
 /// `steps`: the screen, whether the help is open, and how the loop ended.
 fn replay(steps: Vec<Step>) -> (String, bool, Exit) {
-    use navdeck::replay::playback::{Playback, View};
-    use navdeck::replay::{Replay, ReplayOptions};
-    use navdeck::tui::events::{ManualClock, ScriptedEvents};
+    use navdeck::replay::playback::View;
     let recorded = std::sync::Arc::new(navdeck::replay::load(&short_recording()).unwrap());
-    let replay = Replay::new(recorded, ReplayOptions::default()).unwrap();
-    let mut playback = Playback::new(replay.span(), 1.0, View::AsRecorded, 0.1);
-    playback.paused = true;
-    let mut player = navdeck::replay::screen::run::Player { replay, playback };
-    let mut terminal = ratatui::Terminal::new(ratatui::backend::TestBackend::new(120, 40)).unwrap();
-    let clock = ManualClock::default();
-    let mut events = ScriptedEvents::new(clock.clone(), steps);
-    let exit = navdeck::replay::screen::run::run(
-        &mut terminal,
-        &mut player,
-        &mut events,
-        &clock,
-        &std::sync::atomic::AtomicUsize::new(0),
-        navdeck::tui::theme::Theme { color: false },
-        &mut navdeck::tui::run::RunStats::default(),
-    )
-    .unwrap();
-    (screen(&terminal), player.playback.help, exit)
+    let (screen, player, exit) =
+        common::replay_played(recorded, View::AsRecorded, true, (120, 40), steps);
+    (screen, player.playback.help, exit)
 }
 
 #[test]

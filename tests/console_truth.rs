@@ -356,18 +356,11 @@ fn a_replay_shows_the_map_and_landmarks_of_its_first_second() {
 /// The re-run view (`r`) keeps the REPLAY label the recorded view has.
 #[test]
 fn the_re_run_view_of_a_replay_says_replay() {
-    use navdeck::replay::playback::{Playback, View};
-    use navdeck::replay::{Replay, ReplayOptions};
-    use navdeck::tui::events::{ManualClock, ScriptedEvents, Step};
+    use navdeck::replay::playback::View;
+    use navdeck::tui::events::Step;
     let recorded =
         std::sync::Arc::new(navdeck::replay::load(&explored_recording("re-run")).unwrap());
     for (w, h) in SIZES {
-        let replay = Replay::new(recorded.clone(), ReplayOptions::default()).unwrap();
-        let playback = Playback::new(replay.span(), 1.0, View::AsRecorded, 0.1);
-        let mut player = navdeck::replay::screen::run::Player { replay, playback };
-        let mut terminal =
-            ratatui::Terminal::new(ratatui::backend::TestBackend::new(w, h)).unwrap();
-        let clock = ManualClock::default();
         let steps = vec![
             Step::Wait(0.5),
             press('5'),
@@ -375,19 +368,9 @@ fn the_re_run_view_of_a_replay_says_replay() {
             press('r'),
             Step::Wait(0.2),
         ];
-        let mut events = ScriptedEvents::new(clock.clone(), steps);
-        navdeck::replay::screen::run::run(
-            &mut terminal,
-            &mut player,
-            &mut events,
-            &clock,
-            &std::sync::atomic::AtomicUsize::new(0),
-            navdeck::tui::theme::Theme { color: false },
-            &mut navdeck::tui::run::RunStats::default(),
-        )
-        .unwrap();
+        let (text, player, _) =
+            common::replay_played(recorded.clone(), View::AsRecorded, false, (w, h), steps);
         assert_eq!(player.playback.view, View::Rerun);
-        let text = screen(&terminal);
         let title = text.lines().next().unwrap();
         assert!(title.contains("REPLAY · re-run"), "{title}");
         insta::assert_snapshot!(format!("replay_re_run_{w}x{h}"), text);

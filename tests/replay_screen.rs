@@ -4,15 +4,11 @@
 use crate::common;
 
 use common::*;
+use navdeck::replay::Replay;
 use navdeck::replay::playback::{Playback, View};
-use navdeck::replay::{Replay, ReplayOptions};
-use navdeck::tui::events::{ManualClock, ScriptedEvents, Step};
-use navdeck::tui::run::{Exit, RunStats};
-use navdeck::tui::theme::Theme;
-use ratatui::Terminal;
-use ratatui::backend::TestBackend;
+use navdeck::tui::events::Step;
+use navdeck::tui::run::Exit;
 use std::sync::Arc;
-use std::sync::atomic::AtomicUsize;
 
 /// A recorded exploration of the built-in arena (made once per test binary).
 fn recording() -> std::path::PathBuf {
@@ -35,23 +31,8 @@ fn recording() -> std::path::PathBuf {
 /// Plays the recording in a `width` x `height` test terminal through `steps`.
 fn play(view: View, width: u16, height: u16, steps: Vec<Step>) -> (String, Playback, Replay, Exit) {
     let recorded = Arc::new(navdeck::replay::load(&recording()).unwrap());
-    let replay = Replay::new(recorded, ReplayOptions::default()).unwrap();
-    let playback = Playback::new(replay.span(), 1.0, view, 0.1);
-    let mut player = navdeck::replay::screen::run::Player { replay, playback };
-    let mut terminal = Terminal::new(TestBackend::new(width, height)).unwrap();
-    let clock = ManualClock::default();
-    let mut events = ScriptedEvents::new(clock.clone(), steps);
-    let exit = navdeck::replay::screen::run::run(
-        &mut terminal,
-        &mut player,
-        &mut events,
-        &clock,
-        &AtomicUsize::new(0),
-        Theme { color: false },
-        &mut RunStats::default(),
-    )
-    .unwrap();
-    (screen(&terminal), player.playback, player.replay, exit)
+    let (screen, player, exit) = replay_played(recorded, view, false, (width, height), steps);
+    (screen, player.playback, player.replay, exit)
 }
 
 /// Half way, then paused.

@@ -18,6 +18,7 @@ mod common {
     pub mod recording;
     pub mod render;
     pub mod render_at;
+    pub mod replay_played;
     pub mod run_loop;
     pub mod scratch;
     pub mod screen;
@@ -25,7 +26,8 @@ mod common {
     pub mod until;
     pub use {
         app_with::*, binary::*, default_app::*, hold::*, key::*, logged::*, press::*, recording::*,
-        render::*, render_at::*, run_loop::*, scratch::*, screen::*, script::*, until::*,
+        render::*, render_at::*, replay_played::*, run_loop::*, scratch::*, screen::*, script::*,
+        until::*,
     };
 }
 #[path = "plan_support"]

@@ -87,3 +87,26 @@ fn v_cycles_the_camera_panel_through_half_blocks_braille_and_off() {
     app.handle_key(Key::char('v'), KeyKind::Press, t);
     assert!(!render(&app).contains("Camera (v)"));
 }
+
+#[cfg(feature = "vision")]
+#[test]
+fn the_twins_camera_shows_the_markers_it_sees_as_dots_not_noise() {
+    use navdeck::session::{Session, SessionSpec};
+    let mut session = Session::load(&SessionSpec::twin(None)).unwrap();
+    session
+        .use_sim_camera(None, navdeck::sim::CameraFrames::Whole)
+        .unwrap();
+    let mut app = session.into_app(0.0);
+    let mut t = 0.0;
+    for _ in 0..5 {
+        t += 0.1;
+        app.update(t);
+    }
+    app.handle_key(Key::char('v'), KeyKind::Press, t);
+    app.handle_key(Key::char('v'), KeyKind::Press, t);
+    let screen = render(&app);
+    assert!(screen.contains("IDs 5 6 9"), "markers in view at the start: {screen}");
+    let inked = braille_cells(&screen);
+    // Eight markers a few pixels each: dots where they are, not a panel of noise.
+    assert!((4..=60).contains(&inked), "{inked} inked cells\n{screen}");
+}

@@ -96,6 +96,35 @@ fn levels(pixels: &[u8]) -> (u8, u8) {
     (level_at(false), level_at(true))
 }
 
+/// The middle grey level of `pixels`: the background a few markers stand on.
+fn median(pixels: &[u8]) -> u8 {
+    let mut sorted = pixels.to_vec();
+    sorted.sort_unstable();
+    sorted.get(sorted.len() / 2).copied().unwrap_or(0)
+}
+
+/// The pixel of `thumb` under dot (x, y) of a `dots`-sized grid that differs most from
+/// `background` (max-deviation pooling, so no detail smaller than a dot is lost).
+fn standout(thumb: &Thumbnail, background: u8, (x, y): (usize, usize), dots: (usize, usize)) -> u8 {
+    let span = |d: usize, dots: usize, size: usize| {
+        let start = d * size / dots.max(1);
+        start..((d + 1) * size / dots.max(1)).max(start + 1)
+    };
+    let mut best = thumb.at(
+        span(x, dots.0, thumb.width).start,
+        span(y, dots.1, thumb.height).start,
+    );
+    for ty in span(y, dots.1, thumb.height) {
+        for tx in span(x, dots.0, thumb.width) {
+            let p = thumb.at(tx, ty);
+            if p.abs_diff(background) > best.abs_diff(background) {
+                best = p;
+            }
+        }
+    }
+    best
+}
+
 /// `p` with the levels `lo..=hi` stretched over 0..=255 (a flat picture stays as it is).
 fn stretch(p: u8, lo: u8, hi: u8) -> u8 {
     if hi.saturating_sub(lo) < MIN_CONTRAST {
@@ -124,16 +153,17 @@ pub fn thumbnail(
     };
     let (px_w, px_h) = (cols * dots_x, rows * dots_y);
     let (lo, hi) = levels(&thumb.pixels);
-    // Nearest-neighbour sampling of the thumbnail at the panel's resolution, its levels
-    // stretched to the full range (a contrast stretch, as an image viewer's "auto
-    // levels"): a marker a few levels darker than the floor shows as black on white.
+    let background = median(&thumb.pixels);
+    // Each dot shows the thumbnail pixel of its box that stands out most from the
+    // background (a marker a pixel wide would fall between nearest-neighbour samples),
+    // its levels stretched to the full range (an image viewer's "auto levels"): a marker a
+    // few levels darker than the floor shows as black on white.
     let sample = |x: usize, y: usize| {
-        let p = thumb.at(
-            x * thumb.width / px_w.max(1),
-            y * thumb.height / px_h.max(1),
-        );
+        let p = standout(thumb, background, (x, y), (px_w, px_h));
         stretch(p, lo, hi)
     };
+    // Braille ink is what is clearly darker than the background: the marker's black cells.
+    let ink_below = stretch(background, lo, hi) / 2;
     // A picture with (almost) no contrast has no ink: stretching it would draw its noise.
     let flat = hi.saturating_sub(lo) < MIN_CONTRAST;
     for row in 0..rows {
@@ -148,7 +178,7 @@ pub fn thumbnail(
                     for (dx, column) in BITS.iter().enumerate() {
                         for (dy, bit) in column.iter().enumerate() {
                             // Dark pixels are ink: markers are black on white.
-                            if !flat && sample(col * 2 + dx, row * 4 + dy) < 128 {
+                            if !flat && sample(col * 2 + dx, row * 4 + dy) < ink_below {
                                 bits |= bit;
                             }
                         }
@@ -188,6 +218,21 @@ mod tests {
         assert_eq!((lo, hi), (110, 140));
         assert_eq!(stretch(110, lo, hi), 0);
         assert_eq!(stretch(140, lo, hi), 255);
+    }
+
+    #[test]
+    fn a_marker_smaller_than_a_dot_still_shows() {
+        // A 96 x 54 floor with one dark pixel, drawn 32 x 18: nearest-neighbour sampling
+        // (every third pixel) would skip it.
+        let mut pixels = vec![140u8; 96 * 54];
+        pixels[20 * 96 + 40] = 30;
+        let thumb = Thumbnail {
+            width: 96,
+            height: 54,
+            pixels,
+        };
+        assert_eq!(standout(&thumb, 140, (13, 6), (32, 18)), 30);
+        assert_eq!(standout(&thumb, 140, (12, 6), (32, 18)), 140);
     }
 
     #[test]

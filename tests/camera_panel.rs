@@ -105,7 +105,10 @@ fn the_twins_camera_shows_the_markers_it_sees_as_dots_not_noise() {
     app.handle_key(Key::char('v'), KeyKind::Press, t);
     app.handle_key(Key::char('v'), KeyKind::Press, t);
     let screen = render(&app);
-    assert!(screen.contains("IDs 5 6 9"), "markers in view at the start: {screen}");
+    assert!(
+        screen.contains("IDs 5 6 9"),
+        "markers in view at the start: {screen}"
+    );
     let inked = braille_cells(&screen);
     // Eight markers a few pixels each: dots where they are, not a panel of noise.
     assert!((4..=60).contains(&inked), "{inked} inked cells\n{screen}");

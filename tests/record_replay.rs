@@ -285,10 +285,10 @@ fn a_camera_session_records_its_pictures_at_the_image_period() {
     let image = raw
         .messages
         .iter()
-        .find(|m| m.topic == "/camera/image")
+        .find(|m| &*m.topic == "/camera/image")
         .unwrap();
     let msg: navdeck::msgs::ros::Image = navdeck::record::decode(&image.data).unwrap();
-    assert_eq!(msg.encoding, "mono8");
+    assert_eq!(&*msg.encoding, "mono8");
     assert_eq!(msg.data.len(), (msg.width * msg.height) as usize);
     assert!(msg.width > 0);
 }

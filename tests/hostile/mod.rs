@@ -13,6 +13,7 @@ mod cli;
 mod config;
 mod keymap;
 mod map;
+mod mcap_bytes;
 mod recording;
 mod world;
 

@@ -4,19 +4,27 @@
 
 use mcap::records::Record;
 use std::collections::{BTreeMap, HashMap};
+use std::sync::Arc;
 
 /// The 8 bytes an MCAP file starts (and ends) with.
 const MAGIC: &[u8; 8] = b"\x89MCAP0\r\n";
 /// A chunk may unpack to this many bytes at most (a lying header must not exhaust memory).
 const MAX_CHUNK: u64 = 256 << 20;
+/// All of a recording's chunks together may unpack to this many bytes at most: many small
+/// chunks each under `MAX_CHUNK` must not add up to more than a machine holds.
+pub const MAX_UNPACKED: u64 = 1 << 30;
+/// Message and attachment bytes kept from one recording, at most: a 10 Hz session with a
+/// camera thumbnail records about 10 kB/s, so this is some 14 hours.
+pub const MAX_KEPT: u64 = 512 << 20;
 
-/// One message as the file holds it.
+/// One message as the file holds it. Its channel's names are shared by every message on
+/// the channel, never copied per message.
 #[derive(Clone, Debug, PartialEq)]
 pub struct RawMessage {
-    pub topic: String,
+    pub topic: Arc<str>,
     /// The channel's schema name, e.g. `nav_msgs/Odometry`.
-    pub schema: String,
-    pub encoding: String,
+    pub schema: Arc<str>,
+    pub encoding: Arc<str>,
     pub log_time: u64,
     pub data: Vec<u8>,
 }
@@ -36,11 +44,17 @@ pub struct RawRecording {
 
 #[derive(Default)]
 struct State {
-    schemas: HashMap<u16, String>,
-    /// Channel ID -> (topic, schema ID, message encoding).
-    channels: HashMap<u16, (String, u16, String)>,
+    schemas: HashMap<u16, Arc<str>>,
+    /// Channel ID -> (topic, schema name, message encoding).
+    channels: HashMap<u16, Channel>,
     out: RawRecording,
+    /// Bytes unpacked from chunks so far, and message and attachment bytes kept.
+    unpacked: u64,
+    kept: u64,
 }
+
+/// A channel's topic, schema name and message encoding.
+type Channel = (Arc<str>, Arc<str>, Arc<str>);
 
 impl State {
     /// Takes one record; an error names what was wrong with it.
@@ -51,29 +65,33 @@ impl State {
                 self.out.library = h.library;
             }
             Record::Schema { header, .. } => {
-                self.schemas.insert(header.id, header.name);
+                self.schemas.insert(header.id, header.name.into());
             }
             Record::Channel(c) => {
+                let schema = self.schemas.get(&c.schema_id).cloned().unwrap_or_default();
                 self.channels
-                    .insert(c.id, (c.topic, c.schema_id, c.message_encoding));
+                    .insert(c.id, (c.topic.into(), schema, c.message_encoding.into()));
             }
             Record::Message { header, data } => {
-                let Some((topic, schema_id, encoding)) = self.channels.get(&header.channel_id)
+                let Some((topic, schema, encoding)) =
+                    self.channels.get(&header.channel_id).cloned()
                 else {
                     return Err(format!(
                         "a message on channel {} that no channel record announced",
                         header.channel_id
                     ));
                 };
+                self.keep(data.len())?;
                 self.out.messages.push(RawMessage {
-                    topic: topic.clone(),
-                    schema: self.schemas.get(schema_id).cloned().unwrap_or_default(),
-                    encoding: encoding.clone(),
+                    topic,
+                    schema,
+                    encoding,
                     log_time: header.log_time,
                     data: data.into_owned(),
                 });
             }
             Record::Attachment { header, data, .. } => {
+                self.keep(data.len())?;
                 self.out.attachments.push((header.name, data.into_owned()));
             }
             Record::Metadata(m) => self.out.metadata.push((m.name, m.metadata)),
@@ -82,6 +100,18 @@ impl State {
             _ => {}
         }
         Ok(true)
+    }
+
+    /// Counts `bytes` more kept, refusing past `MAX_KEPT`.
+    fn keep(&mut self, bytes: usize) -> Result<(), String> {
+        self.kept += bytes as u64;
+        if self.kept > MAX_KEPT {
+            return Err(format!(
+                "its messages come to over {} MiB, the most navdeck reads of one recording",
+                MAX_KEPT >> 20
+            ));
+        }
+        Ok(())
     }
 }
 
@@ -139,7 +169,12 @@ fn records(state: &mut State, bytes: &[u8], start: usize, top: bool) -> Result<b
         };
         let record = match mcap::read::parse_record(op, body) {
             Ok(r) => r,
-            Err(e) => return fail(at, format!("a bad record (opcode 0x{op:02x}): {e}")),
+            Err(e) => {
+                return fail(
+                    at,
+                    format!("a bad record (opcode 0x{op:02x}): {}", said(&e)),
+                );
+            }
         };
         let go_on = match record {
             Record::Chunk { header, data } if top => read_chunk(state, header, &data),
@@ -155,8 +190,27 @@ fn records(state: &mut State, bytes: &[u8], start: usize, top: bool) -> Result<b
     Ok(true)
 }
 
-/// Unpacks one chunk (never past the size its header gives, at most `MAX_CHUNK`), checks
-/// its CRC and takes its records.
+/// What MCAP's reader found wrong, in navdeck's words where its own are unclear.
+fn said(e: &mcap::McapError) -> String {
+    use mcap::McapError as E;
+    let crc = |what: &str, saved: u32, calculated: u32| {
+        format!(
+            "{what} whose CRC does not match its contents (stored {saved:08X}, computed {calculated:08X})"
+        )
+    };
+    match e {
+        E::BadAttachmentCrc { saved, calculated } => crc("an attachment", *saved, *calculated),
+        E::BadChunkCrc { saved, calculated } => crc("a chunk", *saved, *calculated),
+        E::BadDataCrc { saved, calculated } => crc("a data section", *saved, *calculated),
+        E::BadSummaryCrc { saved, calculated } => crc("a summary section", *saved, *calculated),
+        E::ConflictingChannels(name) => format!("two different channels named {name:?}"),
+        E::ConflictingSchemas(name) => format!("two different schemas named {name:?}"),
+        other => other.to_string(),
+    }
+}
+
+/// Unpacks one chunk (never past the size its header gives, at most `MAX_CHUNK`, nor past
+/// `MAX_UNPACKED` for the whole file), checks its CRC and takes its records.
 fn read_chunk(
     state: &mut State,
     header: mcap::records::ChunkHeader,
@@ -165,14 +219,27 @@ fn read_chunk(
     let size = header.uncompressed_size;
     if size > MAX_CHUNK {
         return Err(format!(
-            "a chunk claims {size} bytes unpacked, over the {MAX_CHUNK} read"
+            "a chunk claims {size} bytes unpacked, over the {} MiB navdeck unpacks of one chunk",
+            MAX_CHUNK >> 20
+        ));
+    }
+    state.unpacked += size;
+    if state.unpacked > MAX_UNPACKED {
+        return Err(format!(
+            "its chunks claim over {} MiB unpacked in all, the most navdeck unpacks of one recording",
+            MAX_UNPACKED >> 20
         ));
     }
     let unpacked = unpack(&header.compression, data, size)?;
-    if unpacked.len() as u64 != size {
+    let got = unpacked.len() as u64;
+    if got > size {
         return Err(format!(
-            "a chunk unpacks to {} bytes, not the {size} its header gives",
-            unpacked.len()
+            "a chunk unpacks to more than the {size} bytes its header gives"
+        ));
+    }
+    if got < size {
+        return Err(format!(
+            "a chunk unpacks to {got} bytes, not the {size} its header gives"
         ));
     }
     if header.uncompressed_crc != 0 && crc32fast::hash(&unpacked) != header.uncompressed_crc {

@@ -81,14 +81,15 @@ impl Recorded {
         let first = raw
             .messages
             .iter()
-            .find(|m| m.topic == Topic::Input.name())
+            .find(|m| &*m.topic == Topic::Input.name())
             .map(|m| m.log_time);
         out.epoch_ns = first.map_or(0, |ns| {
             ns.saturating_sub((start.max(0.0) * 1e9).round() as u64)
         });
         let mut bad = 0usize;
-        for m in &raw.messages {
-            if let Err(why) = out.take(m) {
+        // Each message's bytes are let go once decoded, so the two never add up.
+        for m in raw.messages {
+            if let Err(why) = out.take(&m) {
                 bad += 1;
                 if bad <= NAMED_PROBLEMS {
                     let t = m.log_time.saturating_sub(out.epoch_ns) as f64 * 1e-9;
@@ -119,7 +120,7 @@ impl Recorded {
         };
         let expected = super::topics::TOPICS[topic.index()].2;
         let short = super::schema::short_name;
-        if short(&m.schema) != short(expected) || m.encoding != "cdr" {
+        if short(&m.schema) != short(expected) || &*m.encoding != "cdr" {
             self.foreign += 1;
             return Ok(());
         }

@@ -16,6 +16,10 @@ pub struct GrayFrame {
 pub enum FrameError {
     #[error("image encoding `{0}` is not supported: expected mono8, rgb8 or bgr8")]
     Encoding(String),
+    #[error(
+        "image {width}x{height} is not a picture navdeck reads: each side must be 1 to {MAX_SIDE} pixels"
+    )]
+    Sides { width: usize, height: usize },
     #[error("image {width}x{height} {encoding} with step {step} needs {needed} bytes, got {got}")]
     Size {
         width: usize,
@@ -26,6 +30,10 @@ pub enum FrameError {
         got: usize,
     },
 }
+
+/// The longest side of a camera image navdeck reads, pixels (a 16K sensor; the same
+/// bound as a calibration's image size).
+pub const MAX_SIDE: usize = 16384;
 
 impl GrayFrame {
     /// A frame of one grey level.
@@ -70,11 +78,14 @@ impl GrayFrame {
             "rgb8" | "bgr8" => 3,
             other => return Err(FrameError::Encoding(other.to_string())),
         };
-        let needed = if height == 0 {
-            0
-        } else {
-            step * (height - 1) + width * channels
-        };
+        if !(1..=MAX_SIDE).contains(&width) || !(1..=MAX_SIDE).contains(&height) {
+            return Err(FrameError::Sides { width, height });
+        }
+        // A step past the bytes there are cannot be right: checked so it cannot overflow.
+        let needed = step
+            .checked_mul(height - 1)
+            .and_then(|n| n.checked_add(width * channels))
+            .unwrap_or(usize::MAX);
         if step < width * channels || bytes.len() < needed {
             return Err(FrameError::Size {
                 width,
@@ -169,6 +180,22 @@ mod tests {
         assert!(e.to_string().contains("needs 8 bytes, got 7"), "{e}");
         let e = GrayFrame::from_raw(1, 1, "yuv422", 2, &[0; 2]).unwrap_err();
         assert!(e.to_string().contains("yuv422"), "{e}");
+    }
+
+    #[test]
+    fn empty_huge_and_overflowing_images_are_refused_not_a_panic() {
+        for (w, h, step) in [
+            (0, 1, 0),
+            (1, 0, 1),
+            (20_000, 1, 20_000),
+            (1, 2, usize::MAX),
+        ] {
+            let e = GrayFrame::from_raw(w, h, "mono8", step, &[0; 4]).unwrap_err();
+            assert!(e.to_string().contains(&format!("{w}x{h}")), "{e}");
+        }
+        let e = GrayFrame::from_raw(4_000_000_000, 4_000_000_000, "rgb8", 12_000_000_000, &[])
+            .unwrap_err();
+        assert!(e.to_string().contains("16384"), "{e}");
     }
 
     #[test]

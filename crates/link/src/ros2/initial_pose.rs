@@ -13,6 +13,8 @@ pub enum BadPose {
     Frame { found: String, expected: String },
     #[error("{field} = {value} is not finite")]
     NonFinite { field: String, value: f64 },
+    #[error("{field} = {value:e} m is over {FARTHEST:e} m from the map's origin")]
+    Far { field: String, value: f64 },
     #[error("{path}orientation = (x {x}, y {y}, z {z}, w {w}) is a zero quaternion")]
     ZeroQuaternion {
         path: &'static str,
@@ -22,6 +24,10 @@ pub enum BadPose {
         w: f64,
     },
 }
+
+/// A position farther than this from the origin is refused, metres (as a map's origin is:
+/// 100 km is beyond any room, building or campus a robot maps).
+pub const FARTHEST: f64 = 1.0e5;
 
 /// The planar pose in an /initialpose message, which must be in `map_frame` (an empty
 /// frame_id counts as the map, as some RViz set-ups send it).
@@ -65,6 +71,12 @@ fn planar_pose(
     ];
     if let Some(&(field, value)) = values.iter().find(|(_, v)| !v.is_finite()) {
         return Err(BadPose::NonFinite {
+            field: format!("{path}{field}"),
+            value,
+        });
+    }
+    if let Some(&(field, value)) = values[..2].iter().find(|(_, v)| v.abs() > FARTHEST) {
+        return Err(BadPose::Far {
             field: format!("{path}{field}"),
             value,
         });
@@ -195,6 +207,11 @@ mod tests {
         };
         let err = initial_pose(&estimate("map", 0.0, 0.0, zero), "map").unwrap_err();
         assert!(matches!(err, BadPose::ZeroQuaternion { .. }), "{err}");
+        let far = initial_pose(&estimate("map", 0.0, -1e308, Default::default()), "map");
+        assert_eq!(
+            far.unwrap_err().to_string(),
+            "pose.pose.position.y = -1e308 m is over 1e5 m from the map's origin"
+        );
     }
 
     #[test]

@@ -154,7 +154,10 @@ enum Subcommand {
 }
 
 fn main() -> ExitCode {
-    let cli = Cli::parse();
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(e) => return refused_command_line(e),
+    };
     match real_main(cli) {
         Ok(code) => code,
         Err(e) => {
@@ -162,6 +165,25 @@ fn main() -> ExitCode {
             ExitCode::from(2)
         }
     }
+}
+
+/// clap's answer to a command line it cannot take. Help and version are printed as they
+/// are; a refusal quotes the value as typed, so it is escaped and cut as every error is.
+fn refused_command_line(e: clap::Error) -> ExitCode {
+    use clap::error::ErrorKind;
+    let code = u8::try_from(e.exit_code()).unwrap_or(2);
+    if matches!(
+        e.kind(),
+        ErrorKind::DisplayHelp
+            | ErrorKind::DisplayVersion
+            | ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand
+    ) {
+        let _ = e.print();
+        return ExitCode::from(code);
+    }
+    let text = e.render().to_string();
+    say_err!("{}", text.trim_end());
+    ExitCode::from(code)
 }
 
 fn real_main(cli: Cli) -> Result<ExitCode> {

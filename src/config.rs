@@ -127,6 +127,16 @@ impl Config {
             ("arm", self.arm.as_ref().map_or(Ok(()), |a| a.validate())),
             ("record", self.record.validate()),
         ];
+        let namespace = &self.ros2.namespace;
+        if let Some(why) = crate::link::ros2::config::namespace_problem(namespace) {
+            return Err(ConfigError::Invalid {
+                path: path.to_path_buf(),
+                line: text.and_then(|t| line_of(t, "ros2.namespace")),
+                field: "ros2.namespace".into(),
+                value: crate::link::ros2::config::shown_namespace(namespace),
+                reason: format!("not a ROS 2 namespace: it {why}").into(),
+            });
+        }
         for (section, result) in sections {
             if let Err((field, value, reason)) = result {
                 let field = format!("{section}.{field}");

@@ -108,7 +108,7 @@ pub fn run_replay_console(
     })?;
     let outcome = signalled_failure(outcome, &signals);
     if let Err(e) = &outcome {
-        let _ = writeln!(std::io::stderr(), "navdeck: replay ended: {e}");
+        tell(&format!("navdeck: replay ended: {e}"));
     }
     Ok(exit_status(&outcome) as u8)
 }
@@ -165,7 +165,7 @@ fn no_keyboard(e: &std::io::Error) -> anyhow::Error {
 
 /// Opens a new `dir/navdeck-STAMP-PID.log` (`dated_file`), making `dir` if needed.
 fn open_log_file(dir: &std::path::Path) -> std::io::Result<(PathBuf, std::fs::File)> {
-    std::fs::create_dir_all(dir)?;
+    crate::data::replace::create_folder(dir)?;
     let path = dated_file(dir, "log");
     let file = std::fs::OpenOptions::new()
         .write(true)
@@ -239,32 +239,31 @@ pub fn run_console(
         Err(e) => e.to_string(),
     };
     // The terminal may be gone: a message that cannot be written is no reason to fail.
-    let _ = writeln!(
-        std::io::stderr(),
-        "navdeck: robot on {label} stopped; {why}"
-    );
+    tell(&format!("navdeck: robot on {label} stopped; {why}"));
     match (recorded, &options.record) {
-        (Some(Ok(summary)), Some((path, _))) => {
-            let _ = writeln!(
-                std::io::stderr(),
-                "navdeck: session recorded in {} ({} bytes)",
-                path.display(),
-                summary.bytes
-            );
-        }
-        (Some(Err(why)), _) => {
-            let _ = writeln!(std::io::stderr(), "navdeck: {why}");
-        }
+        (Some(Ok(summary)), Some((path, _))) => tell(&format!(
+            "navdeck: session recorded in {} ({} bytes)",
+            path.display(),
+            summary.bytes
+        )),
+        (Some(Err(why)), _) => tell(&format!("navdeck: {why}")),
         _ => {}
     }
     if let Some(path) = log_file {
-        let _ = writeln!(
-            std::io::stderr(),
-            "navdeck: session log in {}",
-            path.display()
-        );
+        tell(&format!("navdeck: session log in {}", path.display()));
     }
     Ok(exit_status(&outcome) as u8)
+}
+
+/// Writes `text` and a newline to standard error, its control characters escaped (a
+/// folder's name from the config may hold an escape sequence); a terminal that has gone
+/// is no reason to fail.
+fn tell(text: &str) {
+    let _ = writeln!(
+        std::io::stderr(),
+        "{}",
+        crate::data::printable::printable(text, None)
+    );
 }
 
 /// The process's exit status: 128 + the signal's number for a signal, as shells expect.

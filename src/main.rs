@@ -246,5 +246,8 @@ fn real_main(cli: Cli) -> Result<ExitCode> {
         }
         None => {}
     }
+    if let Some(ns) = &cli.ns {
+        commands::args::check_namespace("--ns", ns)?;
+    }
     commands::console::run(&cli)
 }

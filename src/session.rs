@@ -389,8 +389,14 @@ fn localizer_for(
         (None, Robot::Twin(twin)) => InitialPose::At(twin.pose()),
         (None, Robot::Link(_)) => InitialPose::Unknown,
     };
-    let localizer = Localizer::new(map.grid, initial, spec.seed, path.display().to_string())
-        .map_err(anyhow::Error::msg)?;
+    let localizer = Localizer::new(
+        map.grid,
+        initial,
+        spec.seed,
+        path.display().to_string(),
+        &config.map,
+    )
+    .map_err(anyhow::Error::msg)?;
     Ok(Some(localizer))
 }
 

@@ -463,3 +463,34 @@ fn hostile_map_headers_are_refused_quickly() {
     let err = io::load(&dir.join("device.yaml")).unwrap_err().to_string();
     assert!(err.contains("not a regular file"), "{err}");
 }
+
+#[test]
+fn a_file_that_is_not_a_map_is_refused_without_showing_what_it_holds() {
+    let dir = scratch("not-a-map");
+    let path = dir.join("passwd");
+    std::fs::write(&path, "root:x:0:0:root:/root:/bin/bash\n").unwrap();
+    let e = io::load(&path).unwrap_err().to_string();
+    assert!(e.contains("not a map YAML"), "{e}");
+    assert!(!e.contains("root:x"), "{e}");
+    std::fs::write(&path, "image: [\"secret text\", 2]\n").unwrap();
+    let e = io::load(&path).unwrap_err().to_string();
+    assert!(!e.contains("secret"), "{e}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn a_refused_save_leaves_no_temporary_file() {
+    let dir = scratch("refused-save");
+    let path = dir.join("lab.yaml");
+    // A link planted at the YAML's temporary name: the image is written first.
+    std::os::unix::fs::symlink(dir.join("elsewhere"), dir.join("lab.yaml.tmp")).unwrap();
+    let e = io::save(&path, &sample()).unwrap_err().to_string();
+    assert!(e.contains("lab.yaml"), "{e}");
+    let left: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().into_string().unwrap())
+        .collect();
+    assert!(left.is_empty(), "{left:?}");
+    assert!(!dir.join("elsewhere").exists());
+    std::fs::remove_dir_all(&dir).unwrap();
+}

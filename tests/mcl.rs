@@ -254,3 +254,52 @@ fn the_mission_on_mcl_is_not_lost_for_want_of_markers() {
         r.warnings
     );
 }
+
+#[test]
+fn a_pose_off_the_map_is_refused_with_the_ekf_as_with_mcl() {
+    let mut app = common::app_with(SessionSpec::twin(None));
+    for k in 1..=5 {
+        app.update(0.1 * f64::from(k));
+    }
+    let before = app.pilot().estimated_pose();
+    type_line(&mut app, "pose 100 100 0");
+    let last = app.log_book().last().unwrap().text.clone();
+    assert!(
+        last.contains("pose not set") && last.contains("off the map"),
+        "{last}"
+    );
+    assert_eq!(app.pilot().estimated_pose(), before);
+}
+
+#[test]
+fn a_kidnap_into_a_wall_is_refused_as_a_start_there_is() {
+    let spec = spec(FLAT, 1, None);
+    let session = Session::load(&spec).expect("session loads");
+    let localizer = session.localizer.clone();
+    let (config, link) = session.into_link();
+    let into_wall = TourOptions {
+        kidnap: Some((1.0, Pose2::new(-100.0, 0.0, 0.0))),
+        ..options(1, 2.0)
+    };
+    let why = tour::run(&config, link, localizer.as_ref(), &into_wall).unwrap_err();
+    assert!(
+        why.contains("--kidnap") && why.contains("outside the world"),
+        "{why}"
+    );
+}
+
+#[test]
+fn a_goal_off_the_map_is_warned_once_with_a_count() {
+    let far = TourOptions {
+        goals: vec![Point2::new(100.0, 100.0)],
+        ..options(1, 5.0)
+    };
+    let r = tour_of(&spec(FLAT, 1, None), |_| {}, far);
+    let off: Vec<&String> = r
+        .warnings
+        .iter()
+        .filter(|w| w.contains("off the map"))
+        .collect();
+    assert_eq!(off.len(), 1, "{:?}", r.warnings);
+    assert!(off[0].contains(" times)"), "{off:?}");
+}

@@ -271,3 +271,54 @@ fn bad_options_are_refused_naming_the_flag() {
     assert!(err.contains("--generated"), "{err}");
     std::fs::remove_dir_all(dir).unwrap();
 }
+
+#[test]
+fn world_generate_replaces_a_planted_link_and_keeps_the_old_file_as_bak() {
+    let dir = scratch("generate-links");
+    let victim = dir.join("victim");
+    std::fs::write(&victim, "keep").unwrap();
+    let out = dir.join("w.toml");
+    std::os::unix::fs::symlink(&victim, &out).unwrap();
+    let run = |path: &std::path::Path| {
+        navdeck(&[
+            "world",
+            "generate",
+            "--seed",
+            "3",
+            "-o",
+            path.to_str().unwrap(),
+        ])
+    };
+    let said = run(&out);
+    assert!(said.status.success(), "{said:?}");
+    // The link was moved aside, not written through.
+    assert_eq!(std::fs::read_to_string(&victim).unwrap(), "keep");
+    assert!(
+        std::fs::symlink_metadata(dir.join("w.toml.bak"))
+            .unwrap()
+            .is_symlink()
+    );
+    let first = std::fs::read_to_string(&out).unwrap();
+    assert!(first.contains("[[walls]]"), "{first}");
+    assert!(String::from_utf8_lossy(&said.stdout).contains("w.toml.bak"));
+    // Again: the file it replaces is kept.
+    assert!(run(&out).status.success());
+    assert_eq!(
+        std::fs::read_to_string(dir.join("w.toml.bak")).unwrap(),
+        first
+    );
+    // A dangling link: nothing is created where it points.
+    let dangling = dir.join("d.toml");
+    std::os::unix::fs::symlink(dir.join("made-through-link"), &dangling).unwrap();
+    assert!(run(&dangling).status.success());
+    assert!(!dir.join("made-through-link").exists());
+    // A link planted at the temporary name: refused, nothing left behind.
+    let guarded = dir.join("g.toml");
+    std::os::unix::fs::symlink(&victim, dir.join("g.toml.tmp")).unwrap();
+    let said = run(&guarded);
+    assert_eq!(said.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&said.stderr).contains("not writing through it"));
+    assert_eq!(std::fs::read_to_string(&victim).unwrap(), "keep");
+    assert!(!guarded.exists() && !dir.join("g.toml.tmp").exists());
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -32,7 +32,10 @@ impl App {
             loops: w.loops(),
         };
         let n = route.waypoints.len();
-        match std::fs::write(&path, file::to_yaml(&route)) {
+        // As a map save: a name with control characters refused, never through a link,
+        // the route it replaces kept as .bak.
+        let written = crate::data::replace::replace_file(&path, file::to_yaml(&route).into_bytes());
+        match written.map_err(|(_, e)| crate::map::io::io_reason(&e)) {
             Ok(()) => self.log(
                 Level::Success,
                 format!("route saved: {} ({n} waypoints)", path.display()),
@@ -52,8 +55,8 @@ impl App {
             );
         };
         let shown = path.display().to_string();
-        let route = std::fs::read_to_string(&path)
-            .map_err(|e| format!("cannot read {shown}: {e}"))
+        let route = crate::data::files::read_text_limited(&path, crate::data::files::TEXT_LIMIT)
+            .map_err(|e| format!("cannot read {shown}: {}", crate::map::io::io_reason(&e)))
             .and_then(|text| file::parse(&text, &shown).map_err(|e| e.to_string()));
         match route {
             Ok(route) => {

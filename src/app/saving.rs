@@ -99,7 +99,7 @@ impl App {
             return false;
         };
         let path = dir.join(format!("{name}.yaml"));
-        if let Err(e) = std::fs::create_dir_all(&dir) {
+        if let Err(e) = crate::data::replace::create_folder(&dir) {
             self.log(
                 Level::Error,
                 format!("map not saved: cannot create {}: {e}", dir.display()),

@@ -68,3 +68,9 @@ pub(crate) fn parse_point(s: &str) -> Result<Point2, String> {
     };
     Ok(Point2::new(number(x)?, number(y)?))
 }
+
+/// `--ns`: a ROS 2 namespace by rcl's rules, refused before any link is opened (not as
+/// clap's parser, which would echo a value of any length and with any characters).
+pub(crate) fn check_namespace(option: &str, ns: &str) -> anyhow::Result<()> {
+    navdeck::link::ros2::config::check_namespace(ns).map_err(|e| anyhow::anyhow!("{option}: {e}"))
+}

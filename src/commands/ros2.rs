@@ -86,6 +86,7 @@ fn topics(args: &TopicsArgs) -> Result<ExitCode> {
         None => Config::default(),
     };
     if let Some(ns) = &args.ns {
+        super::args::check_namespace("--ns", ns)?;
         config.ros2.namespace = ns.clone();
     }
     let domain = domain_from(args.domain, std::env::var("ROS_DOMAIN_ID").ok())

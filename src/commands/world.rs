@@ -1,7 +1,7 @@
 //! `navdeck world ...` and the options every generated world is asked with (part of the
 //! binary, beside main.rs): the command line's side of `navdeck::sim::generate`.
 
-use anyhow::{Context, Result};
+use anyhow::Result;
 use navdeck::sim::generate::{self, GenerateError, GenerateOptions, Style};
 use std::io::Write;
 use std::path::PathBuf;
@@ -111,12 +111,25 @@ fn run_generate(args: &GenerateArgs) -> Result<ExitCode> {
         options.command(),
         world.to_toml()
     );
-    std::fs::write(&args.output, text)
-        .with_context(|| format!("cannot write {}", args.output.display()))?;
-    let _ = writeln!(
-        std::io::stdout(),
-        "wrote {}: {}",
-        args.output.display(),
+    let out = &args.output;
+    let kept = std::fs::symlink_metadata(out).is_ok();
+    // As a map save: atomically, never through a link planted at the name, the file
+    // replaced kept as .bak.
+    navdeck::data::replace::replace_file(out, text.into_bytes()).map_err(|(_, e)| {
+        anyhow::anyhow!(
+            "cannot write {}: {}",
+            out.display(),
+            navdeck::map::io::io_reason(&e)
+        )
+    })?;
+    let backup = if kept {
+        format!(" (the file it replaced kept as {}.bak)", out.display())
+    } else {
+        String::new()
+    };
+    sayln!(
+        "wrote {}{backup}: {}",
+        out.display(),
         generate::describe(&world)
     );
     Ok(ExitCode::SUCCESS)

@@ -150,10 +150,12 @@ impl Replay {
         let first_truth = recorded.truths.first().map(|t| t.pose());
         let mcl = config.localization.estimator == Estimator::Mcl;
         let rerun_estimator = estimator_name(config.localization.estimator);
+        let localizer = mcl
+            .then(|| localizer(session, &options, first_truth, seed, &config.map))
+            .transpose()?;
         let mut app = App::new(config, keymap, Box::new(link), start);
-        if mcl {
-            let localizer = localizer(session, &options, first_truth, seed)?;
-            app.localize(&localizer);
+        if let Some(localizer) = &localizer {
+            app.localize(localizer);
         }
         // What could not be read or used goes in the log, and comes back with every
         // restart (a seek backwards).
@@ -333,6 +335,7 @@ fn localizer(
     options: &ReplayOptions,
     first_truth: Option<Pose2>,
     seed: u64,
+    map_config: &crate::map::config::MapConfig,
 ) -> Result<Localizer> {
     let recorded_map = session.get("map").map(PathBuf::from).or_else(|| {
         session
@@ -340,11 +343,23 @@ fn localizer(
             .map(PathBuf::from)
             .filter(|w| crate::session::is_nav2_map(w))
     });
-    let Some(path) = options.map.clone().or(recorded_map) else {
-        bail!("re-running with MCL needs the map it localises on: --map FILE.yaml (a Nav2 map)");
+    let path = match (options.map.clone(), recorded_map) {
+        (Some(given), _) => given,
+        (None, Some(recorded)) => {
+            recorded_reference(&recorded)?;
+            recorded
+        }
+        (None, None) => {
+            bail!("re-running with MCL needs the map it localises on: --map FILE.yaml (a Nav2 map)")
+        }
     };
-    let map = crate::map::io::load(&path)
-        .with_context(|| format!("cannot read the map {} for MCL", path.display()))?;
+    let map = crate::map::io::load(&path).map_err(|e| {
+        anyhow::anyhow!(
+            "cannot read the map {} for MCL: {}",
+            path.display(),
+            e.reason()
+        )
+    })?;
     let recorded_initial = session
         .get("initial_pose")
         .and_then(|s| s.parse::<InitialPose>().ok());
@@ -353,5 +368,30 @@ fn localizer(
         .or(recorded_initial)
         .or(first_truth.map(InitialPose::At))
         .unwrap_or(InitialPose::Unknown);
-    Localizer::new(map.grid, initial, seed, path.display().to_string()).map_err(anyhow::Error::msg)
+    Localizer::new(
+        map.grid,
+        initial,
+        seed,
+        path.display().to_string(),
+        map_config,
+    )
+    .map_err(anyhow::Error::msg)
+}
+
+/// A map a recording names is read only as the relative path the recorder wrote, inside
+/// the folder the replay runs in: a recording is a file from anywhere, and its metadata
+/// must not point navdeck at `/etc/passwd` or `../../secret`.
+fn recorded_reference(path: &Path) -> Result<()> {
+    use std::path::Component;
+    let inside = path
+        .components()
+        .all(|c| matches!(c, Component::Normal(_) | Component::CurDir));
+    if inside && !path.as_os_str().is_empty() {
+        return Ok(());
+    }
+    bail!(
+        "the recording's map {} is not read: a recording may name its map only by a path \
+         inside the current folder (no absolute path, no `..`); give the map with --map FILE.yaml",
+        path.display()
+    )
 }

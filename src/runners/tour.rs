@@ -100,6 +100,15 @@ pub fn run(
         .ground_truth()
         .ok_or("a tour needs the twin: it scores the estimate against the truth")?;
     let world = truth0.world().clone();
+    if let Some((_, pose)) = options.kidnap {
+        crate::world_fit::pose_fits(
+            &world,
+            pose,
+            config.robot.footprint_radius,
+            "the kidnap pose",
+        )
+        .map_err(|why| format!("--kidnap: {why}"))?;
+    }
     let raster = world.rasterize(0.05);
     let ground = localizer.map_or(&raster, |l| &l.grid);
     let start = truth0.pose();
@@ -184,13 +193,32 @@ pub fn run(
         collisions: Some(truth.collisions()),
         particles: mcl.map(|s| s.particles),
         clusters: mcl.map(|s| s.clusters),
-        warnings: (tour.log.iter())
-            .filter(|l| l.level >= Level::Warn)
-            .map(|l| format!("{:.1} s {}", l.time, l.text))
-            .collect(),
+        warnings: once_each(&tour.log),
         wall_time_s: None,
         realtime_factor: None,
     })
+}
+
+/// The warnings in `log`, each text once at its first time, with how many times it came
+/// when more than once (a goal off the map is refused at every control step).
+fn once_each(log: &[LogLine]) -> Vec<String> {
+    let mut seen: Vec<(&LogLine, usize)> = Vec::new();
+    let mut at: std::collections::HashMap<&str, usize> = std::collections::HashMap::new();
+    for line in log.iter().filter(|l| l.level >= Level::Warn) {
+        match at.get(line.text.as_str()) {
+            Some(&k) => seen[k].1 += 1,
+            None => {
+                at.insert(line.text.as_str(), seen.len());
+                seen.push((line, 1));
+            }
+        }
+    }
+    seen.into_iter()
+        .map(|(l, n)| match n {
+            1 => format!("{:.1} s {}", l.time, l.text),
+            n => format!("{:.1} s {} ({n} times)", l.time, l.text),
+        })
+        .collect()
 }
 
 /// Free cells a robot of clearance `clear` can stand on and reach from `start`.

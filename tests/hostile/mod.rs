@@ -11,6 +11,7 @@
 mod calibration;
 mod cli;
 mod config;
+mod files;
 mod keymap;
 mod map;
 mod mcap_bytes;
@@ -25,6 +26,8 @@ use std::process::Command;
 struct Case {
     kind: &'static str,
     files: Vec<(String, Vec<u8>)>,
+    /// Symbolic links made in the case's folder: (name, what it points to).
+    links: Vec<(String, String)>,
     args: Vec<String>,
     names: String,
     /// Exit 0 is also right, with output free of NaN, inf and null.
@@ -35,6 +38,7 @@ fn case(kind: &'static str, args: &[&str], names: &str) -> Case {
     Case {
         kind,
         files: Vec::new(),
+        links: Vec::new(),
         args: args.iter().map(|s| s.to_string()).collect(),
         names: names.to_string(),
         may_succeed: false,
@@ -47,8 +51,13 @@ impl Case {
         self
     }
 
+    /// A symbolic link `name` to `target` (`{dir}` standing for the case's folder).
+    fn link(mut self, name: &str, target: &str) -> Case {
+        self.links.push((name.to_string(), target.to_string()));
+        self
+    }
+
     /// Lets the case end with exit 0 if its output holds no NaN, inf or null number.
-    #[allow(dead_code)] // until a case file marks a case so
     fn or_clean(mut self) -> Case {
         self.may_succeed = true;
         self
@@ -68,6 +77,10 @@ fn run(case: &Case, root: &Path, n: usize) -> Outcome {
     std::fs::create_dir_all(&dir).unwrap();
     for (name, body) in &case.files {
         std::fs::write(dir.join(name), body).unwrap();
+    }
+    for (name, target) in &case.links {
+        let target = target.replace("{dir}", dir.to_str().unwrap());
+        std::os::unix::fs::symlink(target, dir.join(name)).unwrap();
     }
     let args: Vec<String> = case
         .args
@@ -102,6 +115,7 @@ fn every_hostile_input_is_refused_cleanly_naming_what_is_wrong() {
     cases.extend(cli::cases());
     cases.extend(calibration::cases());
     cases.extend(recording::cases());
+    cases.extend(files::cases());
     let mut counts = std::collections::BTreeMap::new();
     for c in &cases {
         *counts.entry(c.kind).or_insert(0usize) += 1;

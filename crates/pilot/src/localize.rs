@@ -7,7 +7,9 @@ use super::Pilot;
 use nalgebra::Matrix3;
 use navdeck_core::data::{LaserScan, Level};
 use navdeck_core::geometry::Pose2;
+use navdeck_core::map::config::MapConfig;
 use navdeck_core::map::grid::OccupancyGrid;
+use navdeck_core::slam::mcl::known_map::DEFAULT_REACH;
 use navdeck_core::slam::mcl::{KnownMap, Mcl};
 use std::sync::Arc;
 
@@ -40,7 +42,13 @@ impl Pilot {
         initial: InitialPose,
         seed: u64,
     ) -> Result<(), String> {
-        let map = Arc::new(KnownMap::new(grid).map_err(|e| e.to_string())?);
+        self.settings
+            .map
+            .check_extent(planning_extent(grid))
+            .map_err(|why| format!("the map's planning map: {why}"))?;
+        // Distances kept as far as the likelihood field reads them.
+        let reach = (self.settings.localization.likelihood_max_dist).max(DEFAULT_REACH);
+        let map = Arc::new(KnownMap::with_reach(grid, reach).map_err(|e| e.to_string())?);
         if let InitialPose::At(p) = initial {
             check_on_free_space(&map, p)?;
         }
@@ -55,12 +63,7 @@ impl Pilot {
     /// Makes the planning map cover `grid` (it is centred on the origin, as every map
     /// navdeck builds); an empty planning map is simply made larger.
     fn cover(&mut self, grid: &OccupancyGrid) {
-        let (w, h) = grid.extent();
-        let o = grid.origin;
-        let need = (
-            2.0 * o.x.abs().max((o.x + w).abs()),
-            2.0 * o.y.abs().max((o.y + h).abs()),
-        );
+        let need = planning_extent(grid);
         let c = self.belief.costmap();
         let have = (
             c.width as f64 * c.resolution,
@@ -155,13 +158,20 @@ impl Pilot {
     pub(super) fn set_pose(&mut self, pose: Pose2) {
         let c = &self.settings.localization;
         let (sd, sa) = (c.initial_std, c.initial_std_deg.to_radians());
+        // The check `--initial-pose` makes: on MCL's free space, or with the EKF at least
+        // on the planning map.
+        let checked = match &self.mcl {
+            Some(mcl) => check_on_free_space(mcl.map(), pose),
+            None => check_finite(pose).and_then(|()| {
+                let on_map = self.belief.costmap().cell_of(pose.position()).is_some();
+                on_map.then_some(()).ok_or_else(|| off_the_map(pose))
+            }),
+        };
+        if let Err(why) = checked {
+            self.log(Level::Error, format!("pose not set: {why}"));
+            return;
+        }
         if let Some(mut mcl) = self.mcl.take() {
-            let checked = check_on_free_space(mcl.map(), pose);
-            if let Err(why) = checked {
-                self.mcl = Some(mcl);
-                self.log(Level::Error, format!("pose not set: {why}"));
-                return;
-            }
             self.place(&mut mcl, InitialPose::At(pose));
             self.mcl = Some(mcl);
         }
@@ -197,23 +207,52 @@ impl Pilot {
     }
 }
 
+/// The extent of a planning map centred on the origin (as every map navdeck builds) that
+/// covers `grid`.
+pub fn planning_extent(grid: &OccupancyGrid) -> (f64, f64) {
+    let (w, h) = grid.extent();
+    let o = grid.origin;
+    (
+        2.0 * o.x.abs().max((o.x + w).abs()),
+        2.0 * o.y.abs().max((o.y + h).abs()),
+    )
+}
+
 /// A pose for the filter must stand on a known free cell of its map.
 fn check_on_free_space(map: &KnownMap, p: Pose2) -> Result<(), String> {
-    if !(p.x.is_finite() && p.y.is_finite() && p.theta.is_finite()) {
-        return Err(format!(
-            "pose ({}, {}, {}) is not a number",
-            p.x, p.y, p.theta
-        ));
-    }
+    check_finite(p)?;
     if map.is_free(p.position()) {
         Ok(())
     } else if map.index_of(p.x, p.y).is_none() {
-        Err(format!("({:.2}, {:.2}) is off the map", p.x, p.y))
+        Err(off_the_map(p))
     } else {
         Err(format!(
             "({:.2}, {:.2}) is not on the map's known free space",
             p.x, p.y
         ))
+    }
+}
+
+fn check_finite(p: Pose2) -> Result<(), String> {
+    if p.x.is_finite() && p.y.is_finite() && p.theta.is_finite() {
+        return Ok(());
+    }
+    Err(format!(
+        "pose ({:?}, {:?}, {:?}) is not a number",
+        p.x, p.y, p.theta
+    ))
+}
+
+fn off_the_map(p: Pose2) -> String {
+    format!("({}, {}) is off the map", short(p.x), short(p.y))
+}
+
+/// A coordinate to two decimals, or as `1e308` when too large for that to be short.
+fn short(v: f64) -> String {
+    if v.abs() < 1e6 {
+        format!("{v:.2}")
+    } else {
+        format!("{v:e}")
     }
 }
 
@@ -229,13 +268,18 @@ pub struct Localizer {
 }
 
 impl Localizer {
-    /// Checks that MCL can run on `grid` from `initial`.
+    /// Checks that MCL can run on `grid` from `initial`, and that the planning map that
+    /// covers it fits `map_config`'s cell limit (checked before MCL's own tables are made).
     pub fn new(
         grid: OccupancyGrid,
         initial: InitialPose,
         seed: u64,
         source: String,
+        map_config: &MapConfig,
     ) -> Result<Self, String> {
+        map_config
+            .check_extent(planning_extent(&grid))
+            .map_err(|why| format!("map {source}: a planning map covering it, {why}"))?;
         let map = KnownMap::new(&grid).map_err(|e| format!("map {source}: {e}"))?;
         if let InitialPose::At(p) = initial {
             check_on_free_space(&map, p).map_err(|e| format!("--initial-pose: {e} of {source}"))?;

@@ -10,6 +10,7 @@ pub mod command;
 pub mod files;
 pub mod level;
 pub mod printable;
+pub mod replace;
 pub mod robot;
 pub mod sensors;
 

@@ -75,8 +75,7 @@ impl MapConfig {
             ("wall_join", self.wall_join, 0.0, 10.0),
             ("autosave_every", self.autosave_every, 0.0, 86_400.0),
         ])?;
-        let cells = (self.width / self.resolution) * (self.height / self.resolution);
-        if cells > MAX_CELLS {
+        if self.cells_over((self.width, self.height)).is_some() {
             return Err((
                 "resolution",
                 self.resolution,
@@ -84,5 +83,40 @@ impl MapConfig {
             ));
         }
         Ok(())
+    }
+
+    /// The cells of a planning map covering `extent` metres (and at least the configured
+    /// width and height) at this resolution, when they are over `MAX_CELLS`.
+    fn cells_over(&self, extent: (f64, f64)) -> Option<f64> {
+        let res = self.resolution;
+        let cells = (extent.0.max(self.width) / res) * (extent.1.max(self.height) / res);
+        // Not a number (a NaN extent) is over too.
+        (cells.is_nan() || cells > MAX_CELLS).then_some(cells)
+    }
+
+    /// Whether a planning map covering `extent` metres fits within `MAX_CELLS` at
+    /// `[map] resolution`: the one check for every map a session plans on (a world, an
+    /// MCL map), made before anything of that size is allocated.
+    pub fn check_extent(&self, extent: (f64, f64)) -> Result<(), String> {
+        match self.cells_over(extent) {
+            None => Ok(()),
+            Some(cells) => {
+                let millions = cells / 1e6;
+                // Short, as 1e308 and not 300 digits.
+                let shown = if millions < 1e9 {
+                    format!("{millions:.0}")
+                } else {
+                    format!("{millions:e}")
+                };
+                Err(format!(
+                    "{:?} x {:?} m at [map] resolution {:?} m makes {shown} million cells, over \
+                     the limit of {:.0} million: use a coarser resolution",
+                    extent.0.max(self.width),
+                    extent.1.max(self.height),
+                    self.resolution,
+                    MAX_CELLS / 1e6
+                ))
+            }
+        }
     }
 }

@@ -6,7 +6,6 @@ use super::grid::{FREE, OCCUPIED, OccupancyGrid, UNKNOWN};
 use super::pgm::{self, PgmError};
 use crate::geometry::Point2;
 use serde::{Deserialize, Serialize};
-use std::io::Write;
 use std::path::{Path, PathBuf};
 
 /// Why a map file could not be read or written; each names the file and what is wrong.
@@ -62,6 +61,34 @@ impl MapFileError {
 pub fn field_reason(line: Option<usize>, field: &str, value: &str, reason: &str) -> String {
     let at = line.map(|l| format!("line {l}: ")).unwrap_or_default();
     format!("{at}field `{field}` = {value}: {reason}")
+}
+
+/// A YAML parser's message without the text it quotes from the file (`invalid type:
+/// string "root:x:0:0:…"`): an error names what is wrong, and never shows a file that was
+/// not a map (one a recording pointed at, say).
+fn without_quoted_text(message: &str) -> String {
+    if message.starts_with("invalid type: string") && message.contains("expected struct") {
+        return "not a map YAML: the file reads as one piece of text, not the fields \
+                image, resolution, origin, …"
+            .to_string();
+    }
+    let mut out = String::with_capacity(message.len());
+    let mut quoted = false;
+    for c in message.chars() {
+        match (c, quoted) {
+            ('"', false) => {
+                quoted = true;
+                out.push_str("\"…");
+            }
+            ('"', true) => {
+                quoted = false;
+                out.push('"');
+            }
+            (_, false) => out.push(c),
+            (_, true) => {}
+        }
+    }
+    out
 }
 
 /// An I/O error as a user reads it: what is wrong with the file, without the OS's
@@ -225,7 +252,7 @@ pub fn decode(
     }
     let yaml: MapYaml = serde_norway::from_str(text).map_err(|e| MapFileError::Yaml {
         path: path.to_path_buf(),
-        message: e.to_string(),
+        message: without_quoted_text(&e.to_string()),
     })?;
     let mode = check(&yaml, text, path)?;
     // map_server: the image is relative to the YAML's folder unless absolute.
@@ -372,7 +399,7 @@ fn check(yaml: &MapYaml, text: &str, path: &Path) -> Result<Mode, MapFileError> 
 /// Atomic: each file is written to a temporary name, synced and renamed; the previous
 /// version stays as `.bak` until the new one is complete.
 pub fn save(path: &Path, map: &MapFile) -> Result<(), MapFileError> {
-    save_with(path, map, &mut write_synced)
+    save_with(path, map, &mut crate::data::replace::write_synced)
 }
 
 /// `save` with the byte writer passed in, so a test can fail a write half-way.
@@ -412,61 +439,7 @@ pub fn save_with(
         (image_name, pgm::encode(g.width, g.height, &pixels)),
         (path.to_path_buf(), text.into_bytes()),
     ];
-    // Write both under temporary names first: a failure leaves the old pair untouched.
-    for (target, bytes) in &files {
-        let tmp = with_suffix(target, ".tmp");
-        write(&tmp, bytes).map_err(|source| {
-            let _ = std::fs::remove_file(&tmp);
-            MapFileError::Write {
-                path: target.clone(),
-                error: source,
-            }
-        })?;
-    }
-    for (target, _) in &files {
-        let err = |source| MapFileError::Write {
-            path: target.clone(),
-            error: source,
-        };
-        if target.exists() {
-            std::fs::rename(target, with_suffix(target, ".bak")).map_err(err)?;
-        }
-        std::fs::rename(with_suffix(target, ".tmp"), target).map_err(err)?;
-    }
-    Ok(())
-}
-
-fn with_suffix(path: &Path, suffix: &str) -> PathBuf {
-    let mut name = path.as_os_str().to_owned();
-    name.push(suffix);
-    PathBuf::from(name)
-}
-
-/// Writes a new file at `path` (a temporary name), never through what is already there:
-/// a regular file left by an interrupted save is removed first; anything else (a symbolic
-/// link planted to redirect the save, a folder, a pipe) is refused. The file is created
-/// exclusively, so nothing put there meanwhile is followed either.
-fn write_synced(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
-    match std::fs::symlink_metadata(path) {
-        Ok(meta) if meta.file_type().is_file() => std::fs::remove_file(path)?,
-        Ok(meta) => {
-            let what = if meta.file_type().is_symlink() {
-                "a symbolic link"
-            } else {
-                "not a regular file"
-            };
-            return Err(std::io::Error::new(
-                std::io::ErrorKind::AlreadyExists,
-                format!("{} is {what}: not writing through it", path.display()),
-            ));
-        }
-        Err(e) if e.kind() == std::io::ErrorKind::NotFound => {}
-        Err(e) => return Err(e),
-    }
-    let mut file = std::fs::OpenOptions::new()
-        .write(true)
-        .create_new(true)
-        .open(path)?;
-    file.write_all(bytes)?;
-    file.sync_all()
+    // Both under temporary names first: a failure leaves the old pair untouched.
+    crate::data::replace::replace_files(&files, write)
+        .map_err(|(path, error)| MapFileError::Write { path, error })
 }

@@ -133,8 +133,12 @@ impl World {
     /// an obstacle or a block, or within `radius` of a wall or a block's side; `None`
     /// when it stands clear.
     pub fn start_conflict(&self, radius: f64) -> Option<String> {
+        self.pose_conflict(self.start.position(), radius)
+    }
+
+    /// What a robot of footprint `radius` at `start` runs into (see `start_conflict`).
+    pub fn pose_conflict(&self, start: Point2, radius: f64) -> Option<String> {
         use super::shapes::{rect_contains, rect_edges};
-        let start = self.start.position();
         if let Some(i) = self
             .obstacles
             .iter()

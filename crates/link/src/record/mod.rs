@@ -98,8 +98,10 @@ impl Recorder {
             path: path.to_path_buf(),
             why,
         };
+        use navdeck_core::data::replace;
+        replace::check_name(path, "recording").map_err(|e| fail(e.to_string()))?;
         if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
-            std::fs::create_dir_all(dir).map_err(|e| fail(e.to_string()))?;
+            replace::create_folder(dir).map_err(|e| fail(e.to_string()))?;
         }
         let file = std::fs::OpenOptions::new()
             .write(true)

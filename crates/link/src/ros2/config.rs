@@ -218,6 +218,58 @@ impl Default for Ros2Config {
     }
 }
 
+/// Most characters of a namespace: rmw's RMW_NAMESPACE_MAX_LENGTH (a topic name's 255
+/// less DDS's 8-character prefix, less 2).
+pub const NAMESPACE_MAX: usize = 245;
+
+/// Whether `ns` is a ROS 2 namespace by rcl's rules (rmw_validate_namespace): empty (the
+/// root) or `/` followed by tokens of letters, digits and underscores, none starting
+/// with a digit, joined by single slashes, no trailing slash, at most `NAMESPACE_MAX`
+/// characters. The error names the value (cut short) and what is wrong with it.
+pub fn check_namespace(ns: &str) -> Result<(), String> {
+    namespace_problem(ns).map_or(Ok(()), |why| {
+        Err(format!("ROS 2 namespace {} {why}", shown_namespace(ns)))
+    })
+}
+
+/// `ns` quoted for a message, cut to 40 characters.
+pub fn shown_namespace(ns: &str) -> String {
+    let shown: String = ns.chars().take(40).collect();
+    let cut = if shown.len() < ns.len() { "…" } else { "" };
+    format!("{shown:?}{cut}")
+}
+
+/// What is wrong with `ns` as a namespace (see `check_namespace`), if anything.
+pub fn namespace_problem(ns: &str) -> Option<String> {
+    let why = if ns.is_empty() || ns == "/" {
+        return None;
+    } else if ns.chars().count() > NAMESPACE_MAX {
+        format!(
+            "is {} characters long, over ROS 2's {NAMESPACE_MAX}",
+            ns.chars().count()
+        )
+    } else if !ns.starts_with('/') {
+        "must start with `/` (e.g. /tb3)".to_string()
+    } else if ns.ends_with('/') {
+        "must not end with `/`".to_string()
+    } else if let Some(bad) = ns
+        .chars()
+        .find(|c| !(c.is_ascii_alphanumeric() || *c == '_' || *c == '/'))
+    {
+        format!("holds {bad:?}: only letters, digits, `_` and `/` may be used")
+    } else if ns.contains("//") {
+        "holds `//`: tokens are joined by single slashes".to_string()
+    } else if let Some(token) = ns[1..]
+        .split('/')
+        .find(|t| t.starts_with(|c: char| c.is_ascii_digit()))
+    {
+        format!("has a token `{token}` starting with a digit")
+    } else {
+        return None;
+    };
+    Some(why)
+}
+
 impl Ros2Config {
     pub fn validate(&self) -> Result<(), Invalid> {
         navdeck_core::data::check::within(&[
@@ -266,6 +318,28 @@ impl Ros2Config {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn namespaces_follow_rcl_rules() {
+        for good in ["", "/", "/tb3", "/fleet/robot_1", "/_x"] {
+            assert_eq!(check_namespace(good), Ok(()), "{good}");
+        }
+        for (bad, says) in [
+            ("tb3", "start with `/`"),
+            ("/tb3/", "end with `/`"),
+            ("/a b", "' '"),
+            ("/a//b", "`//`"),
+            ("/1abc", "`1abc` starting with a digit"),
+            ("/ok/2x", "`2x`"),
+            ("/a\u{1b}]0;x", "'\\u{1b}'"),
+        ] {
+            let e = check_namespace(bad).unwrap_err();
+            assert!(e.contains(says), "{bad}: {e}");
+        }
+        let long = format!("/{}", "a".repeat(5000));
+        let e = check_namespace(&long).unwrap_err();
+        assert!(e.contains("5001 characters") && e.len() < 200, "{e}");
+    }
 
     #[test]
     fn the_arm_is_off_by_default_with_turtlebot3_manipulation_names() {

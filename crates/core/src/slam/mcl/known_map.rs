@@ -1,12 +1,19 @@
 //! The map MCL localises on: which cells are obstacles, which are known free (where
 //! particles may be), and each cell's distance to the nearest obstacle, which both sensor
-//! models read.
+//! models read. The distances are kept only in a window round the obstacles, as far out
+//! as any model reads them (`reach`): a map drawn in a corner of a large unknown image
+//! costs what its mapped part does, not the image's square.
 
+use super::distance_transform::squared_distance_transform;
 use crate::geometry::Point2;
 use crate::map::grid::{OCCUPIED, OccupancyGrid};
 
 /// A cell at least this occupied is an obstacle (map_server's trinary maps give 0 or 100).
 const SOLID: i8 = OCCUPIED / 2;
+
+/// How far from an obstacle distances are kept when no model says: AMCL's default
+/// `laser_likelihood_max_dist`, 2 m.
+pub const DEFAULT_REACH: f64 = 2.0;
 
 /// Why a map cannot be localised on.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -17,20 +24,40 @@ pub enum KnownMapError {
     NoObstacles,
 }
 
-/// The corners of the box round the `occupied` cells of `grid` (at least one).
-fn bounds_of(occupied: &[bool], grid: &OccupancyGrid) -> (Point2, Point2) {
-    let (mut x0, mut y0, mut x1, mut y1) = (usize::MAX, usize::MAX, 0, 0);
-    for (i, _) in occupied.iter().enumerate().filter(|(_, o)| **o) {
-        let (cx, cy) = (i % grid.width, i / grid.width);
-        (x0, y0, x1, y1) = (x0.min(cx), y0.min(cy), x1.max(cx), y1.max(cy));
+/// A rectangle of cells: columns x0..x1, rows y0..y1.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct CellBox {
+    x0: usize,
+    y0: usize,
+    x1: usize,
+    y1: usize,
+}
+
+impl CellBox {
+    fn width(&self) -> usize {
+        self.x1 - self.x0
     }
-    let corner = |cx: usize, cy: usize| {
-        Point2::new(
-            grid.origin.x + cx as f64 * grid.resolution,
-            grid.origin.y + cy as f64 * grid.resolution,
-        )
-    };
-    (corner(x0, y0), corner(x1 + 1, y1 + 1))
+
+    fn height(&self) -> usize {
+        self.y1 - self.y0
+    }
+
+    /// The box's own index of grid cell (cx, cy), if inside.
+    #[inline]
+    fn index(&self, cx: usize, cy: usize) -> Option<usize> {
+        (cx >= self.x0 && cx < self.x1 && cy >= self.y0 && cy < self.y1)
+            .then(|| (cy - self.y0) * self.width() + (cx - self.x0))
+    }
+}
+
+/// The box round the cells of `grid` at least `SOLID`, or None when there are none.
+fn solid_box(grid: &OccupancyGrid) -> Option<CellBox> {
+    let (mut x0, mut y0, mut x1, mut y1) = (usize::MAX, usize::MAX, 0, 0);
+    for (i, _) in grid.cells.iter().enumerate().filter(|(_, c)| **c >= SOLID) {
+        let (cx, cy) = (i % grid.width, i / grid.width);
+        (x0, y0, x1, y1) = (x0.min(cx), y0.min(cy), x1.max(cx + 1), y1.max(cy + 1));
+    }
+    (x0 < x1).then_some(CellBox { x0, y0, x1, y1 })
 }
 
 /// See the module comment.
@@ -40,19 +67,28 @@ pub struct KnownMap {
     pub height: usize,
     pub resolution: f64,
     pub origin: Point2,
-    occupied: Vec<bool>,
     /// Indices of the known free cells.
     free: Vec<u32>,
-    /// Distance from each cell's centre to the nearest obstacle cell's centre, metres.
+    /// The cells whose distances are kept: the obstacles' box widened by `reach`.
+    window: CellBox,
+    /// Distance from each window cell's centre to the nearest obstacle cell's centre,
+    /// metres; every cell outside the window is farther than `reach`.
     distance: Vec<f32>,
+    reach: f64,
     /// The lower-left and upper-right corners of the occupied cells: the mapped place,
     /// without the unknown margin round it.
     occupied_bounds: (Point2, Point2),
 }
 
 impl KnownMap {
+    /// The map of `grid`, distances kept out to `DEFAULT_REACH`.
     pub fn new(grid: &OccupancyGrid) -> Result<Self, KnownMapError> {
-        let occupied: Vec<bool> = grid.cells.iter().map(|&c| c >= SOLID).collect();
+        Self::with_reach(grid, DEFAULT_REACH)
+    }
+
+    /// The map of `grid`, each cell's distance to the nearest obstacle kept where it is
+    /// at most `reach` metres; farther cells read as infinitely far.
+    pub fn with_reach(grid: &OccupancyGrid, reach: f64) -> Result<Self, KnownMapError> {
         let free: Vec<u32> = (grid.cells.iter().enumerate())
             .filter(|&(_, &c)| c == 0)
             .map(|(i, _)| i as u32)
@@ -60,11 +96,30 @@ impl KnownMap {
         if free.is_empty() {
             return Err(KnownMapError::NoFreeSpace);
         }
-        if !occupied.iter().any(|&o| o) {
-            return Err(KnownMapError::NoObstacles);
+        let solid = solid_box(grid).ok_or(KnownMapError::NoObstacles)?;
+        let corner = |cx: usize, cy: usize| {
+            Point2::new(
+                grid.origin.x + cx as f64 * grid.resolution,
+                grid.origin.y + cy as f64 * grid.resolution,
+            )
+        };
+        let occupied_bounds = (corner(solid.x0, solid.y0), corner(solid.x1, solid.y1));
+        // A cell `margin` cells beyond the box is more than `reach` from every obstacle.
+        let margin = (reach.max(0.0) / grid.resolution).ceil().min(1e9) as usize + 1;
+        let window = CellBox {
+            x0: solid.x0.saturating_sub(margin),
+            y0: solid.y0.saturating_sub(margin),
+            x1: solid.x1.saturating_add(margin).min(grid.width),
+            y1: solid.y1.saturating_add(margin).min(grid.height),
+        };
+        let (ww, wh) = (window.width(), window.height());
+        let mut seeds = Vec::with_capacity(ww * wh);
+        for cy in window.y0..window.y1 {
+            let row = &grid.cells[cy * grid.width + window.x0..cy * grid.width + window.x1];
+            seeds.extend(row.iter().map(|&c| c >= SOLID));
         }
-        let occupied_bounds = bounds_of(&occupied, grid);
-        let squared = squared_distance_transform(&occupied, grid.width, grid.height);
+        let squared = squared_distance_transform(&seeds, ww, wh);
+        drop(seeds);
         let distance = squared
             .iter()
             .map(|&d2| (d2.sqrt() * grid.resolution) as f32)
@@ -74,9 +129,10 @@ impl KnownMap {
             height: grid.height,
             resolution: grid.resolution,
             origin: grid.origin,
-            occupied,
             free,
+            window,
             distance,
+            reach,
             occupied_bounds,
         })
     }
@@ -84,6 +140,11 @@ impl KnownMap {
     /// The lower-left and upper-right corners of the occupied cells.
     pub fn occupied_bounds(&self) -> (Point2, Point2) {
         self.occupied_bounds
+    }
+
+    /// How far from an obstacle distances are kept, metres.
+    pub fn reach(&self) -> f64 {
+        self.reach
     }
 
     /// The cell index holding `p`, if on the map.
@@ -95,28 +156,59 @@ impl KnownMap {
             .then(|| cy as usize * self.width + cx as usize)
     }
 
-    /// Distance to the nearest obstacle from the cell holding (x, y), metres; None off the map.
+    /// The window's own index of the cell holding (x, y): the position of its distance in
+    /// `near_cells`, if the window holds it.
     #[inline]
-    pub fn distance_at(&self, x: f64, y: f64) -> Option<f32> {
-        self.index_of(x, y).map(|i| self.distance[i])
+    pub fn near_index_at(&self, x: f64, y: f64) -> Option<usize> {
+        self.index_of(x, y).and_then(|i| self.near(i))
     }
 
-    /// Distance of cell `i` to the nearest obstacle, metres.
+    /// The window's own index of cell `i`, if the window holds it.
+    #[inline]
+    fn near(&self, i: usize) -> Option<usize> {
+        self.window.index(i % self.width, i / self.width)
+    }
+
+    /// Distance to the nearest obstacle from the cell holding (x, y), metres (infinite
+    /// farther than `reach`); None off the map.
+    #[inline]
+    pub fn distance_at(&self, x: f64, y: f64) -> Option<f32> {
+        self.index_of(x, y).map(|i| self.distance_of(i))
+    }
+
+    /// Distance of cell `i` to the nearest obstacle, metres; infinite farther than `reach`.
     #[inline]
     pub fn distance_of(&self, i: usize) -> f32 {
-        self.distance[i]
+        self.near(i).map_or(f32::INFINITY, |k| self.distance[k])
+    }
+
+    /// The cells whose distance is finite, as (cell index, distance): the window's.
+    pub fn near_cells(&self) -> impl Iterator<Item = (usize, f32)> + '_ {
+        let w = &self.window;
+        (w.y0..w.y1)
+            .flat_map(move |cy| (w.x0..w.x1).map(move |cx| cy * self.width + cx))
+            .zip(self.distance.iter().copied())
+    }
+
+    /// How many cells `near_cells` gives.
+    pub fn near_count(&self) -> usize {
+        self.distance.len()
+    }
+
+    fn is_occupied(&self, i: usize) -> bool {
+        self.near(i).is_some_and(|k| self.distance[k] == 0.0)
     }
 
     pub fn is_free(&self, p: Point2) -> bool {
         self.index_of(p.x, p.y)
-            .is_some_and(|i| !self.occupied[i] && self.free.binary_search(&(i as u32)).is_ok())
+            .is_some_and(|i| self.free.binary_search(&(i as u32)).is_ok())
     }
 
     /// Whether the map says anything of `p`: an obstacle or known free, not unknown and
     /// not off the map.
     pub fn is_known(&self, p: Point2) -> bool {
         self.index_of(p.x, p.y)
-            .is_some_and(|i| self.occupied[i] || self.free.binary_search(&(i as u32)).is_ok())
+            .is_some_and(|i| self.is_occupied(i) || self.free.binary_search(&(i as u32)).is_ok())
     }
 
     pub fn cells(&self) -> usize {
@@ -137,24 +229,34 @@ impl KnownMap {
     }
 
     /// The range at which a beam from `(x, y)` along the unit direction `(c, s)` meets an
-    /// obstacle cell, up to `max_range`; off the map the beam meets nothing. The beam
-    /// visits every cell it crosses (Amanatides and Woo, "A Fast Voxel Traversal
-    /// Algorithm", 1987) wherever an obstacle is near; where the distance field says
-    /// none is, it jumps ahead by that distance less a cell's diagonal (sphere tracing),
-    /// which cannot pass over an obstacle cell.
+    /// obstacle cell, up to `max_range`; a beam that misses the window round the
+    /// obstacles meets nothing. The beam visits every cell it crosses (Amanatides and
+    /// Woo, "A Fast Voxel Traversal Algorithm", 1987) wherever an obstacle is near; where
+    /// the distance field says none is, it jumps ahead by that distance less a cell's
+    /// diagonal (sphere tracing), which cannot pass over an obstacle cell.
     pub fn ray_cast(&self, x: f64, y: f64, c: f64, s: f64, max_range: f64) -> f64 {
         let inv = 1.0 / self.resolution;
         let (gx, gy) = ((x - self.origin.x) * inv, (y - self.origin.y) * inv);
-        let (w, h) = (self.width as f64, self.height as f64);
+        if self.index_of(x, y).is_none() {
+            return max_range;
+        }
+        let w = &self.window;
         let t_max = max_range * inv;
-        let mut t = 0.0;
-        while t < t_max {
+        // Where the beam is inside the window (slab test): outside it nothing is hit.
+        let Some((enter, leave)) = slab(gx, c, w.x0 as f64, w.x1 as f64)
+            .zip(slab(gy, s, w.y0 as f64, w.y1 as f64))
+            .map(|((a0, a1), (b0, b1))| (a0.max(b0).max(0.0), a1.min(b1)))
+        else {
+            return max_range;
+        };
+        let mut t = enter;
+        while t < t_max && t < leave {
             let (px, py) = (gx + t * c, gy + t * s);
-            if !(px >= 0.0 && py >= 0.0 && px < w && py < h) {
-                return max_range;
-            }
-            let (ix, iy) = (px as usize, py as usize);
-            let d = f64::from(self.distance[iy * self.width + ix]) * inv;
+            // Clamped: at the window's edge rounding may put the point a hair outside.
+            let ix = (px.max(0.0) as usize).clamp(w.x0, w.x1 - 1);
+            let iy = (py.max(0.0) as usize).clamp(w.y0, w.y1 - 1);
+            let k = (iy - w.y0) * w.width() + (ix - w.x0);
+            let d = f64::from(self.distance[k]) * inv;
             if d == 0.0 {
                 return t * self.resolution;
             }
@@ -183,111 +285,24 @@ impl KnownMap {
     }
 }
 
+/// The interval of t over which `from + t * step` lies in lo..hi, if any.
+fn slab(from: f64, step: f64, lo: f64, hi: f64) -> Option<(f64, f64)> {
+    if step == 0.0 {
+        return (lo..hi)
+            .contains(&from)
+            .then_some((f64::NEG_INFINITY, f64::INFINITY));
+    }
+    let (a, b) = ((lo - from) / step, (hi - from) / step);
+    let (enter, leave) = (a.min(b), a.max(b));
+    (enter < leave).then_some((enter, leave))
+}
+
 /// Farther than this from an obstacle (cells), a beam jumps instead of stepping.
 const JUMP_FROM: f64 = 2.5;
-
-/// Squared distance (in cells) from each cell to the nearest `true` cell: the exact
-/// Euclidean transform of Felzenszwalb and Huttenlocher, "Distance Transforms of Sampled
-/// Functions" (2012), one pass over columns and one over rows.
-pub fn squared_distance_transform(seeds: &[bool], width: usize, height: usize) -> Vec<f64> {
-    let far = ((width * width + height * height) as f64) * 4.0 + 1.0;
-    let mut out: Vec<f64> = seeds.iter().map(|&s| if s { 0.0 } else { far }).collect();
-    let n = width.max(height);
-    let (mut f, mut d) = (vec![0.0; n], vec![0.0; n]);
-    let (mut v, mut z) = (vec![0usize; n], vec![0.0; n + 1]);
-    for x in 0..width {
-        for y in 0..height {
-            f[y] = out[y * width + x];
-        }
-        envelope(&f[..height], &mut d[..height], &mut v, &mut z);
-        for y in 0..height {
-            out[y * width + x] = d[y];
-        }
-    }
-    for y in 0..height {
-        let row = &mut out[y * width..(y + 1) * width];
-        f[..width].copy_from_slice(row);
-        envelope(&f[..width], &mut d[..width], &mut v, &mut z);
-        row.copy_from_slice(&d[..width]);
-    }
-    out
-}
-
-/// One dimension of the transform: the lower envelope of the parabolas (q - p)² + f(p)
-/// (Felzenszwalb and Huttenlocher 2012, algorithm DT(f)).
-fn envelope(f: &[f64], d: &mut [f64], v: &mut [usize], z: &mut [f64]) {
-    let n = f.len();
-    if n == 0 {
-        return;
-    }
-    let mut k = 0;
-    v[0] = 0;
-    z[0] = f64::NEG_INFINITY;
-    z[1] = f64::INFINITY;
-    for q in 1..n {
-        loop {
-            let p = v[k];
-            // Where the parabola from q meets the one from p.
-            let s = ((f[q] + (q * q) as f64) - (f[p] + (p * p) as f64)) / (2.0 * (q - p) as f64);
-            if s <= z[k] && k > 0 {
-                k -= 1;
-                continue;
-            }
-            if s <= z[k] {
-                // k == 0 and q's parabola is lower everywhere to the right of -inf.
-                v[0] = q;
-                z[1] = f64::INFINITY;
-                break;
-            }
-            k += 1;
-            v[k] = q;
-            z[k] = s;
-            z[k + 1] = f64::INFINITY;
-            break;
-        }
-    }
-    k = 0;
-    for (q, out) in d.iter_mut().enumerate().take(n) {
-        while z[k + 1] < q as f64 {
-            k += 1;
-        }
-        let p = v[k];
-        let dq = q as f64 - p as f64;
-        *out = dq * dq + f[p];
-    }
-}
 
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    fn brute(seeds: &[bool], w: usize, h: usize) -> Vec<f64> {
-        (0..w * h)
-            .map(|i| {
-                let (x, y) = ((i % w) as f64, (i / w) as f64);
-                (0..w * h)
-                    .filter(|&j| seeds[j])
-                    .map(|j| {
-                        let (a, b) = ((j % w) as f64, (j / w) as f64);
-                        (x - a).powi(2) + (y - b).powi(2)
-                    })
-                    .fold(f64::INFINITY, f64::min)
-            })
-            .collect()
-    }
-
-    #[test]
-    fn the_transform_matches_brute_force() {
-        let (w, h) = (13, 9);
-        let mut seeds = vec![false; w * h];
-        for &i in &[0, 17, 40, 41, 88, 116] {
-            seeds[i] = true;
-        }
-        assert_eq!(
-            squared_distance_transform(&seeds, w, h),
-            brute(&seeds, w, h)
-        );
-    }
 
     fn room() -> OccupancyGrid {
         // 2 m x 1 m at 0.1 m: a wall all round, free inside.
@@ -316,6 +331,31 @@ mod tests {
         let (lo, hi) = KnownMap::new(&g).unwrap().occupied_bounds();
         assert!(lo.distance(Point2::new(-0.5, -0.2)) < 1e-9, "{lo:?}");
         assert!(hi.distance(Point2::new(1.5, 0.8)) < 1e-9, "{hi:?}");
+    }
+
+    #[test]
+    fn distances_are_kept_only_round_the_obstacles_and_rays_still_reach_them() {
+        // The 2 m x 1 m room in the middle of a 40 m x 40 m unknown image at 0.1 m.
+        let mut g = OccupancyGrid::new(400, 400, 0.1, Point2::new(-20.0, -20.0), -1);
+        let inner = room();
+        for y in 0..10 {
+            for x in 0..20 {
+                g.set(x + 190, y + 195, inner.get(x, y));
+            }
+        }
+        let map = KnownMap::with_reach(&g, 1.0).unwrap();
+        // The room and 1.1 m round it, not the image's 160,000 cells.
+        assert_eq!(map.near_count(), 42 * 32);
+        assert_eq!(map.distance_at(-15.0, -15.0), Some(f32::INFINITY));
+        assert_eq!(map.distance_at(-1.45, 0.05), Some(0.5));
+        // From far outside the kept window a beam still meets the room's west wall,
+        // which starts at x = -1 m; one that passes the room meets nothing.
+        let r = map.ray_cast(-15.0, 0.05, 1.0, 0.0, 100.0);
+        assert!((r - 14.0).abs() < 1e-6, "{r}");
+        assert_eq!(map.ray_cast(-15.0, 5.0, 1.0, 0.0, 100.0), 100.0);
+        assert!(map.is_free(Point2::new(0.05, 0.05)));
+        assert!(!map.is_known(Point2::new(-15.0, -15.0)));
+        assert!(map.is_known(Point2::new(-0.95, 0.05)));
     }
 
     #[test]

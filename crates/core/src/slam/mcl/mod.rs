@@ -7,6 +7,7 @@
 pub mod beam_memo;
 pub mod cluster;
 pub mod config;
+pub mod distance_transform;
 mod filter;
 pub mod known_map;
 pub mod motion;

@@ -59,7 +59,9 @@ impl Beams {
 pub struct Weigher {
     model: SensorModel,
     /// Likelihood field: ln(z_hit · N(d; 0, σ) + z_rand / z_max) for each cell's distance d
-    /// (table 6.3, line 8), and the same for an end off the map.
+    /// (table 6.3, line 8), over the map's window of kept distances; `off_map` for an end
+    /// outside it, on the map or off (farther than the map's reach, which is at least the
+    /// field's cap).
     field: Vec<f32>,
     off_map: f32,
     /// Beam model: ln p(z | z*) tabulated, and the ranges traced so far.
@@ -80,8 +82,8 @@ impl Weigher {
         let cap = c.likelihood_max_dist;
         let q = |d: f64| (c.z_hit * gaussian(d.min(cap), c.sigma_hit) + c.z_rand / max_range).ln();
         let field = match c.model {
-            SensorModel::LikelihoodField => (0..map.cells())
-                .map(|i| q(f64::from(map.distance_of(i))) as f32)
+            SensorModel::LikelihoodField => (map.near_cells())
+                .map(|(_, d)| q(f64::from(d)) as f32)
                 .collect(),
             SensorModel::Beam => Vec::new(),
         };
@@ -113,8 +115,8 @@ impl Weigher {
             }
             // The beam's direction in the map: the robot's heading plus the beam's angle.
             let (dc, ds) = (c * bc - s * bs, s * bc + c * bs);
-            sum += match map.index_of(pose.x + r * dc, pose.y + r * ds) {
-                Some(i) => self.field[i],
+            sum += match map.near_index_at(pose.x + r * dc, pose.y + r * ds) {
+                Some(k) => self.field[k],
                 None => self.off_map,
             };
         }

@@ -1,6 +1,8 @@
 //! Camera calibration files (feature `vision`).
 
-use super::{Case, case};
+use super::Case;
+#[cfg(feature = "vision")]
+use super::case;
 
 #[cfg(feature = "vision")]
 pub fn cases() -> Vec<Case> {

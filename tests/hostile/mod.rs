@@ -8,6 +8,7 @@
 //! The config cases are made from navdeck's own default config: every number in it,
 //! set to NaN, 1e308 and -1e308 in turn, so a field added later is covered at once.
 
+mod arm;
 mod calibration;
 mod cli;
 mod config;
@@ -47,7 +48,6 @@ impl Case {
     }
 
     /// Lets the case end with exit 0 if its output holds no NaN, inf or null number.
-    #[allow(dead_code)] // until a case file marks a case so
     fn or_clean(mut self) -> Case {
         self.may_succeed = true;
         self
@@ -101,6 +101,7 @@ fn every_hostile_input_is_refused_cleanly_naming_what_is_wrong() {
     cases.extend(cli::cases());
     cases.extend(calibration::cases());
     cases.extend(recording::cases());
+    cases.extend(arm::cases());
     let mut counts = std::collections::BTreeMap::new();
     for c in &cases {
         *counts.entry(c.kind).or_insert(0usize) += 1;

@@ -96,7 +96,7 @@ impl Config {
     pub fn parse(text: &str, path: &Path) -> Result<Config, ConfigError> {
         let config: Config = toml::from_str(text).map_err(|e| ConfigError::Parse {
             path: path.to_path_buf(),
-            message: e.to_string().trim_end().to_string(),
+            message: crate::data::number::shorten_long_numbers(e.to_string().trim_end()),
         })?;
         config.check_sections(path, Some(text))?;
         Ok(config)
@@ -144,7 +144,7 @@ impl Config {
                     path: path.to_path_buf(),
                     line: text.and_then(|t| line_of(t, &field)),
                     field,
-                    value: format!("{value:?}"),
+                    value: crate::data::number::short(value),
                     reason,
                 });
             }
@@ -222,25 +222,17 @@ mod tests {
     #[test]
     fn every_section_names_its_bad_field_the_same_way() {
         let cases = [
-            (
-                "[robot]\ncontrol_period = 0.0",
-                "robot.control_period",
-                "0.0",
-            ),
+            ("[robot]\ncontrol_period = 0.0", "robot.control_period", "0"),
             ("[teleop]\nspeed_step = 0.9", "teleop.speed_step", "0.9"),
-            ("[race]\ncorrect_every = 0", "race.correct_every", "0.0"),
-            ("[slam]\ngate_chi2 = -1.0", "slam.gate_chi2", "-1.0"),
-            (
-                "[sim.camera]\nfov_deg = 400.0",
-                "sim.camera.fov_deg",
-                "400.0",
-            ),
+            ("[race]\ncorrect_every = 0", "race.correct_every", "0"),
+            ("[slam]\ngate_chi2 = -1.0", "slam.gate_chi2", "-1"),
+            ("[sim.camera]\nfov_deg = 400.0", "sim.camera.fov_deg", "400"),
             (
                 "[sim.encoders]\nslip_probability = 1.5",
                 "sim.encoders.slip_probability",
                 "1.5",
             ),
-            ("[sim.lidar]\nbeams = 0", "sim.lidar.beams", "0.0"),
+            ("[sim.lidar]\nbeams = 0", "sim.lidar.beams", "0"),
             ("[map]\nresolution = -0.05", "map.resolution", "-0.05"),
             ("[slam]\nmotor_std_deg = nan", "slam.motor_std_deg", "NaN"),
             (
@@ -248,6 +240,8 @@ mod tests {
                 "robot.control_period",
                 "1e-300",
             ),
+            ("[robot]\ntrack = 1e308", "robot.track", "1e308"),
+            ("[record]\nlevel = 0", "record.level", "0"),
         ];
         for (text, field, value) in cases {
             let err = Config::parse(text, Path::new("bad.toml"))

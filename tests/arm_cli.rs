@@ -97,14 +97,64 @@ fn fk_of_zeros_is_the_zero_pose() {
 }
 
 #[test]
-fn fk_says_when_a_joint_is_outside_its_limits() {
+fn fk_refuses_a_joint_outside_its_limits_naming_it_and_its_range() {
     let out = navdeck(&["arm", "fk", "0", "2", "0", "0"]);
-    assert_eq!(out.status.code(), Some(0));
+    assert_eq!(out.status.code(), Some(1));
+    assert_eq!(
+        stderr(&out).trim(),
+        "navdeck arm fk: J2 (shoulder) = 2 rad is outside its limits -1.79071..=1.5708 rad ([arm.limits] min[1], max[1])"
+    );
+    assert!(stdout(&out).is_empty(), "{}", stdout(&out));
+    // The issue's: 1e308 everywhere printed NaN; now the first joint is refused, short.
+    let out = navdeck(&["arm", "fk", "1e308", "1e308", "1e308", "1e308"]);
+    assert_eq!(out.status.code(), Some(1));
     assert!(
-        stdout(&out).contains("note: joint 2 at 114.6 deg is outside its limits"),
+        stderr(&out).contains("J1 (base yaw) = 1e308 rad is outside its limits"),
+        "{}",
+        stderr(&out)
+    );
+}
+
+#[test]
+fn ik_out_of_range_numbers_are_refused_with_the_range() {
+    let out = navdeck(&["arm", "ik", "1e308", "0", "0"]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(
+        stderr(&out).contains("for '<X>': 1e308 m is outside -7..=7"),
+        "{}",
+        stderr(&out)
+    );
+    let out = navdeck(&["arm", "ik", "0.2", "0", "0.1", "--pitch", "1e308"]);
+    assert!(
+        stderr(&out).contains("1e308 deg is outside -360..=360"),
+        "{}",
+        stderr(&out)
+    );
+}
+
+#[test]
+fn ik_on_the_yaw_axis_warns_of_the_singularity() {
+    let out = navdeck(&["arm", "ik", "0", "0", "0"]);
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    assert!(
+        stdout(&out).contains("warning   near a singularity"),
         "{}",
         stdout(&out)
     );
+    let v = json(&navdeck(&["arm", "ik", "0", "0", "0", "--json"]));
+    assert_eq!(v["near_singular"], true);
+    let v = json(&navdeck(&["arm", "ik", "0.2", "0.05", "0.02", "--json"]));
+    assert_eq!(v["near_singular"], false);
+}
+
+#[test]
+fn a_target_in_the_span_but_at_no_pitch_is_not_called_too_close() {
+    let out = navdeck(&["arm", "ik", "-0.2", "0", "0.05", "--json"]);
+    assert_eq!(out.status.code(), Some(1));
+    let v = json(&out);
+    assert_eq!(v["kind"], "no_pitch");
+    let reason = v["reason"].as_str().unwrap();
+    assert!(!reason.contains("no closer than 0.000"), "{reason}");
 }
 
 #[test]

@@ -154,6 +154,10 @@ pub fn parse(line: &str) -> Result<Intent, String> {
             .parse()
             .map(|kind| Typed::Controller(kind).into())
             .map_err(|e: crate::control::config::UnknownController| e.to_string()),
+        ["controller", ..] => Err(
+            "controller takes one name, pid, pure_pursuit or hybrid (alone: which one drives)"
+                .to_string(),
+        ),
         // The same as the key that clears the route.
         ["clear"] => Ok(Action::ClearRoute.into()),
         ["mission", "restart"] => Ok(Typed::RestartMission.into()),
@@ -216,6 +220,8 @@ mod tests {
         assert!(parse("goto 1e400 0").unwrap_err().contains("1e400"));
         assert!(parse("fly 1 2").unwrap_err().contains("`fly`"));
         assert!(parse("controller lqr").unwrap_err().contains("lqr"));
+        let e = parse("controller pid pid pid").unwrap_err();
+        assert!(e.starts_with("controller takes one name"), "{e}");
         assert!(parse("pose 1 2 nan").unwrap_err().contains("nan"));
         assert!(parse("pose 1 2").unwrap_err().contains("THETA"));
         assert!(parse("route loop 0").unwrap_err().contains("`0`"));

@@ -1,8 +1,9 @@
 //! Value parsers shared by the command line's options.
 
+use navdeck::data::number::short;
 use navdeck::geometry::{Point2, Pose2};
 
-/// A number within lo..=hi, or why not.
+/// A number within lo..=hi, or why not, the value and bounds printed short (`1e308`).
 pub(crate) fn bounded(s: &str, lo: f64, hi: f64, unit: &str) -> Result<f64, String> {
     let v: f64 = s
         .trim()
@@ -11,8 +12,18 @@ pub(crate) fn bounded(s: &str, lo: f64, hi: f64, unit: &str) -> Result<f64, Stri
     if (lo..=hi).contains(&v) {
         Ok(v)
     } else {
-        Err(format!("{v:?} {unit} is outside {lo}..={hi}"))
+        Err(outside(v, lo, hi, unit))
     }
+}
+
+/// "1e308 s is outside 0.1..=7200": a value refused for lying outside its bounds.
+pub(crate) fn outside(v: f64, lo: f64, hi: f64, unit: &str) -> String {
+    format!(
+        "{} {unit} is outside {}..={}",
+        short(v),
+        short(lo),
+        short(hi)
+    )
 }
 
 /// A whole number (a seed, a count), or why not, naming the value: clap's own message

@@ -42,18 +42,19 @@ pub struct PickTestArgs {
 #[derive(Debug, clap::Args)]
 #[command(allow_negative_numbers = true)]
 pub struct IkArgs {
-    /// Forward, metres.
-    #[arg(value_name = "X", value_parser = finite)]
+    /// Forward, metres (within 7 m: no arm navdeck accepts reaches farther).
+    #[arg(value_name = "X", value_parser = metres)]
     x: f64,
     /// Left, metres.
-    #[arg(value_name = "Y", value_parser = finite)]
+    #[arg(value_name = "Y", value_parser = metres)]
     y: f64,
     /// Up, metres.
-    #[arg(value_name = "Z", value_parser = finite)]
+    #[arg(value_name = "Z", value_parser = metres)]
     z: f64,
-    /// The tool's pitch, degrees: 0 level, 90 straight down (default: the pitch nearest
-    /// [arm] preferred_pitch that reaches; the 2dof solver's is fixed).
-    #[arg(long, value_name = "DEG", value_parser = finite)]
+    /// The tool's pitch, degrees: 0 level, 90 straight down, within a turn either way
+    /// (default: the pitch nearest [arm] preferred_pitch that reaches; the 2dof solver's
+    /// is fixed).
+    #[arg(long, value_name = "DEG", value_parser = pitch_degrees)]
     pitch: Option<f64>,
     /// Print one JSON object.
     #[arg(long)]
@@ -66,17 +67,17 @@ pub struct IkArgs {
 #[derive(Debug, clap::Args)]
 #[command(allow_negative_numbers = true)]
 pub struct FkArgs {
-    /// Joint 1, the base's yaw, radians.
-    #[arg(value_name = "J1", value_parser = finite)]
+    /// Joint 1, the base's yaw, radians (within its [arm.limits]).
+    #[arg(value_name = "J1", value_parser = joint_radians)]
     j1: f64,
-    /// Joint 2, the shoulder, radians.
-    #[arg(value_name = "J2", value_parser = finite)]
+    /// Joint 2, the shoulder, radians (within its [arm.limits]).
+    #[arg(value_name = "J2", value_parser = joint_radians)]
     j2: f64,
-    /// Joint 3, the elbow, radians.
-    #[arg(value_name = "J3", value_parser = finite)]
+    /// Joint 3, the elbow, radians (within its [arm.limits]).
+    #[arg(value_name = "J3", value_parser = joint_radians)]
     j3: f64,
-    /// Joint 4, the wrist, radians.
-    #[arg(value_name = "J4", value_parser = finite)]
+    /// Joint 4, the wrist, radians (within its [arm.limits]).
+    #[arg(value_name = "J4", value_parser = joint_radians)]
     j4: f64,
     /// Print one JSON object.
     #[arg(long)]
@@ -86,13 +87,59 @@ pub struct FkArgs {
     config: Option<PathBuf>,
 }
 
-/// A finite number (NaN and infinities refused, naming the argument).
-fn finite(s: &str) -> Result<f64, String> {
-    s.trim()
+/// A finite number (NaN and infinities refused, naming the argument) within lo..=hi.
+fn finite_within(s: &str, lo: f64, hi: f64, unit: &str) -> Result<f64, String> {
+    let v = s
+        .trim()
         .parse::<f64>()
         .ok()
         .filter(|v| v.is_finite())
-        .ok_or_else(|| format!("`{s}` is not a finite number"))
+        .ok_or_else(|| format!("`{s}` is not a finite number"))?;
+    if (lo..=hi).contains(&v) {
+        Ok(v)
+    } else {
+        Err(super::args::outside(v, lo, hi, unit))
+    }
+}
+
+/// A target coordinate: no arm a config may describe reaches farther from its base
+/// (`arm::config::FARTHEST_REACH`: the highest shoulder and three of the longest links).
+fn metres(s: &str) -> Result<f64, String> {
+    let far = navdeck::arm::config::FARTHEST_REACH;
+    finite_within(s, -far, far, "m")
+}
+
+/// A tool pitch: within a turn either way (every angle has a name in that range).
+fn pitch_degrees(s: &str) -> Result<f64, String> {
+    finite_within(s, -360.0, 360.0, "deg")
+}
+
+/// A joint angle: a finite number here; its own `[arm.limits]` are checked once the
+/// config is read, and name the joint and its range.
+fn joint_radians(s: &str) -> Result<f64, String> {
+    finite_within(s, f64::MIN, f64::MAX, "rad")
+}
+
+/// The joints' names, base to wrist, for messages.
+const JOINT_NAMES: [&str; 4] = ["base yaw", "shoulder", "elbow", "wrist"];
+
+/// The first of `joints` outside its `[arm.limits]`, as a sentence naming it, its value
+/// and its range.
+fn outside_limits(cfg: &ArmConfig, joints: &Joints) -> Option<String> {
+    use navdeck::data::number::short;
+    (0..4).find_map(|i| {
+        let (lo, hi, v) = (cfg.limits.min[i], cfg.limits.max[i], joints.0[i]);
+        (!(lo..=hi).contains(&v)).then(|| {
+            format!(
+                "J{} ({}) = {} rad is outside its limits {}..={} rad ([arm.limits] min[{i}], max[{i}])",
+                i + 1,
+                JOINT_NAMES[i],
+                short(v),
+                short(lo),
+                short(hi)
+            )
+        })
+    })
 }
 
 /// The [arm] section of `path`, or its defaults.
@@ -115,6 +162,7 @@ fn kind(e: &Unreachable) -> &'static str {
     match e {
         Unreachable::TooFar { .. } => "too_far",
         Unreachable::TooClose { .. } => "too_close",
+        Unreachable::NoPitch { .. } => "no_pitch",
         Unreachable::PitchOutOfReach { .. } => "pitch_out_of_reach",
         Unreachable::JointLimit { .. } => "joint_limit",
         Unreachable::Singular { .. } => "singular",
@@ -144,14 +192,20 @@ fn pick_test(args: &PickTestArgs) -> Result<ExitCode> {
         sayln!("{out}");
     } else {
         for b in &bands {
+            let band = format!("{:.2}-{:.2} m", b.from_m, b.to_m);
+            if b.picks == 0 {
+                sayln!("{band}: no picks in this band");
+                continue;
+            }
+            let error = b.mean_error_mm.map_or_else(
+                || "the camera never saw the block".to_string(),
+                |e| format!("mean error {e:.1} mm"),
+            );
             sayln!(
-                "{:.2}-{:.2} m: {}/{} picked ({:.1} %), mean error {:.1} mm",
-                b.from_m,
-                b.to_m,
+                "{band}: {}/{} picked ({:.1} %), {error}",
                 b.successes,
                 b.picks,
                 b.success_rate * 100.0,
-                b.mean_error_mm
             );
         }
     }
@@ -188,6 +242,7 @@ fn ik(args: &IkArgs) -> Result<ExitCode> {
         }
     };
     let pose = arm::forward(&cfg, &s.joints);
+    let near_singular = arm::near_singular(&cfg, s.manipulability);
     if args.json {
         let out = serde_json::json!({
             "reachable": true,
@@ -197,6 +252,7 @@ fn ik(args: &IkArgs) -> Result<ExitCode> {
             "pose": pose,
             "residual_m": s.residual,
             "manipulability": s.manipulability,
+            "near_singular": near_singular,
             "iterations": s.iterations,
             "solve_time_us": micros,
         });
@@ -215,6 +271,11 @@ fn ik(args: &IkArgs) -> Result<ExitCode> {
             s.iterations,
             s.manipulability
         );
+        if near_singular {
+            sayln!(
+                "warning   near a singularity: the tool cannot move in every direction here and a small change of target may swing a joint far ([arm] min_manipulability refuses such poses)"
+            );
+        }
     }
     Ok(ExitCode::SUCCESS)
 }
@@ -222,8 +283,11 @@ fn ik(args: &IkArgs) -> Result<ExitCode> {
 fn fk(args: &FkArgs) -> Result<ExitCode> {
     let cfg = arm_config(args.config.as_deref())?;
     let joints = Joints([args.j1, args.j2, args.j3, args.j4]);
+    if let Some(why) = outside_limits(&cfg, &joints) {
+        say_err!("navdeck arm fk: {why}");
+        return Ok(ExitCode::from(1));
+    }
     let pose = arm::forward(&cfg, &joints);
-    let limits = arm::check_limits(&cfg, &joints);
     if args.json {
         let out = serde_json::json!({
             "x": pose.x,
@@ -231,7 +295,7 @@ fn fk(args: &FkArgs) -> Result<ExitCode> {
             "z": pose.z,
             "pitch": pose.pitch,
             "pitch_deg": pose.pitch.to_degrees(),
-            "within_limits": limits.is_ok(),
+            "within_limits": true,
         });
         sayln!("{out}");
     } else {
@@ -242,20 +306,6 @@ fn fk(args: &FkArgs) -> Result<ExitCode> {
             pose.z,
             pose.pitch.to_degrees()
         );
-        if let Err(Unreachable::JointLimit {
-            joint,
-            value,
-            min,
-            max,
-        }) = limits
-        {
-            sayln!(
-                "note: joint {joint} at {:.1} deg is outside its limits {:.1} to {:.1} deg",
-                value.to_degrees(),
-                min.to_degrees(),
-                max.to_degrees()
-            );
-        }
     }
     Ok(ExitCode::SUCCESS)
 }

@@ -61,7 +61,7 @@ fn parse_duration(s: &str) -> Result<f64, String> {
     if (0.1..=3600.0).contains(&v) {
         Ok(v)
     } else {
-        Err(format!("{v:?} s is outside 0.1..=3600"))
+        Err(super::args::outside(v, 0.1, 3600.0, "s"))
     }
 }
 

@@ -90,8 +90,8 @@ pub struct TourArgs {
     /// Parameters (TOML).
     #[arg(long, value_name = "FILE")]
     config: Option<PathBuf>,
-    /// Simulated seconds to drive.
-    #[arg(long, default_value_t = 300.0, value_name = "S")]
+    /// Simulated seconds to drive: 0.1 (one control period of the default robot) to 7200.
+    #[arg(long, default_value_t = 300.0, value_name = "S", value_parser = parse_duration)]
     duration: f64,
     /// Goals to visit in turn, X,Y;X,Y;... (default: random reachable ones).
     #[arg(long, value_name = "X,Y;...", allow_hyphen_values = true)]
@@ -105,6 +105,12 @@ pub struct TourArgs {
     /// Print one JSON object per run.
     #[arg(long)]
     json: bool,
+}
+
+/// A tour's length: at least one control period of the default robot (0.1 s; a shorter
+/// tour takes no step) and at most two simulated hours, as a mission's time limit.
+fn parse_duration(s: &str) -> Result<f64, String> {
+    super::args::bounded(s, 0.1, 7200.0, "s")
 }
 
 fn parse_goals(text: &str) -> Result<Vec<Point2>> {
@@ -139,12 +145,6 @@ fn parse_kidnap(text: &str) -> Result<(f64, Pose2)> {
 }
 
 pub fn run(args: &TourArgs) -> Result<ExitCode> {
-    if !(args.duration.is_finite() && args.duration > 0.0 && args.duration <= 7200.0) {
-        bail!(
-            "--duration {} must be a number of seconds in 0..=7200",
-            args.duration
-        );
-    }
     let goals = match &args.goals {
         Some(text) => parse_goals(text)?,
         None => Vec::new(),

@@ -29,14 +29,19 @@ const BEARING: f64 = 0.3;
 const LOOK: f64 = 1.0;
 /// The tool goes this far above the block before it descends, metres (the mission's).
 const ABOVE: f64 = crate::mission::ARM_ABOVE;
+/// The runner's time step, seconds.
 const STEP: f64 = 0.05;
 
 /// One pick's outcome.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct Pick {
     pub distance: f64,
-    pub error_mm: f64,
+    /// How far the estimated block was from the true one; none when the camera never
+    /// saw it.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub error_mm: Option<f64>,
     pub success: bool,
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub why: Option<String>,
 }
 
@@ -48,7 +53,9 @@ pub struct Band {
     pub picks: usize,
     pub successes: usize,
     pub success_rate: f64,
-    pub mean_error_mm: f64,
+    /// Over the band's picks whose block was seen; none when none was.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub mean_error_mm: Option<f64>,
 }
 
 /// `picks` picks from `seed`, with the twin of `config` (its `[arm]`, or the default arm).
@@ -84,11 +91,17 @@ pub fn run(config: &Config, picks: usize, seed: u64) -> (Vec<Pick>, Vec<Band>) {
                 picks: n,
                 successes: ok,
                 success_rate: ok as f64 / n.max(1) as f64,
-                mean_error_mm: these.iter().map(|p| p.error_mm).sum::<f64>() / n.max(1) as f64,
+                mean_error_mm: mean(these.iter().filter_map(|p| p.error_mm)),
             }
         })
         .collect();
     (all, bands)
+}
+
+/// The mean of `values`, none of none.
+fn mean(values: impl Iterator<Item = f64>) -> Option<f64> {
+    let (sum, n) = values.fold((0.0, 0usize), |(sum, n), v| (sum + v, n + 1));
+    (n > 0).then(|| sum / n as f64)
 }
 
 /// One pick of a block `distance` ahead of the camera at `bearing` from the robot's heading.
@@ -131,7 +144,7 @@ fn one(config: &Config, arm: &ArmConfig, distance: f64, bearing: f64, seed: u64)
         })
         .collect();
     if points.is_empty() {
-        return failed(distance, f64::NAN, "the camera never saw the block");
+        return failed(distance, None, "the camera never saw the block");
     }
     let n = points.len() as f64;
     let estimate = Point2::new(
@@ -159,7 +172,7 @@ fn one(config: &Config, arm: &ArmConfig, distance: f64, bearing: f64, seed: u64)
     // The block in the arm's frame, as the robot believes it, and the error against the truth.
     let believed = odometry.pose().inverse_transform_point(estimate);
     let truth = twin.pose().inverse_transform_point(block.pose.position());
-    let error_mm = believed.distance(truth) * 1000.0;
+    let error_mm = Some(believed.distance(truth) * 1000.0);
     let in_arm = |z: f64| {
         let p = arm.mount.from_robot([believed.x, believed.y, z]);
         Target::point(p[0], p[1], p[2])
@@ -172,12 +185,16 @@ fn one(config: &Config, arm: &ArmConfig, distance: f64, bearing: f64, seed: u64)
             Ok(s) => joints = s.joints,
             Err(e) => return failed(distance, error_mm, &format!("out of reach: {e}")),
         }
-        move_arm(&mut twin, arm, joints);
+        if let Err(e) = move_arm(&mut twin, arm, joints) {
+            return failed(distance, error_mm, &e);
+        }
     }
     twin.command_gripper(GripperCommand::Close);
     run(&mut twin, &mut odometry, 1.0);
-    if let Ok(s) = inverse(arm, &in_arm(mid + ABOVE), &joints) {
-        move_arm(&mut twin, arm, s.joints);
+    if let Ok(s) = inverse(arm, &in_arm(mid + ABOVE), &joints)
+        && let Err(e) = move_arm(&mut twin, arm, s.joints)
+    {
+        return failed(distance, error_mm, &e);
     }
     let success = twin.gripper() == GripperState::Holding;
     Pick {
@@ -188,7 +205,7 @@ fn one(config: &Config, arm: &ArmConfig, distance: f64, bearing: f64, seed: u64)
     }
 }
 
-fn failed(distance: f64, error_mm: f64, why: &str) -> Pick {
+fn failed(distance: f64, error_mm: Option<f64>, why: &str) -> Pick {
     Pick {
         distance,
         error_mm,
@@ -219,13 +236,28 @@ fn drive_until(
     odometry.update(frame.wheels.unwrap_or_default());
 }
 
-/// Moves the arm to `joints` and waits until it is there.
-fn move_arm(twin: &mut Twin, arm: &ArmConfig, joints: Joints) {
+/// Moves the arm to `joints` and waits until it is there, a step at a time: as many steps
+/// as the move's time at the joints' speed limits takes, refused when that is longer than
+/// any valid arm's longest move (`arm::config::LONGEST_MOVE`, a turn at the slowest speed).
+fn move_arm(twin: &mut Twin, arm: &ArmConfig, joints: Joints) -> Result<(), String> {
     let from = Joints(twin.arm_joints().unwrap_or_default());
     let within = crate::arm::move_time(arm, &from, &joints);
+    let longest = crate::arm::config::LONGEST_MOVE;
+    if within.is_nan() || within > longest {
+        return Err(format!(
+            "the arm's move would take {} s, more than the longest a valid arm makes ({} s)",
+            crate::data::number::short(within),
+            crate::data::number::short(longest)
+        ));
+    }
     twin.command_arm(&ArmTarget {
         joints: joints.0,
         within,
     });
-    twin.step(within + 0.2);
+    // 0.2 s more for the twin's arm to settle.
+    let steps = ((within + 0.2) / STEP).ceil() as usize;
+    for _ in 0..steps {
+        twin.step(STEP);
+    }
+    Ok(())
 }

@@ -8,6 +8,7 @@
 //! The config cases are made from navdeck's own default config: every number in it,
 //! set to NaN, 1e308 and -1e308 in turn, so a field added later is covered at once.
 
+mod arm;
 mod calibration;
 mod cli;
 mod config;
@@ -115,6 +116,7 @@ fn every_hostile_input_is_refused_cleanly_naming_what_is_wrong() {
     cases.extend(cli::cases());
     cases.extend(calibration::cases());
     cases.extend(recording::cases());
+    cases.extend(arm::cases());
     cases.extend(files::cases());
     let mut counts = std::collections::BTreeMap::new();
     for c in &cases {

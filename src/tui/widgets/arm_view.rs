@@ -6,7 +6,7 @@
 
 use crate::app::App;
 use crate::arm::kinematics::side_chain;
-use crate::arm::{forward, manipulability};
+use crate::arm::{forward, manipulability, near_singular};
 use crate::tui::theme::Theme;
 use ratatui::buffer::Buffer;
 use ratatui::layout::Rect;
@@ -14,8 +14,6 @@ use ratatui::text::Line;
 
 /// A joint within this of a limit is flagged, radians (5°).
 const NEAR_LIMIT: f64 = 0.0873;
-/// Manipulability under this share of the arm's stretched-out scale is "near singular".
-const NEAR_SINGULAR: f64 = 0.02;
 
 /// The panel's text, `width` columns at most; a warning wraps over up to three rows.
 pub fn lines(app: &App, theme: Theme, width: usize) -> Vec<Line<'static>> {
@@ -74,8 +72,7 @@ fn warning(arm: &crate::pilot::arm::ArmPilot) -> Option<String> {
             return Some(format!("joint {} near its limit", k + 1));
         }
     }
-    let scale: f64 = arm.config.links.iter().product();
-    (manipulability(&arm.config, &arm.target) < NEAR_SINGULAR * scale)
+    near_singular(&arm.config, manipulability(&arm.config, &arm.target))
         .then(|| "near a singularity".to_string())
 }
 

@@ -217,6 +217,31 @@ impl Default for ArmConfig {
     }
 }
 
+/// The shortest link accepted, m: a link under a centimetre is no link (the smallest
+/// hobby servo, an SG90, is 23 mm across), and shorter ones leave the arm's Jacobian
+/// numerically singular everywhere.
+pub const MIN_LINK: f64 = 0.01;
+/// The longest link accepted, m: beyond this a value is surely a typo (mm for m).
+pub const MAX_LINK: f64 = 2.0;
+/// The highest shoulder accepted above the arm's base frame, m (a typo beyond).
+pub const MAX_BASE_HEIGHT: f64 = 1.0;
+/// No arm navdeck accepts reaches farther from its base frame than this, m: the highest
+/// shoulder plus three of the longest links. Targets beyond it are refused as typos.
+pub const FARTHEST_REACH: f64 = MAX_BASE_HEIGHT + 3.0 * MAX_LINK;
+/// The slowest joint speed accepted, rad/s: below the smallest speed a servo can be
+/// commanded (Dynamixel XM430's profile-velocity unit is 0.229 rev/min = 0.024 rad/s), and
+/// slow enough that a move across a whole turn would take over ten minutes.
+pub const MIN_JOINT_SPEED: f64 = 0.01;
+/// The fastest joint speed accepted, rad/s: ten times a hobby servo's no-load speed
+/// (XM430-W350: 46 rev/min = 4.8 rad/s); beyond it a value is surely a typo.
+pub const MAX_JOINT_SPEED: f64 = 50.0;
+/// The longest move a valid config can ask, s: a whole turn (the widest span
+/// `validate` allows a joint) at the slowest speed. Motion loops stop at this bound.
+pub const LONGEST_MOVE: f64 = TAU / MIN_JOINT_SPEED;
+/// The largest joint weight, relative to the others (only their ratios matter; this keeps
+/// the weighted travel finite).
+const MAX_JOINT_WEIGHT: f64 = 1000.0;
+
 /// "field[0]" to "field[3]": names for each element of the section's arrays (the check
 /// names a field).
 macro_rules! four {
@@ -255,11 +280,11 @@ impl ArmConfig {
 
     /// Checks values a parser cannot: (field, value, reason) for the first bad one.
     pub fn validate(&self) -> Result<(), crate::data::check::Invalid> {
-        use crate::data::check::{all_non_negative, all_positive, counts_within, within};
-        within(&[("base_height", self.base_height, 0.0, 1.0)])?;
+        use crate::data::check::{counts_within, within};
+        use crate::data::number::short;
+        within(&[("base_height", self.base_height, 0.0, MAX_BASE_HEIGHT)])?;
         for (name, v) in LINKS.iter().zip(self.links) {
-            all_positive(&[(name, v)])?;
-            within(&[(name, v, 0.0, 2.0)])?;
+            within(&[(name, v, MIN_LINK, MAX_LINK)])?;
         }
         for i in 0..4 {
             within(&[
@@ -269,17 +294,22 @@ impl ArmConfig {
             ])?;
             let (lo, hi) = (self.limits.min[i], self.limits.max[i]);
             if lo > hi {
-                return Err((MAX[i], hi, format!("is below limits.min ({lo})").into()));
+                let reason = format!("is below limits.min ({})", short(lo));
+                return Err((MAX[i], hi, reason.into()));
             }
             if hi - lo > TAU {
-                return Err((
-                    MAX[i],
-                    hi,
-                    format!("spans more than a turn from limits.min ({lo})").into(),
-                ));
+                let reason = format!("spans more than a turn from limits.min ({})", short(lo));
+                return Err((MAX[i], hi, reason.into()));
             }
-            all_positive(&[(SPEED[i], self.limits.speed[i])])?;
-            all_non_negative(&[(WEIGHTS[i], self.joint_weights[i])])?;
+            within(&[
+                (
+                    SPEED[i],
+                    self.limits.speed[i],
+                    MIN_JOINT_SPEED,
+                    MAX_JOINT_SPEED,
+                ),
+                (WEIGHTS[i], self.joint_weights[i], 0.0, MAX_JOINT_WEIGHT),
+            ])?;
         }
         within(&[
             ("preferred_pitch", self.preferred_pitch, -TAU, TAU),
@@ -304,13 +334,23 @@ impl ArmConfig {
             return Err((
                 "gripper.closed",
                 self.gripper.closed,
-                format!("is wider than gripper.open ({})", self.gripper.open).into(),
+                format!("is wider than gripper.open ({})", short(self.gripper.open)).into(),
             ));
         }
         for (pose, names) in POSES {
             let joints = self.pose(pose).map(|j| j.0).unwrap_or_default();
             for i in 0..4 {
-                within(&[(names[i], joints[i], self.limits.min[i], self.limits.max[i])])?;
+                // Named with the limits that bound it: changing a limit may be what
+                // left a pose outside.
+                within(&[(names[i], joints[i], self.limits.min[i], self.limits.max[i])]).map_err(
+                    |(field, value, reason)| {
+                        (
+                            field,
+                            value,
+                            format!("{reason} (limits.min[{i}]..=limits.max[{i}])").into(),
+                        )
+                    },
+                )?;
             }
         }
         Ok(())
@@ -359,6 +399,34 @@ mod tests {
         assert_eq!(bad(|c| c.poses.stow[1] = 3.0).0, "poses.stow[1]");
         assert_eq!(bad(|c| c.gripper.closed = 0.5).0, "gripper.closed");
         assert_eq!(bad(|c| c.refine.tolerance = 0.0).0, "refine.tolerance");
+    }
+
+    #[test]
+    fn links_speeds_and_weights_are_bounded_on_both_sides() {
+        let bad = |f: fn(&mut ArmConfig)| {
+            let mut c = ArmConfig::default();
+            f(&mut c);
+            c.validate().unwrap_err()
+        };
+        let (field, value, reason) = bad(|c| c.links[0] = 1e-300);
+        assert_eq!((field, value), ("links[0]", 1e-300));
+        assert_eq!(reason, "must lie in 0.01..=2");
+        assert_eq!(bad(|c| c.links[2] = 1e308).0, "links[2]");
+        let (field, _, reason) = bad(|c| c.limits.speed[3] = 1e-6);
+        assert_eq!(field, "limits.speed[3]");
+        assert_eq!(reason, "must lie in 0.01..=50");
+        assert_eq!(bad(|c| c.limits.speed[1] = 1e308).0, "limits.speed[1]");
+        assert_eq!(bad(|c| c.joint_weights[2] = 1e308).0, "joint_weights[2]");
+        // The slowest valid arm still crosses its widest joint within LONGEST_MOVE.
+        let mut slow = ArmConfig::default();
+        slow.limits.speed = [MIN_JOINT_SPEED; 4];
+        assert_eq!(slow.validate(), Ok(()));
+        let far = crate::arm::move_time(
+            &slow,
+            &crate::arm::Joints(slow.limits.min),
+            &crate::arm::Joints(slow.limits.max),
+        );
+        assert!(far <= LONGEST_MOVE, "{far}");
     }
 
     #[test]

@@ -192,10 +192,16 @@ fn free_pitch(
         }
     } else {
         let (distance, least, reach) = planar::tool_reach(cfg, t.x, t.y, t.z);
-        if distance > 0.5 * (least + reach) {
+        if distance > reach {
             Unreachable::TooFar { distance, reach }
-        } else {
+        } else if distance < least {
             Unreachable::TooClose { distance, least }
+        } else {
+            Unreachable::NoPitch {
+                distance,
+                least,
+                reach,
+            }
         }
     })
 }
@@ -288,6 +294,31 @@ mod tests {
         };
         let e = solve(&c, &t, &Joints::default()).unwrap_err();
         assert!(matches!(e, Unreachable::Singular { .. }), "{e}");
+    }
+
+    #[test]
+    fn a_target_within_the_span_but_at_no_pitch_says_so() {
+        // 0.2 m behind the base, low: within the stretched arm's span, but joint 1 cannot
+        // face it and reaching back over the shoulder breaks joint 2's or 3's limits.
+        let c = ArmConfig::default();
+        let e = solve(&c, &Target::point(-0.2, 0.0, 0.05), &Joints::default()).unwrap_err();
+        assert!(matches!(e, Unreachable::NoPitch { .. }), "{e}");
+        assert_eq!(
+            e.to_string(),
+            "target 0.202 m from the shoulder is within the arm's span (0.000 to 0.404 m), but no tool pitch reaches it within the joint limits"
+        );
+    }
+
+    #[test]
+    fn just_beyond_reach_prints_the_two_distances_apart() {
+        let c = ArmConfig::default();
+        let reach: f64 = c.links.iter().sum();
+        let t = Target::point(reach + 2e-7, 0.0, c.base_height);
+        let e = solve(&c, &t, &Joints::default()).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "target 0.4040002 m from the shoulder, the arm reaches 0.4040000 m"
+        );
     }
 
     #[test]

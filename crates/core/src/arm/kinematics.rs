@@ -92,6 +92,17 @@ pub fn manipulability(cfg: &ArmConfig, q: &Joints) -> f64 {
     (j * j.transpose()).determinant().max(0.0).sqrt()
 }
 
+/// Manipulability under this share of the links' product (their lengths multiplied, m^3)
+/// is "near a singularity": a scale-free bar, the same for a small arm and a large one.
+pub const NEAR_SINGULAR: f64 = 0.02;
+
+/// Whether `manipulability` (m^3) is near a singularity for this arm: the tool then
+/// cannot move in some direction, and a small change of target may swing a joint far.
+pub fn near_singular(cfg: &ArmConfig, manipulability: f64) -> bool {
+    let scale: f64 = cfg.links.iter().product();
+    manipulability < NEAR_SINGULAR * scale
+}
+
 /// Joint angles within the config's limits, or the first that is not.
 pub fn check_limits(cfg: &ArmConfig, q: &Joints) -> Result<(), Unreachable> {
     for i in 0..4 {

@@ -24,8 +24,11 @@ mod refine;
 mod bars;
 
 pub use config::{ArmConfig, Solver};
-pub use kinematics::{check_limits, forward, inverse, jacobian, manipulability, move_time};
+pub use kinematics::{
+    check_limits, forward, inverse, jacobian, manipulability, move_time, near_singular,
+};
 
+use crate::data::number::{distinct, fixed};
 use serde::{Deserialize, Serialize};
 
 /// Joint angles, radians: joint 1 (base yaw), 2 (shoulder), 3 (elbow), 4 (wrist pitch).
@@ -110,29 +113,33 @@ pub struct Solution {
 }
 
 /// Why a target cannot be reached. Joints are numbered from 1 (the base) to 4 (the
-/// wrist); angles are radians, shown in degrees.
+/// wrist); angles are radians, shown in degrees. Two numbers a message compares are
+/// printed with enough decimals to differ (`data::number::distinct`).
 #[derive(Clone, Copy, Debug, PartialEq, thiserror::Error)]
 pub enum Unreachable {
-    #[error("target {distance:.3} m from the shoulder, the arm reaches {reach:.3} m")]
+    #[error("{}", beyond("the arm reaches", *distance, *reach))]
     TooFar { distance: f64, reach: f64 },
-    #[error(
-        "target {distance:.3} m from the shoulder, the arm reaches no closer than {least:.3} m"
-    )]
+    #[error("{}", beyond("the arm reaches no closer than", *distance, *least))]
     TooClose { distance: f64, least: f64 },
+    /// Within the span of the stretched and folded arm, yet no pitch of the tool puts the
+    /// wrist where shoulder and elbow reach within their limits.
     #[error(
-        "with the tool at pitch {:.1} deg the wrist would be {distance:.3} m from the shoulder; shoulder and elbow reach {least:.3} to {reach:.3} m (another pitch may reach the target)",
-        pitch.to_degrees()
+        "target {} m from the shoulder is within the arm's span ({} to {} m), but no tool pitch reaches it within the joint limits",
+        fixed(*distance, 3), fixed(*least, 3), fixed(*reach, 3)
     )]
+    NoPitch {
+        distance: f64,
+        least: f64,
+        reach: f64,
+    },
+    #[error("{}", pitch_out_of_reach(*pitch, *distance, *least, *reach))]
     PitchOutOfReach {
         pitch: f64,
         distance: f64,
         least: f64,
         reach: f64,
     },
-    #[error(
-        "joint {joint} would have to turn to {:.1} deg, outside its limits {:.1} to {:.1} deg",
-        value.to_degrees(), min.to_degrees(), max.to_degrees()
-    )]
+    #[error("{}", joint_limit(*joint, *value, *min, *max))]
     JointLimit {
         joint: usize,
         value: f64,
@@ -146,8 +153,37 @@ pub enum Unreachable {
     #[error("{field} is not a finite number")]
     NotANumber { field: &'static str },
     #[error(
-        "the 2dof solver keeps the tool at pitch {:.1} deg; {:.1} deg was asked",
-        locked.to_degrees(), asked.to_degrees()
+        "the 2dof solver keeps the tool at pitch {} deg; {} deg was asked",
+        fixed(locked.to_degrees(), 1), fixed(asked.to_degrees(), 1)
     )]
     PitchLocked { asked: f64, locked: f64 },
+}
+
+/// "target 0.500 m from the shoulder, the arm reaches 0.404 m".
+fn beyond(what: &str, distance: f64, bound: f64) -> String {
+    let (d, b) = distinct(distance, bound, 3);
+    format!("target {d} m from the shoulder, {what} {b} m")
+}
+
+fn pitch_out_of_reach(pitch: f64, distance: f64, least: f64, reach: f64) -> String {
+    let nearer = if distance > reach { reach } else { least };
+    let (d, _) = distinct(distance, nearer, 3);
+    format!(
+        "with the tool at pitch {} deg the wrist would be {d} m from the shoulder; shoulder and elbow reach {} to {} m (another pitch may reach the target)",
+        fixed(pitch.to_degrees(), 1),
+        fixed(least, 3),
+        fixed(reach, 3)
+    )
+}
+
+fn joint_limit(joint: usize, value: f64, min: f64, max: f64) -> String {
+    let nearer = if value > max { max } else { min };
+    let (v, _) = distinct(value.to_degrees(), nearer.to_degrees(), 1);
+    let (lo, hi) = (min.to_degrees(), max.to_degrees());
+    let (lo, hi) = if value > max {
+        (fixed(lo, 1), distinct(value.to_degrees(), hi, 1).1)
+    } else {
+        (distinct(value.to_degrees(), lo, 1).1, fixed(hi, 1))
+    };
+    format!("joint {joint} would have to turn to {v} deg, outside its limits {lo} to {hi} deg")
 }

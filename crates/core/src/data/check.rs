@@ -1,6 +1,8 @@
 //! Range checks every config section validates with: each section's `validate()` returns
-//! the first bad field (named within its section), its value and why.
+//! the first bad field (named within its section), its value and why. Values and bounds
+//! are printed short (`super::number::short`): `1e308`, not 309 digits.
 
+use super::number::short;
 use std::borrow::Cow;
 
 /// (field name within its section, value, reason).
@@ -10,9 +12,11 @@ pub type Invalid = (&'static str, f64, Cow<'static, str>);
 /// reason names the bounds.
 pub fn within(fields: &[(&'static str, f64, f64, f64)]) -> Result<(), Invalid> {
     match fields.iter().find(|(_, v, lo, hi)| !(lo..=hi).contains(&v)) {
-        Some(&(field, value, lo, hi)) => {
-            Err((field, value, format!("must lie in {lo}..={hi}").into()))
-        }
+        Some(&(field, value, lo, hi)) => Err((
+            field,
+            value,
+            format!("must lie in {}..={}", short(lo), short(hi)).into(),
+        )),
         None => Ok(()),
     }
 }

@@ -9,6 +9,7 @@ pub mod check;
 pub mod command;
 pub mod files;
 pub mod level;
+pub mod number;
 pub mod printable;
 pub mod replace;
 pub mod robot;

@@ -252,7 +252,7 @@ pub fn decode(
     }
     let yaml: MapYaml = serde_norway::from_str(text).map_err(|e| MapFileError::Yaml {
         path: path.to_path_buf(),
-        message: without_quoted_text(&e.to_string()),
+        message: crate::data::number::shorten_long_numbers(&without_quoted_text(&e.to_string())),
     })?;
     let mode = check(&yaml, text, path)?;
     // map_server: the image is relative to the YAML's folder unless absolute.
@@ -354,7 +354,7 @@ fn check(yaml: &MapYaml, text: &str, path: &Path) -> Result<Mode, MapFileError> 
     if !(0.001..=10.0).contains(&yaml.resolution) {
         return Err(field(
             "resolution",
-            format!("{:?}", yaml.resolution),
+            crate::data::number::short(yaml.resolution),
             "must lie in 0.001..=10 metres",
         ));
     }
@@ -370,7 +370,11 @@ fn check(yaml: &MapYaml, text: &str, path: &Path) -> Result<Mode, MapFileError> 
         ("free_thresh", yaml.free_thresh),
     ] {
         if !(0.0..=1.0).contains(&value) {
-            return Err(field(name, value.to_string(), "must lie in 0..=1"));
+            return Err(field(
+                name,
+                crate::data::number::short(value),
+                "must lie in 0..=1",
+            ));
         }
     }
     if yaml.free_thresh >= yaml.occupied_thresh {

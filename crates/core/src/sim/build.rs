@@ -1,6 +1,6 @@
 //! Turns a parsed world file into a `World`, refusing content that breaks the rules.
 
-use super::checks::{Checker, MAX_WORLD_SIDE, fmt_list, fmt_point};
+use super::checks::{Checker, MAX_WORLD_SIDE, fmt_list, fmt_numbers, fmt_point};
 use super::shapes::{rect_contains, rect_corners, rect_edges, rect_faces, segments_cross};
 use super::world_file::{
     BlockSpec, GateSpec, ObstacleSpec, Side, WallMarkers, WallSpec, WorldFile,
@@ -37,7 +37,7 @@ pub fn build(file: WorldFile, text: &str, path: &Path) -> Result<World, WorldErr
             return Err(ck.err(
                 size_line,
                 field,
-                v,
+                crate::data::number::short(v),
                 format!("must lie in {MIN_WORLD_SIDE}..={MAX_WORLD_SIDE} m"),
             ));
         }
@@ -96,7 +96,7 @@ pub fn build(file: WorldFile, text: &str, path: &Path) -> Result<World, WorldErr
     }
     if let Some(why) = world.start_conflict(START_CLEARANCE) {
         let reason = format!("the robot's centre {why}");
-        return Err(ck.err(start_line, "start", fmt_list(&[sx, sy, sdeg]), reason));
+        return Err(ck.err(start_line, "start", fmt_numbers(&[sx, sy, sdeg]), reason));
     }
     check_blocks_apart(&ck, &world, &file.blocks)?;
     check_gates_on_walls(&ck, &world, &file.gates)?;

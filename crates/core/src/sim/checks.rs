@@ -1,6 +1,7 @@
 //! The rules a world file's content must keep, each failing with file, line, field and value.
 
 use super::WorldError;
+use crate::data::number::short;
 use crate::geometry::Point2;
 use crate::perception::markers::MarkerCategory;
 use std::collections::HashMap;
@@ -68,10 +69,10 @@ impl<'a> Checker<'a> {
         values: &[f64],
     ) -> Result<(), WorldError> {
         match values.iter().find(|v| !v.is_finite()) {
-            Some(v) if values.len() == 1 => {
-                Err(self.err(line, field, v, "must be a finite number"))
+            Some(&v) if values.len() == 1 => {
+                Err(self.err(line, field, short(v), "must be a finite number"))
             }
-            Some(_) => Err(self.err(line, field, fmt_list(values), "must be a finite number")),
+            Some(_) => Err(self.err(line, field, fmt_numbers(values), "must be a finite number")),
             None => Ok(()),
         }
     }
@@ -81,7 +82,7 @@ impl<'a> Checker<'a> {
         if value > 0.0 {
             Ok(())
         } else {
-            Err(self.err(line, field, value, "must be greater than zero"))
+            Err(self.err(line, field, short(value), "must be greater than zero"))
         }
     }
 
@@ -93,7 +94,10 @@ impl<'a> Checker<'a> {
         }
         let reason = format!(
             "lies outside the world, which spans [{}, {}] x [{}, {}]",
-            -self.half.0, self.half.0, -self.half.1, self.half.1
+            short(-self.half.0),
+            short(self.half.0),
+            short(-self.half.1),
+            short(self.half.1)
         );
         Err(self.err(line, field, fmt_point(p), reason))
     }
@@ -150,8 +154,15 @@ pub fn describe(cat: MarkerCategory) -> String {
     format!("{article} {} marker ({range})", cat.label())
 }
 
+/// A point as `[x, y]`, each printed short.
 pub fn fmt_point(p: Point2) -> String {
-    format!("[{}, {}]", p.x, p.y)
+    format!("[{}, {}]", short(p.x), short(p.y))
+}
+
+/// Numbers as `[a, b, c]`, each printed short.
+pub fn fmt_numbers(values: &[f64]) -> String {
+    let items: Vec<String> = values.iter().map(|&v| short(v)).collect();
+    format!("[{}]", items.join(", "))
 }
 
 pub fn fmt_list<T: Display>(values: &[T]) -> String {

@@ -125,6 +125,6 @@ fn default_block_size() -> f64 {
 pub fn parse(text: &str, path: &Path) -> Result<WorldFile, WorldError> {
     toml::from_str(text).map_err(|e| WorldError::Parse {
         path: path.to_path_buf(),
-        message: e.to_string().trim_end().to_string(),
+        message: crate::data::number::shorten_long_numbers(e.to_string().trim_end()),
     })
 }

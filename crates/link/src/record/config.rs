@@ -14,6 +14,17 @@ pub enum Compression {
     None,
 }
 
+impl Compression {
+    /// Its name in a config file.
+    pub fn name(self) -> &'static str {
+        match self {
+            Compression::Zstd => "zstd",
+            Compression::Lz4 => "lz4",
+            Compression::None => "none",
+        }
+    }
+}
+
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct RecordConfig {
@@ -53,12 +64,49 @@ impl Default for RecordConfig {
 impl RecordConfig {
     /// Checks what the parser cannot.
     pub fn validate(&self) -> Result<(), Invalid> {
-        check::counts_within(&[("level", u64::from(self.level), 1, 19)])?;
+        // Each compressor's own range of levels: zstd 1..=19 (its "ultra" levels above
+        // need more memory than a recorder should take), lz4 frame 1..=12 (LZ4HC_CLEVEL_MAX);
+        // without compression the level is unused, and kept in zstd's range.
+        let most = match self.compression {
+            Compression::Lz4 => 12,
+            Compression::Zstd | Compression::None => 19,
+        };
+        if !(1..=most).contains(&self.level) {
+            let reason = format!(
+                "must lie in 1..={most} with compression = \"{}\"",
+                self.compression.name()
+            );
+            return Err(("level", f64::from(self.level), reason.into()));
+        }
         check::within(&[
             ("chunk_period", self.chunk_period, 0.1, 60.0),
             ("map_period", self.map_period, 0.1, 600.0),
             ("picture_period", self.picture_period, 0.1, 600.0),
             ("image_period", self.image_period, 0.0, 600.0),
         ])
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_level_is_checked_against_the_compressor_chosen() {
+        let with = |compression, level| {
+            RecordConfig {
+                compression,
+                level,
+                ..RecordConfig::default()
+            }
+            .validate()
+        };
+        assert_eq!(with(Compression::Zstd, 19), Ok(()));
+        assert_eq!(with(Compression::Lz4, 12), Ok(()));
+        let (field, value, reason) = with(Compression::Lz4, 19).unwrap_err();
+        assert_eq!((field, value), ("level", 19.0));
+        assert_eq!(reason, "must lie in 1..=12 with compression = \"lz4\"");
+        assert_eq!(with(Compression::Zstd, 0).unwrap_err().0, "level");
+        assert_eq!(with(Compression::Zstd, 20).unwrap_err().0, "level");
     }
 }

@@ -101,7 +101,10 @@ impl GenerateOptions {
     /// Refuses options no world can satisfy, naming the option.
     pub fn validate(&self) -> Result<(), GenerateError> {
         let (w, h) = self.size();
-        let size = || format!("{w},{h}");
+        let size = || {
+            use crate::data::number::short;
+            format!("{},{}", short(w), short(h))
+        };
         let bad = |option, value: String, reason: String| {
             Err(GenerateError::Option {
                 option,

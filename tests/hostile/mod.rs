@@ -177,16 +177,46 @@ fn judge(case: &Case, o: &Outcome) -> Option<String> {
     None
 }
 
-/// The first NaN, infinite or null number in `out` (JSON or text), if there is one.
-fn unclean_number(out: &str) -> Option<&'static str> {
+/// The first NaN or infinite number in `out`, or, in JSON, a pose coordinate that is null
+/// (serde writes a NaN as null), if there is one.
+fn unclean_number(out: &str) -> Option<String> {
+    if let Ok(json) = serde_json::from_str::<serde_json::Value>(out.trim()) {
+        return null_figure(&json, "");
+    }
     let lower = out.to_ascii_lowercase();
-    ["nan", "inf", ": null", ":null"].into_iter().find(|word| {
-        lower.match_indices(word).any(|(at, _)| {
-            // A word of its own, not part of "info" or "infinite" in a sentence.
-            let before = lower[..at].chars().next_back();
-            let after = lower[at + word.len()..].chars().next();
-            !before.is_some_and(|c| c.is_ascii_alphabetic())
-                && !after.is_some_and(|c| c.is_ascii_alphabetic())
+    ["nan", "inf"]
+        .into_iter()
+        .find(|word| {
+            lower.match_indices(word).any(|(at, _)| {
+                // A word of its own, not part of "info" or "infinite" in a sentence.
+                let before = lower[..at].chars().next_back();
+                let after = lower[at + word.len()..].chars().next();
+                !before.is_some_and(|c| c.is_ascii_alphabetic())
+                    && !after.is_some_and(|c| c.is_ascii_alphabetic())
+            })
         })
-    })
+        .map(str::to_string)
+}
+
+/// The path of the first null pose coordinate under `value` (at `path`). Other nulls are
+/// "none yet" (no path followed, no kidnap, no truth to score), as they should say.
+fn null_figure(value: &serde_json::Value, path: &str) -> Option<String> {
+    use serde_json::Value;
+    let figure = |key: &str| {
+        key.ends_with("pose") || matches!(key, "x" | "y" | "theta") && path.contains("pose")
+    };
+    match value {
+        Value::Object(map) => map.iter().find_map(|(key, v)| {
+            let here = format!("{path}.{key}");
+            if v.is_null() && figure(key) {
+                return Some(format!("{here} = null"));
+            }
+            null_figure(v, &here)
+        }),
+        Value::Array(items) => items
+            .iter()
+            .enumerate()
+            .find_map(|(k, v)| null_figure(v, &format!("{path}[{k}]"))),
+        _ => None,
+    }
 }

@@ -14,6 +14,7 @@ mod config;
 mod keymap;
 mod map;
 mod recording;
+mod replay_frames;
 mod world;
 
 use std::path::Path;
@@ -47,7 +48,6 @@ impl Case {
     }
 
     /// Lets the case end with exit 0 if its output holds no NaN, inf or null number.
-    #[allow(dead_code)] // until a case file marks a case so
     fn or_clean(mut self) -> Case {
         self.may_succeed = true;
         self
@@ -101,6 +101,7 @@ fn every_hostile_input_is_refused_cleanly_naming_what_is_wrong() {
     cases.extend(cli::cases());
     cases.extend(calibration::cases());
     cases.extend(recording::cases());
+    cases.extend(replay_frames::cases());
     let mut counts = std::collections::BTreeMap::new();
     for c in &cases {
         *counts.entry(c.kind).or_insert(0usize) += 1;
@@ -147,7 +148,17 @@ fn judge(case: &Case, o: &Outcome) -> Option<String> {
         return Some(format!("panicked: {first_line}"));
     }
     if case.may_succeed && o.code == Some(0) {
-        return unclean_number(&o.out).map(|n| format!("exit 0 printing `{n}`"));
+        return unclean_number(&o.out).map(|n| {
+            // The words before it: the JSON field or the sentence that printed it.
+            let lower = o.out.to_ascii_lowercase();
+            let at = lower.find(n).unwrap_or(0);
+            let from = lower[..at]
+                .char_indices()
+                .rev()
+                .nth(40)
+                .map_or(0, |(i, _)| i);
+            format!("exit 0 printing `{n}` after `{}`", &o.out[from..at])
+        });
     }
     match o.code {
         Some(code) if (1..=99).contains(&code) => {}

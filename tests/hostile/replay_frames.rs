@@ -125,6 +125,7 @@ pub fn cases() -> Vec<Case> {
         add("stamp", true, &|s| {
             s.frames
                 .iter_mut()
+                .skip(1)
                 .step_by(2)
                 .for_each(|(_, m)| m.stamp = v)
         });
@@ -171,13 +172,16 @@ pub fn cases() -> Vec<Case> {
             m.has_initial_pose = true;
             m.initial_pose = [v, 0.0, 0.0];
         });
-        // Placed where the robot is, facing `v`: the goal stays reachable.
-        add("initial_pose", true, &|s| {
-            let start = s.truths[0].1.pose();
-            let m = &mut s.frames[5].1;
-            m.has_initial_pose = true;
-            m.initial_pose = [start.x, start.y, v];
-        });
+        // Placed where the robot is, facing `v` when that is no angle (a finite heading
+        // is wrapped and taken, and a placed pose rightly drops the route).
+        if !v.is_finite() {
+            add("initial_pose", true, &|s| {
+                let start = s.truths[0].1.pose();
+                let m = &mut s.frames[5].1;
+                m.has_initial_pose = true;
+                m.initial_pose = [start.x, start.y, v];
+            });
+        }
         add("goal", true, &|s| {
             let m = &mut s.frames[5].1;
             m.has_goal = true;

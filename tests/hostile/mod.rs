@@ -118,7 +118,7 @@ fn every_hostile_input_is_refused_cleanly_naming_what_is_wrong() {
                     let mut failures = Vec::new();
                     for (n, c) in cases.iter().enumerate().filter(|(n, _)| n % 2 == half) {
                         if let Some(why) = judge(c, &run(c, root, n)) {
-                            failures.push(format!("{} {:?}: {why}", c.kind, c.args));
+                            failures.push(format!("{} {:?} ({}): {why}", c.kind, c.args, c.names));
                         }
                     }
                     failures

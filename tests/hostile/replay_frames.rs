@@ -254,7 +254,8 @@ pub fn cases() -> Vec<Case> {
         m.scan_ranges = vec![1.0; MAX_BEAMS + 1];
     });
     add("sightings", true, &|s| {
-        every_frame(s, &|m| {
+        let m = &mut s.frames[6].1;
+        {
             m.has_sightings = true;
             m.sightings = (0..5000)
                 .map(|id| SightingMsg {
@@ -265,7 +266,7 @@ pub fn cases() -> Vec<Case> {
                 .collect();
             m.has_camera = true;
             m.camera_ids = (0..5000).collect();
-        })
+        }
     });
     add("sightings", true, &|s| {
         let m = &mut s.frames[6].1;
@@ -278,7 +279,8 @@ pub fn cases() -> Vec<Case> {
             })
             .collect();
     });
-    // A failure recorded with no words, and one with an escape in them.
+    // A failure recorded with no words, and one with an escape in them: the human
+    // report (a lost link rightly drops the route, so the JSON has no path figure).
     add("failed", true, &|s| {
         let m = &mut s.frames[7].1;
         m.failed = true;
@@ -289,5 +291,9 @@ pub fn cases() -> Vec<Case> {
         m.failed = true;
         m.failure = "\u{1b}]2;owned\u{7}".to_string();
     });
+    let failures = out.len() - 2;
+    for c in &mut out[failures..] {
+        c.args.retain(|a| a != "--json");
+    }
     out
 }

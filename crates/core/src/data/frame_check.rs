@@ -124,7 +124,7 @@ pub fn check_scan(scan: &mut LaserScan) -> Result<Vec<Refused>, Refused> {
 fn check_pose(pose: Pose2, names: [&'static str; 3]) -> Result<Pose2, Refused> {
     let bound = format!("must be finite, within ±{}", short(MAX_COORDINATE));
     for (field, v) in names.into_iter().zip([pose.x, pose.y]) {
-        if !(v.abs() <= MAX_COORDINATE) {
+        if !(0.0..=MAX_COORDINATE).contains(&v.abs()) {
             return Err(Refused::new(field, v, bound));
         }
     }
@@ -158,7 +158,7 @@ pub fn check_frame(frame: &mut SensorFrame, max_wheel_speed: f64) -> Result<Vec<
             short(WHEEL_ALLOWANCE)
         );
         for (field, v) in [("wheels.left", w.left), ("wheels.right", w.right)] {
-            if !(v.abs() <= limit) {
+            if !(0.0..=limit).contains(&v.abs()) {
                 refused.push(Refused::new(field, v, bound.clone()));
                 frame.wheels = None;
                 break;
@@ -212,7 +212,10 @@ pub fn check_frame(frame: &mut SensorFrame, max_wheel_speed: f64) -> Result<Vec<
         }
     }
     if let Some(arm) = frame.arm
-        && let Some(&j) = arm.joints.iter().find(|j| !(j.abs() <= MAX_JOINT))
+        && let Some(&j) = arm
+            .joints
+            .iter()
+            .find(|j| !(0.0..=MAX_JOINT).contains(&j.abs()))
     {
         let bound = format!("must be finite, within ±{:.3} rad", MAX_JOINT);
         refused.push(Refused::new("arm.joints", j, bound));
@@ -318,7 +321,7 @@ impl FrameChecker {
 }
 
 fn is_power_of_ten(mut n: u64) -> bool {
-    while n >= 10 && n % 10 == 0 {
+    while n >= 10 && n.is_multiple_of(10) {
         n /= 10;
     }
     n == 1

@@ -219,6 +219,9 @@ impl Evidence {
     }
 }
 
+/// A clipped segment's ends, and whether its far end is the original one.
+pub type ClippedSegment = ((f64, f64), (f64, f64), bool);
+
 /// The part of the segment `from`-`to` inside the rectangle `lo`..`hi`, and whether `to`
 /// itself is inside: a beam is traced only to the map's edge, however far it claims to
 /// reach (Liang and Barsky, "A New Concept and Method for Line Clipping", 1984). A
@@ -228,7 +231,7 @@ pub fn clip_segment(
     to: (f64, f64),
     lo: (f64, f64),
     hi: (f64, f64),
-) -> Option<((f64, f64), (f64, f64), bool)> {
+) -> Option<ClippedSegment> {
     let inside = |p: (f64, f64)| p.0 >= lo.0 && p.0 <= hi.0 && p.1 >= lo.1 && p.1 <= hi.1;
     if inside(from) && inside(to) {
         return Some((from, to, true));

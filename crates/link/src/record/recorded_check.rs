@@ -87,7 +87,7 @@ fn no_fault<T>(_: &T) -> Option<String> {
 
 /// The first field of a pose that is not finite or lies beyond `MAX_COORDINATE`.
 fn pose_fault(x: f64, y: f64, theta: f64) -> Option<String> {
-    let far = |v: f64| !(v.abs() <= MAX_COORDINATE);
+    let far = |v: f64| !(0.0..=MAX_COORDINATE).contains(&v.abs());
     let bound = format!("must be finite, within ±{}", short(MAX_COORDINATE));
     if far(x) {
         Some(format!("x is {}: {bound}", short(x)))
@@ -116,7 +116,7 @@ fn truth_fault(t: &TruthMsg) -> Option<String> {
             .iter()
             .find_map(|b| pose_fault(b.x, b.y, b.theta).map(|w| format!("a block's {w}")));
         rest.iter()
-            .find(|(_, v)| !(v.abs() <= 1e9))
+            .find(|(_, v)| !(0.0..=1e9).contains(&v.abs()))
             .map(|(field, v)| format!("{field} is {}: must be finite, within ±1e9", short(*v)))
             .or(block)
     })

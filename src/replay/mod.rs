@@ -48,6 +48,19 @@ pub fn load(path: &Path) -> Result<Recorded> {
         });
         bail!("{}: nothing to replay: {why}", path.display());
     }
+    if recorded.inputs.is_empty() {
+        // A re-run is driven by the recorded calls into the console: without one, it
+        // would end at once having replayed nothing.
+        let why = recorded
+            .problems
+            .first()
+            .map_or(String::new(), |p| format!(" ({p})"));
+        bail!(
+            "{}: nothing to replay: no recorded inputs (the console's keys and ticks), {} frames{why}",
+            path.display(),
+            recorded.frames.len()
+        );
+    }
     Ok(recorded)
 }
 

@@ -17,6 +17,7 @@ mod keymap;
 mod map;
 mod mcap_bytes;
 mod recording;
+mod replay_frames;
 mod world;
 
 use std::path::Path;
@@ -118,6 +119,7 @@ fn every_hostile_input_is_refused_cleanly_naming_what_is_wrong() {
     cases.extend(recording::cases());
     cases.extend(arm::cases());
     cases.extend(files::cases());
+    cases.extend(replay_frames::cases());
     let mut counts = std::collections::BTreeMap::new();
     for c in &cases {
         *counts.entry(c.kind).or_insert(0usize) += 1;
@@ -134,7 +136,7 @@ fn every_hostile_input_is_refused_cleanly_naming_what_is_wrong() {
                     let mut failures = Vec::new();
                     for (n, c) in cases.iter().enumerate().filter(|(n, _)| n % 2 == half) {
                         if let Some(why) = judge(c, &run(c, root, n)) {
-                            failures.push(format!("{} {:?}: {why}", c.kind, c.args));
+                            failures.push(format!("{} {:?} ({}): {why}", c.kind, c.args, c.names));
                         }
                     }
                     failures
@@ -164,6 +166,7 @@ fn judge(case: &Case, o: &Outcome) -> Option<String> {
         return Some(format!("panicked: {first_line}"));
     }
     if case.may_succeed && o.code == Some(0) {
+        // The text names where: the JSON field, or the word as printed.
         return unclean_number(&o.out).map(|n| format!("exit 0 printing `{n}`"));
     }
     match o.code {

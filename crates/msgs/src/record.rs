@@ -2,11 +2,52 @@
 //! and the exact conversions between them and what the pilot received.
 
 use crate::ros::Header;
+use navdeck_core::data::frame_check::{MAX_BEAMS, MAX_MARKERS};
 use navdeck_core::data::{
     ArmState, CameraStatus, GripperState, LaserScan, MarkerSighting, SensorFrame,
 };
 use navdeck_core::geometry::Pose2;
 use serde::{Deserialize, Serialize};
+
+/// Sequences read from a recording, refused past a bound as their elements are read,
+/// before a claimed length can make the decoder allocate for it.
+mod bounded {
+    use serde::de::{Deserialize, Deserializer, Error, SeqAccess, Visitor};
+    use std::marker::PhantomData;
+
+    struct Bounded<T, const MAX: usize>(PhantomData<T>);
+
+    impl<'de, T: Deserialize<'de>, const MAX: usize> Visitor<'de> for Bounded<T, MAX> {
+        type Value = Vec<T>;
+
+        fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+            write!(f, "a sequence of at most {MAX} elements")
+        }
+
+        fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> Result<Vec<T>, A::Error> {
+            let mut out = Vec::new();
+            while let Some(element) = seq.next_element()? {
+                if out.len() == MAX {
+                    return Err(A::Error::custom(format!(
+                        "a sequence longer than {MAX} elements"
+                    )));
+                }
+                out.push(element);
+            }
+            Ok(out)
+        }
+    }
+
+    /// A `Vec` of at most `MAX` elements.
+    pub fn vec<'de, D: Deserializer<'de>, T: Deserialize<'de>, const MAX: usize>(
+        d: D,
+    ) -> Result<Vec<T>, D::Error> {
+        d.deserialize_seq(Bounded::<T, MAX>(PhantomData))
+    }
+}
+
+/// Blocks a recorded truth holds at most: each carries two markers of the dictionary.
+const MAX_BLOCKS: usize = MAX_MARKERS / 2;
 
 /// navdeck_msgs/MarkerSighting.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
@@ -55,12 +96,14 @@ pub struct FrameMsg {
     pub wheel_left: f64,
     pub wheel_right: f64,
     pub has_sightings: bool,
+    #[serde(deserialize_with = "bounded::vec::<_, _, MAX_MARKERS>")]
     pub sightings: Vec<SightingMsg>,
     pub has_scan: bool,
     pub scan_angle_min: f64,
     pub scan_angle_increment: f64,
     pub scan_range_min: f64,
     pub scan_range_max: f64,
+    #[serde(deserialize_with = "bounded::vec::<_, _, MAX_BEAMS>")]
     pub scan_ranges: Vec<f32>,
     pub gripper: u8,
     pub has_initial_pose: bool,
@@ -68,6 +111,7 @@ pub struct FrameMsg {
     pub has_arm: bool,
     pub arm_joints: [f64; 4],
     pub has_camera: bool,
+    #[serde(deserialize_with = "bounded::vec::<_, _, MAX_MARKERS>")]
     pub camera_ids: Vec<u32>,
     pub camera_accepted: u32,
     pub camera_rejected: u32,
@@ -256,6 +300,7 @@ pub struct TruthMsg {
     pub command_angular: f64,
     pub distance_driven: f64,
     pub collisions: u32,
+    #[serde(deserialize_with = "bounded::vec::<_, _, MAX_BLOCKS>")]
     pub blocks: Vec<BlockMsg>,
 }
 

@@ -8,6 +8,7 @@ pub mod camera;
 pub mod check;
 pub mod command;
 pub mod files;
+pub mod frame_check;
 pub mod level;
 pub mod number;
 pub mod printable;

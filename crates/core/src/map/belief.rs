@@ -4,7 +4,7 @@
 use super::config::MapConfig;
 use super::contact::HeldZone;
 use super::costmap::{Costmap, INFLATED, LETHAL, NO_INFORMATION};
-use super::evidence::{Evidence, line_cells};
+use super::evidence::{Evidence, clip_segment, line_cells};
 use super::grid::{OCCUPIED, OccupancyGrid};
 use super::landmark_layer::LandmarkLayer;
 use crate::data::LaserScan;
@@ -174,6 +174,11 @@ impl BeliefMap {
             if hit && held.is_some_and(|z| z.contains(pose, end)) {
                 continue;
             }
+            // Traced only to near the map's edge: a beam ending beyond adds no hit.
+            let Some((_, end, end_inside)) = self.clip_to_map(pose.position(), end) else {
+                continue;
+            };
+            let hit = hit && end_inside;
             let (end, hit) = match cut_at(pose.position(), end, step, &mappable) {
                 Some(stop) => (stop, false),
                 None => (end, hit),
@@ -298,6 +303,10 @@ impl BeliefMap {
         hit: bool,
         mappable: impl Fn(Point2) -> bool,
     ) {
+        let Some((from, to, to_inside)) = self.clip_to_map(from, to) else {
+            return;
+        };
+        let hit = hit && to_inside;
         let map = &self.costmap;
         let (origin, res) = (map.origin, map.resolution);
         let cell = |p: Point2| {
@@ -329,6 +338,21 @@ impl BeliefMap {
             evidence.add(x as usize, y as usize, delta, touched);
         });
         self.flush();
+    }
+
+    /// The part of `from`-`to` within one map's size of the map (cells out there are
+    /// not on it, so a beam is traced as before up to there and no farther, however far
+    /// it claims to reach), and whether `to` is within it.
+    fn clip_to_map(&self, from: Point2, to: Point2) -> Option<(Point2, Point2, bool)> {
+        let map = &self.costmap;
+        let size = (
+            map.width as f64 * map.resolution,
+            map.height as f64 * map.resolution,
+        );
+        let lo = (map.origin.x - size.0, map.origin.y - size.1);
+        let hi = (map.origin.x + 2.0 * size.0, map.origin.y + 2.0 * size.1);
+        let (a, b, inside) = clip_segment((from.x, from.y), (to.x, to.y), lo, hi)?;
+        Some((Point2::new(a.0, a.1), Point2::new(b.0, b.1), inside))
     }
 
     fn add_evidence(&mut self, x: i64, y: i64, delta: f32) {

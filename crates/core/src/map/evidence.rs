@@ -219,6 +219,57 @@ impl Evidence {
     }
 }
 
+/// A clipped segment's ends, and whether its far end is the original one.
+pub type ClippedSegment = ((f64, f64), (f64, f64), bool);
+
+/// The part of the segment `from`-`to` inside the rectangle `lo`..`hi`, and whether `to`
+/// itself is inside: a beam is traced only to the map's edge, however far it claims to
+/// reach (Liang and Barsky, "A New Concept and Method for Line Clipping", 1984). A
+/// segment wholly inside comes back unchanged; one outside, or not finite, is None.
+pub fn clip_segment(
+    from: (f64, f64),
+    to: (f64, f64),
+    lo: (f64, f64),
+    hi: (f64, f64),
+) -> Option<ClippedSegment> {
+    let inside = |p: (f64, f64)| p.0 >= lo.0 && p.0 <= hi.0 && p.1 >= lo.1 && p.1 <= hi.1;
+    if inside(from) && inside(to) {
+        return Some((from, to, true));
+    }
+    let (dx, dy) = (to.0 - from.0, to.1 - from.1);
+    let (mut t0, mut t1) = (0.0f64, 1.0f64);
+    // Each edge as p t <= q: left, right, bottom, top.
+    for (p, q) in [
+        (-dx, from.0 - lo.0),
+        (dx, hi.0 - from.0),
+        (-dy, from.1 - lo.1),
+        (dy, hi.1 - from.1),
+    ] {
+        if !(p.is_finite() && q.is_finite()) {
+            return None;
+        }
+        if p == 0.0 {
+            if q < 0.0 {
+                return None;
+            }
+        } else if p < 0.0 {
+            t0 = t0.max(q / p);
+        } else {
+            t1 = t1.min(q / p);
+        }
+    }
+    if t0 > t1 {
+        return None;
+    }
+    let at = |t: f64| (from.0 + t * dx, from.1 + t * dy);
+    let start = if t0 > 0.0 { at(t0) } else { from };
+    Some(if t1 < 1.0 {
+        (start, at(t1), false)
+    } else {
+        (start, to, true)
+    })
+}
+
 /// Cells from (x0, y0) to (x1, y1) inclusive, by Bresenham's line algorithm.
 pub fn line_cells(x0: i64, y0: i64, x1: i64, y1: i64, mut visit: impl FnMut(i64, i64)) {
     let (dx, dy) = ((x1 - x0).abs(), -(y1 - y0).abs());
@@ -261,6 +312,25 @@ mod tests {
         }
         assert!(!e.is_occupied(25 * 50 + 25));
         assert_eq!(e.near_lethal[25 * 50 + 28], 0);
+    }
+
+    #[test]
+    fn segments_are_clipped_to_the_rectangle_and_kept_whole_inside_it() {
+        let (lo, hi) = ((0.0, 0.0), (10.0, 5.0));
+        let inside = clip_segment((1.0, 1.0), (2.0, 3.0), lo, hi);
+        assert_eq!(inside, Some(((1.0, 1.0), (2.0, 3.0), true)));
+        let (a, b, kept) = clip_segment((1.0, 1.0), (1e308, 1.0), lo, hi).unwrap();
+        assert_eq!((a, b, kept), ((1.0, 1.0), (10.0, 1.0), false));
+        let (a, b, _) = clip_segment((-5.0, 2.0), (5.0, 2.0), lo, hi).unwrap();
+        assert_eq!((a, b), ((0.0, 2.0), (5.0, 2.0)));
+        let (_, end, _) = clip_segment((1.0, 1.0), (1.0, -1e308), lo, hi).unwrap();
+        assert!(
+            (end.0 - 1.0).abs() < 1e-12 && end.1.abs() < 1e-12,
+            "{end:?}"
+        );
+        assert_eq!(clip_segment((-1.0, -1.0), (-2.0, 9.0), lo, hi), None);
+        assert_eq!(clip_segment((1.0, 1.0), (f64::INFINITY, 1.0), lo, hi), None);
+        assert_eq!(clip_segment((f64::NAN, 1.0), (1.0, 1.0), lo, hi), None);
     }
 
     #[test]

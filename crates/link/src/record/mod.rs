@@ -10,6 +10,7 @@ pub mod landmarks;
 
 pub mod reader;
 pub mod recorded;
+mod recorded_check;
 pub mod schema;
 pub mod topics;
 mod writer;

@@ -105,6 +105,7 @@ impl Recorded {
         if let Some(damage) = raw.damage {
             out.problems.push(damage);
         }
+        super::recorded_check::check(&mut out);
         out
     }
 

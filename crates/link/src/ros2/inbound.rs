@@ -28,8 +28,8 @@ impl Refusal {
     }
 }
 
-/// Largest scan navdeck accepts, beams (a 0.1° lidar has 3600).
-pub const MAX_BEAMS: usize = 20_000;
+/// Largest scan navdeck accepts, beams (the one frame check's bound).
+use navdeck_core::data::frame_check::MAX_BEAMS;
 
 /// The planar pose in an Odometry message.
 pub fn odom_pose(odom: &msgs::Odometry) -> Result<Pose2, Refusal> {
@@ -112,7 +112,8 @@ fn check_travel(travel: WheelTravel, dt: f64, max_speed: f64) -> Result<WheelTra
 }
 
 /// A LaserScan as navdeck's scan: ranges outside [range_min, range_max] or non-finite
-/// become "no return" (REP 117), the whole scan is refused when its geometry is bad.
+/// become "no return" (REP 117), the whole scan is refused when its geometry or size
+/// breaks the one frame check's bounds (`frame_check::check_scan`).
 pub fn scan(msg: &msgs::LaserScan) -> Result<LaserScan, Refusal> {
     let geometry = [
         msg.angle_min,
@@ -123,35 +124,32 @@ pub fn scan(msg: &msgs::LaserScan) -> Result<LaserScan, Refusal> {
     if geometry.iter().any(|v| !v.is_finite()) {
         return Err(Refusal::NonFinite);
     }
-    let sweep = msg.angle_increment.abs() * msg.ranges.len() as f32;
-    if msg.ranges.is_empty()
-        || msg.ranges.len() > MAX_BEAMS
-        || msg.angle_increment == 0.0
-        || sweep > 2.0 * std::f32::consts::TAU
-        || msg.range_max <= 0.0
-        || msg.range_min < 0.0
-        || msg.range_min >= msg.range_max
-    {
+    if msg.ranges.len() > MAX_BEAMS {
         return Err(Refusal::BadScan);
     }
+    let (range_min, range_max) = (msg.range_min, msg.range_max);
     let ranges = msg
         .ranges
         .iter()
         .map(|&r| {
-            if r.is_finite() && r >= msg.range_min && r <= msg.range_max {
+            if r.is_finite() && r >= range_min && r <= range_max {
                 r
             } else {
                 f32::INFINITY
             }
         })
         .collect();
-    Ok(LaserScan {
+    let mut scan = LaserScan {
         angle_min: f64::from(msg.angle_min),
         angle_increment: f64::from(msg.angle_increment),
-        range_min: f64::from(msg.range_min),
-        range_max: f64::from(msg.range_max),
+        range_min: f64::from(range_min),
+        range_max: f64::from(range_max),
         ranges,
-    })
+    };
+    match navdeck_core::data::frame_check::check_scan(&mut scan) {
+        Ok(_) => Ok(scan),
+        Err(_) => Err(Refusal::BadScan),
+    }
 }
 
 #[cfg(test)]

@@ -10,6 +10,7 @@ mod schedule;
 pub mod state;
 
 use crate::{Notice, RobotLink};
+use navdeck_core::data::frame_check::FrameChecker;
 use navdeck_core::data::{Command, Level, SensorFrame};
 use navdeck_core::geometry::Pose2;
 use navdeck_pilot::config::Settings;
@@ -66,20 +67,50 @@ pub struct Runtime {
     recording: Option<Recording>,
     /// Each control tick's estimate, kept for a replay to compare (`watch_estimates`).
     watched: Option<Vec<TickEstimate>>,
+    /// The one check every frame passes, with its tally of what it refused.
+    checker: FrameChecker,
+    /// A session time refused already (named once).
+    bad_time_named: bool,
 }
 
-/// The link as the pilot's step sees it.
-struct Port<'a>(&'a mut dyn RobotLink);
+/// Session times beyond this are refused, seconds (about 32 years): a control period
+/// still adds to them exactly enough (f64 resolves 1e-7 s there), so catching up ends.
+const MAX_SESSION_TIME: f64 = 1e9;
+
+/// The link as the pilot's step sees it: every frame passes the one frame check on its
+/// way in, whichever link brought it, and what the check took out is logged.
+struct Port<'a> {
+    link: &'a mut dyn RobotLink,
+    checker: &'a mut FrameChecker,
+    refusals: &'a mut Vec<(f64, String)>,
+}
 
 impl Robot for Port<'_> {
     fn poll(&mut self, t: f64) -> Result<SensorFrame, String> {
-        self.0.poll(t).map_err(|e| e.to_string())
+        match self.link.poll(t) {
+            Ok(frame) => {
+                let (kept, lines) = self.checker.check(t, frame);
+                self.refusals.extend(lines.into_iter().map(|l| (t, l)));
+                Ok(kept.unwrap_or(SensorFrame {
+                    stamp: t,
+                    ..SensorFrame::default()
+                }))
+            }
+            Err(e) => {
+                let why = e.to_string();
+                Err(if why.trim().is_empty() {
+                    "the link failed without saying why".to_string()
+                } else {
+                    why
+                })
+            }
+        }
     }
     fn truth(&self) -> Option<Pose2> {
-        self.0.ground_truth().map(|g| g.pose())
+        self.link.ground_truth().map(|g| g.pose())
     }
     fn send(&mut self, command: &Command) -> Result<(), String> {
-        self.0.send(command).map_err(|e| e.to_string())
+        self.link.send(command).map_err(|e| e.to_string())
     }
 }
 
@@ -94,6 +125,7 @@ impl Runtime {
         let m = 2.0 * MAP_MARGIN;
         let extent = truth.map_or((0.0, 0.0), |t| (t.world().width + m, t.world().height + m));
         let period = settings.robot.control_period;
+        let checker = FrameChecker::new(settings.robot.max_wheel_speed());
         Self {
             pilot: Pilot::new(settings, start, extent, now),
             link,
@@ -103,6 +135,8 @@ impl Runtime {
             shown: picture::Shown::default(),
             recording: None,
             watched: None,
+            checker,
+            bad_time_named: false,
         }
     }
 
@@ -112,7 +146,7 @@ impl Runtime {
     /// it changed the motion.
     pub fn tick(&mut self, now: f64, intents: Vec<Intent>) -> Stepped {
         let mut stepped = Stepped::default();
-        if now < self.now {
+        if !self.time_usable(now, &mut stepped) || now < self.now {
             return stepped;
         }
         if let Some(text) = self.schedule.overrun(now) {
@@ -162,8 +196,27 @@ impl Runtime {
     /// robot reports between control steps is taken in as it comes.
     pub fn sense(&mut self, now: f64) -> Stepped {
         let mut stepped = Stepped::default();
-        self.run(now, Vec::new(), Due::Sense, &mut stepped);
+        if self.time_usable(now, &mut stepped) {
+            self.run(now, Vec::new(), Due::Sense, &mut stepped);
+        }
         stepped
+    }
+
+    /// Whether `now` is a session time the schedule can run to: finite and below
+    /// `MAX_SESSION_TIME`. The first one that is not is named.
+    fn time_usable(&mut self, now: f64, stepped: &mut Stepped) -> bool {
+        if now.is_finite() && now.abs() <= MAX_SESSION_TIME {
+            return true;
+        }
+        if !std::mem::replace(&mut self.bad_time_named, true) {
+            let text = format!(
+                "session time {} s refused: it must be finite, within ±{} s",
+                navdeck_core::data::frame_check::short(now),
+                navdeck_core::data::frame_check::short(MAX_SESSION_TIME)
+            );
+            stepped.log(self.now, Level::Warn, text);
+        }
+        false
     }
 
     /// One step of the pilot at `t` with `intents`, and what it brought.
@@ -173,17 +226,26 @@ impl Runtime {
         let mut intents = intents;
         let last = intents.pop();
         let mut log = Vec::new();
+        let mut refusals = Vec::new();
+        let mut port = Port {
+            link: self.link.as_mut(),
+            checker: &mut self.checker,
+            refusals: &mut refusals,
+        };
         // Every intent but the last is applied alone; the last rides with the step.
         for intent in intents {
             let input = Input::apply(t, intent);
-            log.extend(self.pilot.step(input, &mut Port(self.link.as_mut())).log);
+            log.extend(self.pilot.step(input, &mut port).log);
         }
         let input = Input {
             t,
             intent: last,
             due,
         };
-        let mut out = self.pilot.step(input, &mut Port(self.link.as_mut()));
+        let mut out = self.pilot.step(input, &mut port);
+        for (time, text) in refusals {
+            stepped.log(time, Level::Warn, text);
+        }
         log.append(&mut out.log);
         let polled = out.frame.is_some() || out.failure.is_some();
         if polled && let Some(r) = self.recording.as_mut() {

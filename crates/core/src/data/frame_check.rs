@@ -51,18 +51,15 @@ impl Refused {
     }
 }
 
-/// `v` printed short: `1e308`, `1e-300`, plain digits in between, and in words when
-/// it is no number ("not a number", "infinite", "-infinite").
+/// `v` printed short (`number::short`: `1e308`, `0.25`), and in words when it is no
+/// number ("not a number", "infinite"): these lines reach reports that must not say NaN.
 pub fn short(v: f64) -> String {
-    let a = v.abs();
     if v.is_nan() {
         "not a number".into()
     } else if v.is_infinite() {
         if v > 0.0 { "infinite" } else { "-infinite" }.into()
-    } else if a != 0.0 && !(1e-4..1e6).contains(&a) {
-        format!("{v:e}")
     } else {
-        format!("{v}")
+        super::number::short(v)
     }
 }
 

@@ -112,10 +112,15 @@ impl Camera {
             }
             let (mut r, mut b) = (range, bearing);
             if self.dist_std > 0.0 {
-                r = (r + self.dist_std * rng.sample::<f64, _>(StandardNormal)).max(0.0);
+                r += self.dist_std * rng.sample::<f64, _>(StandardNormal);
             }
             if self.angle_std > 0.0 {
                 b += self.angle_std * rng.sample::<f64, _>(StandardNormal);
+            }
+            // Noise can take a marker at the near limit to no distance at all, which no
+            // camera measures: it is not reported (the frame check would refuse it).
+            if r < crate::data::frame_check::MIN_SIGHTING_RANGE {
+                continue;
             }
             out.push(MarkerSighting {
                 id: m.id,

@@ -166,9 +166,9 @@ impl Values<'_> {
 
 fn message(topic: Topic, time: f64, data: Vec<u8>) -> RawMessage {
     RawMessage {
-        topic: topic.name().to_string(),
-        schema: TOPICS[topic.index()].2.to_string(),
-        encoding: "cdr".to_string(),
+        topic: topic.name().into(),
+        schema: TOPICS[topic.index()].2.into(),
+        encoding: "cdr".into(),
         log_time: (time.clamp(0.0, 1e9) * 1e9) as u64,
         data,
     }

@@ -398,47 +398,9 @@ fn drive_keys_on_a_lost_link_command_nothing_and_time_moves_on() {
     assert!(app.held_keys().is_empty(), "the deadman let the key go");
 }
 
-/// A link that answers while `alive` is set and reports a loss otherwise.
-struct FlakyLink {
-    alive: std::sync::Arc<std::sync::atomic::AtomicBool>,
-    sent: std::sync::Arc<std::sync::Mutex<Vec<navdeck::link::Command>>>,
-}
-
-impl navdeck::link::RobotLink for FlakyLink {
-    fn label(&self) -> String {
-        "flaky".into()
-    }
-    fn send(&mut self, command: &navdeck::link::Command) -> Result<(), navdeck::link::LinkError> {
-        self.sent.lock().unwrap().push(*command);
-        Ok(())
-    }
-    fn poll(&mut self, now: f64) -> Result<navdeck::link::SensorFrame, navdeck::link::LinkError> {
-        if self.alive.load(std::sync::atomic::Ordering::SeqCst) {
-            Ok(navdeck::link::SensorFrame {
-                stamp: now,
-                ..Default::default()
-            })
-        } else {
-            Err(navdeck::link::LinkError::Lost(
-                "no odometry for 0.5 s".into(),
-            ))
-        }
-    }
-    fn stop(&mut self) {}
-}
-
-type Sent = std::sync::Arc<std::sync::Mutex<Vec<navdeck::link::Command>>>;
-
 /// The console on a link that answers while the returned flag says so.
 fn flaky_app(up: bool) -> (App, std::sync::Arc<std::sync::atomic::AtomicBool>) {
-    let alive = std::sync::Arc::new(std::sync::atomic::AtomicBool::new(up));
-    let link = FlakyLink {
-        alive: alive.clone(),
-        sent: Sent::default(),
-    };
-    let config = navdeck::config::Config::default();
-    let keymap = navdeck::keymap::Keymap::default_map();
-    (App::new(config, keymap, Box::new(link), 0.0), alive)
+    common::switched_app("flaky", "no odometry for 0.5 s", up)
 }
 
 #[test]

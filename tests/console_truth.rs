@@ -186,45 +186,9 @@ fn a_recording_shows_in_the_header_with_its_size_and_time() {
     assert!(!screen.contains("REC"), "the mark goes with the recording");
 }
 
-/// A link that answers while its flag says so.
-struct Switched {
-    alive: std::sync::Arc<std::sync::atomic::AtomicBool>,
-}
-
-impl navdeck::link::RobotLink for Switched {
-    fn label(&self) -> String {
-        "ros2".into()
-    }
-    fn send(&mut self, _: &navdeck::link::Command) -> Result<(), navdeck::link::LinkError> {
-        Ok(())
-    }
-    fn poll(&mut self, now: f64) -> Result<navdeck::link::SensorFrame, navdeck::link::LinkError> {
-        if self.alive.load(std::sync::atomic::Ordering::SeqCst) {
-            Ok(navdeck::link::SensorFrame {
-                stamp: now,
-                ..Default::default()
-            })
-        } else {
-            Err(navdeck::link::LinkError::Lost(
-                "no odometry on /odom for 2.0 s".into(),
-            ))
-        }
-    }
-    fn stop(&mut self) {}
-}
-
 #[test]
 fn a_link_that_never_answered_is_awaited_and_only_a_lost_one_is_lost() {
-    let alive = std::sync::Arc::new(std::sync::atomic::AtomicBool::new(false));
-    let link = Switched {
-        alive: alive.clone(),
-    };
-    let mut app = App::new(
-        navdeck::config::Config::default(),
-        navdeck::keymap::Keymap::default_map(),
-        Box::new(link),
-        0.0,
-    );
+    let (mut app, alive) = common::switched_app("ros2", "no odometry on /odom for 2.0 s", false);
     run_until(&mut app, 1.0, |_| false);
     for (w, h) in SIZES {
         let screen = drawn(&mut app, w, h);

@@ -23,11 +23,12 @@ mod common {
     pub mod scratch;
     pub mod screen;
     pub mod script;
+    pub mod switched_link;
     pub mod until;
     pub use {
         app_with::*, binary::*, default_app::*, hold::*, key::*, logged::*, press::*, recording::*,
         render::*, render_at::*, replay_played::*, run_loop::*, scratch::*, screen::*, script::*,
-        until::*,
+        switched_link::*, until::*,
     };
 }
 #[path = "plan_support"]

@@ -31,9 +31,8 @@ pub enum FrameError {
     },
 }
 
-/// The longest side of a camera image navdeck reads, pixels (a 16K sensor; the same
-/// bound as a calibration's image size).
-pub const MAX_SIDE: usize = 16384;
+/// The longest side of a camera image navdeck reads, pixels: a calibration's bound.
+pub const MAX_SIDE: usize = super::intrinsics::MAX_SIDE as usize;
 
 impl GrayFrame {
     /// A frame of one grey level.

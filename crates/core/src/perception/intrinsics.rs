@@ -45,8 +45,8 @@ pub enum CalibrationError {
     },
 }
 
-/// Most pixels along either side of a calibrated image.
-const MAX_SIDE: u32 = 16_384;
+/// Most pixels along either side of a calibrated image, and of any camera image read.
+pub const MAX_SIDE: u32 = 16_384;
 
 impl Intrinsics {
     /// Pixel of a camera-frame point (ideal pinhole, no distortion):

@@ -3,6 +3,8 @@
 //! Pose" (geometry_msgs/PoseStamped on /goal_pose). A pose that is not finite, has no
 //! rotation, or is in another frame is refused, naming the value.
 
+use navdeck_core::data::frame_check::MAX_COORDINATE;
+use navdeck_core::data::number::short;
 use navdeck_core::geometry::Pose2;
 use navdeck_msgs::ros as msgs;
 
@@ -13,7 +15,11 @@ pub enum BadPose {
     Frame { found: String, expected: String },
     #[error("{field} = {value} is not finite")]
     NonFinite { field: String, value: f64 },
-    #[error("{field} = {value:e} m is over {FARTHEST:e} m from the map's origin")]
+    #[error(
+        "{field} = {} m is over {} m from the map's origin",
+        short(*value),
+        short(MAX_COORDINATE)
+    )]
     Far { field: String, value: f64 },
     #[error("{path}orientation = (x {x}, y {y}, z {z}, w {w}) is a zero quaternion")]
     ZeroQuaternion {
@@ -24,10 +30,6 @@ pub enum BadPose {
         w: f64,
     },
 }
-
-/// A position farther than this from the origin is refused, metres (as a map's origin is:
-/// 100 km is beyond any room, building or campus a robot maps).
-pub const FARTHEST: f64 = 1.0e5;
 
 /// The planar pose in an /initialpose message, which must be in `map_frame` (an empty
 /// frame_id counts as the map, as some RViz set-ups send it).
@@ -75,7 +77,7 @@ fn planar_pose(
             value,
         });
     }
-    if let Some(&(field, value)) = values[..2].iter().find(|(_, v)| v.abs() > FARTHEST) {
+    if let Some(&(field, value)) = values[..2].iter().find(|(_, v)| v.abs() > MAX_COORDINATE) {
         return Err(BadPose::Far {
             field: format!("{path}{field}"),
             value,
@@ -210,7 +212,7 @@ mod tests {
         let far = initial_pose(&estimate("map", 0.0, -1e308, Default::default()), "map");
         assert_eq!(
             far.unwrap_err().to_string(),
-            "pose.pose.position.y = -1e308 m is over 1e5 m from the map's origin"
+            "pose.pose.position.y = -1e308 m is over 10000 m from the map's origin"
         );
     }
 

@@ -5,12 +5,11 @@
 //! time; the rest plays.
 
 use super::recorded::Recorded;
+// The latest session time a replay runs to is the latest the runtime runs to.
+use crate::runtime::MAX_SESSION_TIME as MAX_TIME;
 use navdeck_core::data::frame_check::{MAX_COORDINATE, short};
 use navdeck_msgs::record::TruthMsg;
 
-/// Latest session time a replay runs to, seconds (about 32 years; the runtime refuses
-/// later times, where f64 can no longer count control periods).
-pub const MAX_TIME: f64 = 1e9;
 /// Seconds the inputs may go on past the last recorded frame: as long as a headless run
 /// carries on after its last key (its follow timeout); beyond, an input is not part of
 /// the session the frames recorded.

@@ -75,7 +75,7 @@ pub struct Runtime {
 
 /// Session times beyond this are refused, seconds (about 32 years): a control period
 /// still adds to them exactly enough (f64 resolves 1e-7 s there), so catching up ends.
-const MAX_SESSION_TIME: f64 = 1e9;
+pub const MAX_SESSION_TIME: f64 = 1e9;
 
 /// The link as the pilot's step sees it: every frame passes the one frame check on its
 /// way in, whichever link brought it, and what the check took out is logged.

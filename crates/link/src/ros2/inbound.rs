@@ -2,6 +2,7 @@
 //! Non-finite or impossible values are refused here, before the estimator sees them.
 
 use crate::{LaserScan, WheelTravel};
+use navdeck_core::data::frame_check::{MAX_BEAMS, check_scan};
 use navdeck_core::geometry::{Pose2, wrap_angle};
 use navdeck_msgs::ros as msgs;
 
@@ -27,9 +28,6 @@ impl Refusal {
         }
     }
 }
-
-/// Largest scan navdeck accepts, beams (the one frame check's bound).
-use navdeck_core::data::frame_check::MAX_BEAMS;
 
 /// The planar pose in an Odometry message.
 pub fn odom_pose(odom: &msgs::Odometry) -> Result<Pose2, Refusal> {
@@ -124,6 +122,7 @@ pub fn scan(msg: &msgs::LaserScan) -> Result<LaserScan, Refusal> {
     if geometry.iter().any(|v| !v.is_finite()) {
         return Err(Refusal::NonFinite);
     }
+    // Counted before the ranges are copied: the one frame check's bound.
     if msg.ranges.len() > MAX_BEAMS {
         return Err(Refusal::BadScan);
     }
@@ -146,7 +145,7 @@ pub fn scan(msg: &msgs::LaserScan) -> Result<LaserScan, Refusal> {
         range_max: f64::from(range_max),
         ranges,
     };
-    match navdeck_core::data::frame_check::check_scan(&mut scan) {
+    match check_scan(&mut scan) {
         Ok(_) => Ok(scan),
         Err(_) => Err(Refusal::BadScan),
     }

@@ -54,6 +54,8 @@ pub struct Config {
     pub mission: MissionConfig,
     /// Which estimator places the robot; Monte-Carlo localisation's settings.
     pub localization: crate::slam::mcl::config::LocalizationConfig,
+    /// Lidar SLAM's matching, keyframes and loop closure (`--estimator slam`).
+    pub lidar_slam: crate::slam::lidar::LidarSlamConfig,
     /// `--link ros2`: topics, QoS, message variants.
     pub ros2: crate::link::ros2::config::Ros2Config,
     pub serial: SerialConfig,
@@ -78,6 +80,7 @@ impl Config {
             follow: self.follow.clone(),
             mission: self.mission.clone(),
             localization: self.localization.clone(),
+            lidar_slam: self.lidar_slam.clone(),
             arm: self.arm.clone(),
         }
     }
@@ -121,6 +124,7 @@ impl Config {
             ("follow", self.follow.validate()),
             ("mission", self.mission.validate()),
             ("localization", self.localization.validate()),
+            ("lidar_slam", self.lidar_slam.validate()),
             ("ros2", self.ros2.validate()),
             ("serial", self.serial.validate()),
             ("vision", self.vision.validate()),

@@ -15,9 +15,10 @@ use std::time::Instant;
 /// How the robot is localised.
 #[derive(Debug, Default, clap::Args)]
 pub struct LocalizeArgs {
-    /// Estimator: `ekf` (EKF-SLAM on markers) or `mcl` (Monte-Carlo localisation with the
-    /// lidar on a known map); over [localization] estimator.
-    #[arg(long, value_name = "ekf|mcl")]
+    /// Estimator: `ekf` (EKF-SLAM on markers), `mcl` (Monte-Carlo localisation with the
+    /// lidar on a known map) or `slam` (lidar SLAM: maps as it goes, no markers needed);
+    /// over [localization] estimator.
+    #[arg(long, value_name = "ekf|mcl|slam")]
     estimator: Option<Estimator>,
     /// The map MCL localises on (a Nav2 map_server YAML + PGM); default: the twin's
     /// world when it is a Nav2 map.
@@ -43,6 +44,7 @@ impl LocalizeArgs {
         self.estimator.map(|e| match e {
             Estimator::Ekf => "ekf".to_string(),
             Estimator::Mcl => "mcl".to_string(),
+            Estimator::Slam => "slam".to_string(),
         })
     }
 

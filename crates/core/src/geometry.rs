@@ -64,6 +64,29 @@ impl Pose2 {
         let dy = world.y - self.y;
         Point2::new(c * dx + s * dy, -s * dx + c * dy)
     }
+
+    /// This pose followed by `local`, a pose given in this pose's frame (the SE(2)
+    /// product, Smith, Self and Cheeseman's "head-to-tail" composition ⊕).
+    pub fn compose(self, local: Pose2) -> Pose2 {
+        let p = self.transform_point(local.position());
+        Pose2::new(p.x, p.y, wrap_angle(self.theta + local.theta))
+    }
+
+    /// The pose that composes with this one to the identity (Smith, Self and Cheeseman's
+    /// inverse ⊖).
+    pub fn inverse(self) -> Pose2 {
+        let (s, c) = self.theta.sin_cos();
+        Pose2::new(
+            -c * self.x - s * self.y,
+            s * self.x - c * self.y,
+            wrap_angle(-self.theta),
+        )
+    }
+
+    /// `other` seen from this pose: `self.compose(self.between(other)) == other`.
+    pub fn between(self, other: Pose2) -> Pose2 {
+        self.inverse().compose(other)
+    }
 }
 
 /// A velocity command or measurement: linear (m/s, forward positive) and angular (rad/s, CCW positive).
@@ -209,6 +232,20 @@ mod tests {
         assert!((wrap_angle(-PI) - PI).abs() < 1e-12);
         assert!((wrap_angle(-0.5) + 0.5).abs() < 1e-12);
         assert!((wrap_angle(2.0 * PI + 0.25) - 0.25).abs() < 1e-12);
+    }
+
+    #[test]
+    fn composing_with_the_inverse_and_between_round_trip() {
+        let a = Pose2::new(1.0, -2.0, 0.7);
+        let b = Pose2::new(-0.5, 3.0, -2.9);
+        let id = a.compose(a.inverse());
+        assert!(id.x.abs() < 1e-12 && id.y.abs() < 1e-12 && id.theta.abs() < 1e-12);
+        let back = a.compose(a.between(b));
+        assert!((back.x - b.x).abs() < 1e-12 && (back.y - b.y).abs() < 1e-12);
+        assert!(wrap_angle(back.theta - b.theta).abs() < 1e-12);
+        // A quarter turn then one metre ahead ends one metre to the left.
+        let q = Pose2::new(0.0, 0.0, PI / 2.0).compose(Pose2::new(1.0, 0.0, 0.0));
+        assert!(q.x.abs() < 1e-12 && (q.y - 1.0).abs() < 1e-12);
     }
 
     #[test]

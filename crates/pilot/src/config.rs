@@ -23,6 +23,7 @@ pub struct Settings {
     pub follow: FollowConfig,
     pub mission: MissionConfig,
     pub localization: LocalizationConfig,
+    pub lidar_slam: navdeck_core::slam::lidar::LidarSlamConfig,
     /// The arm, when the robot has one.
     pub arm: Option<navdeck_core::arm::ArmConfig>,
 }

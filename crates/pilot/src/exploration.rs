@@ -92,7 +92,7 @@ impl Pilot {
             map: self.belief.costmap(),
             occupied: self.belief.sensed_occupied(),
             position_std: self.position_std(),
-            localized: self.mcl.as_ref().is_some_and(|m| m.status().converged),
+            localized: self.mcl().is_some_and(|m| m.status().converged),
             arm: self.arm.as_ref().and_then(|a| a.measured).map(|j| j.0),
         });
         self.exploring.mission = Some(mission);

@@ -15,6 +15,7 @@ mod control;
 pub mod estimate;
 mod exploration;
 mod intent;
+pub mod lidar_slam;
 pub mod localize;
 mod map_load;
 mod mapping;
@@ -79,8 +80,8 @@ pub struct Pilot {
     manual_speeds: (f64, f64),
     odometry: Odometry,
     ekf: EkfSlam,
-    /// Monte-Carlo localisation on a known map, when the session has one.
-    mcl: Option<navdeck_core::slam::mcl::Mcl>,
+    /// The lidar estimator, when one runs: MCL on a known map, or lidar SLAM.
+    scan_estimator: localize::ScanEstimator,
     estimating: estimate::Estimating,
     /// The planning map the robot builds from what it senses.
     belief: BeliefMap,
@@ -117,7 +118,7 @@ impl Pilot {
             odometry: Odometry::new(start, robot.track),
             // The map frame starts at the robot: its pose is known exactly there.
             ekf: EkfSlam::new(start, Matrix3::zeros(), &settings.slam, robot.track),
-            mcl: None,
+            scan_estimator: localize::ScanEstimator::for_settings(&settings, start),
             estimating: estimate::Estimating::default(),
             belief: BeliefMap::new(m, (m.width.max(extent.0), m.height.max(extent.1))),
             upkeep: mapping::Upkeep::default(),

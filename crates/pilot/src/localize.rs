@@ -9,9 +9,36 @@ use navdeck_core::data::{LaserScan, Level};
 use navdeck_core::geometry::Pose2;
 use navdeck_core::map::config::MapConfig;
 use navdeck_core::map::grid::OccupancyGrid;
+use navdeck_core::slam::mcl::config::Estimator;
 use navdeck_core::slam::mcl::known_map::DEFAULT_REACH;
 use navdeck_core::slam::mcl::{KnownMap, Mcl};
 use std::sync::Arc;
+
+/// The estimator that reads the lidar, when one runs: its pose is the one everything
+/// else uses.
+#[derive(Default)]
+pub enum ScanEstimator {
+    /// The EKF alone places the robot.
+    #[default]
+    None,
+    /// Monte-Carlo localisation on a known map.
+    Mcl(Box<Mcl>),
+    /// Lidar SLAM, mapping as it goes.
+    Slam(Box<super::lidar_slam::SlamPilot>),
+}
+
+impl ScanEstimator {
+    /// Lidar SLAM from `start` when the settings ask for it; MCL waits for its map.
+    pub fn for_settings(settings: &super::config::Settings, start: Pose2) -> Self {
+        match settings.localization.estimator {
+            Estimator::Slam => ScanEstimator::Slam(Box::new(super::lidar_slam::SlamPilot::new(
+                &settings.lidar_slam,
+                start,
+            ))),
+            Estimator::Ekf | Estimator::Mcl => ScanEstimator::None,
+        }
+    }
+}
 
 /// Where the filter starts.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -56,7 +83,7 @@ impl Pilot {
         self.belief.absorb_grid(grid);
         let mut mcl = Mcl::new(map, &self.settings.localization, seed);
         self.place(&mut mcl, initial);
-        self.mcl = Some(mcl);
+        self.scan_estimator = ScanEstimator::Mcl(Box::new(mcl));
         Ok(())
     }
 
@@ -85,35 +112,51 @@ impl Pilot {
 
     /// The localiser, when one runs.
     pub fn mcl(&self) -> Option<&Mcl> {
-        self.mcl.as_ref()
+        match &self.scan_estimator {
+            ScanEstimator::Mcl(mcl) => Some(mcl),
+            _ => None,
+        }
     }
 
-    /// The pose everything decides with: MCL's when it runs, else the EKF's.
+    fn mcl_mut(&mut self) -> Option<&mut Mcl> {
+        match &mut self.scan_estimator {
+            ScanEstimator::Mcl(mcl) => Some(mcl),
+            _ => None,
+        }
+    }
+
+    /// The pose everything decides with: MCL's or lidar SLAM's when one runs, else the
+    /// EKF's.
     pub fn pose(&self) -> Pose2 {
-        match &self.mcl {
-            Some(mcl) => mcl.pose(self.odometry.pose()),
-            None => self.ekf.pose(),
+        match &self.scan_estimator {
+            ScanEstimator::Mcl(mcl) => mcl.pose(self.odometry.pose()),
+            ScanEstimator::Slam(slam) => slam.slam.pose(self.odometry.pose()),
+            ScanEstimator::None => self.ekf.pose(),
         }
     }
 
     /// That pose's covariance (x, y, θ).
     pub fn pose_covariance(&self) -> Matrix3<f64> {
-        match &self.mcl {
-            Some(mcl) => mcl.covariance(),
-            None => self.ekf.pose_covariance(),
+        match &self.scan_estimator {
+            ScanEstimator::Mcl(mcl) => mcl.covariance(),
+            ScanEstimator::Slam(slam) => slam.slam.covariance(),
+            ScanEstimator::None => self.ekf.pose_covariance(),
         }
     }
 
-    /// Whether the pose can be trusted to map with: always for the EKF, for MCL once one
-    /// cluster holds the weight.
+    /// Whether the pose can be trusted to map with: always for the EKF and lidar SLAM,
+    /// for MCL once one cluster holds the weight.
     pub(super) fn localized(&self) -> bool {
-        self.mcl.as_ref().is_none_or(|m| m.status().converged)
+        self.mcl().is_none_or(|m| m.status().converged)
     }
 
-    /// Folds a scan into the filter.
+    /// Folds a scan into the lidar estimator.
     pub(super) fn localize_scan(&mut self, scan: &LaserScan) {
+        if matches!(self.scan_estimator, ScanEstimator::Slam(_)) {
+            return self.slam_scan(scan);
+        }
         let odom = self.odometry.pose();
-        let Some(mcl) = self.mcl.as_mut() else {
+        let Some(mcl) = self.mcl_mut() else {
             return;
         };
         let was = mcl.status().converged;
@@ -145,7 +188,7 @@ impl Pilot {
             } else {
                 let text = format!(
                     "localisation uncertain: the particles spread {:.2} m",
-                    self.mcl.as_ref().map_or(0.0, |m| m.position_std())
+                    self.mcl().map_or(0.0, |m| m.position_std())
                 );
                 (Level::Warn, text)
             };
@@ -160,7 +203,7 @@ impl Pilot {
         let (sd, sa) = (c.initial_std, c.initial_std_deg.to_radians());
         // The check `--initial-pose` makes: on MCL's free space, or with the EKF at least
         // on the planning map.
-        let checked = match &self.mcl {
+        let checked = match self.mcl() {
             Some(mcl) => check_on_free_space(mcl.map(), pose),
             None => check_finite(pose).and_then(|()| {
                 let on_map = self.belief.costmap().cell_of(pose.position()).is_some();
@@ -171,9 +214,9 @@ impl Pilot {
             self.log(Level::Error, format!("pose not set: {why}"));
             return;
         }
-        if let Some(mut mcl) = self.mcl.take() {
+        if let ScanEstimator::Mcl(mut mcl) = std::mem::take(&mut self.scan_estimator) {
             self.place(&mut mcl, InitialPose::At(pose));
-            self.mcl = Some(mcl);
+            self.scan_estimator = ScanEstimator::Mcl(mcl);
         }
         let cov = Matrix3::from_diagonal(&nalgebra::Vector3::new(sd * sd, sd * sd, sa * sa));
         self.ekf.relocate(pose, &cov);
@@ -190,7 +233,7 @@ impl Pilot {
 
     /// Starts global localisation afresh (`:relocalize`).
     pub(super) fn relocalize(&mut self) {
-        let Some(mut mcl) = self.mcl.take() else {
+        let ScanEstimator::Mcl(mut mcl) = std::mem::take(&mut self.scan_estimator) else {
             self.log(
                 Level::Warn,
                 "relocalize needs MCL: start with --estimator mcl and a map (--map or a Nav2 --world)",
@@ -199,7 +242,7 @@ impl Pilot {
         };
         self.place(&mut mcl, InitialPose::Unknown);
         let n = mcl.status().particles;
-        self.mcl = Some(mcl);
+        self.scan_estimator = ScanEstimator::Mcl(mcl);
         self.log(
             Level::Info,
             format!("global localisation: {n} particles over the free space; drive to localise"),

@@ -62,7 +62,7 @@ impl Pilot {
         }
         self.upkeep.last_scan_pose = Some((pose, t));
         let held = (self.hand.state == Some(GripperState::Holding)).then_some(JAWS);
-        match self.mcl.as_ref().map(|m| m.map().clone()) {
+        match self.mcl().map(|m| m.map().clone()) {
             // On a known map, scans fill in what it knows, never the unknown beyond its
             // walls (a beam out through a gap would paint free space there).
             Some(known) => {

@@ -74,6 +74,12 @@ impl BeliefMap {
         self.revision
     }
 
+    /// Takes over from `previous`, a map this one redraws: its revision follows the old
+    /// one's, so that whoever drew or planned on the old map sees a change.
+    pub fn succeed(&mut self, previous: &BeliefMap) {
+        self.revision = previous.revision + 1;
+    }
+
     /// Cells recomputed so far: the work the incremental updates did.
     pub fn recomputed_cells(&self) -> u64 {
         self.recomputed

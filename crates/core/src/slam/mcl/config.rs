@@ -14,6 +14,9 @@ pub enum Estimator {
     Ekf,
     /// Monte-Carlo localisation with the lidar on a known map (seed 002).
     Mcl,
+    /// Lidar SLAM: scan matching and a pose graph with loop closure, no markers or map
+    /// needed (`[lidar_slam]`).
+    Slam,
 }
 
 impl Estimator {
@@ -21,6 +24,7 @@ impl Estimator {
         match self {
             Estimator::Ekf => "EKF-SLAM",
             Estimator::Mcl => "MCL",
+            Estimator::Slam => "lidar SLAM",
         }
     }
 }
@@ -31,7 +35,10 @@ impl std::str::FromStr for Estimator {
         match s {
             "ekf" => Ok(Estimator::Ekf),
             "mcl" => Ok(Estimator::Mcl),
-            _ => Err(format!("unknown estimator {s:?}: expected ekf or mcl")),
+            "slam" => Ok(Estimator::Slam),
+            _ => Err(format!(
+                "unknown estimator {s:?}: expected ekf, mcl or slam"
+            )),
         }
     }
 }

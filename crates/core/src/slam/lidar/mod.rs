@@ -1,0 +1,525 @@
+//! Mapping with the lidar alone, in the shape slam_toolbox and Karto gave graph SLAM
+//! (Konolige et al., "Efficient Sparse Pose Adjustment for 2D Mapping", 2010): each scan
+//! is matched against a local map of the last keyframes, seeded by odometry (correlative
+//! matching, `matcher.rs`); every so often the scan becomes a keyframe, a node of the pose
+//! graph joined to the one before by what the match measured; near older parts of the map
+//! a keyframe is matched against them too, and a match that is good and unambiguous
+//! closes the loop: an edge to the old node, and the graph solved by sparse least squares
+//! (`graph.rs`). Poses are in the map frame; the odometry frame is carried along by
+//! `correction` (the map → odom transform), as slam_toolbox publishes it.
+
+pub mod config;
+mod field;
+pub mod graph;
+mod keyframes;
+mod matcher;
+pub mod saved;
+
+pub use config::LidarSlamConfig;
+pub use graph::{Edge, EdgeKind, PoseGraph};
+pub use matcher::Match;
+pub use saved::SavedGraph;
+
+use crate::data::LaserScan;
+use crate::geometry::{Point2, Pose2, wrap_angle};
+use field::Field;
+use keyframes::Keyframe;
+use matcher::Window;
+use nalgebra::{Matrix3, Vector3};
+
+/// A loop the latest keyframe closed.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Closure {
+    /// The old node matched and the new one.
+    pub old: usize,
+    pub new: usize,
+    /// How far the solve moved the newest node, metres.
+    pub correction: f64,
+    /// The match's response (0 to 1).
+    pub response: f64,
+}
+
+impl Closure {
+    /// The nodes round the loop, from the old one to the new one.
+    pub fn nodes(&self) -> usize {
+        self.new - self.old + 1
+    }
+}
+
+/// What one scan changed.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Update {
+    /// The scan matched the local map (false: odometry alone moved the pose).
+    pub matched: bool,
+    /// The keyframe it became, when it became one.
+    pub keyframe: Option<usize>,
+    /// The loop it closed, when it closed one.
+    pub closure: Option<Closure>,
+    /// On a continued map, the first keyframe's join to the saved graph: `Some(true)` when
+    /// its scan matched the saved map, `Some(false)` when it joined at the given pose.
+    pub joined: Option<bool>,
+}
+
+/// Fewer points than this and a scan is not matched.
+const MIN_POINTS: usize = 20;
+/// A loop closure is tried after the robot travelled this far since the last try, metres:
+/// about every other keyframe.
+const LOOP_TRY_EVERY: f64 = 0.4;
+/// Keyframes either side of the old node that make the map a loop closure matches
+/// against, as many as the local map holds in all.
+const LOOP_CHAIN_SHARE: usize = 2;
+/// A continued map's first keyframe joins the saved graph with this uncertainty when its
+/// scan does not match: metres and degrees (the user's "2D Pose Estimate" spread).
+const JOIN_STD: (f64, f64) = (0.25, 10.0);
+/// The Mahalanobis gate on a loop closure's correction, chi-square with 3 degrees of
+/// freedom at 99.9 % (16.27).
+const LOOP_GATE_CHI2: f64 = 16.27;
+/// Added to the uncertainty a loop's correction is gated with: metres and degrees.
+const LOOP_GATE_FLOOR: (f64, f64) = (0.1, 5.0);
+
+/// The estimator; see the module comment.
+#[derive(Clone, Debug)]
+pub struct LidarSlam {
+    config: LidarSlamConfig,
+    graph: PoseGraph,
+    frames: Vec<Keyframe>,
+    /// Map → odom: the map pose is `correction ∘ odom`.
+    correction: Pose2,
+    /// The pose's covariance in the map frame.
+    covariance: Matrix3<f64>,
+    /// The odometry pose of the last scan, and the covariance it gathered since the last
+    /// match (robot frame).
+    last_odom: Option<Pose2>,
+    drift: Matrix3<f64>,
+    /// The local map and its coarse copy.
+    local: Option<(Field, Field)>,
+    /// Where the robot was to start, until the first scan places it.
+    start: Option<Pose2>,
+    /// Keyframes loaded from a saved graph (they come first).
+    loaded: usize,
+    /// Path length at the last loop closure try, metres.
+    last_loop_try: f64,
+    loops: usize,
+    last_response: f64,
+}
+
+impl LidarSlam {
+    /// A new map whose frame has the robot at `start`.
+    pub fn new(config: &LidarSlamConfig, start: Pose2) -> LidarSlam {
+        LidarSlam {
+            config: config.clone(),
+            graph: PoseGraph::default(),
+            frames: Vec::new(),
+            correction: Pose2::default(),
+            covariance: Matrix3::zeros(),
+            last_odom: None,
+            drift: Matrix3::zeros(),
+            local: None,
+            start: Some(start),
+            loaded: 0,
+            last_loop_try: 0.0,
+            loops: 0,
+            last_response: 0.0,
+        }
+    }
+
+    /// Mapping continued on a saved graph, the robot at `start` in its map frame: the first
+    /// scan joins the saved graph by matching it there (slam_toolbox's "continue mapping").
+    pub fn resume(
+        config: &LidarSlamConfig,
+        saved: SavedGraph,
+        start: Pose2,
+    ) -> Result<Self, String> {
+        saved.check()?;
+        let (graph, scans) = saved.into_parts();
+        let mut slam = LidarSlam::new(config, start);
+        let mut travelled = 0.0;
+        for (k, scan) in scans.into_iter().enumerate() {
+            let pose = graph.poses[k];
+            if k > 0 {
+                travelled += graph.poses[k - 1].position().distance(pose.position());
+            }
+            slam.frames
+                .push(Keyframe::new(pose, scan, config.resolution, travelled));
+        }
+        // Every new keyframe is "far along the path" from every saved one.
+        slam.last_loop_try = travelled + config.loop_minimum_travel;
+        slam.loaded = slam.frames.len();
+        slam.loops = graph
+            .edges
+            .iter()
+            .filter(|e| e.kind == EdgeKind::Loop)
+            .count();
+        slam.graph = graph;
+        Ok(slam)
+    }
+
+    /// The pose in the map frame of a robot at odometry pose `odom`.
+    pub fn pose(&self, odom: Pose2) -> Pose2 {
+        self.correction.compose(odom)
+    }
+
+    /// The map → odom transform.
+    pub fn map_to_odom(&self) -> Pose2 {
+        self.correction
+    }
+
+    pub fn covariance(&self) -> Matrix3<f64> {
+        self.covariance
+    }
+
+    pub fn graph(&self) -> &PoseGraph {
+        &self.graph
+    }
+
+    /// Every keyframe's pose and scan, oldest first.
+    pub fn keyframes(&self) -> impl Iterator<Item = (Pose2, &LaserScan)> {
+        (self.graph.poses.iter().copied()).zip(self.frames.iter().map(|f| &f.scan))
+    }
+
+    /// Keyframes loaded from a saved graph.
+    pub fn loaded(&self) -> usize {
+        self.loaded
+    }
+
+    /// Loops closed, including a saved graph's.
+    pub fn loops(&self) -> usize {
+        self.loops
+    }
+
+    /// The last match's response (0 to 1).
+    pub fn last_response(&self) -> f64 {
+        self.last_response
+    }
+
+    /// The graph for saving.
+    pub fn save(&self) -> SavedGraph {
+        SavedGraph::new(
+            &self.graph.poses,
+            self.frames.iter().map(|f| &f.scan),
+            &self.graph.edges,
+        )
+    }
+
+    /// Folds in a scan taken at odometry pose `odom`.
+    pub fn update(&mut self, odom: Pose2, scan: &LaserScan) -> Update {
+        let points = keyframes::thin(scan, self.config.resolution);
+        if let Some(start) = self.start.take() {
+            self.correction = start.compose(odom.inverse());
+            self.last_odom = Some(odom);
+            if self.loaded > 0 {
+                return self.join(start, odom, scan, &points);
+            }
+            self.add_keyframe(start, odom, scan, None);
+            return Update {
+                keyframe: Some(0),
+                ..Update::default()
+            };
+        }
+        let last = self.last_odom.replace(odom).unwrap_or(odom);
+        let step = last.between(odom);
+        self.drift += keyframes::odometry_noise(step, self.config.odometry_noise);
+        let predicted = self.correction.compose(odom);
+        let mut update = Update::default();
+        let mut pose = predicted;
+        let mut matched_cov = None;
+        if let Some(m) = self.match_local(&points, predicted) {
+            pose = fuse(predicted, &rotate(&self.drift, predicted.theta), &m);
+            self.correction = pose.compose(odom.inverse());
+            self.drift = Matrix3::zeros();
+            update.matched = true;
+            matched_cov = Some(m.covariance);
+        }
+        let Some(kf) = self.graph.poses.len().checked_sub(1) else {
+            return update;
+        };
+        let kf_pose = self.graph.poses[kf];
+        let since = kf_pose.between(pose);
+        // What is known of the pose relative to the keyframe, in the keyframe's frame: the
+        // match's spread, or odometry's since the keyframe.
+        let relative_cov = match matched_cov {
+            Some(cov) => rotate(&cov, -kf_pose.theta),
+            None => keyframes::odometry_noise(since, self.config.odometry_noise),
+        };
+        self.covariance = self.frames[kf].covariance + rotate(&relative_cov, kf_pose.theta);
+        let turned = since.theta.abs().to_degrees();
+        if since.position().distance(Point2::default()) < self.config.minimum_travel_distance
+            && turned < self.config.minimum_travel_heading_deg
+        {
+            return update;
+        }
+        let new = self.add_keyframe(pose, odom, scan, Some((kf, since, relative_cov)));
+        update.keyframe = Some(new);
+        update.closure = self.close_loop(new);
+        update
+    }
+
+    /// The match of `points` against the local map round `guess`, when it is good enough.
+    fn match_local(&mut self, points: &[Point2], guess: Pose2) -> Option<Match> {
+        let (fine, coarse) = self.local.as_ref()?;
+        if points.len() < MIN_POINTS {
+            return None;
+        }
+        let window = Window {
+            half_width: self.config.search_half_width,
+            half_angle: self.config.search_half_angle_deg.to_radians(),
+        };
+        let m = matcher::correlate(fine, coarse, points, guess, window)?;
+        self.last_response = m.response;
+        (m.response >= self.config.minimum_response).then_some(m)
+    }
+
+    /// Adds a keyframe at `pose`, joined to `previous` (node, measured relative pose, its
+    /// covariance), and rebuilds the local map. Returns its node.
+    fn add_keyframe(
+        &mut self,
+        pose: Pose2,
+        odom: Pose2,
+        scan: &LaserScan,
+        previous: Option<(usize, Pose2, Matrix3<f64>)>,
+    ) -> usize {
+        let node = self.graph.poses.len();
+        let travelled = previous.map_or(0.0, |(p, rel, _)| {
+            self.frames[p].travelled + rel.position().distance(Point2::default())
+        });
+        let mut frame = Keyframe::new(pose, scan.clone(), self.config.resolution, travelled);
+        frame.odom = odom;
+        if let Some((p, rel, cov)) = previous {
+            frame.covariance = self.frames[p].covariance + rotate(&cov, self.graph.poses[p].theta);
+            self.graph.edges.push(Edge {
+                from: p,
+                to: node,
+                relative: rel,
+                information: information(&cov),
+                kind: EdgeKind::Sequential,
+            });
+        }
+        self.covariance = frame.covariance;
+        self.graph.poses.push(pose);
+        self.frames.push(frame);
+        self.rebuild_local();
+        node
+    }
+
+    /// The local map: the last `scan_buffer_size` keyframes of this session.
+    fn rebuild_local(&mut self) {
+        let n = self.frames.len();
+        let from = n
+            .saturating_sub(self.config.scan_buffer_size as usize)
+            .max(self.loaded.min(n.saturating_sub(1)));
+        self.local = self.field_of(from..n, self.config.search_half_width);
+    }
+
+    /// The matching field of keyframes `nodes`, padded by `pad` metres.
+    fn field_of(&self, nodes: std::ops::Range<usize>, pad: f64) -> Option<(Field, Field)> {
+        let hits: Vec<Point2> = nodes
+            .flat_map(|k| {
+                let pose = self.graph.poses[k];
+                self.frames[k]
+                    .points
+                    .iter()
+                    .map(move |p| pose.transform_point(*p))
+            })
+            .collect();
+        let c = &self.config;
+        let fine = Field::from_hits(&hits, c.resolution, c.smear_deviation, pad)?;
+        let coarse = fine.coarser();
+        Some((fine, coarse))
+    }
+
+    /// Tries to close a loop from keyframe `new` to an older part of the map.
+    fn close_loop(&mut self, new: usize) -> Option<Closure> {
+        let c = self.config.clone();
+        let here = self.graph.poses[new];
+        let travelled = self.frames[new].travelled;
+        if travelled - self.last_loop_try < LOOP_TRY_EVERY {
+            return None;
+        }
+        let far_back = |k: usize| travelled - self.frames[k].travelled >= c.loop_minimum_travel;
+        let old = (0..new)
+            .filter(|&k| far_back(k))
+            .map(|k| (k, self.graph.poses[k].position().distance(here.position())))
+            .filter(|&(_, d)| d <= c.loop_search_maximum_distance)
+            .min_by(|a, b| a.1.total_cmp(&b.1))?
+            .0;
+        self.last_loop_try = travelled;
+        let half = (c.scan_buffer_size as usize / LOOP_CHAIN_SHARE).max(1);
+        let lo = old.saturating_sub(half);
+        let hi = (old + half + 1).min(new);
+        let chain: Vec<usize> = (lo..hi).filter(|&k| far_back(k)).collect();
+        let (first, last) = (*chain.first()?, *chain.last()? + 1);
+        let window = Window {
+            half_width: c.loop_search_half_width,
+            half_angle: c.loop_search_half_angle_deg.to_radians(),
+        };
+        let (fine, coarse) = self.field_of(first..last, c.loop_search_half_width)?;
+        let points = &self.frames[new].points;
+        if points.len() < MIN_POINTS {
+            return None;
+        }
+        let m = matcher::correlate(&fine, &coarse, points, here, window)?;
+        if m.response < c.loop_minimum_response || m.position_std() > c.loop_maximum_std {
+            return None;
+        }
+        if !self.plausible(old, new, &m) {
+            return None;
+        }
+        let relative = self.graph.poses[old].between(m.pose);
+        let cov_rel = rotate(&m.covariance, -self.graph.poses[old].theta);
+        self.graph.edges.push(Edge {
+            from: old,
+            to: new,
+            relative,
+            information: information(&cov_rel),
+            kind: EdgeKind::Loop,
+        });
+        self.graph.optimize()?;
+        let moved = self.graph.poses[new].position().distance(here.position());
+        self.loops += 1;
+        // The new node is now known as well as the old one and the match.
+        let joined = self.frames[old].covariance + m.covariance;
+        if joined.trace() < self.frames[new].covariance.trace() {
+            self.frames[new].covariance = joined;
+        }
+        self.covariance = self.frames[new].covariance;
+        let f = &self.frames[new];
+        self.correction = self.graph.poses[new].compose(f.odom.inverse());
+        self.rebuild_local();
+        Some(Closure {
+            old,
+            new,
+            correction: moved,
+            response: m.response,
+        })
+    }
+
+    /// Whether a loop match's correction is within what the path's uncertainty allows.
+    fn plausible(&self, old: usize, new: usize, m: &Match) -> bool {
+        let here = self.graph.poses[new];
+        let d = Vector3::new(
+            m.pose.x - here.x,
+            m.pose.y - here.y,
+            wrap_angle(m.pose.theta - here.theta),
+        );
+        let grown = self.frames[new].covariance - self.frames[old].covariance;
+        let (fp, fa) = (LOOP_GATE_FLOOR.0, LOOP_GATE_FLOOR.1.to_radians());
+        let floor = Matrix3::from_diagonal(&Vector3::new(fp * fp, fp * fp, fa * fa));
+        let s = positive_part(&grown) + m.covariance + floor;
+        s.cholesky()
+            .is_some_and(|ch| d.dot(&ch.solve(&d)) <= LOOP_GATE_CHI2)
+    }
+
+    /// A continued map's first keyframe, joined to the saved graph's nearest node.
+    fn join(&mut self, start: Pose2, odom: Pose2, scan: &LaserScan, points: &[Point2]) -> Update {
+        let c = self.config.clone();
+        let near = (0..self.loaded)
+            .min_by(|&a, &b| {
+                let d = |k: usize| self.graph.poses[k].position().distance(start.position());
+                d(a).total_cmp(&d(b))
+            })
+            .unwrap_or(0);
+        let lo = near.saturating_sub(c.scan_buffer_size as usize);
+        let hi = (near + c.scan_buffer_size as usize + 1).min(self.loaded);
+        let window = Window {
+            half_width: c.loop_search_half_width,
+            half_angle: c.loop_search_half_angle_deg.to_radians(),
+        };
+        let matched = (points.len() >= MIN_POINTS)
+            .then(|| self.field_of(lo..hi, c.loop_search_half_width))
+            .flatten()
+            .and_then(|(fine, coarse)| matcher::correlate(&fine, &coarse, points, start, window))
+            .filter(|m| {
+                m.response >= c.loop_minimum_response && m.position_std() <= c.loop_maximum_std
+            });
+        let (pose, cov) = match matched {
+            Some(m) => (m.pose, m.covariance),
+            None => {
+                let (sp, sa) = (JOIN_STD.0, JOIN_STD.1.to_radians());
+                (
+                    start,
+                    Matrix3::from_diagonal(&Vector3::new(sp * sp, sp * sp, sa * sa)),
+                )
+            }
+        };
+        self.correction = pose.compose(odom.inverse());
+        let rel = self.graph.poses[near].between(pose);
+        let cov_rel = rotate(&cov, -self.graph.poses[near].theta);
+        let travelled = self.last_loop_try;
+        let node = self.graph.poses.len();
+        let mut frame = Keyframe::new(pose, scan.clone(), c.resolution, travelled);
+        frame.odom = odom;
+        frame.covariance = cov;
+        self.graph.edges.push(Edge {
+            from: near,
+            to: node,
+            relative: rel,
+            information: information(&cov_rel),
+            kind: if matched.is_some() {
+                EdgeKind::Loop
+            } else {
+                EdgeKind::Sequential
+            },
+        });
+        self.graph.poses.push(pose);
+        self.frames.push(frame);
+        self.covariance = cov;
+        self.rebuild_local();
+        Update {
+            matched: matched.is_some(),
+            keyframe: Some(node),
+            closure: None,
+            joined: Some(matched.is_some()),
+        }
+    }
+}
+
+/// A pose from the prediction and a match, each weighed by its information (the
+/// information-form fusion of two Gaussian estimates; Thrun et al., Probabilistic
+/// Robotics 3.4.3), so that a corridor's match corrects across it and odometry carries
+/// the pose along it.
+fn fuse(predicted: Pose2, p_cov: &Matrix3<f64>, m: &Match) -> Pose2 {
+    let floor = Matrix3::from_diagonal(&Vector3::new(1e-8, 1e-8, 1e-10));
+    let (Some(ip), Some(im)) = (
+        (p_cov + floor).try_inverse(),
+        (m.covariance + floor).try_inverse(),
+    ) else {
+        return m.pose;
+    };
+    let Some(total) = (ip + im).try_inverse() else {
+        return m.pose;
+    };
+    let d = Vector3::new(
+        m.pose.x - predicted.x,
+        m.pose.y - predicted.y,
+        wrap_angle(m.pose.theta - predicted.theta),
+    );
+    let step = total * im * d;
+    Pose2::new(
+        predicted.x + step[0],
+        predicted.y + step[1],
+        wrap_angle(predicted.theta + step[2]),
+    )
+}
+
+/// A covariance given in a frame turned `theta`, in the parent frame: R Σ Rᵀ.
+fn rotate(cov: &Matrix3<f64>, theta: f64) -> Matrix3<f64> {
+    let (s, c) = theta.sin_cos();
+    let r = Matrix3::new(c, -s, 0.0, s, c, 0.0, 0.0, 0.0, 1.0);
+    r * cov * r.transpose()
+}
+
+/// The information matrix of a covariance, or a weak one when it cannot be inverted.
+fn information(cov: &Matrix3<f64>) -> Matrix3<f64> {
+    let sym = (cov + cov.transpose()) / 2.0;
+    sym.try_inverse()
+        .filter(|i| i.iter().all(|v| v.is_finite()))
+        .unwrap_or_else(|| Matrix3::from_diagonal(&Vector3::new(1.0, 1.0, 1.0)))
+}
+
+/// The symmetric matrix with its negative eigenvalues set to zero.
+fn positive_part(m: &Matrix3<f64>) -> Matrix3<f64> {
+    let sym = (m + m.transpose()) / 2.0;
+    let eig = sym.symmetric_eigen();
+    let values = eig.eigenvalues.map(|v| v.max(0.0));
+    &eig.eigenvectors * Matrix3::from_diagonal(&values) * eig.eigenvectors.transpose()
+}

@@ -33,7 +33,7 @@ pub struct SlamPilot {
 impl SlamPilot {
     pub fn new(config: &LidarSlamConfig, start: Pose2) -> Self {
         SlamPilot {
-            slam: LidarSlam::new(config, start),
+            slam: LidarSlam::new(config, start, start),
             truth: Vec::new(),
             holding: Vec::new(),
             false_closures: 0,

@@ -93,8 +93,8 @@ pub struct LidarSlam {
     drift: Matrix3<f64>,
     /// The local map and its coarse copy.
     local: Option<(Field, Field)>,
-    /// Where the robot was to start, until the first scan places it.
-    start: Option<Pose2>,
+    /// Until the first scan: whether it is still to come.
+    first: bool,
     /// Keyframes loaded from a saved graph (they come first).
     loaded: usize,
     /// Path length at the last loop closure try, metres.
@@ -104,18 +104,18 @@ pub struct LidarSlam {
 }
 
 impl LidarSlam {
-    /// A new map whose frame has the robot at `start`.
-    pub fn new(config: &LidarSlamConfig, start: Pose2) -> LidarSlam {
+    /// A new map whose frame has the robot at `start` when odometry reads `odom`.
+    pub fn new(config: &LidarSlamConfig, start: Pose2, odom: Pose2) -> LidarSlam {
         LidarSlam {
             config: config.clone(),
             graph: PoseGraph::default(),
             frames: Vec::new(),
-            correction: Pose2::default(),
+            correction: start.compose(odom.inverse()),
             covariance: Matrix3::zeros(),
             last_odom: None,
             drift: Matrix3::zeros(),
             local: None,
-            start: Some(start),
+            first: true,
             loaded: 0,
             last_loop_try: 0.0,
             loops: 0,
@@ -123,16 +123,18 @@ impl LidarSlam {
         }
     }
 
-    /// Mapping continued on a saved graph, the robot at `start` in its map frame: the first
-    /// scan joins the saved graph by matching it there (slam_toolbox's "continue mapping").
+    /// Mapping continued on a saved graph, the robot at `start` in its map frame when
+    /// odometry reads `odom`: the first scan joins the saved graph by matching it there
+    /// (slam_toolbox's "continue mapping").
     pub fn resume(
         config: &LidarSlamConfig,
         saved: SavedGraph,
         start: Pose2,
+        odom: Pose2,
     ) -> Result<Self, String> {
         saved.check()?;
         let (graph, scans) = saved.into_parts();
-        let mut slam = LidarSlam::new(config, start);
+        let mut slam = LidarSlam::new(config, start, odom);
         let mut travelled = 0.0;
         for (k, scan) in scans.into_iter().enumerate() {
             let pose = graph.poses[k];
@@ -204,8 +206,8 @@ impl LidarSlam {
     /// Folds in a scan taken at odometry pose `odom`.
     pub fn update(&mut self, odom: Pose2, scan: &LaserScan) -> Update {
         let points = keyframes::thin(scan, self.config.resolution);
-        if let Some(start) = self.start.take() {
-            self.correction = start.compose(odom.inverse());
+        if std::mem::take(&mut self.first) {
+            let start = self.correction.compose(odom);
             self.last_odom = Some(odom);
             if self.loaded > 0 {
                 return self.join(start, odom, scan, &points);
@@ -223,7 +225,7 @@ impl LidarSlam {
         let mut update = Update::default();
         let mut pose = predicted;
         let mut matched_cov = None;
-        if let Some(m) = self.match_local(&points, predicted) {
+        if let Some(m) = self.match_local(&points, predicted, step) {
             pose = fuse(predicted, &rotate(&self.drift, predicted.theta), &m);
             self.correction = pose.compose(odom.inverse());
             self.drift = Matrix3::zeros();
@@ -255,14 +257,19 @@ impl LidarSlam {
     }
 
     /// The match of `points` against the local map round `guess`, when it is good enough.
-    fn match_local(&mut self, points: &[Point2], guess: Pose2) -> Option<Match> {
+    /// The window grows by the odometry `step` since the last scan: a scan is taken up to
+    /// a poll before the odometry it is paired with, so while the robot turns fast the
+    /// guess may be off by as much as the turn.
+    fn match_local(&mut self, points: &[Point2], guess: Pose2, step: Pose2) -> Option<Match> {
         let (fine, coarse) = self.local.as_ref()?;
         if points.len() < MIN_POINTS {
             return None;
         }
+        let c = &self.config;
         let window = Window {
-            half_width: self.config.search_half_width,
-            half_angle: self.config.search_half_angle_deg.to_radians(),
+            half_width: (c.search_half_width + step.x.hypot(step.y)).min(c.loop_search_half_width),
+            half_angle: (c.search_half_angle_deg.to_radians() + step.theta.abs())
+                .min(c.loop_search_half_angle_deg.to_radians().max(c.search_half_angle_deg.to_radians())),
         };
         let m = matcher::correlate(fine, coarse, points, guess, window)?;
         self.last_response = m.response;

@@ -45,6 +45,20 @@ fn headless_keys_drive_the_twin_and_report_json() {
     let dy = truth["y"].as_f64().unwrap() - est["y"].as_f64().unwrap();
     assert!(dx.hypot(dy) < 0.05, "{r}");
     assert!(r["realtime_factor"].as_f64().unwrap() > 0.0);
+    // Scored against the twin: the largest error bounds the RMSE, and the lidar's map
+    // has found some of the arena's walls, mostly where they are.
+    let (rmse, max) = (
+        r["position_rmse"].as_f64(),
+        r["position_max_error"].as_f64(),
+    );
+    assert!(max.unwrap() >= rmse.unwrap(), "{r}");
+    let map = &r["map_vs_walls"];
+    for share in ["wall_recall", "wall_precision"] {
+        let v = map[share]
+            .as_f64()
+            .unwrap_or_else(|| panic!("{share}: {r}"));
+        assert!(v > 0.0 && v <= 1.0, "{share}: {map}");
+    }
 }
 
 #[test]

@@ -37,11 +37,60 @@ fn the_mission_delivers_all_four_blocks_without_touching_anything() {
         "replans",
         "recoveries",
         "position_rmse",
+        "position_max_error",
         "heading_rmse_deg",
+        "map_vs_walls",
         "wall_time_s",
     ] {
         assert!(!r[field].is_null(), "{field}");
     }
+}
+
+#[test]
+fn a_mission_on_a_generated_world_scores_its_map_against_the_true_walls() {
+    let out = navdeck(&[
+        "mission",
+        "--generated",
+        "--style",
+        "rooms",
+        "--seed",
+        "3",
+        "--time-limit",
+        "60",
+        "--json",
+    ]);
+    let r: Value = serde_json::from_slice(&out.stdout)
+        .unwrap_or_else(|e| panic!("{e}: {}", String::from_utf8_lossy(&out.stderr)));
+    let map = &r["map_vs_walls"];
+    let share = |field: &str| {
+        map[field]
+            .as_f64()
+            .unwrap_or_else(|| panic!("{field}: {r}"))
+    };
+    let (recall, precision) = (share("wall_recall"), share("wall_precision"));
+    // A minute of exploring has mapped some of the walls, and mostly walls.
+    assert!(recall > 0.0 && recall <= 1.0, "{map}");
+    assert!(precision > 0.0 && precision <= 1.0, "{map}");
+    assert!(map["wall_cells"].as_u64().unwrap() > 0, "{map}");
+    let rmse = r["position_rmse"].as_f64().unwrap();
+    let max = r["position_max_error"].as_f64().unwrap();
+    assert!(max >= rmse && max > 0.0, "max {max} < RMSE {rmse}");
+    // The person's report says it too.
+    let out = navdeck(&[
+        "mission",
+        "--generated",
+        "--style",
+        "rooms",
+        "--seed",
+        "3",
+        "--time-limit",
+        "60",
+    ]);
+    let said = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        said.contains("walls mapped") && said.contains(", max "),
+        "{said}"
+    );
 }
 
 #[test]
@@ -51,6 +100,21 @@ fn a_sweep_sums_up_the_seeds_and_a_time_limit_fails_the_run() {
     assert_eq!(s["runs"], 2);
     assert!(s["median_sim_time"].as_f64().unwrap() > 0.0);
     assert_eq!(s["success_rate"], 1.0, "{s}");
+    for figure in [
+        "position_rmse",
+        "position_max_error",
+        "wall_recall",
+        "wall_precision",
+    ] {
+        let spread = &s[figure];
+        let (min, mean, max) = (
+            spread["min"].as_f64(),
+            spread["mean"].as_f64(),
+            spread["max"].as_f64(),
+        );
+        let (min, mean, max) = (min.unwrap(), mean.unwrap(), max.unwrap());
+        assert!(min <= mean && mean <= max, "{figure}: {spread}");
+    }
     let short = navdeck(&["mission", "--seed", "1", "--time-limit", "30", "--json"]);
     assert_eq!(short.status.code(), Some(1), "a mission cut short fails");
     let r: Value = serde_json::from_slice(&short.stdout).unwrap();

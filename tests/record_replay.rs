@@ -79,7 +79,7 @@ fn an_exploration_re_run_on_its_recording_is_the_same_bit_for_bit() {
     assert_eq!(again.landmarks, original.landmarks);
     assert_eq!(again.mode, original.mode);
     assert_eq!(again.distance_driven, original.distance_driven);
-    assert_eq!(again.position_rmse, original.position_rmse);
+    assert_eq!(again.score.position_rmse, original.score.position_rmse);
     assert_eq!(again.link, format!("replay:{}", original.link));
 }
 
@@ -109,7 +109,7 @@ fn a_re_run_on_another_estimator_scores_both_against_the_truth() {
     assert_ne!(recorded, rerun);
     // The recorded figure is the one the original run scored its estimate with.
     assert!(
-        (recorded - original.position_rmse.unwrap()).abs() < 0.002,
+        (recorded - original.score.position_rmse.unwrap()).abs() < 0.002,
         "{c:?}"
     );
 }

@@ -73,11 +73,16 @@ fn scripted_five_minute_loop_meets_seed_accuracy_with_consistent_covariance() {
         assert!(r.sim_time > 300.0);
         assert_eq!(r.collisions, Some(0), "the loop should stay clear of walls");
         let (pos, head, nees) = (
-            r.position_rmse.unwrap(),
-            r.heading_rmse_deg.unwrap(),
-            r.mean_nees.unwrap(),
+            r.score.position_rmse.unwrap(),
+            r.score.heading_rmse_deg.unwrap(),
+            r.score.mean_nees.unwrap(),
         );
         assert!(pos < 0.05, "seed {seed}: position RMSE {pos:.4} m");
+        let max = r.score.position_max_error.unwrap();
+        assert!(
+            max >= pos && max < 0.3,
+            "seed {seed}: largest error {max:.4} m"
+        );
         assert!(head < 3.0, "seed {seed}: heading RMSE {head:.3} deg");
         assert!(
             nees > NEES_BAND_3DOF.0 && nees < NEES_BAND_3DOF.1,
@@ -108,7 +113,7 @@ fn a_standing_start_then_goto_keeps_nees_finite_and_in_band() {
         };
         let mut app = Session::load(&spec).unwrap().into_app(0.0);
         let r = navdeck::runners::headless::run(&mut app, &keys, 10.0);
-        let nees = r.mean_nees.unwrap();
+        let nees = r.score.mean_nees.unwrap();
         assert!(
             nees.is_finite() && nees > NEES_BAND_3DOF.0 && nees < NEES_BAND_3DOF.1,
             "seed {seed}: mean NEES {nees}"

@@ -126,6 +126,8 @@ fn larger_worlds_hold_more() {
         (Style::Rooms, (10.0, 8.0), 10, 5),
         (Style::Corridors, (12.0, 6.0), 6, 4),
         (Style::Corridors, (3.0, 6.0), 2, 1),
+        (Style::Loop, (12.0, 6.0), 8, 4),
+        (Style::Loop, (5.0, 9.0), 4, 2),
     ] {
         for seed in 1..=10 {
             let o = GenerateOptions {
@@ -134,6 +136,7 @@ fn larger_worlds_hold_more() {
                 blocks,
                 obstacles,
                 style,
+                ..GenerateOptions::default()
             };
             let world = generate(&o).unwrap_or_else(|e| panic!("{size:?}: {e}"));
             assert_sound(&world, &o);
@@ -255,6 +258,8 @@ fn bad_options_are_refused_naming_the_flag() {
         (vec!["--blocks", "40"], "--blocks", "40"),
         (vec!["--obstacles", "-1"], "--obstacles", "-1"),
         (vec!["--style", "maze"], "--style", "maze"),
+        (vec!["--loops"], "--loops", "boxes"),
+        (vec!["--style", "loop", "--loops"], "--loops", "loop"),
     ] {
         let mut all = vec!["world", "generate", "--seed", "1", "-o", path];
         all.extend(args.iter().copied());
@@ -265,10 +270,16 @@ fn bad_options_are_refused_naming_the_flag() {
         assert!(!err.contains("panicked"), "{err}");
         assert!(!file.exists(), "{args:?} wrote a file");
     }
-    let out = navdeck(&["mission", "--style", "rooms"]);
-    let err = String::from_utf8_lossy(&out.stderr);
-    assert_eq!(out.status.code(), Some(2), "{err}");
-    assert!(err.contains("--generated"), "{err}");
+    for flag in ["--style", "--no-wall-markers", "--loops"] {
+        let mut args = vec!["mission", flag];
+        if flag == "--style" {
+            args.push("rooms");
+        }
+        let out = navdeck(&args);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{err}");
+        assert!(err.contains(flag) && err.contains("--generated"), "{err}");
+    }
     std::fs::remove_dir_all(dir).unwrap();
 }
 
@@ -321,4 +332,104 @@ fn world_generate_replaces_a_planted_link_and_keeps_the_old_file_as_bak() {
     assert_eq!(std::fs::read_to_string(&victim).unwrap(), "keep");
     assert!(!guarded.exists() && !dir.join("g.toml.tmp").exists());
     std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn worlds_without_wall_markers_and_with_loops_are_written_and_run_by_name() {
+    let dir = scratch("generate-bare");
+    let file = dir.join("rooms-7-bare.toml");
+    let path = file.to_str().unwrap();
+    let out = navdeck(&[
+        "world",
+        "generate",
+        "--seed",
+        "7",
+        "--style",
+        "rooms",
+        "--size",
+        "8,6",
+        "--loops",
+        "--no-wall-markers",
+        "-o",
+        path,
+    ]);
+    let said = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(said.contains("generated:rooms:7:loops:bare"), "{said}");
+    assert!(said.contains(" 0 wall and box markers"), "{said}");
+    let world = World::load(&file).unwrap();
+    let text = std::fs::read_to_string(&file).unwrap();
+    assert!(text.starts_with("# navdeck world generate --seed 7 --style rooms --size 8,6"));
+    assert!(
+        text.lines()
+            .next()
+            .unwrap()
+            .ends_with("--loops --no-wall-markers"),
+        "{text}"
+    );
+    // Only the gates' four markers are fixed in the world; the blocks carry theirs.
+    assert_eq!(world.markers.len(), 4);
+    let marked = GenerateOptions {
+        size: Some((8.0, 6.0)),
+        loops: true,
+        ..options(7, Style::Rooms)
+    };
+    assert_eq!(
+        world.walls,
+        generate(&marked).unwrap().walls,
+        "the same layout"
+    );
+
+    // A loop: its length round the centreline is said.
+    let ring = dir.join("loop.toml");
+    let out = navdeck(&[
+        "world",
+        "generate",
+        "--seed",
+        "2",
+        "--style",
+        "loop",
+        "--size",
+        "12,6",
+        "-o",
+        ring.to_str().unwrap(),
+    ]);
+    let said = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let length: f64 = said
+        .split("a corridor ")
+        .nth(1)
+        .and_then(|rest| rest.split(" m round").next())
+        .and_then(|n| n.parse().ok())
+        .unwrap_or_else(|| panic!("{said}"));
+    assert!(length >= 30.0, "{said}");
+
+    // The mission takes the same flags on a generated world and names it so.
+    let out = navdeck(&[
+        "mission",
+        "--generated",
+        "--style",
+        "corridors",
+        "--size",
+        "7,5",
+        "--loops",
+        "--no-wall-markers",
+        "--seed",
+        "4",
+        "--time-limit",
+        "5",
+        "--json",
+    ]);
+    let report: serde_json::Value = serde_json::from_slice(&out.stdout)
+        .unwrap_or_else(|e| panic!("{e}: {}", String::from_utf8_lossy(&out.stderr)));
+    assert_eq!(report["world"], "generated:corridors:4:loops:bare");
+    std::fs::remove_dir_all(dir).unwrap();
 }

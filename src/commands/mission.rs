@@ -167,6 +167,24 @@ pub(crate) fn run(args: &MissionArgs) -> Result<ExitCode> {
             summary.worst_sim_time,
             summary.collisions
         );
+        if let (Some(rmse), Some(max)) = (summary.position_rmse, summary.position_max_error) {
+            sayln!(
+                "position error: RMSE mean {:.3} m (worst {:.3}), max mean {:.3} m (worst {:.3})",
+                rmse.mean,
+                rmse.max,
+                max.mean,
+                max.max
+            );
+        }
+        if let (Some(recall), Some(precision)) = (summary.wall_recall, summary.wall_precision) {
+            sayln!(
+                "map vs true walls: walls mapped {:.0} % (least {:.0} %), map on walls {:.0} % (least {:.0} %)",
+                recall.mean * 100.0,
+                recall.min * 100.0,
+                precision.mean * 100.0,
+                precision.min * 100.0
+            );
+        }
         if !summary.failed_seeds.is_empty() {
             sayln!("failed seeds: {:?}", summary.failed_seeds);
             let causes: Vec<String> = (summary.causes.iter())

@@ -10,7 +10,8 @@ use std::process::ExitCode;
 /// `navdeck world ...`.
 #[derive(Debug, clap::Subcommand)]
 pub enum WorldCommand {
-    /// Generate a world from a seed (rooms, boxes or corridors) and write it as a world file.
+    /// Generate a world from a seed (rooms, boxes, corridors or loop) and write it as a world
+    /// file.
     Generate(GenerateArgs),
 }
 
@@ -39,9 +40,15 @@ pub struct ShapeArgs {
     /// Box obstacles (default 3).
     #[arg(long, value_name = "K", allow_negative_numbers = true, value_parser = super::args::whole::<usize>)]
     obstacles: Option<usize>,
-    /// rooms, boxes or corridors (default boxes).
+    /// rooms, boxes, corridors or loop (one corridor round an island; default boxes).
     #[arg(long, value_name = "STYLE")]
     style: Option<Style>,
+    /// No markers on the walls and boxes (blocks and gates keep theirs); the same layout.
+    #[arg(long)]
+    no_wall_markers: bool,
+    /// Ways round: a second doorway between rooms, corridor walls free at both ends.
+    #[arg(long)]
+    loops: bool,
 }
 
 impl ShapeArgs {
@@ -53,6 +60,8 @@ impl ShapeArgs {
             blocks: self.blocks.unwrap_or(default.blocks),
             obstacles: self.obstacles.unwrap_or(default.obstacles),
             style: self.style.unwrap_or(default.style),
+            wall_markers: !self.no_wall_markers,
+            loops: self.loops,
         }
     }
 
@@ -63,6 +72,8 @@ impl ShapeArgs {
             (self.blocks.is_some(), "--blocks"),
             (self.obstacles.is_some(), "--obstacles"),
             (self.style.is_some(), "--style"),
+            (self.no_wall_markers, "--no-wall-markers"),
+            (self.loops, "--loops"),
         ]
         .into_iter()
         .find_map(|(given, flag)| given.then_some(flag))

@@ -5,6 +5,7 @@ use crate::app::log::Entry;
 use crate::app::{App, KeyKind, LinkStatus};
 use crate::geometry::Pose2;
 use crate::keymap::Key;
+use crate::runners::score::TruthScore;
 use serde::Serialize;
 
 /// Seconds the runner lets pass after the last key, beyond the deadman, for the robot to settle.
@@ -33,11 +34,9 @@ pub struct Report {
     pub landmarks: usize,
     /// Sightings beyond the EKF's chi-square gate.
     pub rejected_sightings: u64,
-    /// Against the twin's truth, sampled every control period: metres and degrees.
-    pub position_rmse: Option<f64>,
-    pub heading_rmse_deg: Option<f64>,
-    /// Mean normalised estimation error squared of the pose (3 degrees of freedom).
-    pub mean_nees: Option<f64>,
+    /// The estimate's and the map's agreement with the twin's truth.
+    #[serde(flatten)]
+    pub score: TruthScore,
     pub gripper: Option<String>,
     /// Path following: the controller, whether the goal was reached, and the RMS
     /// cross-track error of the estimated pose and (in the twin) of the true pose, metres.
@@ -168,9 +167,7 @@ pub fn report(app: &App, keys: usize) -> Report {
         collisions: twin.map(|t| t.collisions()),
         landmarks: app.pilot().slam().landmark_count(),
         rejected_sightings: app.pilot().slam().rejected(),
-        position_rmse: twin.map(|_| app.pilot().accuracy().position_rmse()),
-        heading_rmse_deg: twin.map(|_| app.pilot().accuracy().heading_rmse().to_degrees()),
-        mean_nees: twin.map(|_| app.pilot().accuracy().mean_nees()),
+        score: TruthScore::of(app.pilot(), twin),
         gripper: app.pilot().gripper().map(|g| g.label().to_string()),
         controller: app.pilot().follower().controller().name().to_string(),
         arrived: app.pilot().arrived(),
@@ -216,12 +213,8 @@ pub fn human(report: &Report) -> String {
         "landmarks       {} ({} sightings rejected)\n",
         report.landmarks, report.rejected_sightings
     );
-    if let (Some(p), Some(h), Some(n)) = (
-        report.position_rmse,
-        report.heading_rmse_deg,
-        report.mean_nees,
-    ) {
-        out += &format!("error vs truth  RMSE {p:.3} m, {h:.2} deg; mean NEES {n:.2}\n");
+    if let (Some(line), Some(n)) = (report.score.line(), report.score.mean_nees) {
+        out += &format!("error vs truth  {line}; mean NEES {n:.2}\n");
     }
     if let Some(length) = report.path_length {
         let arrived = if report.arrived {

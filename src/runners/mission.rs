@@ -7,6 +7,7 @@ use crate::link::RobotLink;
 use crate::link::runtime::{Runtime, Stepped};
 use crate::pilot::mode::Mode;
 use crate::pilot::{Intent, LogLine, Pilot};
+use crate::runners::score::TruthScore;
 use serde::Serialize;
 
 /// A delivered block lies within this of its gate's centre in the twin, metres.
@@ -42,8 +43,9 @@ pub struct MissionReport {
     pub collisions: Option<u32>,
     pub replans: usize,
     pub recoveries: usize,
-    pub position_rmse: Option<f64>,
-    pub heading_rmse_deg: Option<f64>,
+    /// The estimate's and the map's agreement with the twin's truth.
+    #[serde(flatten)]
+    pub score: TruthScore,
     pub timeline: Vec<BlockTimes>,
     /// Warnings and errors the session logged, with their session times.
     pub warnings: Vec<String>,
@@ -143,7 +145,6 @@ fn report(
             })
             .count()
     });
-    let accuracy = pilot.accuracy();
     let collided = twin.is_some_and(|t| t.collisions() > 0);
     let cause = match outcome {
         "delivered all" => None,
@@ -169,8 +170,7 @@ fn report(
         collisions: twin.map(|t| t.collisions()),
         replans: mission.map_or(0, |m| m.replans()) + pilot.replans(),
         recoveries: mission.map_or(0, |m| m.recoveries()),
-        position_rmse: twin.map(|_| accuracy.position_rmse()),
-        heading_rmse_deg: twin.map(|_| accuracy.heading_rmse().to_degrees()),
+        score: TruthScore::of(pilot, twin),
         timeline: mission.map_or(Vec::new(), |m| {
             m.timeline()
                 .iter()
@@ -205,7 +205,33 @@ pub struct SweepSummary {
     pub failed_seeds: Vec<u64>,
     /// Runs that did not deliver everything, by cause.
     pub causes: std::collections::BTreeMap<String, usize>,
+    /// Over the runs with a twin: the absolute trajectory error's RMSE and largest error,
+    /// metres, and the map's agreement with the true walls (shares, 0-1).
+    pub position_rmse: Option<Spread>,
+    pub position_max_error: Option<Spread>,
+    pub wall_recall: Option<Spread>,
+    pub wall_precision: Option<Spread>,
     pub runs_detail: Vec<MissionReport>,
+}
+
+/// The mean, least and greatest of one figure over a sweep's runs.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct Spread {
+    pub mean: f64,
+    pub min: f64,
+    pub max: f64,
+}
+
+impl Spread {
+    /// `None` when there are no values.
+    pub fn of(values: impl IntoIterator<Item = f64>) -> Option<Spread> {
+        let values: Vec<f64> = values.into_iter().collect();
+        let first = *values.first()?;
+        let (min, max) =
+            (values.iter()).fold((first, first), |(lo, hi), &v| (lo.min(v), hi.max(v)));
+        let mean = values.iter().sum::<f64>() / values.len() as f64;
+        Some(Spread { mean, min, max })
+    }
 }
 
 /// Sums up `reports` (one per seed).
@@ -221,6 +247,7 @@ pub fn summarise(mut reports: Vec<MissionReport>) -> SweepSummary {
             .partial_cmp(&(!b.success(), b.sim_time))
             .unwrap()
     });
+    let maps = || reports.iter().filter_map(|r| r.score.map_vs_walls);
     SweepSummary {
         runs: reports.len(),
         successes,
@@ -241,6 +268,10 @@ pub fn summarise(mut reports: Vec<MissionReport>) -> SweepSummary {
                 counts
             },
         ),
+        position_rmse: Spread::of(reports.iter().filter_map(|r| r.score.position_rmse)),
+        position_max_error: Spread::of(reports.iter().filter_map(|r| r.score.position_max_error)),
+        wall_recall: Spread::of(maps().map(|m| m.wall_recall)),
+        wall_precision: Spread::of(maps().map(|m| m.wall_precision)),
         runs_detail: reports,
     }
 }
@@ -259,6 +290,9 @@ pub fn human(r: &MissionReport) -> String {
         r.replans,
         r.recoveries
     );
+    if let Some(line) = r.score.line() {
+        out += &format!("error vs truth {line}\n");
+    }
     for b in &r.timeline {
         let at = |t: Option<f64>| t.map_or("-".to_string(), |t| format!("{t:.1} s"));
         out += &format!(

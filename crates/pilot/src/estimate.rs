@@ -14,6 +14,8 @@ pub struct Accuracy {
     sum_position_sq: f64,
     sum_heading_sq: f64,
     sum_nees: f64,
+    /// The largest position error of any sample, metres.
+    max_position: f64,
     /// Samples whose covariance was not positive definite: NEES is undefined there.
     pub nees_undefined: u64,
 }
@@ -28,6 +30,7 @@ impl Accuracy {
         );
         self.samples += 1;
         self.sum_position_sq += e[0] * e[0] + e[1] * e[1];
+        self.max_position = self.max_position.max(e[0].hypot(e[1]));
         self.sum_heading_sq += e[2] * e[2];
         // NEES = e^T P^-1 e (Bar-Shalom et al., Estimation with Applications to Tracking and
         // Navigation, 5.4).
@@ -39,6 +42,11 @@ impl Accuracy {
 
     pub fn position_rmse(&self) -> f64 {
         (self.sum_position_sq / self.samples.max(1) as f64).sqrt()
+    }
+
+    /// The absolute trajectory error's largest position error, metres (0 with no samples).
+    pub fn position_max_error(&self) -> f64 {
+        self.max_position
     }
 
     pub fn heading_rmse(&self) -> f64 {
@@ -167,6 +175,9 @@ mod tests {
         a.add(Pose2::new(0.0, 0.0, 0.02), Pose2::default(), &cov);
         assert!((a.position_rmse() - (0.01f64 / 2.0).sqrt()).abs() < 1e-12);
         assert!((a.heading_rmse() - (0.0004f64 / 2.0).sqrt()).abs() < 1e-12);
+        // The worst sample is 0.1 m off; the RMSE averages it with a perfect one.
+        assert!((a.position_max_error() - 0.1).abs() < 1e-12);
+        assert!(a.position_max_error() >= a.position_rmse());
         // Each sample's NEES is 1.
         assert!((a.mean_nees() - 1.0).abs() < 1e-9);
     }

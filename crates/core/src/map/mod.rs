@@ -1,5 +1,5 @@
 //! Maps: the planning costmap the robot builds from landmarks and scans, occupancy grids,
-//! and, later, their files.
+//! their files, and how a map agrees with the true walls (truth.rs).
 
 pub mod agreement;
 pub mod belief;
@@ -13,3 +13,4 @@ pub mod landmark_layer;
 pub mod pgm;
 pub mod reach;
 pub mod stamp;
+pub mod truth;

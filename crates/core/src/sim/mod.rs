@@ -3,7 +3,7 @@
 //! * `World` — walls, obstacles, markers, gates and blocks from a TOML world file
 //!   (`maps/arena.toml` documents the format), checked on load, rasterisable, and written
 //!   back with `World::to_toml`.
-//! * `generate` — worlds made from a seed (rooms, boxes or corridors), checked for reach.
+//! * `generate` — worlds made from a seed (rooms, boxes, corridors or a loop), checked for reach.
 //! * `Twin` — the robot: speed/acceleration-limited diff drive, encoders with noise and
 //!   slip, a marker camera, a lidar, a gripper that carries blocks, and collisions.
 //!

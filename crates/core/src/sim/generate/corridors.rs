@@ -1,5 +1,6 @@
 //! Corridors: 1-3 long walls along the world's longer side, each joined to one end wall
 //! and leaving a turn at the other, alternately, so the corridors run as one winding way.
+//! With loops, some walls (at least one) are free at both ends, a way round each.
 
 use super::draft::Draft;
 use super::draw::pick;
@@ -18,8 +19,12 @@ const JITTER: f64 = 0.15;
 /// Widest turn at a wall's free end above `MIN_PASSAGE`, metres.
 const TURN_EXTRA: f64 = 0.4;
 
+/// How often a wall other than the one sure to be free is free at both ends with loops:
+/// as likely as not, so loops and winding ways mix.
+const BOTH_ENDS_FREE: f64 = 0.5;
+
 /// Adds the long walls.
-pub fn build(d: &mut Draft, rng: &mut ChaCha8Rng) -> Result<(), String> {
+pub fn build(d: &mut Draft, rng: &mut ChaCha8Rng, loops: bool) -> Result<(), String> {
     let (w, h) = (d.world.width, d.world.height);
     let along_x = w >= h;
     let (long, cross) = if along_x { (w, h) } else { (h, w) };
@@ -39,6 +44,12 @@ pub fn build(d: &mut Draft, rng: &mut ChaCha8Rng) -> Result<(), String> {
         let mut walls = Vec::with_capacity(count);
         let mut last = -cross / 2.0;
         let mut attach_low = rng.random_bool(0.5);
+        // With loops, this wall (1-based) is free at both ends, and others may be.
+        let free_wall = if loops {
+            rng.random_range(1..=count)
+        } else {
+            0
+        };
         for k in 1..=count {
             let even = -cross / 2.0 + k as f64 * spacing;
             let Some(v) = pick(rng, even - JITTER, even + JITTER, 0.05) else {
@@ -56,6 +67,16 @@ pub fn build(d: &mut Draft, rng: &mut ChaCha8Rng) -> Result<(), String> {
             } else {
                 (long / 2.0, -long / 2.0 + turn)
             };
+            let both_free = loops && (k == free_wall || rng.random_bool(BOTH_ENDS_FREE));
+            if both_free {
+                // A turn at the other end too: the wall stands alone.
+                let Some(other) = pick(rng, MIN_PASSAGE, MIN_PASSAGE + TURN_EXTRA, 0.05) else {
+                    continue 'candidate;
+                };
+                let end = fixed - fixed.signum() * other;
+                walls.push((point(end, v), point(free, v)));
+                continue;
+            }
             attach_low = !attach_low;
             let (a, b) = (point(fixed, v), point(free, v));
             if d.marker_distance(a) < MARKER_END_CLEARANCE {

@@ -33,6 +33,8 @@ pub struct Draft {
     pub doors: Vec<Segment>,
     /// Gates' drop lanes: from just in front of the gate to beyond its last drop place.
     pub lanes: Vec<Segment>,
+    /// Floor closed in by walls (a loop's island): nothing is placed there.
+    pub islands: Vec<Obstacle>,
     next_wall_id: u32,
     next_box_id: u32,
 }
@@ -60,6 +62,7 @@ impl Draft {
             slots: Vec::new(),
             doors: Vec::new(),
             lanes: Vec::new(),
+            islands: Vec::new(),
             next_wall_id: 1,
             next_box_id: FIRST_OBSTACLE_ID,
         };
@@ -90,6 +93,31 @@ impl Draft {
                 "the interior walls carry more markers than the boundary ids 1-300 hold".into(),
             );
         }
+        Ok(())
+    }
+
+    /// A closed island of walls round the axis-aligned rectangle from `lo` (lower-left) to
+    /// `hi` (upper-right), markers on its outer faces only: the inside is closed to the robot.
+    /// Each side's ids follow the last wall's after a gap of one, as `add_interior`'s.
+    pub fn add_island(&mut self, lo: Point2, hi: Point2) -> Result<(), String> {
+        // Clockwise, so each side's left face looks out of the island.
+        let corners = [(lo.x, lo.y), (lo.x, hi.y), (hi.x, hi.y), (hi.x, lo.y)]
+            .map(|(x, y)| Point2::new(x, y));
+        for k in 0..4 {
+            self.add_wall(Segment::new(corners[k], corners[(k + 1) % 4]), &[FRAC_PI_2]);
+            self.next_wall_id += 1;
+        }
+        if MarkerCategory::of(self.next_wall_id - 2) != MarkerCategory::Boundary {
+            return Err(
+                "the island's walls carry more markers than the boundary ids 1-300 hold".into(),
+            );
+        }
+        let centre = Point2::new((lo.x + hi.x) / 2.0, (lo.y + hi.y) / 2.0);
+        self.islands.push(Obstacle {
+            pose: Pose2::new(centre.x, centre.y, 0.0),
+            width: hi.x - lo.x,
+            height: hi.y - lo.y,
+        });
         Ok(())
     }
 
@@ -158,7 +186,7 @@ impl Draft {
         });
     }
 
-    /// Distance from `p` to the nearest wall or box, zero inside a box.
+    /// Distance from `p` to the nearest wall or box, zero inside a box or an island.
     pub fn clearance(&self, p: Point2) -> f64 {
         if self.inside_box(p) {
             return 0.0;
@@ -203,10 +231,10 @@ impl Draft {
             .fold(f64::INFINITY, f64::min)
     }
 
+    /// Whether `p` lies inside a box or an island.
     fn inside_box(&self, p: Point2) -> bool {
-        self.world
-            .obstacles
-            .iter()
+        (self.world.obstacles.iter())
+            .chain(&self.islands)
             .any(|o| rect_contains(o.pose, o.width, o.height, p))
     }
 

@@ -2,12 +2,13 @@
 //! (issue "Autonomy in any world").
 //!
 //! A candidate is drawn from a `ChaCha8Rng` seeded with the seed: the boundary with its
-//! markers, the style's interior walls (`rooms.rs`, `corridors.rs`), both gates on the
+//! markers, the style's interior walls (`rooms.rs`, `corridors.rs`, `ring.rs`), both gates on the
 //! boundary (`gates.rs`), the boxes (`boxes.rs`), the blocks and the start (`blocks.rs`).
 //! It is written as a world file and read back with the loader, so the file is known to
 //! load, and the world read back must pass the reachability check (`reach.rs`). A candidate
 //! that fails is followed by the next drawn from the same generator, up to `ATTEMPTS`:
-//! the same options always give the same world.
+//! the same options always give the same world. Without wall markers, the candidate is
+//! drawn with them and they are taken off at the end, so the layout is the same.
 
 mod blocks;
 mod boxes;
@@ -17,13 +18,18 @@ mod draw;
 mod gates;
 mod options;
 mod reach;
+mod ring;
 mod rooms;
 mod rules;
+#[cfg(test)]
+mod tests;
 
 pub use options::{GenerateError, GenerateOptions, Style};
 pub use reach::check as check_reachable;
+pub use ring::centreline as loop_centreline;
 
 use crate::geometry::wrap_angle;
+use crate::perception::markers::MarkerCategory;
 use crate::sim::{BlockColor, World};
 use draft::Draft;
 use rand::SeedableRng;
@@ -64,14 +70,26 @@ fn candidate(options: &GenerateOptions, rng: &mut ChaCha8Rng) -> Result<World, S
     let mut d = Draft::new(options.name(), w, h);
     match options.style {
         Style::Boxes => {}
-        Style::Rooms => rooms::build(&mut d, rng)?,
-        Style::Corridors => corridors::build(&mut d, rng)?,
+        Style::Rooms => rooms::build(&mut d, rng, options.loops)?,
+        Style::Corridors => corridors::build(&mut d, rng, options.loops)?,
+        Style::Loop => ring::build(&mut d, rng)?,
     }
     gates::place(&mut d, rng, options.blocks)?;
     boxes::place(&mut d, rng, options.obstacles)?;
     blocks::place(&mut d, rng, options.blocks)?;
     blocks::start(&mut d, rng)?;
-    Ok(d.world)
+    let mut world = d.world;
+    if !options.wall_markers {
+        // Gate markers stay (the mission delivers to them); block markers ride with
+        // their blocks and are not in this list.
+        world.markers.retain(|m| {
+            !matches!(
+                MarkerCategory::of(m.id),
+                MarkerCategory::Boundary | MarkerCategory::Obstacle
+            )
+        });
+    }
+    Ok(world)
 }
 
 /// The candidate written as a world file and read back by the loader, which checks every
@@ -133,15 +151,27 @@ fn same(a: &World, b: &World) -> Result<(), String> {
     }
 }
 
-/// One line on a world's contents: size, boxes, interior walls, blocks, gates.
+/// One line on a world's contents: size, boxes, interior walls, blocks, gates, wall
+/// markers, and a ring corridor's length round its centreline.
 pub fn describe(world: &World) -> String {
     let count = |c: BlockColor| world.blocks.iter().filter(|b| b.color == c).count();
     let outlines = 4 * world.obstacles.len();
     // Boundary: the four sides of the rectangle; the rest are interior walls.
     let interior = world.walls.len().saturating_sub(outlines + 4);
     let gates: Vec<&str> = world.gates.iter().map(|g| g.color.label()).collect();
+    let wall_markers = (world.markers.iter())
+        .filter(|m| {
+            matches!(
+                MarkerCategory::of(m.id),
+                MarkerCategory::Boundary | MarkerCategory::Obstacle
+            )
+        })
+        .count();
+    let ring = loop_centreline(world).map_or(String::new(), |length| {
+        format!(", a corridor {length:.1} m round its centreline")
+    });
     format!(
-        "{}, {} m x {} m, {} boxes, {} interior walls, {} blocks ({} red, {} blue), gates: {}, start ({}, {})",
+        "{}, {} m x {} m, {} boxes, {} interior walls{ring}, {} blocks ({} red, {} blue), gates: {}, {wall_markers} wall and box markers, start ({}, {})",
         world.name,
         world.width,
         world.height,

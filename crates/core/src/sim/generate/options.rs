@@ -14,36 +14,48 @@ pub enum Style {
     Rooms,
     /// Long interior walls make corridors joined at alternate ends.
     Corridors,
+    /// One corridor all the way round a walled island.
+    Loop,
 }
 
 impl Style {
-    pub const ALL: [Style; 3] = [Style::Boxes, Style::Rooms, Style::Corridors];
+    pub const ALL: [Style; 4] = [Style::Boxes, Style::Rooms, Style::Corridors, Style::Loop];
 
     pub fn label(self) -> &'static str {
         match self {
             Style::Boxes => "boxes",
             Style::Rooms => "rooms",
             Style::Corridors => "corridors",
+            Style::Loop => "loop",
         }
     }
 
     /// Width and height when none is asked for, metres: seed 001's 4 m x 4 m arena for
-    /// boxes; rooms and corridors need a little more to leave space for blocks.
+    /// boxes; rooms and corridors need a little more to leave space for blocks; a loop
+    /// needs its corridor on all four sides of an island.
     pub fn default_size(self) -> (f64, f64) {
         match self {
             Style::Boxes => (4.0, 4.0),
             Style::Rooms | Style::Corridors => (5.0, 4.0),
+            Style::Loop => (6.0, 4.0),
         }
     }
 
     /// Smallest (longer side, shorter side) the style can be built in, metres: two rooms
-    /// of 1.2 m, or two corridors of 1 m beside a wall that leaves a 0.8 m turn.
+    /// of 1.2 m, two corridors of 1 m beside a wall that leaves a 0.8 m turn, or a loop's
+    /// 1 m corridor either side of a 0.5 m island (ring.rs).
     fn min_size(self) -> (f64, f64) {
         match self {
             Style::Boxes => (2.0, 2.0),
             Style::Rooms => (2.5, 2.0),
             Style::Corridors => (3.0, 2.0),
+            Style::Loop => (2.5, 2.5),
         }
+    }
+
+    /// Whether `loops` changes this style: only rooms and corridors are trees without it.
+    fn takes_loops(self) -> bool {
+        matches!(self, Style::Rooms | Style::Corridors)
     }
 }
 
@@ -59,7 +71,7 @@ impl FromStr for Style {
         Style::ALL
             .into_iter()
             .find(|style| style.label() == s)
-            .ok_or_else(|| format!("unknown style `{s}`: expected rooms, boxes or corridors"))
+            .ok_or_else(|| format!("unknown style `{s}`: expected rooms, boxes, corridors or loop"))
     }
 }
 
@@ -73,6 +85,12 @@ pub struct GenerateOptions {
     /// Free-standing boxes, in every style.
     pub obstacles: usize,
     pub style: Style,
+    /// Markers on the boundary, the interior walls and the boxes; without them only the
+    /// blocks and the gates carry markers. The layout is the same either way.
+    pub wall_markers: bool,
+    /// Rooms and corridors with ways round: a second doorway in the walls between rooms,
+    /// corridor walls free at both ends.
+    pub loops: bool,
 }
 
 impl Default for GenerateOptions {
@@ -83,6 +101,8 @@ impl Default for GenerateOptions {
             blocks: 3,
             obstacles: 3,
             style: Style::Boxes,
+            wall_markers: true,
+            loops: false,
         }
     }
 }
@@ -93,9 +113,12 @@ impl GenerateOptions {
         self.size.unwrap_or(self.style.default_size())
     }
 
-    /// The world's name, e.g. `generated:boxes:7`.
+    /// The world's name, e.g. `generated:boxes:7`, `generated:rooms:7:loops:bare` (with
+    /// loops, without wall markers): each variant keeps its own autosaved map.
     pub fn name(&self) -> String {
-        format!("generated:{}:{}", self.style, self.seed)
+        let loops = if self.loops { ":loops" } else { "" };
+        let bare = if self.wall_markers { "" } else { ":bare" };
+        format!("generated:{}:{}{loops}{bare}", self.style, self.seed)
     }
 
     /// Refuses options no world can satisfy, naming the option.
@@ -128,6 +151,11 @@ impl GenerateOptions {
             let reason = format!("{} need at least {long} m x {short} m", self.style.label());
             return bad("size", size(), reason);
         }
+        if self.loops && !self.style.takes_loops() {
+            let reason = "only rooms and corridors take loops (boxes and loop worlds have ways round already)";
+            let value = format!("with {} worlds", self.style.label());
+            return bad("loops", value, reason.into());
+        }
         if self.blocks == 0 || self.blocks > MAX_BLOCKS {
             let reason = format!(
                 "must lie in 1..={MAX_BLOCKS} (15 marker pairs per colour, seed 001 section 1)"
@@ -157,8 +185,14 @@ impl GenerateOptions {
     /// The command that makes this world, for a file's first line.
     pub fn command(&self) -> String {
         let (w, h) = self.size();
+        let loops = if self.loops { " --loops" } else { "" };
+        let bare = if self.wall_markers {
+            ""
+        } else {
+            " --no-wall-markers"
+        };
         format!(
-            "navdeck world generate --seed {} --style {} --size {w},{h} --blocks {} --obstacles {}",
+            "navdeck world generate --seed {} --style {} --size {w},{h} --blocks {} --obstacles {}{loops}{bare}",
             self.seed, self.style, self.blocks, self.obstacles
         )
     }

@@ -1,6 +1,8 @@
 //! Rooms: the area split into 2-4 rooms by walls across, each wall with a doorway, so the
 //! rooms form a tree joined by doors (a binary space partition: de Berg et al.,
-//! Computational Geometry, 3rd ed., section 12.1).
+//! Computational Geometry, 3rd ed., section 12.1). With loops, every wall long enough
+//! gets a second doorway: two doors between the same rooms are a way round the wall
+//! between them.
 
 use super::draft::Draft;
 use super::draw::pick;
@@ -18,6 +20,9 @@ const MIN_PIECE: f64 = 0.25;
 const DOOR_EXTRA: f64 = 0.3;
 /// A wall meeting another keeps this far from its doorway, metres.
 const DOOR_MARGIN: f64 = 0.3;
+/// Wall left between two doorways, metres: a room's width, so the way round is a loop
+/// through both rooms and not round a post.
+const LOOP_PIECE: f64 = MIN_ROOM;
 
 #[derive(Clone, Copy, Debug)]
 struct Rect {
@@ -37,8 +42,8 @@ impl Rect {
     }
 }
 
-/// Splits the draft's area into 2-4 rooms.
-pub fn build(d: &mut Draft, rng: &mut ChaCha8Rng) -> Result<(), String> {
+/// Splits the draft's area into 2-4 rooms; with `loops`, at least one wall has two doorways.
+pub fn build(d: &mut Draft, rng: &mut ChaCha8Rng, loops: bool) -> Result<(), String> {
     let (hw, hh) = (d.world.width / 2.0, d.world.height / 2.0);
     let wanted = rng.random_range(2..=4usize);
     let mut rooms = vec![Rect {
@@ -54,17 +59,29 @@ pub fn build(d: &mut Draft, rng: &mut ChaCha8Rng) -> Result<(), String> {
         else {
             break;
         };
-        let (a, b) = split(d, rng, rooms.remove(k))?;
+        let (a, b) = split(d, rng, rooms.remove(k), loops)?;
         rooms.extend([a, b]);
     }
     if rooms.len() < 2 {
         return Err("the area is too small to split into rooms".into());
     }
+    // One doorway per wall but for each second one.
+    if loops && d.doors.len() < rooms.len() {
+        return Err(format!(
+            "no wall between rooms long enough for two doorways {LOOP_PIECE} m apart"
+        ));
+    }
     Ok(())
 }
 
-/// A wall across `r`'s longer side with a doorway in it; returns the two rooms.
-fn split(d: &mut Draft, rng: &mut ChaCha8Rng, r: Rect) -> Result<(Rect, Rect), String> {
+/// A wall across `r`'s longer side with a doorway in it, and with `loops` a second one
+/// where the wall is long enough; returns the two rooms.
+fn split(
+    d: &mut Draft,
+    rng: &mut ChaCha8Rng,
+    r: Rect,
+    loops: bool,
+) -> Result<(Rect, Rect), String> {
     let across_x = r.x1 - r.x0 >= r.y1 - r.y0;
     // (along the split axis, across it) -> world point.
     let point = |t: f64, s: f64| {
@@ -87,19 +104,20 @@ fn split(d: &mut Draft, rng: &mut ChaCha8Rng, r: Rect) -> Result<(Rect, Rect), S
         let ends_clear = [a, b].into_iter().all(|p| {
             d.marker_distance(p) >= MARKER_END_CLEARANCE && d.door_distance(p) >= DOOR_MARGIN
         });
-        let Some(door) = pick(rng, MIN_PASSAGE, MIN_PASSAGE + DOOR_EXTRA, 0.05) else {
-            break;
-        };
-        let Some(at) = pick(rng, s0 + MIN_PIECE, s1 - MIN_PIECE - door, 0.05) else {
+        let Some(gaps) = doorways(rng, (s0, s1), loops) else {
             continue;
         };
         if !ends_clear {
             continue;
         }
-        let (door_a, door_b) = (point(t, at), point(t, at + door));
-        d.add_interior(a, door_a)?;
-        d.add_interior(door_b, b)?;
-        d.doors.push(crate::geometry::Segment::new(door_a, door_b));
+        let mut from = a;
+        for &(g0, g1) in &gaps {
+            let (door_a, door_b) = (point(t, g0), point(t, g1));
+            d.add_interior(from, door_a)?;
+            d.doors.push(crate::geometry::Segment::new(door_a, door_b));
+            from = door_b;
+        }
+        d.add_interior(from, b)?;
         let (lo, hi) = if across_x {
             (Rect { x1: t, ..r }, Rect { x0: t, ..r })
         } else {
@@ -111,4 +129,24 @@ fn split(d: &mut Draft, rng: &mut ChaCha8Rng, r: Rect) -> Result<(Rect, Rect), S
         "no place for a wall across the room [{}, {}] x [{}, {}] clear of markers and doorways",
         r.x0, r.x1, r.y0, r.y1
     ))
+}
+
+/// Doorways, as (start, end) along a wall spanning `s0..s1`, `MIN_PIECE` of wall at its
+/// ends: one, or with `loops` two `LOOP_PIECE` apart where the wall is long enough.
+fn doorways(rng: &mut ChaCha8Rng, (s0, s1): (f64, f64), loops: bool) -> Option<Vec<(f64, f64)>> {
+    let mut door = || pick(rng, MIN_PASSAGE, MIN_PASSAGE + DOOR_EXTRA, 0.05);
+    let first = door()?;
+    let second = if loops { door() } else { None };
+    match second {
+        Some(second) if s1 - s0 - 2.0 * MIN_PIECE - first - second >= LOOP_PIECE => {
+            let last = s1 - MIN_PIECE - second - LOOP_PIECE - first;
+            let at = pick(rng, s0 + MIN_PIECE, last, 0.05)?;
+            let next = pick(rng, at + first + LOOP_PIECE, s1 - MIN_PIECE - second, 0.05)?;
+            Some(vec![(at, at + first), (next, next + second)])
+        }
+        _ => {
+            let at = pick(rng, s0 + MIN_PIECE, s1 - MIN_PIECE - first, 0.05)?;
+            Some(vec![(at, at + first)])
+        }
+    }
 }

@@ -92,7 +92,10 @@ impl Pilot {
             map: self.belief.costmap(),
             occupied: self.belief.sensed_occupied(),
             position_std: self.position_std(),
-            localized: self.mcl().is_some_and(|m| m.status().converged),
+            // The lidar places the robot without markers: MCL once it converged, lidar SLAM
+            // always.
+            localized: self.mcl().is_some_and(|m| m.status().converged)
+                || self.lidar_slam().is_some(),
             arm: self.arm.as_ref().and_then(|a| a.measured).map(|j| j.0),
         });
         self.exploring.mission = Some(mission);

@@ -97,7 +97,8 @@ impl Pilot {
                 sp.false_closures += 1;
             }
             sp.closures.push(c);
-            redraw = true;
+            // A map drawn from poses that moved less than the lidar map's cell stands.
+            redraw = c.largest_shift > self.settings.lidar_slam.resolution;
             lines.push((
                 Level::Success,
                 format!(

@@ -65,6 +65,41 @@ impl PoseGraph {
             .sum()
     }
 
+    /// Which nodes a path of edges joins to `from` within `budget` metres, a path's length
+    /// the sum of the straight distances between the poses it passes (Dijkstra's shortest
+    /// paths, stopped at the budget): the parts of the map already tied to it, where a
+    /// loop closure would close nothing new.
+    pub fn near_along_edges(&self, from: usize, budget: f64) -> Vec<bool> {
+        use std::cmp::Reverse;
+        use std::collections::BinaryHeap;
+        let n = self.poses.len();
+        let mut next: Vec<Vec<usize>> = vec![Vec::new(); n];
+        for e in &self.edges {
+            next[e.from].push(e.to);
+            next[e.to].push(e.from);
+        }
+        let mut best = vec![f64::INFINITY; n];
+        let mut near = vec![false; n];
+        let mut queue = BinaryHeap::new();
+        best[from] = 0.0;
+        // Distances in micrometres as integers: the heap needs a total order.
+        queue.push(Reverse((0u64, from)));
+        while let Some(Reverse((_, k))) = queue.pop() {
+            if near[k] {
+                continue;
+            }
+            near[k] = true;
+            for &j in &next[k] {
+                let d = best[k] + self.poses[k].position().distance(self.poses[j].position());
+                if d <= budget && d < best[j] {
+                    best[j] = d;
+                    queue.push(Reverse(((d * 1e6) as u64, j)));
+                }
+            }
+        }
+        near
+    }
+
     /// Moves the nodes to the least-squares fit of every edge, the first node held
     /// fixed. Gauss-Newton on the sparse normal equations H dx = -b, factored by sparse
     /// Cholesky (Grisetti et al. algorithm 1). `None` when there is nothing to solve or
@@ -235,6 +270,29 @@ mod tests {
         assert!((g.poses[2].x - 2.0).abs() < 1e-6 && (g.poses[2].y - 2.0).abs() < 1e-6);
         // The first node stayed where it was.
         assert!(g.poses[0].position().distance(Default::default()) < 1e-6);
+    }
+
+    #[test]
+    fn nodes_near_along_edges_follow_the_edges_not_the_distance() {
+        // A chain 0-1-2-3 along x, 1 m apart, and 4 beside 0 but joined only to 3.
+        let mut g = PoseGraph::default();
+        g.poses = (0..4).map(|k| Pose2::new(k as f64, 0.0, 0.0)).collect();
+        g.poses.push(Pose2::new(0.0, 0.5, 0.0));
+        for k in 0..3 {
+            g.edges.push(edge(
+                k,
+                k + 1,
+                Pose2::new(1.0, 0.0, 0.0),
+                EdgeKind::Sequential,
+            ));
+        }
+        g.edges
+            .push(edge(3, 4, Pose2::default(), EdgeKind::Sequential));
+        let near = g.near_along_edges(0, 2.5);
+        assert_eq!(near, vec![true, true, true, false, false]);
+        // A loop edge from 4 to 0 ties them.
+        g.edges.push(edge(0, 4, Pose2::default(), EdgeKind::Loop));
+        assert!(g.near_along_edges(0, 2.5)[4]);
     }
 
     #[test]

@@ -40,7 +40,7 @@ const CANDIDATES: usize = 8;
 /// exp(-drop / SPREAD_SCALE).
 const SPREAD_SCALE: f64 = 0.03;
 /// Cells either side of the best pose sampled for the covariance.
-const SPREAD_CELLS: i32 = 6;
+const SPREAD_CELLS: i32 = 4;
 /// The covariance never claims better than this: a standard deviation of a quarter cell
 /// and of half an angular step.
 const FLOOR_CELLS: f64 = 0.25;
@@ -70,16 +70,18 @@ pub fn correlate(
     let steps_a = (window.half_angle / coarse_angle).round() as i32;
     let mut best: Vec<(f64, Pose2)> = Vec::with_capacity(CANDIDATES + 1);
     let mut rotated = Vec::with_capacity(points.len());
+    let mut cells = Vec::with_capacity(points.len());
     for ka in -steps_a..=steps_a {
         let theta = guess.theta + f64::from(ka) * coarse_angle;
         rotate(points, theta, &mut rotated);
+        cells_of(coarse, &rotated, guess.x, guess.y, &mut cells);
         for ky in -steps_xy..=steps_xy {
             for kx in -steps_xy..=steps_xy {
+                let score = score_shifted(coarse, &cells, kx, ky);
                 let (x, y) = (
                     guess.x + f64::from(kx) * coarse.resolution,
                     guess.y + f64::from(ky) * coarse.resolution,
                 );
-                let score = score_at(coarse, &rotated, x, y);
                 keep_best(&mut best, score, Pose2::new(x, y, theta));
             }
         }
@@ -91,14 +93,15 @@ pub fn correlate(
         for ka in -1..=1 {
             let theta = c.theta + f64::from(ka) * fine_angle;
             rotate(points, theta, &mut rotated);
+            cells_of(fine, &rotated, c.x, c.y, &mut cells);
             for ky in -2..=2 {
                 for kx in -2..=2 {
-                    let (x, y) = (
-                        c.x + f64::from(kx) * fine.resolution,
-                        c.y + f64::from(ky) * fine.resolution,
-                    );
-                    let score = score_at(fine, &rotated, x, y);
+                    let score = score_shifted(fine, &cells, kx, ky);
                     if score > top.0 {
+                        let (x, y) = (
+                            c.x + f64::from(kx) * fine.resolution,
+                            c.y + f64::from(ky) * fine.resolution,
+                        );
                         top = (score, Pose2::new(x, y, theta));
                     }
                 }
@@ -220,13 +223,30 @@ fn rotate(points: &[Point2], theta: f64, out: &mut Vec<Point2>) {
     );
 }
 
-/// The sum of the field's cells under the rotated points placed at (x, y).
+/// The cells (column, row) of the rotated points placed at (x, y); shifting them by whole
+/// cells is the same as shifting the points by whole cells' widths.
+fn cells_of(field: &Field, rotated: &[Point2], x: f64, y: f64, out: &mut Vec<(i32, i32)>) {
+    out.clear();
+    out.extend(rotated.iter().map(|q| {
+        (
+            ((x + q.x - field.origin.x) / field.resolution).floor() as i32,
+            ((y + q.y - field.origin.y) / field.resolution).floor() as i32,
+        )
+    }));
+}
+
+/// The sum of the field's cells under `cells` shifted by (kx, ky); 0 off the grid.
 #[inline]
-fn score_at(field: &Field, rotated: &[Point2], x: f64, y: f64) -> f64 {
-    rotated
-        .iter()
-        .map(|q| f64::from(field.at(x + q.x, y + q.y)))
-        .sum()
+fn score_shifted(field: &Field, cells: &[(i32, i32)], kx: i32, ky: i32) -> f64 {
+    let (w, h) = (field.width as u32, field.height as u32);
+    let mut sum = 0.0f32;
+    for &(cx, cy) in cells {
+        let (x, y) = ((cx + kx) as u32, (cy + ky) as u32);
+        if x < w && y < h {
+            sum += field.values[(y * w + x) as usize];
+        }
+    }
+    f64::from(sum)
 }
 
 /// Keeps the `CANDIDATES` best (score, pose) pairs.

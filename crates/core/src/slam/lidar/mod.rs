@@ -35,6 +35,9 @@ pub struct Closure {
     pub new: usize,
     /// How far the solve moved the newest node, metres.
     pub correction: f64,
+    /// The farthest the solve moved any node, metres: past the grid's cell, a map drawn
+    /// from the old poses is off.
+    pub largest_shift: f64,
     /// The match's response (0 to 1).
     pub response: f64,
 }
@@ -60,6 +63,9 @@ pub struct Update {
     pub joined: Option<bool>,
 }
 
+/// A scan is matched once the robot moved this far (m) or turned this much (degrees)
+/// since the last match: a robot standing still sees nothing new.
+const MATCH_STEP: (f64, f64) = (0.05, 3.0);
 /// Fewer points than this and a scan is not matched.
 const MIN_POINTS: usize = 20;
 /// A loop closure is tried after the robot travelled this far since the last try, metres:
@@ -90,6 +96,8 @@ pub struct LidarSlam {
     /// The odometry pose of the last scan, and the covariance it gathered since the last
     /// match (robot frame).
     last_odom: Option<Pose2>,
+    /// The odometry pose of the last matched scan.
+    matched_odom: Pose2,
     drift: Matrix3<f64>,
     /// The local map and its coarse copy.
     local: Option<(Field, Field)>,
@@ -113,6 +121,7 @@ impl LidarSlam {
             correction: start.compose(odom.inverse()),
             covariance: Matrix3::zeros(),
             last_odom: None,
+            matched_odom: odom,
             drift: Matrix3::zeros(),
             local: None,
             first: true,
@@ -209,6 +218,7 @@ impl LidarSlam {
         if std::mem::take(&mut self.first) {
             let start = self.correction.compose(odom);
             self.last_odom = Some(odom);
+            self.matched_odom = odom;
             if self.loaded > 0 {
                 return self.join(start, odom, scan, &points);
             }
@@ -225,16 +235,22 @@ impl LidarSlam {
         let mut update = Update::default();
         let mut pose = predicted;
         let mut matched_cov = None;
-        if let Some(m) = self.match_local(&points, predicted, step) {
-            pose = fuse(predicted, &rotate(&self.drift, predicted.theta), &m);
-            self.correction = pose.compose(odom.inverse());
-            self.drift = Matrix3::zeros();
-            update.matched = true;
-            matched_cov = Some(m.covariance);
-        }
         let Some(kf) = self.graph.poses.len().checked_sub(1) else {
             return update;
         };
+        let since_match = self.matched_odom.between(odom);
+        if self.keyframe_due(self.graph.poses[kf].between(predicted))
+            || moved(since_match, MATCH_STEP)
+        {
+            if let Some(m) = self.match_local(&points, predicted, since_match) {
+                pose = fuse(predicted, &rotate(&self.drift, predicted.theta), &m);
+                self.correction = pose.compose(odom.inverse());
+                self.drift = Matrix3::zeros();
+                self.matched_odom = odom;
+                update.matched = true;
+                matched_cov = Some(m.covariance);
+            }
+        }
         let kf_pose = self.graph.poses[kf];
         let since = kf_pose.between(pose);
         // What is known of the pose relative to the keyframe, in the keyframe's frame: the
@@ -244,16 +260,22 @@ impl LidarSlam {
             None => keyframes::odometry_noise(since, self.config.odometry_noise),
         };
         self.covariance = self.frames[kf].covariance + rotate(&relative_cov, kf_pose.theta);
-        let turned = since.theta.abs().to_degrees();
-        if since.position().distance(Point2::default()) < self.config.minimum_travel_distance
-            && turned < self.config.minimum_travel_heading_deg
-        {
+        if !self.keyframe_due(since) {
             return update;
         }
         let new = self.add_keyframe(pose, odom, scan, Some((kf, since, relative_cov)));
         update.keyframe = Some(new);
         update.closure = self.close_loop(new);
         update
+    }
+
+    /// Whether a pose `since` the last keyframe (in its frame) makes a new one.
+    fn keyframe_due(&self, since: Pose2) -> bool {
+        let c = &self.config;
+        moved(
+            since,
+            (c.minimum_travel_distance, c.minimum_travel_heading_deg),
+        )
     }
 
     /// The match of `points` against the local map round `guess`, when it is good enough.
@@ -268,8 +290,11 @@ impl LidarSlam {
         let c = &self.config;
         let window = Window {
             half_width: (c.search_half_width + step.x.hypot(step.y)).min(c.loop_search_half_width),
-            half_angle: (c.search_half_angle_deg.to_radians() + step.theta.abs())
-                .min(c.loop_search_half_angle_deg.to_radians().max(c.search_half_angle_deg.to_radians())),
+            half_angle: (c.search_half_angle_deg.to_radians() + step.theta.abs()).min(
+                c.loop_search_half_angle_deg
+                    .to_radians()
+                    .max(c.search_half_angle_deg.to_radians()),
+            ),
         };
         let m = matcher::correlate(fine, coarse, points, guess, window)?;
         self.last_response = m.response;
@@ -342,9 +367,11 @@ impl LidarSlam {
         if travelled - self.last_loop_try < LOOP_TRY_EVERY {
             return None;
         }
-        let far_back = |k: usize| travelled - self.frames[k].travelled >= c.loop_minimum_travel;
+        // Nodes the graph already ties to this one within the loop's minimum length are
+        // no loop: only a part of the map reached the long way round is.
+        let tied = self.graph.near_along_edges(new, c.loop_minimum_travel);
         let old = (0..new)
-            .filter(|&k| far_back(k))
+            .filter(|&k| !tied[k])
             .map(|k| (k, self.graph.poses[k].position().distance(here.position())))
             .filter(|&(_, d)| d <= c.loop_search_maximum_distance)
             .min_by(|a, b| a.1.total_cmp(&b.1))?
@@ -353,7 +380,7 @@ impl LidarSlam {
         let half = (c.scan_buffer_size as usize / LOOP_CHAIN_SHARE).max(1);
         let lo = old.saturating_sub(half);
         let hi = (old + half + 1).min(new);
-        let chain: Vec<usize> = (lo..hi).filter(|&k| far_back(k)).collect();
+        let chain: Vec<usize> = (lo..hi).filter(|&k| !tied[k]).collect();
         let (first, last) = (*chain.first()?, *chain.last()? + 1);
         let window = Window {
             half_width: c.loop_search_half_width,
@@ -380,8 +407,12 @@ impl LidarSlam {
             information: information(&cov_rel),
             kind: EdgeKind::Loop,
         });
+        let before = self.graph.poses.clone();
         self.graph.optimize()?;
         let moved = self.graph.poses[new].position().distance(here.position());
+        let largest_shift = (before.iter().zip(&self.graph.poses))
+            .map(|(a, b)| a.position().distance(b.position()))
+            .fold(0.0, f64::max);
         self.loops += 1;
         // The new node is now known as well as the old one and the match.
         let joined = self.frames[old].covariance + m.covariance;
@@ -396,6 +427,7 @@ impl LidarSlam {
             old,
             new,
             correction: moved,
+            largest_shift,
             response: m.response,
         })
     }
@@ -478,6 +510,11 @@ impl LidarSlam {
             joined: Some(matched.is_some()),
         }
     }
+}
+
+/// Whether `step` goes at least `far` (metres, degrees).
+fn moved(step: Pose2, far: (f64, f64)) -> bool {
+    step.x.hypot(step.y) >= far.0 || step.theta.abs().to_degrees() >= far.1
 }
 
 /// A pose from the prediction and a match, each weighed by its information (the

@@ -17,7 +17,8 @@ pub struct TruthScore {
     pub heading_rmse_deg: Option<f64>,
     /// Mean normalised estimation error squared of the pose (3 degrees of freedom).
     pub mean_nees: Option<f64>,
-    /// The pilot's occupancy map against the twin's walls and box outlines.
+    /// The map a user would save (`Pilot::map_to_save`: lidar SLAM's map when it runs,
+    /// else the planning map) against the twin's walls and box outlines.
     pub map_vs_walls: Option<WallAgreement>,
 }
 
@@ -33,10 +34,7 @@ impl TruthScore {
             position_max_error: Some(accuracy.position_max_error()),
             heading_rmse_deg: Some(accuracy.heading_rmse().to_degrees()),
             mean_nees: Some(accuracy.mean_nees()),
-            map_vs_walls: Some(wall_agreement(
-                &pilot.belief().occupancy_grid(),
-                &twin.world().walls,
-            )),
+            map_vs_walls: Some(wall_agreement(&pilot.map_to_save(), &twin.world().walls)),
         }
     }
 

@@ -69,6 +69,14 @@ impl Pilot {
         }
     }
 
+    /// The map a user saves: lidar SLAM's map (every keyframe at its pose in the graph, at
+    /// its grid's resolution, as slam_toolbox saves) when it runs, else the planning map.
+    pub fn map_to_save(&self) -> navdeck_core::map::grid::OccupancyGrid {
+        self.lidar_slam()
+            .and_then(|s| s.slam.occupancy_grid())
+            .unwrap_or_else(|| self.belief.occupancy_grid())
+    }
+
     /// Folds a scan into lidar SLAM.
     pub(super) fn slam_scan(&mut self, scan: &LaserScan) {
         let odom = self.odometry.pose();

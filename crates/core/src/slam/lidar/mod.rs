@@ -13,6 +13,7 @@ mod field;
 pub mod graph;
 mod keyframes;
 mod matcher;
+mod render;
 pub mod saved;
 
 pub use config::LidarSlamConfig;

@@ -1,6 +1,7 @@
 //! navdeck against a robot on Eclipse Cyclone DDS (the DDS ROS 2 ships), played by
 //! tests/interop/turtlebot_peer.py with ROS 2's wire types: headless navdeck drives it
-//! over `--link ros2`, and both sides check what crossed. tests/interop/amcl_peer.py
+//! over `--link ros2`, and both sides check what crossed (with `--room`, the peer's
+//! scans of a room are mapped by lidar SLAM and it checks the map it gets back). tests/interop/amcl_peer.py
 //! plays RViz beside MCL: pose estimates on /initialpose in, particles on /particlecloud
 //! out, checked at the link itself. tests/interop/arm_peer.py plays an OpenManipulator-X
 //! arm's controllers: trajectories and gripper goals in, joint states out.
@@ -45,6 +46,17 @@ impl LinePeer {
 /// Runs the peer on `domain`, drives it with `keys` through headless navdeck, and
 /// returns (navdeck's JSON report, the peer's JSON record).
 fn drive(domain: u16, keys: &str, peer_args: &[&str], config: &str) -> Option<(Value, Value)> {
+    drive_with(domain, keys, peer_args, config, &[])
+}
+
+/// `drive` with more arguments for navdeck.
+fn drive_with(
+    domain: u16,
+    keys: &str,
+    peer_args: &[&str],
+    config: &str,
+    navdeck_args: &[&str],
+) -> Option<(Value, Value)> {
     let python = python()?;
     let dir = scratch(&domain.to_string());
     let out = dir.join("peer.json");
@@ -78,6 +90,7 @@ fn drive(domain: u16, keys: &str, peer_args: &[&str], config: &str) -> Option<(V
             "--config",
         ])
         .arg(&cfg)
+        .args(navdeck_args)
         .args(["--headless", "--json", "--keys", keys])
         .output()
         .expect("run navdeck");
@@ -131,6 +144,50 @@ fn navdeck_drives_a_cyclone_dds_turtlebot_and_reads_its_odometry() {
         maps.iter()
             .any(|m| m[0] == 400 && m[1] == 400 && m[3] == 160_000),
         "maps: {maps:?}"
+    );
+}
+
+/// A robot's /scan and /odom build navdeck's map under lidar SLAM: the peer, in a room,
+/// gets /map with its walls occupied where they are (through the map -> odom transform it
+/// also gets on /tf, which stays near identity over the peer's exact odometry). The drive
+/// is straight: a scan is paired with the odometry of the poll that takes it, not of its
+/// stamp, so turning at teleop's 1.5 rad/s slips the map's heading (0.19 rad after a
+/// quarter turn against this peer's 5 Hz scans).
+#[test]
+fn lidar_slam_maps_a_cyclone_turtlebots_room_from_its_scan_and_odometry() {
+    let keys = "wwwwwwwwwwwwwwwwwwwwwwwwww";
+    let Some((report, record)) =
+        drive_with(96, keys, &["--room"], LOOPBACK, &["--estimator", "slam"])
+    else {
+        return;
+    };
+    let tf = record["map_to_odom"].as_array().unwrap();
+    assert!(!tf.is_empty(), "no map -> odom on /tf: {record}");
+    let last = &tf[tf.len() - 1];
+    assert!(
+        f(&last[0]).hypot(f(&last[1])) < 0.05 && f(&last[2]).abs() < 2f64.to_radians(),
+        "map -> odom strays from the exact odometry: {last:?}"
+    );
+    let check = &record["map_check"];
+    assert!(f(&check["occupied"]) > 200.0, "walls mapped: {check}");
+    assert!(
+        f(&check["near_walls"]) > 0.9,
+        "occupied cells lie on the room's walls (within 5 cm): {check}"
+    );
+    assert!(
+        f(&check["walls_seen"]) > 0.6,
+        "the walls are mapped along their length: {check}"
+    );
+    // navdeck's estimate follows the peer's drive.
+    let (px, py) = (f(&record["pose"][0]), f(&record["pose"][1]));
+    let (ex, ey) = (
+        f(&report["estimated_pose"]["x"]),
+        f(&report["estimated_pose"]["y"]),
+    );
+    assert!(px.hypot(py) > 0.2, "the peer moved: {px:.2} {py:.2}");
+    assert!(
+        (ex - px).hypot(ey - py) < 0.05,
+        "navdeck ({ex:.3}, {ey:.3}) vs peer ({px:.3}, {py:.3})"
     );
 }
 

@@ -72,6 +72,7 @@ mod camera_pipeline;
 mod cli;
 mod console;
 mod console_keys;
+mod console_slam;
 mod console_truth;
 mod control_follow;
 mod dead_terminal;

@@ -63,6 +63,16 @@ impl App {
             Handler::CycleCamera => self.view.camera = self.view.camera.next(),
             Handler::ToggleScan => self.view.scan = !self.view.scan,
             Handler::ToggleTrail => self.view.trail = !self.view.trail,
+            Handler::ToggleGraph => {
+                if self.pilot().lidar_slam().is_some() {
+                    self.view.graph = !self.view.graph;
+                } else {
+                    self.log(
+                        Level::Warn,
+                        "the pose graph exists only with lidar SLAM (--estimator slam)",
+                    );
+                }
+            }
             Handler::LogOlder => {
                 let shown = self.log.iter().filter(|e| self.view.log.shows(e)).count();
                 let page = self.log_page();

@@ -41,6 +41,10 @@ impl App {
     /// Takes what the steps brought, in order: log lines, mode changes, what the camera
     /// and the markers showed, and the autosave of each exploration tick.
     fn absorb(&mut self, stepped: Stepped) {
+        // The newest loop closure's line: flashed when it comes in.
+        let closed = (self.pilot().lidar_slam())
+            .and_then(|s| s.closures.last())
+            .map(pilot::lidar_slam::closure_line);
         for event in stepped.events {
             match event {
                 Event::Log {
@@ -48,7 +52,13 @@ impl App {
                     level,
                     text,
                     source,
-                } => self.log.push_from(time, level, source, text),
+                } => {
+                    let notable = source.is_none() && closed.as_ref() == Some(&text);
+                    self.log.push_from(time, level, source, text);
+                    if notable {
+                        self.log.flash_newest();
+                    }
+                }
                 Event::Mode { before, .. } => self.follow_mode(before),
                 Event::Frame { time, frame } => {
                     if let Some(s) = &frame.sightings {

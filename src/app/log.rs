@@ -17,6 +17,10 @@ pub struct Entry {
     pub source: Option<String>,
 }
 
+/// How long a flashed line stays in the status panel, seconds of session time (Material
+/// Design's snackbar shows for 4 to 10 s).
+pub const FLASH_SECONDS: f64 = 5.0;
+
 /// Where every line also goes as it is written: the session's log file.
 pub type Sink = Box<dyn std::io::Write + Send>;
 
@@ -31,6 +35,8 @@ pub struct LogBook {
     /// Lines written since the last `take_fresh`, when something takes them (a recording,
     /// a link that passes the log on to /rosout).
     fresh: Option<Vec<Entry>>,
+    /// A notable line (a loop closed) shown highlighted for `FLASH_SECONDS` after it.
+    flashed: Option<Entry>,
 }
 
 impl std::fmt::Debug for LogBook {
@@ -39,6 +45,7 @@ impl std::fmt::Debug for LogBook {
             .field("entries", &self.entries.len())
             .field("written", &self.written)
             .field("sink", &self.sink.is_some())
+            .field("flashed", &self.flashed)
             .finish()
     }
 }
@@ -77,6 +84,7 @@ impl LogBook {
             written: 0,
             sink: None,
             fresh: None,
+            flashed: None,
         }
     }
 
@@ -179,6 +187,21 @@ impl LogBook {
         self.entries
             .iter()
             .skip(self.entries.len().saturating_sub(n))
+    }
+
+    /// Flashes the newest line: the status panel shows it highlighted for a while.
+    pub fn flash_newest(&mut self) {
+        self.flashed = self.entries.back().map(|e| Entry {
+            repeats: 1,
+            ..e.clone()
+        });
+    }
+
+    /// The flashed line, while it is fresh at session time `now`.
+    pub fn flashing(&self, now: f64) -> Option<&Entry> {
+        self.flashed
+            .as_ref()
+            .filter(|e| (0.0..FLASH_SECONDS).contains(&(now - e.time)))
     }
 
     pub fn written(&self) -> u64 {
@@ -338,6 +361,25 @@ mod tests {
              00:00.5 INFO new landmark 2 (boundary)\n\
              01:15.3 WARN gripper opened by the user\n"
         );
+    }
+
+    #[test]
+    fn a_flashed_line_shows_for_a_few_seconds_of_session_time() {
+        let mut log = LogBook::new(10);
+        log.push(
+            10.0,
+            Level::Success,
+            "loop closed: 0.31 m corrected over 42 nodes",
+        );
+        assert!(log.flashing(10.0).is_none(), "nothing flashed yet");
+        log.flash_newest();
+        log.push(10.5, Level::Info, "mode MANUAL");
+        let shown = |t| log.flashing(t).map(|e| e.text.clone());
+        assert_eq!(
+            shown(10.0 + FLASH_SECONDS - 0.1).as_deref(),
+            Some("loop closed: 0.31 m corrected over 42 nodes")
+        );
+        assert_eq!(shown(10.0 + FLASH_SECONDS), None);
     }
 
     #[test]

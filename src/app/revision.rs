@@ -69,6 +69,8 @@ struct RouteShown {
 struct ConsoleShown {
     second: i64,
     log: u64,
+    /// Whether a flashed log line shows.
+    flash: bool,
     view: ViewState,
     screen: (u16, u16),
     cursor: Option<(i64, i64)>,
@@ -148,6 +150,7 @@ impl App {
         let console = ConsoleShown {
             second: self.now().floor() as i64,
             log: self.log.written(),
+            flash: self.log.flashing(self.now()).is_some(),
             view: self.view.clone(),
             screen: self.screen,
             cursor: self.cursor.map(|c| (centi(c.x), centi(c.y))),

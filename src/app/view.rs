@@ -24,6 +24,8 @@ pub struct ViewState {
     pub scan: bool,
     /// Where the robot has driven, over the map.
     pub trail: bool,
+    /// Lidar SLAM's pose graph (nodes and edges), over the map.
+    pub graph: bool,
     /// What the log pane shows.
     pub log: LogView,
 }
@@ -128,6 +130,7 @@ impl Default for ViewState {
             camera: CameraPanel::Off,
             scan: true,
             trail: false,
+            graph: false,
             log: LogView::default(),
         }
     }

@@ -39,6 +39,7 @@ pub enum Handler {
     CycleCamera,
     ToggleScan,
     ToggleTrail,
+    ToggleGraph,
     LogOlder,
     LogNewer,
     LogFilter,
@@ -160,6 +161,7 @@ actions! {
     ToggleCamera: "toggle_camera", "camera panel, braille, off" => Console(CycleCamera);
     ToggleScan: "toggle_scan", "lidar scan on the map" => Console(ToggleScan);
     ToggleTrail: "toggle_trail", "driven trail on the map" => Console(ToggleTrail);
+    ToggleGraph: "toggle_graph", "lidar SLAM's pose graph" => Console(ToggleGraph);
     // The log.
     LogOlder: "log_older", "log: page back" => Console(LogOlder);
     LogNewer: "log_newer", "log: page forward" => Console(LogNewer);

@@ -88,6 +88,25 @@ impl Theme {
             Style::new().add_modifier(Modifier::REVERSED | Modifier::BOLD)
         }
     }
+    /// A notable event's line, flashed in the status panel (a success, reversed).
+    pub fn flash(self) -> Style {
+        if self.color {
+            Style::new()
+                .fg(Color::Black)
+                .bg(Color::Green)
+                .add_modifier(Modifier::BOLD)
+        } else {
+            Style::new().add_modifier(Modifier::REVERSED | Modifier::BOLD)
+        }
+    }
+    /// Lidar SLAM's pose graph: its nodes and odometry/scan-match edges.
+    pub fn graph(self) -> Style {
+        self.fg(Color::LightBlue)
+    }
+    /// The pose graph's loop-closure edges (yellow, apart from the sequential chain).
+    pub fn loop_edge(self) -> Style {
+        self.fg(Color::Yellow).add_modifier(Modifier::BOLD)
+    }
     pub fn mode(self) -> Style {
         if self.color {
             Style::new()

@@ -2,7 +2,11 @@
 navdeck's interop test: it listens on rt/cmd_vel, integrates a unicycle, and publishes
 rt/odom and rt/joint_states; it also reads what navdeck shows RViz (rt/map).
 
-Usage: turtlebot_peer.py DOMAIN OUT.json [--stamped]
+With --room it stands in a rectangular room (ROOM, metres in its odometry frame) and
+publishes rt/scan as a 360-beam LDS-01 would there; it then also reads rt/tf and checks
+the last map navdeck published against the room's walls, seen through map -> odom.
+
+Usage: turtlebot_peer.py DOMAIN OUT.json [--stamped] [--room]
 Prints "ready" once its readers and writers exist, runs until stdin closes (or 60 s),
 then writes what it received to OUT.json.
 """
@@ -25,6 +29,13 @@ from cyclonedds.util import duration
 
 WHEEL_RADIUS = 0.033
 TRACK = 0.160
+# The room's walls: x from ROOM[0] to ROOM[1], y from ROOM[2] to ROOM[3] (not centred
+# on the start, so that it has no symmetry a match could slip along).
+ROOM = (-1.0, 1.8, -1.2, 0.9)
+# The LDS-01's range (TurtleBot3 e-Manual: 120 to 3500 mm), 360 beams, 5 Hz.
+RANGE_MIN, RANGE_MAX, BEAMS, SCAN_PERIOD = 0.12, 3.5, 360, 0.2
+# A map cell counts as a wall's when it lies this close to one, metres (5 cells of 1 cm).
+NEAR_WALL = 0.05
 
 
 def ros(pkg, name):
@@ -128,6 +139,128 @@ class OccupancyGrid(IdlStruct, typename=ros("nav_msgs", "OccupancyGrid")):
     data: t.sequence[t.int8] = field(default_factory=list)
 
 
+@dataclass
+class LaserScan(IdlStruct, typename=ros("sensor_msgs", "LaserScan")):
+    header: Header = field(default_factory=Header)
+    angle_min: t.float32 = 0.0
+    angle_max: t.float32 = 0.0
+    angle_increment: t.float32 = 0.0
+    time_increment: t.float32 = 0.0
+    scan_time: t.float32 = 0.0
+    range_min: t.float32 = 0.0
+    range_max: t.float32 = 0.0
+    ranges: t.sequence[t.float32] = field(default_factory=list)
+    intensities: t.sequence[t.float32] = field(default_factory=list)
+
+
+@dataclass
+class Transform(IdlStruct, typename=ros("geometry_msgs", "Transform")):
+    translation: Vector3 = field(default_factory=Vector3)
+    rotation: Quaternion = field(default_factory=Quaternion)
+
+
+@dataclass
+class TransformStamped(IdlStruct, typename=ros("geometry_msgs", "TransformStamped")):
+    header: Header = field(default_factory=Header)
+    child_frame_id: str = ""
+    transform: Transform = field(default_factory=Transform)
+
+
+@dataclass
+class TFMessage(IdlStruct, typename=ros("tf2_msgs", "TFMessage")):
+    transforms: t.sequence[TransformStamped] = field(default_factory=list)
+
+
+def room_range(x, y, heading):
+    """The distance from (x, y) along `heading` to the room's walls (from inside)."""
+    x0, x1, y0, y1 = ROOM
+    dx, dy = math.cos(heading), math.sin(heading)
+    hits = []
+    if dx > 1e-9:
+        hits.append((x1 - x) / dx)
+    elif dx < -1e-9:
+        hits.append((x0 - x) / dx)
+    if dy > 1e-9:
+        hits.append((y1 - y) / dy)
+    elif dy < -1e-9:
+        hits.append((y0 - y) / dy)
+    return min(hits)
+
+
+def room_scan(x, y, th):
+    step = 2 * math.pi / BEAMS
+    ranges = []
+    for k in range(BEAMS):
+        r = room_range(x, y, th + k * step)
+        ranges.append(r if RANGE_MIN <= r <= RANGE_MAX else math.inf)
+    return LaserScan(
+        header=Header(stamp=stamp_now(), frame_id="base_scan"),
+        angle_min=0.0,
+        angle_max=step * (BEAMS - 1),
+        angle_increment=step,
+        scan_time=SCAN_PERIOD,
+        range_min=RANGE_MIN,
+        range_max=RANGE_MAX,
+        ranges=ranges,
+    )
+
+
+def wall_distance(x, y):
+    """The distance from (x, y) to the nearest of the room's four walls (as segments)."""
+    x0, x1, y0, y1 = ROOM
+    cx, cy = min(max(x, x0), x1), min(max(y, y0), y1)
+    return min(
+        math.hypot(x - x0, y - cy),
+        math.hypot(x - x1, y - cy),
+        math.hypot(x - cx, y - y0),
+        math.hypot(x - cx, y - y1),
+    )
+
+
+def check_map(grid, map_to_odom):
+    """The map's occupied cells against the room: how many, the share of them near a wall
+    and the share of the walls (sampled every 5 cm) with an occupied cell near them."""
+    res, w = grid.info.resolution, grid.info.width
+    ox, oy = grid.info.origin.position.x, grid.info.origin.position.y
+    tx, ty, tth = map_to_odom
+    c, s = math.cos(tth), math.sin(tth)
+    occupied = []
+    for i, v in enumerate(grid.data):
+        if v >= 50:
+            mx = ox + (i % w + 0.5) * res
+            my = oy + (i // w + 0.5) * res
+            # A point of the map frame in the odometry frame: T_map_odom^-1 (REP 105).
+            dx, dy = mx - tx, my - ty
+            occupied.append((c * dx + s * dy, -s * dx + c * dy))
+    near = sum(1 for p in occupied if wall_distance(*p) <= NEAR_WALL)
+    x0, x1, y0, y1 = ROOM
+    samples = []
+    for k in range(int((x1 - x0) / 0.05) + 1):
+        samples += [(x0 + k * 0.05, y0), (x0 + k * 0.05, y1)]
+    for k in range(int((y1 - y0) / 0.05) + 1):
+        samples += [(x0, y0 + k * 0.05), (x1, y0 + k * 0.05)]
+    # Cells by their position rounded to a grid of NEAR_WALL, for a quick neighbourhood.
+    buckets = {}
+    for p in occupied:
+        buckets.setdefault((round(p[0] / NEAR_WALL), round(p[1] / NEAR_WALL)), []).append(p)
+
+    def seen(q):
+        bx, by = round(q[0] / NEAR_WALL), round(q[1] / NEAR_WALL)
+        for i in (-1, 0, 1):
+            for j in (-1, 0, 1):
+                for p in buckets.get((bx + i, by + j), []):
+                    if math.hypot(p[0] - q[0], p[1] - q[1]) <= NEAR_WALL:
+                        return True
+        return False
+
+    covered = sum(1 for q in samples if seen(q))
+    return {
+        "occupied": len(occupied),
+        "near_walls": near / max(len(occupied), 1),
+        "walls_seen": covered / len(samples),
+    }
+
+
 def stamp_now():
     now = time.time()
     return Time(sec=int(now), nanosec=int((now % 1.0) * 1e9))
@@ -136,6 +269,7 @@ def stamp_now():
 def main():
     domain, out = int(sys.argv[1]), sys.argv[2]
     stamped = "--stamped" in sys.argv[3:]
+    room = "--room" in sys.argv[3:]
     # ROS 2's default profile: reliable, volatile, keep-last 10.
     reliable = Qos(Policy.Reliability.Reliable(duration(milliseconds=100)), Policy.History.KeepLast(10))
     latched = Qos(
@@ -149,6 +283,11 @@ def main():
     map_reader = DataReader(dp, Topic(dp, "rt/map", OccupancyGrid), qos=latched)
     odom_writer = DataWriter(dp, Topic(dp, "rt/odom", Odometry), qos=reliable)
     joint_writer = DataWriter(dp, Topic(dp, "rt/joint_states", JointState), qos=reliable)
+    # Sensor data: best effort, keep-last 5 (rclcpp's SensorDataQoS), as the LDS driver.
+    sensor = Qos(Policy.Reliability.BestEffort, Policy.History.KeepLast(5))
+    scan_writer = DataWriter(dp, Topic(dp, "rt/scan", LaserScan), qos=sensor) if room else None
+    tf_qos = Qos(Policy.Reliability.Reliable(duration(milliseconds=100)), Policy.History.KeepLast(100))
+    tf_reader = DataReader(dp, Topic(dp, "rt/tf", TFMessage), qos=tf_qos) if room else None
     print("ready", flush=True)
 
     x = y = th = 0.0
@@ -156,6 +295,9 @@ def main():
     wl = wr = 0.0
     received = []
     maps = []
+    last_grid = None
+    map_to_odom = []
+    next_scan = time.monotonic()
     last = time.monotonic()
     give_up = last + 60.0
     while time.monotonic() < give_up:
@@ -179,6 +321,16 @@ def main():
         for grid in map_reader.take(N=10):
             if isinstance(grid, OccupancyGrid):
                 maps.append([grid.info.width, grid.info.height, grid.info.resolution, len(grid.data)])
+                last_grid = grid
+        for message in tf_reader.take(N=100) if tf_reader else []:
+            for tf in getattr(message, "transforms", []):
+                if tf.header.frame_id == "map" and tf.child_frame_id == "odom":
+                    q = tf.transform.rotation
+                    yaw = math.atan2(2 * (q.w * q.z + q.x * q.y), 1 - 2 * (q.y * q.y + q.z * q.z))
+                    map_to_odom.append([tf.transform.translation.x, tf.transform.translation.y, yaw])
+        if scan_writer and now >= next_scan:
+            next_scan = now + SCAN_PERIOD
+            scan_writer.write(room_scan(x, y, th))
         header = Header(stamp=stamp_now(), frame_id="odom")
         odom = Odometry(header=header, child_frame_id="base_footprint")
         odom.pose.pose.position.x = x
@@ -193,8 +345,14 @@ def main():
                 position=[wl, wr],
             )
         )
+    record = {"cmd_vel": received, "pose": [x, y, th], "maps": maps}
+    if room:
+        record["map_to_odom"] = map_to_odom
+        if last_grid is not None:
+            latest = map_to_odom[-1] if map_to_odom else [0.0, 0.0, 0.0]
+            record["map_check"] = check_map(last_grid, latest)
     with open(out, "w") as f:
-        json.dump({"cmd_vel": received, "pose": [x, y, th], "maps": maps}, f)
+        json.dump(record, f)
 
 
 if __name__ == "__main__":

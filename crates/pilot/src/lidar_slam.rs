@@ -30,6 +30,15 @@ pub struct SlamPilot {
     pub closures: Vec<Closure>,
 }
 
+/// The log line of a closed loop, which the console also flashes.
+pub fn closure_line(c: &Closure) -> String {
+    format!(
+        "loop closed: {:.2} m corrected over {} nodes",
+        c.correction,
+        c.nodes()
+    )
+}
+
 impl SlamPilot {
     pub fn new(config: &LidarSlamConfig, start: Pose2) -> Self {
         SlamPilot {
@@ -107,14 +116,7 @@ impl Pilot {
             sp.closures.push(c);
             // A map drawn from poses that moved less than the lidar map's cell stands.
             redraw = c.largest_shift > self.settings.lidar_slam.resolution;
-            lines.push((
-                Level::Success,
-                format!(
-                    "loop closed: {:.2} m corrected over {} nodes",
-                    c.correction,
-                    c.nodes()
-                ),
-            ));
+            lines.push((Level::Success, closure_line(&c)));
         }
         self.ekf.relocate(pose, &cov);
         for (level, text) in lines {

@@ -12,7 +12,7 @@ const KEY_WIDTH: usize = 9;
 
 /// Actions the help shows as one entry when every one of them is bound: their keys in
 /// this order, one description.
-const FAMILIES: [(&[Action], &str); 12] = [
+const FAMILIES: [(&[Action], &str); 13] = [
     (
         &[
             Action::Forward,
@@ -41,6 +41,10 @@ const FAMILIES: [(&[Action], &str); 12] = [
         "turn rate +/-10 %",
     ),
     (&[Action::ZoomIn, Action::ZoomOut], "zoom in / out"),
+    (
+        &[Action::ToggleScan, Action::ToggleTrail, Action::ToggleGraph],
+        "scan, trail, pose graph",
+    ),
     (
         &[
             Action::PanLeft,

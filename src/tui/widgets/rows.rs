@@ -5,6 +5,7 @@
 
 use super::text::{fit, wrap_rows};
 use crate::tui::theme::Theme;
+use ratatui::style::Style;
 use ratatui::text::{Line, Span};
 
 /// Columns a row's label takes.
@@ -26,6 +27,8 @@ pub struct Row {
     pub value: String,
     pub lines: usize,
     pub need: Need,
+    /// Shown highlighted: a notable event, flashed.
+    pub flash: bool,
 }
 
 impl Row {
@@ -35,7 +38,14 @@ impl Row {
             value: value.into(),
             lines: 1,
             need,
+            flash: false,
         }
+    }
+
+    /// The row, its value highlighted.
+    pub fn flashing(mut self) -> Self {
+        self.flash = true;
+        self
     }
 
     /// The row, its value wrapped over up to `lines` lines.
@@ -94,7 +104,12 @@ pub fn fit_rows(rows: Vec<Row>, theme: Theme, width: usize, height: usize) -> Ve
     for (i, r) in rows.iter().enumerate().filter(|(i, _)| kept[*i]) {
         for (k, part) in r.parts(room, limits[i]).into_iter().enumerate() {
             let label = if k == 0 { r.label } else { "" };
-            lines.push(line(theme, label, part, width));
+            let style = if r.flash {
+                theme.flash()
+            } else {
+                theme.value()
+            };
+            lines.push(line(theme, label, part, style, width));
         }
     }
     lines.truncate(height);
@@ -102,12 +117,12 @@ pub fn fit_rows(rows: Vec<Row>, theme: Theme, width: usize, height: usize) -> Ve
 }
 
 /// A label and its value, cut to `width` columns (a label wider than its column).
-fn line(theme: Theme, label: &str, value: String, width: usize) -> Line<'static> {
+fn line(theme: Theme, label: &str, value: String, style: Style, width: usize) -> Line<'static> {
     let label = fit(&format!("{label:<LABEL$}"), width);
     let value = fit(&value, width.saturating_sub(label.chars().count()));
     Line::from(vec![
         Span::styled(label, theme.label()),
-        Span::styled(value, theme.value()),
+        Span::styled(value, style),
     ])
 }
 

@@ -52,7 +52,17 @@ fn rows(app: &App) -> Vec<Row> {
     let (cmd, meas) = (app.pilot().commanded(), app.pilot().measured());
     let t = app.pilot().teleop();
     let (max_v, max_w) = t.limits();
-    let mut rows = vec![Row::new("Mode", app.pilot().mode().label(), Need::Must)];
+    let mut rows = Vec::new();
+    // A notable event (a loop closed) stands first, highlighted, for a few seconds: seen
+    // however small the log pane is.
+    if let Some(flashed) = app.log_book().flashing(app.now()) {
+        rows.push(
+            Row::new("Event", flashed.sourced_text(), Need::Must)
+                .wrapping(3)
+                .flashing(),
+        );
+    }
+    rows.push(Row::new("Mode", app.pilot().mode().label(), Need::Must));
     rows.extend(navigation_rows(app));
     rows.push(Row::new("Link", format!("{} {link}", app.link().label()), Need::Must).wrapping(2));
     if let LinkStatus::Lost(reason) = app.pilot().link_status() {
@@ -106,6 +116,7 @@ fn rows(app: &App) -> Vec<Row> {
         };
         rows.push(Row::new("Locate", state, Need::High).wrapping(2));
     }
+    rows.extend(lidar_slam_rows(app));
     if let Some(truth) = app.true_pose().filter(|_| app.view().show_truth) {
         rows.push(Row::new("Truth", pose_text(truth), Need::Low));
         let est = app.pilot().estimated_pose();
@@ -188,6 +199,33 @@ fn rows(app: &App) -> Vec<Row> {
         .wrapping(3),
     );
     rows
+}
+
+/// Lidar SLAM's graph and how well the last scan matched, when it runs.
+fn lidar_slam_rows(app: &App) -> Vec<Row> {
+    let Some(sp) = app.pilot().lidar_slam() else {
+        return Vec::new();
+    };
+    let keyframes = sp.slam.graph().poses.len();
+    let loops = sp.slam.loops();
+    let plural = |n: usize, one: &str| format!("{n} {one}{}", if n == 1 { "" } else { "s" });
+    vec![
+        Row::new(
+            "Graph",
+            format!(
+                "{}, {}",
+                plural(keyframes, "keyframe"),
+                plural(loops, "loop")
+            ),
+            Need::Some,
+        )
+        .wrapping(2),
+        Row::new(
+            "Match",
+            format!("response {:.2}", sp.slam.last_response()),
+            Need::Low,
+        ),
+    ]
 }
 
 /// SLAM's landmarks and how often it corrects (racing) or what it rejected.

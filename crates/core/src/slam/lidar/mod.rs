@@ -67,6 +67,8 @@ pub struct Update {
 /// A scan is matched once the robot moved this far (m) or turned this much (degrees)
 /// since the last match: a robot standing still sees nothing new.
 const MATCH_STEP: (f64, f64) = (0.05, 3.0);
+/// Less motion than this between two scans is standing still: metres and degrees.
+const STILL: (f64, f64) = (0.002, 0.2);
 /// Fewer points than this and a scan is not matched.
 const MIN_POINTS: usize = 20;
 /// A loop closure is tried after the robot travelled this far since the last try, metres:
@@ -97,8 +99,9 @@ pub struct LidarSlam {
     /// The odometry pose of the last scan, and the covariance it gathered since the last
     /// match (robot frame).
     last_odom: Option<Pose2>,
-    /// The odometry pose of the last matched scan.
+    /// The odometry pose of the last matched scan, and whether the robot was moving then.
     matched_odom: Pose2,
+    matched_moving: bool,
     drift: Matrix3<f64>,
     /// The local map and its coarse copy.
     local: Option<(Field, Field)>,
@@ -123,6 +126,7 @@ impl LidarSlam {
             covariance: Matrix3::zeros(),
             last_odom: None,
             matched_odom: odom,
+            matched_moving: false,
             drift: Matrix3::zeros(),
             local: None,
             first: true,
@@ -240,14 +244,20 @@ impl LidarSlam {
             return update;
         };
         let since_match = self.matched_odom.between(odom);
+        // A scan is paired with the odometry of the poll that brought it, a little after it
+        // was taken: a match made while the robot moved carries that lag, so the first
+        // scan after it stops is matched too.
+        let settled = self.matched_moving && !moved(step, STILL);
         if self.keyframe_due(self.graph.poses[kf].between(predicted))
             || moved(since_match, MATCH_STEP)
+            || settled
         {
             if let Some(m) = self.match_local(&points, predicted, since_match) {
                 pose = fuse(predicted, &rotate(&self.drift, predicted.theta), &m);
                 self.correction = pose.compose(odom.inverse());
                 self.drift = Matrix3::zeros();
                 self.matched_odom = odom;
+                self.matched_moving = moved(step, STILL);
                 update.matched = true;
                 matched_cov = Some(m.covariance);
             }

@@ -6,4 +6,5 @@ pub mod headless;
 pub mod map_report;
 pub mod mission;
 pub mod plan_report;
+pub mod slam_figures;
 pub mod tour;

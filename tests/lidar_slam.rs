@@ -73,7 +73,11 @@ fn the_save_key_writes_the_nav2_map_and_the_pose_graph_beside_it() {
     let json = dir.join("saved.posegraph.json").display().to_string();
     let yaml = dir.join("saved.yaml").display().to_string();
     let line = app.log_book().iter().find(|e| e.text.contains(&json));
-    assert!(line.is_some_and(|e| e.text.contains(&yaml)), "{:?}", said(&app));
+    assert!(
+        line.is_some_and(|e| e.text.contains(&yaml)),
+        "{:?}",
+        said(&app)
+    );
     // Without lidar SLAM there is no graph to save.
     let ekf_dir = scratch("ekf");
     let mut ekf = Session::load(&SessionSpec::twin(None))
@@ -86,7 +90,10 @@ fn the_save_key_writes_the_nav2_map_and_the_pose_graph_beside_it() {
 }
 
 fn graph_loops(g: &SavedGraph) -> usize {
-    let loops = g.edges.iter().filter(|e| e.kind == navdeck::slam::lidar::EdgeKind::Loop);
+    let loops = g
+        .edges
+        .iter()
+        .filter(|e| e.kind == navdeck::slam::lidar::EdgeKind::Loop);
     loops.count()
 }
 
@@ -104,7 +111,10 @@ fn a_continued_map_joins_the_saved_graph_and_keeps_its_keyframes() {
     // The planning map is drawn from the saved keyframes before the robot moves.
     let walls = |app: &App| {
         let grid = app.pilot().belief().occupancy_grid();
-        grid.cells.iter().filter(|&&c| c == navdeck::map::grid::OCCUPIED).count()
+        grid.cells
+            .iter()
+            .filter(|&&c| c == navdeck::map::grid::OCCUPIED)
+            .count()
     };
     assert!(walls(&app) > 0, "no walls drawn from the saved keyframes");
     // The robot starts where the saved session did: its first scan matches the saved map.
@@ -143,10 +153,16 @@ fn a_missing_or_bad_pose_graph_is_refused_naming_the_file_and_the_field() {
     let text = std::fs::read_to_string(&graph).unwrap();
     std::fs::write(&graph, text.replacen("\"version\":1", "\"version\":7", 1)).unwrap();
     let why = refusal(&dir);
-    assert!(why.contains(&graph.display().to_string()) && why.contains("version 7"), "{why}");
+    assert!(
+        why.contains(&graph.display().to_string()) && why.contains("version 7"),
+        "{why}"
+    );
     std::fs::remove_file(&graph).unwrap();
     let why = refusal(&dir);
-    assert!(why.contains(&graph.display().to_string()) && why.contains("no such file"), "{why}");
+    assert!(
+        why.contains(&graph.display().to_string()) && why.contains("no such file"),
+        "{why}"
+    );
     // A map is for MCL or for continuing lidar SLAM, not for the EKF.
     let ekf = SessionSpec {
         localize: LocalizeChoice {
@@ -172,7 +188,10 @@ fn a_pose_is_refused_while_lidar_slam_maps() {
     );
     assert!(logged(&app, "relocalize needs MCL"));
     let pose = app.pilot().pose();
-    assert!(pose.x < 0.9 || pose.y.abs() < 0.3, "the pose moved: {pose:?}");
+    assert!(
+        pose.x < 0.9 || pose.y.abs() < 0.3,
+        "the pose moved: {pose:?}"
+    );
 }
 
 #[test]
@@ -180,8 +199,20 @@ fn a_mission_saves_its_map_and_pose_graph_and_reports_the_graph() {
     let dir = scratch("mission");
     let yaml = dir.join("m.yaml");
     let args = [
-        "mission", "--generated", "--style", "rooms", "--size", "6,5", "--seed", "2",
-        "--estimator", "slam", "--time-limit", "30", "--json", "--save-map",
+        "mission",
+        "--generated",
+        "--style",
+        "rooms",
+        "--size",
+        "6,5",
+        "--seed",
+        "2",
+        "--estimator",
+        "slam",
+        "--time-limit",
+        "30",
+        "--json",
+        "--save-map",
     ];
     let out = navdeck(&[&args[..], &[yaml.to_str().unwrap()]].concat());
     let report: serde_json::Value = serde_json::from_slice(&out.stdout)
@@ -197,7 +228,13 @@ fn a_mission_saves_its_map_and_pose_graph_and_reports_the_graph() {
     // Without lidar SLAM the figures are null, and no graph is written.
     let ekf_yaml = dir.join("ekf.yaml");
     let ekf = [
-        "mission", "--estimator", "ekf", "--time-limit", "5", "--json", "--save-map",
+        "mission",
+        "--estimator",
+        "ekf",
+        "--time-limit",
+        "5",
+        "--json",
+        "--save-map",
         ekf_yaml.to_str().unwrap(),
     ];
     let out = navdeck(&ekf);
@@ -209,4 +246,42 @@ fn a_mission_saves_its_map_and_pose_graph_and_reports_the_graph() {
     // A name that is not a Nav2 map's is refused.
     let out = navdeck(&["mission", "--save-map", "m.png"]);
     assert!(String::from_utf8_lossy(&out.stderr).contains("--save-map m.png"));
+}
+
+#[test]
+fn the_sweep_and_headless_reports_carry_the_graph_figures() {
+    let out = navdeck(&[
+        "mission",
+        "--sweep",
+        "1..2",
+        "--estimator",
+        "slam",
+        "--time-limit",
+        "10",
+        "--json",
+    ]);
+    let s: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(s["estimator"], "slam", "{s}");
+    assert!(
+        s["loop_closures"].is_u64() && s["false_loop_closures"].is_u64(),
+        "{s}"
+    );
+    for run in s["runs_detail"].as_array().unwrap() {
+        assert!(run["keyframes"].as_u64().unwrap() >= 1, "{run}");
+    }
+    let out = navdeck(&[
+        "--headless",
+        "--estimator",
+        "slam",
+        "--keys",
+        "wwwdd",
+        "--json",
+    ]);
+    let r: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(r["estimator"], "slam");
+    assert!(r["keyframes"].as_u64().unwrap() >= 1, "{r}");
+    let out = navdeck(&["--headless", "--keys", "ww", "--json"]);
+    let r: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(r["estimator"], "ekf");
+    assert!(r["keyframes"].is_null(), "{r}");
 }

@@ -72,7 +72,11 @@ pub(crate) fn run(args: &MissionArgs) -> Result<ExitCode> {
             args.time_limit
         );
     }
-    if let Some(path) = args.save_map.as_ref().filter(|p| !navdeck::session::is_nav2_map(p)) {
+    if let Some(path) = args
+        .save_map
+        .as_ref()
+        .filter(|p| !navdeck::session::is_nav2_map(p))
+    {
         bail!(
             "--save-map {}: a Nav2 map's file name ends in .yaml",
             path.display()

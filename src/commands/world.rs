@@ -112,6 +112,16 @@ pub fn run(command: &WorldCommand) -> Result<ExitCode> {
 }
 
 fn run_generate(args: &GenerateArgs) -> Result<ExitCode> {
+    if let Some(map) = args
+        .nav2_map
+        .as_ref()
+        .filter(|m| !navdeck::session::is_nav2_map(m))
+    {
+        anyhow::bail!(
+            "--nav2-map {}: a Nav2 map's file name ends in .yaml",
+            map.display()
+        );
+    }
     let options = args.shape.options(args.seed);
     let world = generate::generate(&options).map_err(generate_error)?;
     let text = format!(
@@ -141,12 +151,6 @@ fn run_generate(args: &GenerateArgs) -> Result<ExitCode> {
         generate::describe(&world)
     );
     if let Some(map) = &args.nav2_map {
-        if !navdeck::session::is_nav2_map(map) {
-            anyhow::bail!(
-                "--nav2-map {}: a Nav2 map's file name ends in .yaml",
-                map.display()
-            );
-        }
         let file = navdeck::map::io::MapFile {
             grid: world.rasterize(TRUE_MAP_RESOLUTION),
             extras: None,

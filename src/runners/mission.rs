@@ -1,13 +1,13 @@
 //! `navdeck mission`: the whole exploration-and-delivery mission on simulated time, once
 //! or over many seeds, reported for people or as JSON.
 
+use super::slam_figures::{EstimatorFigures, SweepEstimatorFigures};
 use crate::config::Config;
 use crate::data::Level;
 use crate::link::RobotLink;
 use crate::link::runtime::{Runtime, Stepped};
 use crate::pilot::mode::Mode;
 use crate::pilot::{Intent, LogLine, Pilot};
-use super::slam_figures::{EstimatorFigures, SweepEstimatorFigures};
 use serde::Serialize;
 use std::path::Path;
 
@@ -117,7 +117,11 @@ pub fn run_saving(
             Ok(line) => (Level::Success, line.clone()),
             Err(why) => (Level::Error, format!("map not saved: {why}")),
         };
-        log.push(LogLine { time: t, level, text });
+        log.push(LogLine {
+            time: t,
+            level,
+            text,
+        });
         saved
     });
     let mut report = report(robot.pilot(), robot.link(), &log, config, seed, t);

@@ -4,9 +4,9 @@
 use super::{Robot, SessionSpec, is_nav2_map};
 use crate::config::Config;
 use crate::pilot::localize::{InitialPose, Localizer};
-use crate::slam::mcl::config::Estimator;
 use crate::slam::lidar::SavedGraph;
 use crate::slam::lidar::saved::SUFFIX;
+use crate::slam::mcl::config::Estimator;
 use anyhow::{Result, bail};
 use std::path::{Path, PathBuf};
 
@@ -73,7 +73,6 @@ pub(super) fn localizer_for(
     Ok(Some(localizer))
 }
 
-
 /// The most bytes a pose graph file may hold: `MAX_NODES` keyframes of 360 beams are
 /// about 150 MB of JSON (crates/core/src/slam/lidar/saved.rs), with room to spare.
 const GRAPH_LIMIT: u64 = 256 << 20;
@@ -85,7 +84,7 @@ pub fn graph_beside(map: &Path) -> PathBuf {
 
 /// Lidar SLAM continuing the graph saved beside `map`, from `initial`; a missing or bad
 /// file is refused in one sentence naming it and the field at fault.
-fn continuing(map: &Path, initial: InitialPose, config: &Config) -> Result<Localizer> {
+pub fn continuing(map: &Path, initial: InitialPose, config: &Config) -> Result<Localizer> {
     let grid = crate::map::io::load(map)
         .map_err(|e| {
             anyhow::anyhow!(

@@ -15,7 +15,7 @@ use crate::sim::{Twin, World};
 use crate::slam::mcl::config::Estimator;
 use anyhow::{Context, Result, bail};
 use estimator::localizer_for;
-pub use estimator::{graph_beside, read_graph};
+pub use estimator::{continuing, graph_beside, read_graph};
 use std::path::PathBuf;
 
 /// Why a camera option is refused by a build without OpenCV, and what to do.

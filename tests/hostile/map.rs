@@ -75,9 +75,15 @@ pub fn cases() -> Vec<Case> {
         // Continuing lidar SLAM's map: the pose graph beside it, missing or bad.
         continued("m.posegraph.json", None),
         continued("nodes[0].pose x", Some(graph("[1e308, 0, 0]", "[]"))),
-        continued("nodes", Some(r#"{"format":"navdeck pose graph","version":1,"edges":[]}"#.into())),
+        continued(
+            "nodes",
+            Some(r#"{"format":"navdeck pose graph","version":1,"edges":[]}"#.into()),
+        ),
         continued("edges[0]", Some(graph("[0, 0, 0]", EDGE_TO_NOWHERE))),
-        continued("format", Some(graph("[0, 0, 0]", "[]").replace("navdeck pose graph", "cartographer"))),
+        continued(
+            "format",
+            Some(graph("[0, 0, 0]", "[]").replace("navdeck pose graph", "cartographer")),
+        ),
     ]
 }
 

@@ -17,6 +17,7 @@ mod recording;
 mod revision;
 mod route_file;
 mod saving;
+pub use saving::save_map_files;
 pub mod screen;
 mod table;
 pub mod view;
@@ -120,10 +121,12 @@ impl App {
         self.log.push(self.now(), level, text);
     }
 
-    /// Localises with MCL as the session chose (`--estimator mcl`).
+    /// Localises with MCL, or continues a saved map with lidar SLAM, as the session
+    /// chose (`--estimator mcl`, `--estimator slam --map`).
     pub fn localize(&mut self, localizer: &crate::pilot::localize::Localizer) {
         if let Err(why) = localizer.apply(self.runtime.pilot_mut()) {
-            self.log(Level::Error, format!("MCL not started: {why}"));
+            let what = localizer.label();
+            self.log(Level::Error, format!("{what} not started: {why}"));
         }
         self.refresh_revision();
     }

@@ -5,7 +5,8 @@ use super::log::Level;
 use crate::map::io::{self, Extras, MapFile, SavedBlock, SavedGate, SavedLandmark};
 use crate::mission::objects::Objects;
 use crate::perception::markers::MarkerCategory;
-use std::path::PathBuf;
+use crate::pilot::Pilot;
+use std::path::{Path, PathBuf};
 
 /// The file the save key writes, and the start of the name of the one exploration keeps
 /// up to date for each world (`autosave-arena`, `autosave-serial-dev-ttyusb0`).
@@ -106,43 +107,12 @@ impl App {
             );
             return false;
         }
-        let pose = self.pilot().estimated_pose();
-        let landmarks: Vec<SavedLandmark> = (self.pilot().slam())
-            .landmarks()
-            .map(|l| SavedLandmark {
-                id: l.id,
-                category: MarkerCategory::of(l.id).label().to_string(),
-                mean: [l.mean.x, l.mean.y],
-                covariance: [
-                    [l.covariance[(0, 0)], l.covariance[(0, 1)]],
-                    [l.covariance[(1, 0)], l.covariance[(1, 1)]],
-                ],
-                sightings: l.sightings,
-            })
-            .collect();
-        let count = landmarks.len();
-        let (blocks, gates) = self.blocks_and_gates();
-        let map = MapFile {
-            grid: self.pilot().belief().occupancy_grid(),
-            extras: Some(Extras {
-                version: env!("CARGO_PKG_VERSION").to_string(),
-                created: self
-                    .files
-                    .date_source
-                    .as_ref()
-                    .map_or_else(|| format!("session time {:.1} s", self.now()), |d| d()),
-                pose: Some([pose.x, pose.y, pose.theta]),
-                landmarks,
-                blocks,
-                gates,
-            }),
-        };
-        match io::save(&path, &map) {
-            Ok(()) => {
-                self.log(
-                    Level::Success,
-                    format!("map saved to {} ({count} landmarks)", path.display()),
-                );
+        let created = (self.files.date_source.as_ref())
+            .map_or_else(|| format!("session time {:.1} s", self.now()), |d| d());
+        let block_size = self.config.mission.block_size;
+        match save_map_files(&path, self.pilot(), block_size, created) {
+            Ok(saved) => {
+                self.log(Level::Success, saved);
                 true
             }
             Err(e) => {
@@ -150,35 +120,6 @@ impl App {
                 false
             }
         }
-    }
-
-    /// Blocks and gates as the landmarks show them (seed 001's marker pairs).
-    fn blocks_and_gates(&self) -> (Vec<SavedBlock>, Vec<SavedGate>) {
-        let slam = self.pilot().slam();
-        let landmarks = slam.landmarks().map(|l| (l.id, l.mean)).collect();
-        let mut objects = Objects::default();
-        let here = slam.pose().position();
-        let map = self.pilot().belief().costmap();
-        objects.update(&landmarks, here, self.config.mission.block_size, map);
-        let blocks = objects
-            .blocks()
-            .map(|b| SavedBlock {
-                colour: b.colour.label().to_string(),
-                markers: b.markers,
-                position: [b.position.x, b.position.y],
-                confirmed: b.confirmed,
-            })
-            .collect();
-        let gates = objects
-            .gates()
-            .map(|g| SavedGate {
-                colour: g.colour.label().to_string(),
-                markers: g.markers,
-                center: [g.center.x, g.center.y],
-                normal: [g.normal.0, g.normal.1],
-            })
-            .collect();
-        (blocks, gates)
     }
 
     /// The name exploration autosaves under: one file per place, so that exploring one
@@ -207,6 +148,89 @@ impl App {
         let name = self.autosave_name();
         self.save_map(&name);
     }
+}
+
+/// Writes `pilot`'s map as the Nav2 map `path` (YAML + PGM, with the landmarks, blocks
+/// and gates as navdeck's extras) and, while lidar SLAM runs, its pose graph beside it
+/// (`NAME.posegraph.json`), all or none. Returns the log line naming what was written.
+pub fn save_map_files(
+    path: &Path,
+    pilot: &Pilot,
+    block_size: f64,
+    created: String,
+) -> Result<String, String> {
+    let pose = pilot.estimated_pose();
+    let landmarks: Vec<SavedLandmark> = (pilot.slam())
+        .landmarks()
+        .map(|l| SavedLandmark {
+            id: l.id,
+            category: MarkerCategory::of(l.id).label().to_string(),
+            mean: [l.mean.x, l.mean.y],
+            covariance: [
+                [l.covariance[(0, 0)], l.covariance[(0, 1)]],
+                [l.covariance[(1, 0)], l.covariance[(1, 1)]],
+            ],
+            sightings: l.sightings,
+        })
+        .collect();
+    let count = landmarks.len();
+    let (blocks, gates) = blocks_and_gates(pilot, block_size);
+    let map = MapFile {
+        grid: pilot.map_to_save(),
+        extras: Some(Extras {
+            version: env!("CARGO_PKG_VERSION").to_string(),
+            created,
+            pose: Some([pose.x, pose.y, pose.theta]),
+            landmarks,
+            blocks,
+            gates,
+        }),
+    };
+    let graph = pilot.lidar_slam().map(|s| {
+        let file = crate::session::graph_beside(path);
+        (file, s.slam.save().to_json().into_bytes())
+    });
+    let graph_file = graph.as_ref().map(|(file, _)| file.clone());
+    io::save_beside(path, &map, graph.into_iter().collect()).map_err(|e| e.to_string())?;
+    Ok(match (graph_file, pilot.lidar_slam()) {
+        (Some(file), Some(s)) => format!(
+            "map saved to {} ({count} landmarks) and its pose graph to {} ({} keyframes, {} loops)",
+            path.display(),
+            file.display(),
+            s.slam.graph().poses.len(),
+            s.slam.loops()
+        ),
+        _ => format!("map saved to {} ({count} landmarks)", path.display()),
+    })
+}
+
+/// Blocks and gates as the landmarks show them (seed 001's marker pairs).
+fn blocks_and_gates(pilot: &Pilot, block_size: f64) -> (Vec<SavedBlock>, Vec<SavedGate>) {
+    let slam = pilot.slam();
+    let landmarks = slam.landmarks().map(|l| (l.id, l.mean)).collect();
+    let mut objects = Objects::default();
+    let here = slam.pose().position();
+    let map = pilot.belief().costmap();
+    objects.update(&landmarks, here, block_size, map);
+    let blocks = objects
+        .blocks()
+        .map(|b| SavedBlock {
+            colour: b.colour.label().to_string(),
+            markers: b.markers,
+            position: [b.position.x, b.position.y],
+            confirmed: b.confirmed,
+        })
+        .collect();
+    let gates = objects
+        .gates()
+        .map(|g| SavedGate {
+            colour: g.colour.label().to_string(),
+            markers: g.markers,
+            center: [g.center.x, g.center.y],
+            normal: [g.normal.0, g.normal.1],
+        })
+        .collect();
+    (blocks, gates)
 }
 
 #[cfg(test)]

@@ -58,6 +58,11 @@ pub(crate) struct MissionArgs {
     /// Also print every line the mission logged (one run; in the JSON as "log").
     #[arg(long, conflicts_with = "sweep")]
     log: bool,
+    /// Save the final planning map as this Nav2 map (FILE.yaml + FILE.pgm), and with
+    /// `--estimator slam` the pose graph beside it (FILE.posegraph.json), to continue
+    /// mapping on or to localise on with MCL (one run).
+    #[arg(long, value_name = "FILE.yaml", conflicts_with = "sweep")]
+    save_map: Option<PathBuf>,
 }
 
 pub(crate) fn run(args: &MissionArgs) -> Result<ExitCode> {
@@ -65,6 +70,16 @@ pub(crate) fn run(args: &MissionArgs) -> Result<ExitCode> {
         bail!(
             "--time-limit {} must be a positive number of seconds",
             args.time_limit
+        );
+    }
+    if let Some(path) = args
+        .save_map
+        .as_ref()
+        .filter(|p| !navdeck::session::is_nav2_map(p))
+    {
+        bail!(
+            "--save-map {}: a Nav2 map's file name ends in .yaml",
+            path.display()
         );
     }
     if let (false, Some(flag)) = (args.generated, args.shape.given()) {
@@ -106,14 +121,21 @@ pub(crate) fn run(args: &MissionArgs) -> Result<ExitCode> {
         let localizer = session.localizer.clone();
         let (config, link) = session.into_link();
         let started = Instant::now();
-        let mut report = mission_runner::run(
+        let (mut report, saved) = mission_runner::run_saving(
             &config,
             link,
             localizer.as_ref(),
             seed,
             args.time_limit,
             args.log,
+            args.save_map.as_deref(),
         );
+        match saved {
+            Some(Err(why)) => bail!("map not saved: {why}"),
+            // The files written, for a person (the JSON's log holds it with --log).
+            Some(Ok(line)) if !args.json => eprintln!("{line}"),
+            _ => {}
+        }
         let wall = started.elapsed().as_secs_f64();
         report.wall_time_s = Some(wall);
         report.realtime_factor = Some(report.sim_time / wall.max(1e-9));

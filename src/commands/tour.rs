@@ -20,12 +20,14 @@ pub struct LocalizeArgs {
     /// over [localization] estimator.
     #[arg(long, value_name = "ekf|mcl|slam")]
     estimator: Option<Estimator>,
-    /// The map MCL localises on (a Nav2 map_server YAML + PGM); default: the twin's
-    /// world when it is a Nav2 map.
+    /// The map MCL localises on (a Nav2 map_server YAML + PGM; default: the twin's
+    /// world when it is a Nav2 map), or with `slam` the saved map to continue mapping on
+    /// (its pose graph FILE.posegraph.json beside it).
     #[arg(long, value_name = "FILE")]
     map: Option<PathBuf>,
-    /// Where MCL starts, metres and degrees in the map frame, or `unknown` for global
-    /// localisation; default: the twin's start, else unknown.
+    /// Where MCL (or continued lidar SLAM) starts, metres and degrees in the map frame,
+    /// or `unknown` for MCL's global localisation; default: the twin's start, else
+    /// unknown (lidar SLAM: the origin).
     #[arg(long, value_name = "X,Y,THETA_DEG|unknown", allow_hyphen_values = true)]
     initial_pose: Option<InitialPose>,
 }

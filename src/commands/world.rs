@@ -26,7 +26,15 @@ pub struct GenerateArgs {
     /// The world file to write (TOML, the format of maps/arena.toml).
     #[arg(short = 'o', long = "output", value_name = "FILE")]
     output: PathBuf,
+    /// Also write the world's true walls and boxes as a Nav2 map (FILE.yaml + FILE.pgm,
+    /// 5 cm cells, the tour's ground truth): to localise on, or to set beside a SLAM map.
+    #[arg(long, value_name = "FILE.yaml")]
+    nav2_map: Option<PathBuf>,
 }
+
+/// The cell size of the true map `--nav2-map` writes: the 5 cm of the tour's raster and
+/// of TurtleBot3's slam_toolbox maps.
+const TRUE_MAP_RESOLUTION: f64 = 0.05;
 
 /// What a generated world holds.
 #[derive(Debug, clap::Args)]
@@ -115,6 +123,16 @@ pub fn run(command: &WorldCommand) -> Result<ExitCode> {
 }
 
 fn run_generate(args: &GenerateArgs) -> Result<ExitCode> {
+    if let Some(map) = args
+        .nav2_map
+        .as_ref()
+        .filter(|m| !navdeck::session::is_nav2_map(m))
+    {
+        anyhow::bail!(
+            "--nav2-map {}: a Nav2 map's file name ends in .yaml",
+            map.display()
+        );
+    }
     let options = args.shape.options(args.seed);
     let world = generate::generate(&options).map_err(generate_error)?;
     let text = format!(
@@ -143,5 +161,13 @@ fn run_generate(args: &GenerateArgs) -> Result<ExitCode> {
         out.display(),
         generate::describe(&world)
     );
+    if let Some(map) = &args.nav2_map {
+        let file = navdeck::map::io::MapFile {
+            grid: world.rasterize(TRUE_MAP_RESOLUTION),
+            extras: None,
+        };
+        navdeck::map::io::save(map, &file).map_err(|e| anyhow::anyhow!("{e}"))?;
+        sayln!("wrote the world's true map as {}", map.display());
+    }
     Ok(ExitCode::SUCCESS)
 }

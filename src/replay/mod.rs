@@ -161,11 +161,18 @@ impl Replay {
             .and_then(|s| s.parse().ok())
             .unwrap_or(1);
         let first_truth = recorded.truths.first().map(|t| t.pose());
-        let mcl = config.localization.estimator == Estimator::Mcl;
         let rerun_estimator = estimator_name(config.localization.estimator);
-        let localizer = mcl
-            .then(|| localizer(session, &options, first_truth, seed, &config.map))
-            .transpose()?;
+        let localizer = match config.localization.estimator {
+            Estimator::Mcl => Some(localizer(
+                session,
+                &options,
+                first_truth,
+                seed,
+                &config.map,
+            )?),
+            Estimator::Slam => continued(session, &options, first_truth, &config)?,
+            Estimator::Ekf => None,
+        };
         let mut app = App::new(config, keymap, Box::new(link), start);
         if let Some(localizer) = &localizer {
             app.localize(localizer);
@@ -389,6 +396,32 @@ fn localizer(
         map_config,
     )
     .map_err(anyhow::Error::msg)
+}
+
+/// For a re-run with lidar SLAM of a session that continued a saved map: the map and
+/// its pose graph (the command line's `--map`, else the recorded one), from the same
+/// start; None for a session that mapped from nothing.
+fn continued(
+    session: &std::collections::BTreeMap<String, String>,
+    options: &ReplayOptions,
+    first_truth: Option<Pose2>,
+    config: &Config,
+) -> Result<Option<Localizer>> {
+    let path = match (options.map.clone(), session.get("map").map(PathBuf::from)) {
+        (Some(given), _) => given,
+        (None, Some(recorded)) => {
+            recorded_reference(&recorded)?;
+            recorded
+        }
+        (None, None) => return Ok(None),
+    };
+    let recorded_initial = session
+        .get("initial_pose")
+        .and_then(|s| s.parse::<InitialPose>().ok());
+    let initial = (options.initial_pose.or(recorded_initial))
+        .or(first_truth.map(InitialPose::At))
+        .unwrap_or(InitialPose::Unknown);
+    crate::session::continuing(&path, initial, config).map(Some)
 }
 
 /// A map a recording names is read only as the relative path the recorder wrote, inside

@@ -57,6 +57,9 @@ pub struct Report {
     /// A re-run of a recording (`navdeck replay --headless`): how it compares.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub replay: Option<crate::replay::Comparison>,
+    /// The estimator and, with lidar SLAM, its pose graph's figures.
+    #[serde(flatten)]
+    pub estimator: super::slam_figures::EstimatorFigures,
 }
 
 /// Presses `keys` through the active keymap at `rate` keys per simulated second, waits
@@ -181,6 +184,7 @@ pub fn report(app: &App, keys: usize) -> Report {
         realtime_factor: None,
         recording: None,
         replay: None,
+        estimator: super::slam_figures::EstimatorFigures::of(app.pilot()),
     }
 }
 

@@ -1,6 +1,7 @@
 //! `navdeck mission`: the whole exploration-and-delivery mission on simulated time, once
 //! or over many seeds, reported for people or as JSON.
 
+use super::slam_figures::{EstimatorFigures, SweepEstimatorFigures};
 use crate::config::Config;
 use crate::data::Level;
 use crate::link::RobotLink;
@@ -9,6 +10,7 @@ use crate::pilot::mode::Mode;
 use crate::pilot::{Intent, LogLine, Pilot};
 use crate::runners::score::TruthScore;
 use serde::Serialize;
+use std::path::Path;
 
 /// A delivered block lies within this of its gate's centre in the twin, metres.
 const AT_GATE: f64 = 0.3;
@@ -55,6 +57,9 @@ pub struct MissionReport {
     /// Every line the session logged, "time level text" (`navdeck mission --log`).
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub log: Vec<String>,
+    /// The estimator and, with lidar SLAM, its pose graph's figures.
+    #[serde(flatten)]
+    pub estimator: EstimatorFigures,
 }
 
 impl MissionReport {
@@ -75,10 +80,26 @@ pub fn run(
     time_limit: f64,
     keep_log: bool,
 ) -> MissionReport {
+    run_saving(config, link, localizer, seed, time_limit, keep_log, None).0
+}
+
+/// `run`, then with `save_map` the final planning map saved there as a Nav2 map (and,
+/// when lidar SLAM ran, its pose graph beside it): the log line naming the files, or why
+/// nothing was written.
+pub fn run_saving(
+    config: &Config,
+    link: Box<dyn RobotLink>,
+    localizer: Option<&crate::pilot::localize::Localizer>,
+    seed: u64,
+    time_limit: f64,
+    keep_log: bool,
+    save_map: Option<&Path>,
+) -> (MissionReport, Option<Result<String, String>>) {
     let mut robot = Runtime::new(link, config.pilot_settings(), 0.0);
     let mut log = Vec::new();
-    if let Some(Err(why)) = localizer.map(|l| l.apply(robot.pilot_mut())) {
-        let (time, level, text) = (0.0, Level::Error, format!("MCL not started: {why}"));
+    if let Some((Err(why), l)) = localizer.map(|l| (l.apply(robot.pilot_mut()), l)) {
+        let text = format!("{} not started: {why}", l.label());
+        let (time, level) = (0.0, Level::Error);
         log.push(LogLine { time, level, text });
     }
     take_log(&mut log, robot.intend(Intent::Mode(Mode::Exploration)));
@@ -90,13 +111,28 @@ pub fn run(
         t += period;
         take_log(&mut log, robot.tick(t, Vec::new()));
     }
+    let saved = save_map.map(|path| {
+        let created = format!("navdeck mission seed {seed}, session time {t:.1} s");
+        let block_size = config.mission.block_size;
+        let saved = crate::app::save_map_files(path, robot.pilot(), block_size, created);
+        let (level, text) = match &saved {
+            Ok(line) => (Level::Success, line.clone()),
+            Err(why) => (Level::Error, format!("map not saved: {why}")),
+        };
+        log.push(LogLine {
+            time: t,
+            level,
+            text,
+        });
+        saved
+    });
     let mut report = report(robot.pilot(), robot.link(), &log, config, seed, t);
     if keep_log {
         report.log = (log.iter())
             .map(|e| format!("{:7.1} s {} {}", e.time, e.level.tag(), e.text))
             .collect();
     }
-    report
+    (report, saved)
 }
 
 /// The log lines of what a runner's step brought.
@@ -189,6 +225,7 @@ fn report(
         wall_time_s: None,
         realtime_factor: None,
         log: Vec::new(),
+        estimator: EstimatorFigures::of(pilot),
     }
 }
 
@@ -212,6 +249,9 @@ pub struct SweepSummary {
     pub wall_recall: Option<Spread>,
     pub wall_precision: Option<Spread>,
     pub runs_detail: Vec<MissionReport>,
+    /// The runs' estimator and their loop closures added up.
+    #[serde(flatten)]
+    pub estimator: SweepEstimatorFigures,
 }
 
 /// The mean, least and greatest of one figure over a sweep's runs.
@@ -272,6 +312,7 @@ pub fn summarise(mut reports: Vec<MissionReport>) -> SweepSummary {
         position_max_error: Spread::of(reports.iter().filter_map(|r| r.score.position_max_error)),
         wall_recall: Spread::of(maps().map(|m| m.wall_recall)),
         wall_precision: Spread::of(maps().map(|m| m.wall_precision)),
+        estimator: SweepEstimatorFigures::of(reports.iter().map(|r| &r.estimator)),
         runs_detail: reports,
     }
 }

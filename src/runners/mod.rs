@@ -7,4 +7,5 @@ pub mod map_report;
 pub mod mission;
 pub mod plan_report;
 pub mod score;
+pub mod slam_figures;
 pub mod tour;

@@ -72,5 +72,42 @@ pub fn cases() -> Vec<Case> {
         )
         .file("m.yaml", map_yaml("m.pgm", "1e308", ""))
         .file("m.pgm", pgm.clone()),
+        // Continuing lidar SLAM's map: the pose graph beside it, missing or bad.
+        continued("m.posegraph.json", None),
+        continued("nodes[0].pose x", Some(graph("[1e308, 0, 0]", "[]"))),
+        continued(
+            "nodes",
+            Some(r#"{"format":"navdeck pose graph","version":1,"edges":[]}"#.into()),
+        ),
+        continued("edges[0]", Some(graph("[0, 0, 0]", EDGE_TO_NOWHERE))),
+        continued(
+            "format",
+            Some(graph("[0, 0, 0]", "[]").replace("navdeck pose graph", "cartographer")),
+        ),
     ]
+}
+
+/// An edge from the one node to a node the graph does not have.
+const EDGE_TO_NOWHERE: &str =
+    r#"[{"from":0,"to":5,"kind":"sequential","relative":[0,0,0],"information":[1,0,0,1,0,1]}]"#;
+
+/// A one-node pose graph file with the node's `pose` and `edges`.
+fn graph(pose: &str, edges: &str) -> String {
+    format!(
+        r#"{{"format":"navdeck pose graph","version":1,"nodes":[{{"pose":{pose},"angle_min":0,"angle_increment":0.1,"range_min":0.1,"range_max":3.5,"ranges":[1.0,null]}}],"edges":{edges}}}"#
+    )
+}
+
+/// `navdeck mission --estimator slam --map m.yaml` with `graph` as m.posegraph.json
+/// (none: missing); the refusal names `names`.
+fn continued(names: &str, graph: Option<String>) -> Case {
+    let args = ["mission", "--estimator", "slam", "--map", "m.yaml"];
+    let pgm: Vec<u8> = b"P5 4 4 255\n".iter().copied().chain([254u8; 16]).collect();
+    let c = case("map", &args, names)
+        .file("m.yaml", map_yaml("m.pgm", "0.05", ""))
+        .file("m.pgm", pgm);
+    match graph {
+        Some(g) => c.file("m.posegraph.json", g),
+        None => c,
+    }
 }

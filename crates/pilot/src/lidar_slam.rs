@@ -10,7 +10,8 @@ use navdeck_core::data::{GripperState, LaserScan, Level};
 use navdeck_core::geometry::{Pose2, wrap_angle};
 use navdeck_core::map::belief::BeliefMap;
 use navdeck_core::map::contact::JAWS;
-use navdeck_core::slam::lidar::{Closure, LidarSlam, LidarSlamConfig};
+use navdeck_core::map::grid::OccupancyGrid;
+use navdeck_core::slam::lidar::{Closure, LidarSlam, LidarSlamConfig, SavedGraph};
 
 /// A loop closure is false when the relative pose it measured differs from the truth's
 /// by more than this: metres and degrees (twice the 0.05 m loop gate, and 5°).
@@ -84,6 +85,43 @@ impl Pilot {
         self.lidar_slam()
             .and_then(|s| s.slam.occupancy_grid())
             .unwrap_or_else(|| self.belief.occupancy_grid())
+    }
+
+    /// Continues mapping on a saved pose graph (slam_toolbox's "continue mapping") from
+    /// `start`: the SLAM estimator is replaced by one holding the saved keyframes, the
+    /// planning map is made to cover `grid` (the Nav2 map saved with the graph) and is
+    /// drawn from the keyframes; the first scan joins the saved graph by matching.
+    /// Refused, with the reason, when lidar SLAM does not run or the graph is bad.
+    pub fn continue_mapping(
+        &mut self,
+        saved: SavedGraph,
+        grid: &OccupancyGrid,
+        start: Pose2,
+        source: &str,
+    ) -> Result<(), String> {
+        let ScanEstimator::Slam(sp) = &mut self.scan_estimator else {
+            return Err("continuing a saved map needs lidar SLAM (--estimator slam)".into());
+        };
+        let odom = self.odometry.pose();
+        let slam = LidarSlam::resume(&self.settings.lidar_slam, saved, start, odom)
+            .map_err(|why| format!("pose graph {source}: {why}"))?;
+        let (keyframes, loops) = (slam.loaded(), slam.loops());
+        **sp = SlamPilot {
+            slam,
+            truth: vec![None; keyframes],
+            holding: vec![false; keyframes],
+            false_closures: 0,
+            closures: Vec::new(),
+        };
+        let cov = sp.slam.covariance();
+        self.ekf.relocate(start, &cov);
+        self.cover(grid);
+        self.redraw_from_keyframes();
+        self.log(
+            Level::Info,
+            format!("lidar SLAM continues {source}: {keyframes} keyframes, {loops} loops"),
+        );
+        Ok(())
     }
 
     /// Folds a scan into lidar SLAM.

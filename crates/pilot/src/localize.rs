@@ -9,6 +9,7 @@ use navdeck_core::data::{LaserScan, Level};
 use navdeck_core::geometry::Pose2;
 use navdeck_core::map::config::MapConfig;
 use navdeck_core::map::grid::OccupancyGrid;
+use navdeck_core::slam::lidar::SavedGraph;
 use navdeck_core::slam::mcl::config::Estimator;
 use navdeck_core::slam::mcl::known_map::DEFAULT_REACH;
 use navdeck_core::slam::mcl::{KnownMap, Mcl};
@@ -89,7 +90,7 @@ impl Pilot {
 
     /// Makes the planning map cover `grid` (it is centred on the origin, as every map
     /// navdeck builds); an empty planning map is simply made larger.
-    fn cover(&mut self, grid: &OccupancyGrid) {
+    pub(super) fn cover(&mut self, grid: &OccupancyGrid) {
         let need = planning_extent(grid);
         let c = self.belief.costmap();
         let have = (
@@ -199,6 +200,16 @@ impl Pilot {
     /// Places the estimate at `pose` (RViz's "2D Pose Estimate", `:pose`): MCL's particles
     /// spread round it, or the EKF moved there.
     pub(super) fn set_pose(&mut self, pose: Pose2) {
+        if matches!(self.scan_estimator, ScanEstimator::Slam(_)) {
+            // slam_toolbox's mapping mode takes no initial pose either: the map is built
+            // in the frame the robot started in, and moving the robot would tear it.
+            self.log(
+                Level::Error,
+                "pose not set: lidar SLAM is mapping, and a map being built takes no initial pose \
+                 (to place the robot on a saved map, localise on it: --estimator mcl --map FILE.yaml)",
+            );
+            return;
+        }
         let c = &self.settings.localization;
         let (sd, sa) = (c.initial_std, c.initial_std_deg.to_radians());
         // The check `--initial-pose` makes: on MCL's free space, or with the EKF at least
@@ -299,8 +310,9 @@ fn short(v: f64) -> String {
     }
 }
 
-/// A session's choice to localise with MCL: the map, where to start and the seed, checked
-/// before the console starts and applied to each pilot the session makes.
+/// A session's choice of a map to start on: MCL localises on it, or lidar SLAM continues
+/// the pose graph saved with it; the map, where to start and the seed, checked before the
+/// console starts and applied to each pilot the session makes.
 #[derive(Clone, Debug)]
 pub struct Localizer {
     pub grid: OccupancyGrid,
@@ -308,6 +320,9 @@ pub struct Localizer {
     pub seed: u64,
     /// The map's file, for the log.
     pub source: String,
+    /// The pose graph lidar SLAM continues (`NAME.posegraph.json`) and its file; None
+    /// for MCL.
+    pub continued: Option<(Arc<SavedGraph>, String)>,
 }
 
 impl Localizer {
@@ -332,11 +347,54 @@ impl Localizer {
             initial,
             seed,
             source,
+            continued: None,
         })
     }
 
-    /// Starts MCL in `pilot`.
+    /// Lidar SLAM continuing `saved` (read from the file `graph_source`), saved with the
+    /// Nav2 map `grid` (from `source`), from `initial` (the origin when unknown: a
+    /// continued map has no free space to search). Checks that a planning map covering
+    /// the map fits `map_config`'s cell limit.
+    pub fn continuing(
+        grid: OccupancyGrid,
+        initial: InitialPose,
+        source: String,
+        saved: (SavedGraph, String),
+        map_config: &MapConfig,
+    ) -> Result<Self, String> {
+        map_config
+            .check_extent(planning_extent(&grid))
+            .map_err(|why| format!("map {source}: a planning map covering it, {why}"))?;
+        if let InitialPose::At(p) = initial {
+            check_finite(p).map_err(|e| format!("--initial-pose: {e}"))?;
+        }
+        Ok(Self {
+            grid,
+            initial,
+            seed: 0,
+            source,
+            continued: Some((Arc::new(saved.0), saved.1)),
+        })
+    }
+
+    /// What it starts, for the log: "MCL" or "lidar SLAM".
+    pub fn label(&self) -> &'static str {
+        match self.continued {
+            Some(_) => "lidar SLAM",
+            None => "MCL",
+        }
+    }
+
+    /// Starts MCL, or lidar SLAM continuing its saved graph, in `pilot`.
     pub fn apply(&self, pilot: &mut Pilot) -> Result<(), String> {
+        if let Some((saved, graph_source)) = &self.continued {
+            let start = match self.initial {
+                InitialPose::At(p) => p,
+                InitialPose::Unknown => Pose2::default(),
+            };
+            let saved = SavedGraph::clone(saved);
+            return pilot.continue_mapping(saved, &self.grid, start, graph_source);
+        }
         pilot.use_mcl(&self.grid, self.initial, self.seed)?;
         let from = match self.initial {
             InitialPose::At(p) => format!("from ({:.2}, {:.2}) {:.0}°", p.x, p.y, degrees(p.theta)),

@@ -406,10 +406,29 @@ pub fn save(path: &Path, map: &MapFile) -> Result<(), MapFileError> {
     save_with(path, map, &mut crate::data::replace::write_synced)
 }
 
+/// `save` with more files written beside the map in the same all-or-nothing set (the
+/// pose graph lidar SLAM continues from, `NAME.posegraph.json`).
+pub fn save_beside(
+    path: &Path,
+    map: &MapFile,
+    beside: Vec<(PathBuf, Vec<u8>)>,
+) -> Result<(), MapFileError> {
+    save_set(path, map, beside, &mut crate::data::replace::write_synced)
+}
+
 /// `save` with the byte writer passed in, so a test can fail a write half-way.
 pub fn save_with(
     path: &Path,
     map: &MapFile,
+    write: &mut dyn FnMut(&Path, &[u8]) -> std::io::Result<()>,
+) -> Result<(), MapFileError> {
+    save_set(path, map, Vec::new(), write)
+}
+
+fn save_set(
+    path: &Path,
+    map: &MapFile,
+    beside: Vec<(PathBuf, Vec<u8>)>,
     write: &mut dyn FnMut(&Path, &[u8]) -> std::io::Result<()>,
 ) -> Result<(), MapFileError> {
     let image_name = path.with_extension("pgm");
@@ -439,11 +458,12 @@ pub fn save_with(
         path: path.to_path_buf(),
         message: e.to_string(),
     })?;
-    let files = [
+    let mut files = vec![
         (image_name, pgm::encode(g.width, g.height, &pixels)),
         (path.to_path_buf(), text.into_bytes()),
     ];
-    // Both under temporary names first: a failure leaves the old pair untouched.
+    files.extend(beside);
+    // All under temporary names first: a failure leaves the old pair untouched.
     crate::data::replace::replace_files(&files, write)
         .map_err(|(path, error)| MapFileError::Write { path, error })
 }

@@ -275,8 +275,10 @@ mod tests {
     #[test]
     fn nodes_near_along_edges_follow_the_edges_not_the_distance() {
         // A chain 0-1-2-3 along x, 1 m apart, and 4 beside 0 but joined only to 3.
-        let mut g = PoseGraph::default();
-        g.poses = (0..4).map(|k| Pose2::new(k as f64, 0.0, 0.0)).collect();
+        let mut g = PoseGraph {
+            poses: (0..4).map(|k| Pose2::new(k as f64, 0.0, 0.0)).collect(),
+            edges: Vec::new(),
+        };
         g.poses.push(Pose2::new(0.0, 0.5, 0.0));
         for k in 0..3 {
             g.edges.push(edge(
@@ -297,12 +299,14 @@ mod tests {
 
     #[test]
     fn an_unconnected_node_is_no_solve() {
-        let mut g = PoseGraph::default();
-        g.poses = vec![
-            Pose2::default(),
-            Pose2::new(1.0, 0.0, 0.0),
-            Pose2::default(),
-        ];
+        let mut g = PoseGraph {
+            poses: vec![
+                Pose2::default(),
+                Pose2::new(1.0, 0.0, 0.0),
+                Pose2::default(),
+            ],
+            edges: Vec::new(),
+        };
         g.edges
             .push(edge(0, 1, Pose2::new(1.0, 0.0, 0.0), EdgeKind::Sequential));
         assert_eq!(g.optimize(), None);

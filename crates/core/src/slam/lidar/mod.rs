@@ -248,19 +248,17 @@ impl LidarSlam {
         // was taken: a match made while the robot moved carries that lag, so the first
         // scan after it stops is matched too.
         let settled = self.matched_moving && !moved(step, STILL);
-        if self.keyframe_due(self.graph.poses[kf].between(predicted))
+        let due = self.keyframe_due(self.graph.poses[kf].between(predicted))
             || moved(since_match, MATCH_STEP)
-            || settled
-        {
-            if let Some(m) = self.match_local(&points, predicted, since_match) {
-                pose = fuse(predicted, &rotate(&self.drift, predicted.theta), &m);
-                self.correction = pose.compose(odom.inverse());
-                self.drift = Matrix3::zeros();
-                self.matched_odom = odom;
-                self.matched_moving = moved(step, STILL);
-                update.matched = true;
-                matched_cov = Some(m.covariance);
-            }
+            || settled;
+        if due && let Some(m) = self.match_local(&points, predicted, since_match) {
+            pose = fuse(predicted, &rotate(&self.drift, predicted.theta), &m);
+            self.correction = pose.compose(odom.inverse());
+            self.drift = Matrix3::zeros();
+            self.matched_odom = odom;
+            self.matched_moving = moved(step, STILL);
+            update.matched = true;
+            matched_cov = Some(m.covariance);
         }
         let kf_pose = self.graph.poses[kf];
         let since = kf_pose.between(pose);
@@ -576,5 +574,5 @@ fn positive_part(m: &Matrix3<f64>) -> Matrix3<f64> {
     let sym = (m + m.transpose()) / 2.0;
     let eig = sym.symmetric_eigen();
     let values = eig.eigenvalues.map(|v| v.max(0.0));
-    &eig.eigenvectors * Matrix3::from_diagonal(&values) * eig.eigenvectors.transpose()
+    eig.eigenvectors * Matrix3::from_diagonal(&values) * eig.eigenvectors.transpose()
 }

@@ -137,7 +137,7 @@ impl SavedGraph {
         for (k, n) in self.nodes.iter().enumerate() {
             let bad = |what: &str, v: f64| Err(format!("nodes[{k}].{what}: {v} is out of range"));
             for (what, v) in [("pose x", n.pose[0]), ("pose y", n.pose[1])] {
-                if !(v.abs() <= MAX_COORDINATE) {
+                if v.is_nan() || v.abs() > MAX_COORDINATE {
                     return bad(what, v);
                 }
             }

@@ -1,6 +1,8 @@
 //! Building a session from the command line's choices: config, keymap, world, link.
 //! Everything is loaded and checked here, before the terminal is touched.
 
+mod estimator;
+
 use crate::app::App;
 use crate::config::Config;
 use crate::keymap::Keymap;
@@ -12,6 +14,8 @@ use crate::pilot::localize::{InitialPose, Localizer};
 use crate::sim::{Twin, World};
 use crate::slam::mcl::config::Estimator;
 use anyhow::{Context, Result, bail};
+use estimator::localizer_for;
+pub use estimator::{continuing, graph_beside, read_graph};
 use std::path::PathBuf;
 
 /// Why a camera option is refused by a build without OpenCV, and what to do.
@@ -99,7 +103,7 @@ pub fn is_nav2_map(path: &std::path::Path) -> bool {
 
 /// The robot a session drives: the twin stays itself until the console starts, so its
 /// sensors can still be changed (`--sim-camera`); any other robot is already a link.
-enum Robot {
+pub(crate) enum Robot {
     Twin(Box<Twin>),
     Link(Box<dyn RobotLink>),
 }
@@ -354,50 +358,6 @@ impl Session {
         }
         app
     }
-}
-
-/// MCL's map and start for `spec`, or None when the EKF places the robot. The command
-/// line's estimator overrides the config's and is written back into it.
-fn localizer_for(
-    spec: &SessionSpec,
-    config: &mut Config,
-    robot: &Robot,
-) -> Result<Option<Localizer>> {
-    let choice = &spec.localize;
-    if let Some(e) = choice.estimator {
-        config.localization.estimator = e;
-    }
-    if config.localization.estimator != Estimator::Mcl {
-        if choice.map.is_some() || choice.initial_pose.is_some() {
-            bail!("--map and --initial-pose are for MCL: add --estimator mcl");
-        }
-        return Ok(None);
-    }
-    let nav2_world = spec.world.as_ref().filter(|w| is_nav2_map(w));
-    let Some(path) = choice.map.as_ref().or(nav2_world) else {
-        bail!(
-            "the MCL estimator needs a map to localise on: --map FILE.yaml (a Nav2 map), \
-             or a Nav2 map as the twin's --world"
-        );
-    };
-    let map = crate::map::io::load(path).map_err(|e| {
-        anyhow::anyhow!("cannot use map {} for MCL: {}", path.display(), e.reason())
-    })?;
-    let initial = match (choice.initial_pose, robot) {
-        (Some(initial), _) => initial,
-        // The twin starts where its world says, as the EKF does; a real robot is looked for.
-        (None, Robot::Twin(twin)) => InitialPose::At(twin.pose()),
-        (None, Robot::Link(_)) => InitialPose::Unknown,
-    };
-    let localizer = Localizer::new(
-        map.grid,
-        initial,
-        spec.seed,
-        path.display().to_string(),
-        &config.map,
-    )
-    .map_err(anyhow::Error::msg)?;
-    Ok(Some(localizer))
 }
 
 /// How near a block can come before it leaves the view of `detector`'s camera (its

@@ -81,6 +81,7 @@ mod hangup;
 mod hostile;
 mod key_bytes;
 mod keymaps;
+mod lidar_loop;
 mod lidar_slam;
 mod map_belief;
 mod map_io;

@@ -29,6 +29,8 @@ pub struct SlamPilot {
     false_closures: usize,
     /// The loops closed this session, newest last.
     pub closures: Vec<Closure>,
+    /// Whether the newest scan became a keyframe.
+    pub keyframed: bool,
 }
 
 /// The log line of a closed loop, which the console also flashes.
@@ -48,6 +50,7 @@ impl SlamPilot {
             holding: Vec::new(),
             false_closures: 0,
             closures: Vec::new(),
+            keyframed: false,
         }
     }
 
@@ -112,6 +115,7 @@ impl Pilot {
             holding: vec![false; keyframes],
             false_closures: 0,
             closures: Vec::new(),
+            keyframed: false,
         };
         let cov = sp.slam.covariance();
         self.ekf.relocate(start, &cov);
@@ -133,7 +137,8 @@ impl Pilot {
             return;
         };
         let update = sp.slam.update(odom, scan);
-        if update.keyframe.is_some() {
+        sp.keyframed = update.keyframe.is_some();
+        if sp.keyframed {
             sp.truth.push(truth);
             sp.holding.push(holding);
         }

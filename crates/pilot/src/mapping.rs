@@ -56,7 +56,13 @@ impl Pilot {
         if let Some((last, at)) = self.upkeep.last_scan_pose {
             let moved = last.position().distance(pose.position());
             let turned = navdeck_core::geometry::wrap_angle(pose.theta - last.theta).abs();
-            if moved < SCAN_MOVE && turned < SCAN_TURN && t - at < SCAN_EVERY {
+            // Lidar SLAM keeps its own keyframes for the map: the planning map takes those
+            // (slam_toolbox's minimum travel), and still a view every while.
+            let (step, turn) = match self.lidar_slam() {
+                Some(sp) if !sp.keyframed => (f64::INFINITY, f64::INFINITY),
+                _ => (SCAN_MOVE, SCAN_TURN),
+            };
+            if moved < step && turned < turn && t - at < SCAN_EVERY {
                 return;
             }
         }

@@ -41,7 +41,16 @@ fn scan_match(c: &mut Criterion) {
     let first = twin.pose();
     let look = scan_at(&mut twin, first);
     let (k, _) = (look.ranges.iter().enumerate())
-        .map(|(k, r)| (k, if r.is_finite() { *r } else { look.range_max as f32 }))
+        .map(|(k, r)| {
+            (
+                k,
+                if r.is_finite() {
+                    *r
+                } else {
+                    look.range_max as f32
+                },
+            )
+        })
         .max_by(|a, b| a.1.total_cmp(&b.1))
         .unwrap();
     let heading = first.theta + look.angle_min + k as f64 * look.angle_increment;

@@ -151,8 +151,8 @@ fn navdeck_drives_a_cyclone_dds_turtlebot_and_reads_its_odometry() {
 /// gets /map with its walls occupied where they are (through the map -> odom transform it
 /// also gets on /tf, which stays near identity over the peer's exact odometry). The drive
 /// is straight: a scan is paired with the odometry of the poll that takes it, not of its
-/// stamp, so turning at teleop's 1.5 rad/s slips the map's heading (0.19 rad after a
-/// quarter turn against this peer's 5 Hz scans).
+/// stamp, so turning at teleop's 1.5 rad/s slips the map's heading (2.7° after a quarter
+/// turn against this peer's 5 Hz scans, though the first scan after the turn is matched).
 #[test]
 fn lidar_slam_maps_a_cyclone_turtlebots_room_from_its_scan_and_odometry() {
     let keys = "wwwwwwwwwwwwwwwwwwwwwwwwww";
@@ -169,7 +169,8 @@ fn lidar_slam_maps_a_cyclone_turtlebots_room_from_its_scan_and_odometry() {
         "map -> odom strays from the exact odometry: {last:?}"
     );
     let check = &record["map_check"];
-    assert!(f(&check["occupied"]) > 200.0, "walls mapped: {check}");
+    // The lidar's map at 5 cm cells, as slam_toolbox publishes it.
+    assert!(f(&check["occupied"]) > 100.0, "walls mapped: {check}");
     assert!(
         f(&check["near_walls"]) > 0.9,
         "occupied cells lie on the room's walls (within 5 cm): {check}"

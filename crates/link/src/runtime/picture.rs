@@ -61,9 +61,10 @@ impl Runtime {
                     .unwrap_or_default()
             }),
             // The map goes out only when it changed: its topic is transient local, so a
-            // display that joins later still gets the last one.
+            // display that joins later still gets the last one. With lidar SLAM it is the
+            // lidar's map, as slam_toolbox publishes.
             map: (full && self.shown.map != Some(belief.revision()))
-                .then(|| belief.occupancy_grid()),
+                .then(|| self.pilot.map_to_save()),
             state: state_changed.then(|| state.to_json()),
         };
         if state_changed {

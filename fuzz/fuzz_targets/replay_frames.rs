@@ -233,9 +233,9 @@ fuzz_target!(|data: &[u8]| {
     ];
     assert!(finite(&figures), "{figures:?}");
     let optional = [
-        report.position_rmse,
-        report.heading_rmse_deg,
-        report.mean_nees,
+        report.score.position_rmse,
+        report.score.heading_rmse_deg,
+        report.score.mean_nees,
         report.path_length,
         report.cross_track_rms,
     ];

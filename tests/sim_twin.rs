@@ -412,3 +412,31 @@ fn the_warehouse_world_drives_and_shows_markers() {
     assert!(seen.iter().any(|id| (301..=304).contains(id)), "{seen:?}");
     assert!(seen.iter().any(|id| *id <= 56), "{seen:?}");
 }
+
+/// A door jamb seen end-on, from the doorway it bounds, still shows on the lidar: world
+/// walls are lines, and a real wall's end has a face. The boundary's corners do not grow.
+#[test]
+fn lidar_sees_a_door_jamb_end_on() {
+    // A wall from (0, 0.5) up to the north boundary; the robot stands on its line, south.
+    let jamb = "[[walls]]\npoints = [[0.0, 0.5], [0.0, 2.0]]\n";
+    let mut t = twin_in(world([0.0, -0.5, 0.0], jamb), &quiet(), 1);
+    t.step(0.2);
+    let scan = t.take_frame().scan.unwrap();
+    let beam =
+        |deg: f64| ((deg.to_radians() - scan.angle_min) / scan.angle_increment).round() as usize;
+    assert!(
+        (scan.ranges[beam(90.0)] - 1.0).abs() < 1e-6,
+        "the jamb's end 1 m north, read {}",
+        scan.ranges[beam(90.0)]
+    );
+    let faces = World::from_toml(
+        &std::fs::read_to_string("maps/arena.toml").unwrap(),
+        Path::new("maps/arena.toml"),
+    )
+    .unwrap()
+    .wall_end_faces(0.025);
+    assert!(
+        faces.is_empty(),
+        "closed walls have no free ends: {faces:?}"
+    );
+}

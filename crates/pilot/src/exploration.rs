@@ -126,7 +126,7 @@ impl Pilot {
             }
             Motion::Drive(twist) => {
                 self.follower.clear_trajectory();
-                twist
+                self.guarded_drive(twist)
             }
             Motion::PlanTo { goal, label } => {
                 self.nav.last_step = None;

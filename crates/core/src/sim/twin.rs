@@ -48,7 +48,13 @@ pub struct Twin {
     /// away from it (or stand still) without touching it.
     released: Option<usize>,
     contacts: Contacts,
+    /// The faces the lidar sees at the walls' free ends (`World::wall_end_faces`).
+    wall_ends: Vec<Segment>,
 }
+
+/// Half the thickness of the twin's walls as the lidar sees their ends, metres: a 5 cm
+/// partition (navdeck's figure; world walls are drawn as lines).
+const WALL_HALF_THICKNESS: f64 = 0.025;
 
 /// Twin time, counted in whole physics steps.
 #[derive(Clone, Debug)]
@@ -91,6 +97,7 @@ impl Twin {
         } else {
             PhysicsConfig::default().step
         };
+        let wall_ends = world.wall_end_faces(WALL_HALF_THICKNESS);
         Twin {
             pose: world.start,
             blocks: world.blocks.iter().map(BlockState::from_block).collect(),
@@ -122,6 +129,7 @@ impl Twin {
             },
             arm: None,
             released: None,
+            wall_ends,
         }
     }
 
@@ -364,7 +372,7 @@ impl Twin {
 
     fn capture_scan(&mut self) {
         self.refresh_blocks();
-        let solids: [&[Segment]; 2] = [&self.world.walls, &self.free_blocks.edges];
+        let solids: [&[Segment]; 3] = [&self.world.walls, &self.wall_ends, &self.free_blocks.edges];
         self.sensors.capture_scan(self.pose, &solids, &mut self.rng);
     }
 }

@@ -166,6 +166,35 @@ impl World {
             .map(|d| format!("is {d:.3} m from a wall, under {radius} m"))
     }
 
+    /// The faces a lidar sees at the free ends of walls (a door jamb, a wall's end in a
+    /// room): world walls are lines, real ones have a thickness, and a line seen end-on
+    /// is invisible to a beam. Each free end gets a face across the wall, `half_thickness`
+    /// either side of it. Corners joined to another wall have none.
+    pub fn wall_end_faces(&self, half_thickness: f64) -> Vec<Segment> {
+        let ends = self.walls.iter().flat_map(|w| [(w.a, w.b), (w.b, w.a)]);
+        let shared = |p: Point2| {
+            self.walls
+                .iter()
+                .filter(|w| w.a.distance(p) < 1e-6 || w.b.distance(p) < 1e-6)
+                .count()
+                > 1
+        };
+        ends.filter(|&(end, _)| !shared(end))
+            .filter_map(|(end, other)| {
+                let length = end.distance(other);
+                (length > 1e-9).then(|| {
+                    // The unit normal of the wall, scaled to the half thickness.
+                    let k = half_thickness / length;
+                    let (nx, ny) = (-(other.y - end.y) * k, (other.x - end.x) * k);
+                    Segment {
+                        a: Point2::new(end.x + nx, end.y + ny),
+                        b: Point2::new(end.x - nx, end.y - ny),
+                    }
+                })
+            })
+            .collect()
+    }
+
     /// True when `p` lies within the world's bounds.
     pub fn contains(&self, p: Point2) -> bool {
         p.x.abs() <= self.width / 2.0 && p.y.abs() <= self.height / 2.0

@@ -202,9 +202,16 @@ impl EkfSlam {
         self.sigma.fixed_view_mut::<3, 3>(0, 0).copy_from(&new_rr);
         let n = self.sigma.ncols();
         if n > 3 {
-            // Sigma_lr <- Sigma_lr G^T (the stored mirror of Sigma_rl <- G Sigma_rl).
-            let lr = self.sigma.view((3, 0), (n - 3, 3)) * g.transpose();
-            self.sigma.view_mut((3, 0), (n - 3, 3)).copy_from(&lr);
+            // Sigma_lr <- Sigma_lr G^T (the stored mirror of Sigma_rl <- G Sigma_rl), row
+            // by row in place: the robot's three columns are contiguous below row 3.
+            let (c0, rest) = self.sigma.as_mut_slice().split_at_mut(n);
+            let (c1, rest) = rest.split_at_mut(n);
+            let c2 = &mut rest[..n];
+            for ((a, b), c) in c0[3..].iter_mut().zip(&mut c1[3..]).zip(&mut c2[3..]) {
+                let row = Vector3::new(*a, *b, *c);
+                let new_row = g * row;
+                (*a, *b, *c) = (new_row[0], new_row[1], new_row[2]);
+            }
         }
         self.hold_pose_floor();
     }

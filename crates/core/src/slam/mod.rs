@@ -3,9 +3,9 @@
 //! and a pose graph) for places without markers.
 
 pub mod config;
+mod downdate;
 pub mod ekf;
 pub mod ellipse;
-mod joseph;
 pub mod lidar;
 pub mod mcl;
 pub mod motion;

@@ -4,19 +4,18 @@
 use super::Pilot;
 use super::mode::Mode;
 use navdeck_core::control::follower::FollowStatus;
-use navdeck_core::data::GripperState;
 use navdeck_core::data::Level;
 use navdeck_core::geometry::{Point2, Pose2, Rms, Twist};
-use navdeck_core::map::contact::{JAWS, contact_ahead};
 use navdeck_core::map::costmap::is_lethal;
 use navdeck_core::map::reach::{approach_point, escape_map};
 use navdeck_core::perception::markers::MarkerCategory;
 use navdeck_core::plan::pipeline::Plan;
 
+mod guard;
 mod views;
 
 /// Seed 001 "Path Recalculation": at most one replan per this many seconds.
-const REPLAN_EVERY: f64 = 0.5;
+pub(super) const REPLAN_EVERY: f64 = 0.5;
 /// Seed 001: replan when a new obstacle appears within 1 m of the path, a block within 0.5 m.
 const NEW_OBSTACLE_NEAR: f64 = 1.0;
 const NEW_BLOCK_NEAR: f64 = 0.5;
@@ -95,8 +94,10 @@ pub(super) struct Navigation {
     pub landmarks_checked: std::collections::BTreeSet<u32>,
     /// The last follower command and when it was computed.
     pub last_step: Option<(f64, Twist)>,
-    /// The contact guard stopped the robot at the last step.
+    /// The contact guard stopped the robot at the last step: following a path, and in a
+    /// motion the mission drives itself.
     pub in_contact: bool,
+    pub drive_in_contact: bool,
     /// Cross-track error of the twin's true pose, and of the estimated pose (the
     /// follower's own), over every path since following started.
     pub true_cross_track: Rms,
@@ -353,40 +354,6 @@ impl Pilot {
         }
     }
 
-    /// The follower's command, with its forward speed cut to zero if keeping it up until
-    /// the robot could brake would put the footprint onto something the lidar mapped;
-    /// the path is then planned again from where the robot stands.
-    fn guarded(&mut self, t: f64, twist: Twist) -> Twist {
-        let robot = &self.settings.robot;
-        let margin = self.settings.follow.stop_margin;
-        if margin == 0.0 {
-            return twist;
-        }
-        let horizon = robot.control_period + twist.linear.abs() / robot.max_linear_accel;
-        let held = (self.hand.state == Some(GripperState::Holding)).then_some(JAWS);
-        let contact = contact_ahead(
-            self.belief.costmap(),
-            self.belief.sensed_occupied(),
-            self.pose(),
-            twist,
-            robot.footprint_radius + margin,
-            horizon,
-            held,
-        );
-        let Some(q) = contact else {
-            self.nav.in_contact = false;
-            return twist;
-        };
-        if !self.nav.in_contact {
-            self.nav.in_contact = true;
-            let reason = format!("obstacle ahead at ({:.2}, {:.2}), stopped", q.x, q.y);
-            self.replan(t, reason);
-        } else if t - self.nav.last_replan >= REPLAN_EVERY {
-            self.replan(t, "obstacle still ahead".to_string());
-        }
-        Twist::new(0.0, twist.angular)
-    }
-
     /// Seed 001 section 7 "Path Recalculation": replan when the map shows the path ahead
     /// blocked, or a new obstacle appears within 1 m of it, or a new block within 0.5 m.
     fn replan_if_blocked(&mut self, t: f64) {
@@ -433,7 +400,7 @@ impl Pilot {
     }
 
     /// Plans the route again from where the robot is, saying why first.
-    fn replan(&mut self, t: f64, reason: String) {
+    pub(super) fn replan(&mut self, t: f64, reason: String) {
         let Some(route) = &self.nav.route else { return };
         let target = route.target;
         self.nav.last_replan = t;

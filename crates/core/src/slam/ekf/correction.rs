@@ -4,7 +4,7 @@
 use super::{EkfSlam, Outcome};
 use crate::data::MarkerSighting;
 use crate::geometry::{Point2, wrap_angle};
-use crate::slam::joseph::joseph_update;
+use crate::slam::downdate::{into_downdate_factor, symmetric_downdate};
 use nalgebra::{DMatrix, Matrix2, Matrix2x3, Vector2};
 
 impl EkfSlam {
@@ -33,9 +33,54 @@ impl EkfSlam {
         // Seed 001's H, split into the robot's 2x3 and the landmark's 2x2 blocks.
         let h_r = Matrix2x3::new(-dx / range, -dy / range, 0.0, dy / q, -dx / q, -1.0);
         let h_l = Matrix2::new(dx / range, dy / range, -dy / q, dx / q);
-        let n = self.sigma.ncols();
         // P H^T, N x 2, from the five columns the sighting involves: O(n).
-        let mut pht = DMatrix::<f64>::zeros(n, 2);
+        let (mut u0, mut u1) = self.times_h_transpose(&h_r, &h_l, l);
+        // S = H P H^T + R, 2x2, from U's rows at the involved states.
+        let mut hph = Matrix2::zeros();
+        for j in 0..3 {
+            hph += h_r.column(j) * Vector2::new(u0[j], u1[j]).transpose();
+        }
+        for j in 0..2 {
+            hph += h_l.column(j) * Vector2::new(u0[l + j], u1[l + j]).transpose();
+        }
+        let s_mat = (hph + hph.transpose()) * 0.5 + self.r;
+        let Some(chol) = s_mat.cholesky() else {
+            return Outcome::Invalid;
+        };
+        // Innovation, bearing wrapped to (-pi, pi].
+        let nu = Vector2::new(s.range - expected[0], wrap_angle(s.bearing - expected[1]));
+        let whitened = chol.solve(&nu);
+        let d2 = nu.dot(&whitened);
+        if d2 > self.gate {
+            self.rejected += 1;
+            return Outcome::Rejected(d2);
+        }
+        // mu += K nu with K = U S^-1.
+        for (m, (a, b)) in self.mu.iter_mut().zip(u0.iter().zip(&u1)) {
+            *m += a * whitened[0] + b * whitened[1];
+        }
+        self.mu[2] = wrap_angle(self.mu[2]);
+        // P <- P - U S^-1 U^T = P - W W^T (see `downdate`): symmetric by construction,
+        // one pass over the stored triangle.
+        into_downdate_factor(&mut u0, &mut u1, &chol.l());
+        symmetric_downdate(&mut self.sigma, &u0, &u1);
+        self.hold_pose_floor();
+        self.sightings[slot] += 1;
+        Outcome::Corrected(d2)
+    }
+
+    /// U = P H^T as two columns, for H nonzero in the robot's three states and the
+    /// landmark's two at `l`: reads the stored triangle's columns where they are
+    /// contiguous (rows at or below the column) and its rows above.
+    fn times_h_transpose(
+        &self,
+        h_r: &Matrix2x3<f64>,
+        h_l: &Matrix2<f64>,
+        l: usize,
+    ) -> (Vec<f64>, Vec<f64>) {
+        let n = self.sigma.nrows();
+        let data = self.sigma.as_slice();
+        let (mut u0, mut u1) = (vec![0.0; n], vec![0.0; n]);
         let involved = [
             (0, h_r[(0, 0)], h_r[(1, 0)]),
             (1, h_r[(0, 1)], h_r[(1, 1)]),
@@ -44,42 +89,19 @@ impl EkfSlam {
             (l + 1, h_l[(0, 1)], h_l[(1, 1)]),
         ];
         for (c, a, b) in involved {
-            for i in 0..n {
-                let v = self.sym(i, c);
-                pht[(i, 0)] += a * v;
-                pht[(i, 1)] += b * v;
+            // Rows above the diagonal: P[i, c] = P[c, i], stored in column i at row c.
+            for i in 0..c {
+                let v = data[i * n + c];
+                u0[i] += a * v;
+                u1[i] += b * v;
+            }
+            let column = &data[c * n + c..(c + 1) * n];
+            for ((x0, x1), v) in u0[c..].iter_mut().zip(&mut u1[c..]).zip(column) {
+                *x0 += a * v;
+                *x1 += b * v;
             }
         }
-        // S = H P H^T + R, 2x2.
-        let rows = |i: usize| Vector2::new(pht[(i, 0)], pht[(i, 1)]).transpose();
-        let mut hph = Matrix2::zeros();
-        for (j, i) in [0, 1, 2].into_iter().enumerate() {
-            hph += h_r.column(j) * rows(i);
-        }
-        for (j, i) in [l, l + 1].into_iter().enumerate() {
-            hph += h_l.column(j) * rows(i);
-        }
-        let s_mat = (hph + hph.transpose()) * 0.5 + self.r;
-        let Some(s_inv) = s_mat.try_inverse() else {
-            return Outcome::Invalid;
-        };
-        // Innovation, bearing wrapped to (-pi, pi].
-        let nu = Vector2::new(s.range - expected[0], wrap_angle(s.bearing - expected[1]));
-        let d2 = (nu.transpose() * s_inv * nu)[0];
-        if d2 > self.gate {
-            self.rejected += 1;
-            return Outcome::Rejected(d2);
-        }
-        let k = &pht * s_inv;
-        self.mu += &k * nu;
-        self.mu[2] = wrap_angle(self.mu[2]);
-        // Joseph form (Bar-Shalom et al. 5.2.3): (I - K H) P (I - K H)^T + K R K^T,
-        // expanded with U = P H^T to P - K U^T - U K^T + K S K^T: symmetric by
-        // construction, first-order insensitive to rounding in K, O(n^2) on the triangle.
-        joseph_update(&mut self.sigma, &k, &pht, &s_mat);
-        self.hold_pose_floor();
-        self.sightings[slot] += 1;
-        Outcome::Corrected(d2)
+        (u0, u1)
     }
 
     /// Puts a landmark into the state from its first sighting (inverse observation model).

@@ -366,3 +366,18 @@ fn after_a_pick_up_the_held_block_does_not_block_the_path_on() {
         );
     }
 }
+
+/// Flats with door jambs on the robot's way and markers only every metre: the mission ends
+/// without the robot touching a wall, a jamb, a box or a block it is not picking, and every
+/// block it counts is at its gate in the twin.
+#[test]
+fn missions_in_flats_with_door_jambs_and_sparse_markers_touch_nothing() {
+    for (world, seed) in [("flat_door_jambs", "31"), ("flat_sparse_markers", "38")] {
+        let path = format!("tests/worlds/{world}.toml");
+        let out = navdeck(&["mission", "--world", &path, "--seed", seed, "--json"]);
+        let r: Value = serde_json::from_slice(&out.stdout).unwrap();
+        assert_eq!(r["collisions"], 0, "{world}: {}", r["outcome"]);
+        assert_eq!(r["delivered"], r["true_delivered"], "{world}");
+        assert_eq!(r["outcome"], "delivered all", "{world}");
+    }
+}

@@ -100,8 +100,10 @@ pub struct BlockFusion {
     size: f64,
     /// The camera's sightings, by the pose they were taken from.
     views: Vec<View>,
-    /// The lidar's newest outline fit, with its covariance.
+    /// The lidar's newest outline fit from where the robot stands, with its covariance,
+    /// and the last fit from each place it stood before (independent looks: other beams).
     outline: Option<(SquareFit, Matrix2<f64>)>,
+    earlier: Vec<(SquareFit, Matrix2<f64>)>,
     /// The lidar's beams averaged over the scans from where the robot stands.
     beams: Option<Beams>,
 }
@@ -113,6 +115,7 @@ impl BlockFusion {
             size,
             views: Vec::new(),
             outline: None,
+            earlier: Vec::new(),
             beams: None,
         }
     }
@@ -190,6 +193,7 @@ impl BlockFusion {
         let moved = (self.beams.as_ref())
             .is_none_or(|b| !still(b.pose, pose) || b.sums.len() != scan.ranges.len());
         if moved {
+            self.earlier.extend(self.outline.take());
             self.beams = Some(Beams {
                 pose,
                 sums: vec![(0.0, 0); scan.ranges.len()],
@@ -267,7 +271,7 @@ impl BlockFusion {
         if let Some((z, cov)) = self.camera_estimate() {
             all.add(z, cov);
         }
-        if let Some((fit, cov)) = &self.outline {
+        for (fit, cov) in self.earlier.iter().chain(&self.outline) {
             all.add(fit.centre, *cov);
         }
         all.solve()
@@ -282,7 +286,7 @@ impl BlockFusion {
 
     /// Whether the lidar has outlined the block.
     pub fn outlined(&self) -> bool {
-        self.outline.is_some()
+        self.outline.is_some() || !self.earlier.is_empty()
     }
 }
 

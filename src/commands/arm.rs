@@ -18,8 +18,8 @@ pub enum ArmCommand {
     Ik(IkArgs),
     /// Where the tool is with the joints at J1 J2 J3 J4 (radians, base to wrist).
     Fk(FkArgs),
-    /// Pick a block many times in the twin, its pose from the camera, 20-45 cm ahead:
-    /// success and error per distance band.
+    /// Pick a block many times in the twin, 20-45 cm ahead, placed by the camera's and the
+    /// lidar's fused sightings, a missed grip retried: success and error per distance band.
     PickTest(PickTestArgs),
 }
 
@@ -201,11 +201,16 @@ fn pick_test(args: &PickTestArgs) -> Result<ExitCode> {
                 || "the camera never saw the block".to_string(),
                 |e| format!("mean error {e:.1} mm"),
             );
+            let time = b
+                .mean_time_s
+                .map_or_else(String::new, |t| format!(", {t:.1} s each"));
             sayln!(
-                "{band}: {}/{} picked ({:.1} %), {error}",
+                "{band}: {}/{} picked ({:.1} %), {error}{time}, {} missed reaches retried in {} picks",
                 b.successes,
                 b.picks,
                 b.success_rate * 100.0,
+                b.misses,
+                b.retried,
             );
         }
     }

@@ -40,6 +40,39 @@ pub fn lidar_centre(
             }
         }
     }
+    outline_fit(&points, estimate, size, search, viewer, 0.0).map(|fit| fit.centre)
+}
+
+/// A square of a block's size fitted to outline points: its centre, its turn (radians,
+/// within a quarter turn: a square looks the same turned by one), and for each of its two
+/// axes whether the points spanned it (two opposite ends seen) or only one face was.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SquareFit {
+    pub centre: Point2,
+    pub turn: f64,
+    pub spanned: [bool; 2],
+    /// How many points the outline had.
+    pub points: usize,
+}
+
+/// The square of side `size` fitted to the object among `points` (outline points, e.g.
+/// lidar returns) nearest `estimate` (within `search` metres), seen from about `viewer`;
+/// `None` when no isolated object of a block's size lies there. `noise` is the points'
+/// standard deviation (0 for map cells): noise alone spreads a face's points, so an axis
+/// counts as spanned only when its extent beats that spread too.
+pub fn outline_fit(
+    points: &[Point2],
+    estimate: Point2,
+    size: f64,
+    search: f64,
+    viewer: Point2,
+    noise: f64,
+) -> Option<SquareFit> {
+    let window = search + 2.0 * size;
+    let points: Vec<Point2> = (points.iter())
+        .filter(|p| (p.x - estimate.x).abs() <= window && (p.y - estimate.y).abs() <= window)
+        .copied()
+        .collect();
     let object = nearest_cluster(&points, estimate)?;
     let near_edge = |p: &Point2| {
         (p.x - estimate.x).abs() > window - LINK || (p.y - estimate.y).abs() > window - LINK
@@ -53,8 +86,8 @@ pub fn lidar_centre(
     if object.iter().any(near_edge) || span > 1.6 * size || !outline {
         return None;
     }
-    let centre = fit_square(&object, size, viewer);
-    (centre.distance(estimate) <= search).then_some(centre)
+    let fit = fit_square(&object, size, viewer, noise);
+    (fit.centre.distance(estimate) <= search).then_some(fit)
 }
 
 /// The points linked (chains of steps under `LINK`) to the point nearest `to`.
@@ -81,50 +114,72 @@ fn nearest_cluster(points: &[Point2], to: Point2) -> Option<Vec<Point2>> {
 }
 
 /// The centre of the square of side `size` whose outline lies closest (least squares) to
-/// `points`, tried at `TURNS` orientations. Along an axis the points span, the centre is
-/// midway; along one they do not (one face seen), it lies half a side behind that face,
-/// away from `viewer`.
-fn fit_square(points: &[Point2], size: f64, viewer: Point2) -> Point2 {
+/// `points`, tried at `TURNS` orientations, then at tenths of that step round the best.
+/// Along an axis the points span, the centre is midway; along one they do not (one face
+/// seen), it lies half a side behind that face, away from `viewer`. The points' own
+/// spread is no span: an axis counts as spanned only when its extent also beats 4 `noise`
+/// standard deviations (the range of up to 30 Gaussian samples stays under about 4:
+/// tables of the range of a normal sample).
+fn fit_square(points: &[Point2], size: f64, viewer: Point2, noise: f64) -> SquareFit {
+    let step = std::f64::consts::FRAC_PI_2 / TURNS as f64;
+    let better = |a: (f64, SquareFit), b: (f64, SquareFit)| if b.0 < a.0 { b } else { a };
+    let at = |phi: f64| square_at(points, size, viewer, noise, phi);
+    let coarse = (1..TURNS).fold(at(0.0), |best, k| better(best, at(k as f64 * step)));
+    let around = coarse.1.turn;
+    let fine = (-10..=10).fold(coarse, |best, k| {
+        better(best, at(around + f64::from(k) * step / 10.0))
+    });
+    fine.1
+}
+
+/// The square turned `phi` that fits `points` best (see `fit_square`), and its score: the
+/// sum of the squared distances from the points to its outline.
+fn square_at(
+    points: &[Point2],
+    size: f64,
+    viewer: Point2,
+    noise: f64,
+    phi: f64,
+) -> (f64, SquareFit) {
     let half = size / 2.0;
-    let mut best = (f64::INFINITY, points[0]);
-    for k in 0..TURNS {
-        let phi = k as f64 * std::f64::consts::FRAC_PI_2 / TURNS as f64;
-        let (s, c) = phi.sin_cos();
-        // Into the square's frame: u along its first side, v along the second.
-        let local = |p: Point2| (c * p.x + s * p.y, -s * p.x + c * p.y);
-        let uv: Vec<(f64, f64)> = points.iter().map(|&p| local(p)).collect();
-        let eye = local(viewer);
-        let centre_along = |coords: &[f64], eye: f64| {
-            let (lo, hi) = coords
-                .iter()
-                .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &v| {
-                    (lo.min(v), hi.max(v))
-                });
-            if hi - lo >= 0.6 * size {
-                (lo + hi) / 2.0
-            } else {
-                let face = coords.iter().sum::<f64>() / coords.len() as f64;
-                if eye < face { face + half } else { face - half }
-            }
-        };
-        let us: Vec<f64> = uv.iter().map(|p| p.0).collect();
-        let vs: Vec<f64> = uv.iter().map(|p| p.1).collect();
-        let (cu, cv) = (centre_along(&us, eye.0), centre_along(&vs, eye.1));
-        // Distance from a point to the square's outline (inside or out).
-        let score: f64 = uv
+    let (s, c) = phi.sin_cos();
+    // Into the square's frame: u along its first side, v along the second.
+    let local = |p: Point2| (c * p.x + s * p.y, -s * p.x + c * p.y);
+    let uv: Vec<(f64, f64)> = points.iter().map(|&p| local(p)).collect();
+    let eye = local(viewer);
+    let centre_along = |coords: &[f64], eye: f64| {
+        let (lo, hi) = coords
             .iter()
-            .map(|&(u, v)| {
-                let (du, dv) = ((u - cu).abs() - half, (v - cv).abs() - half);
-                let outside = du.max(0.0).hypot(dv.max(0.0));
-                let inside = du.max(dv).min(0.0);
-                (outside + inside.abs()).powi(2)
-            })
-            .sum();
-        if score < best.0 {
-            best = (score, Point2::new(c * cu - s * cv, s * cu + c * cv));
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &v| {
+                (lo.min(v), hi.max(v))
+            });
+        if hi - lo >= (0.6 * size).max(4.0 * noise) {
+            ((lo + hi) / 2.0, true)
+        } else {
+            let face = coords.iter().sum::<f64>() / coords.len() as f64;
+            (if eye < face { face + half } else { face - half }, false)
         }
-    }
-    best.1
+    };
+    let us: Vec<f64> = uv.iter().map(|p| p.0).collect();
+    let vs: Vec<f64> = uv.iter().map(|p| p.1).collect();
+    let ((cu, spans_u), (cv, spans_v)) = (centre_along(&us, eye.0), centre_along(&vs, eye.1));
+    // Distance from a point to the square's outline (inside or out).
+    let score: f64 = uv
+        .iter()
+        .map(|&(u, v)| {
+            let (du, dv) = ((u - cu).abs() - half, (v - cv).abs() - half);
+            let outside = du.max(0.0).hypot(dv.max(0.0));
+            let inside = du.max(dv).min(0.0);
+            (outside + inside.abs()).powi(2)
+        })
+        .sum();
+    let fit = SquareFit {
+        centre: Point2::new(c * cu - s * cv, s * cu + c * cv),
+        turn: phi,
+        spanned: [spans_u, spans_v],
+        points: points.len(),
+    };
+    (score, fit)
 }
 
 #[cfg(test)]

@@ -3,6 +3,7 @@
 
 mod arm_moves;
 mod block_fit;
+pub mod block_fusion;
 mod choose;
 mod clearance;
 mod clusters;

@@ -20,6 +20,15 @@ impl Twin {
         }
     }
 
+    /// Carries free block `index` to `pose`, as a hand moving it would (for tests of a
+    /// pick whose block moved after it was seen); a held or unknown block stays put.
+    pub fn move_block(&mut self, index: usize, pose: Pose2) {
+        if let Some(block) = self.blocks.get_mut(index).filter(|b| !b.held) {
+            block.pose = pose;
+            self.free_blocks.moved = true;
+        }
+    }
+
     /// A block in an arm's jaws rides at the tool tip.
     pub(super) fn carry_in_arm(&mut self) {
         let (Some(arm), Some(i)) = (&self.arm, self.gripper.held()) else {

@@ -6,7 +6,7 @@ use super::arm_moves::{ArmMove, ArmMoves, arrived};
 use super::clearance::clear_ahead;
 use super::config::{BACK_OFF_SPEED, MissionConfig};
 use super::drive::{Wait, faces, opened, steer, turn_towards};
-use super::drop_places::{AT_GATE, at_gate, open, shifted, standable};
+use super::drop_places::{AT_GATE, at_gate, occupied_near, open, shifted, standable};
 use super::leg::{Ctx, Leg, LegStep};
 use super::objects::{Colour, Gate};
 use super::pickup::name;
@@ -439,23 +439,6 @@ impl Delivery {
             },
         }
     }
-}
-
-/// Whether the lidar found a cell occupied within `radius` of `at`.
-fn occupied_near(map: &Costmap, occupied: &[bool], at: Point2, radius: f64) -> bool {
-    let cells = (radius / map.resolution).ceil() as i64;
-    let Some((cx, cy)) = map.cell_of(at) else {
-        return false;
-    };
-    (-cells..=cells).any(|dy| {
-        (-cells..=cells).any(|dx| {
-            let (x, y) = (cx as i64 + dx, cy as i64 + dy);
-            let inside = x >= 0 && y >= 0 && (x as usize) < map.width && (y as usize) < map.height;
-            inside
-                && map.center_of(x as usize, y as usize).distance(at) <= radius
-                && occupied[map.index(x as usize, y as usize)]
-        })
-    })
 }
 
 #[cfg(test)]

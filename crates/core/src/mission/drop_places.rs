@@ -101,6 +101,23 @@ pub fn open(map: &Costmap, staging: Point2, stop: Point2) -> bool {
         && map.at(stop) != NO_INFORMATION
 }
 
+/// Whether the lidar found a cell occupied within `radius` of `at`.
+pub fn occupied_near(map: &Costmap, occupied: &[bool], at: Point2, radius: f64) -> bool {
+    let cells = (radius / map.resolution).ceil() as i64;
+    let Some((cx, cy)) = map.cell_of(at) else {
+        return false;
+    };
+    (-cells..=cells).any(|dy| {
+        (-cells..=cells).any(|dx| {
+            let (x, y) = (cx as i64 + dx, cy as i64 + dy);
+            let inside = x >= 0 && y >= 0 && (x as usize) < map.width && (y as usize) < map.height;
+            inside
+                && map.center_of(x as usize, y as usize).distance(at) <= radius
+                && occupied[map.index(x as usize, y as usize)]
+        })
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

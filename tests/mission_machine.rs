@@ -103,8 +103,8 @@ fn the_pick_up_sequence_opens_faces_approaches_closes_and_heads_for_the_gate() {
     );
     let out = rig.until(50, |out, _| plan_to(out).is_some());
     let (goal, _) = plan_to(&out).unwrap();
-    // The first drop place of the gate at (-1, 1): 0.1 m to its side, 0.4 m out.
-    assert!(goal.distance(Point2::new(-0.6, 0.9)) < 1e-9, "{goal:?}");
+    // The first drop place of the gate at (-1, 1): in front of its centre, 0.4 m out.
+    assert!(goal.distance(Point2::new(-0.6, 1.0)) < 1e-9, "{goal:?}");
     assert!(rig.logged("Picked up red block 421"));
     assert_eq!(out.ignore_markers, [421, 422]);
     assert_eq!(rig.commands, [GripperCommand::Open, GripperCommand::Close]);
@@ -122,8 +122,8 @@ fn the_delivery_sequence_drops_backs_off_and_counts() {
     rig.until(100, |_, r| r.mission.state_label().starts_with("drive"));
     assert!(wrap_angle(rig.pose.theta - PI).abs() < 3f64.to_radians());
     rig.until(200, |out, _| out.gripper == Some(GripperCommand::Open));
-    // The first drop place: 0.1 m to the side of the gate's centre (-1, 1).
-    let place = Point2::new(-1.0, 0.9);
+    // The first drop place: in front of the gate's centre (-1, 1).
+    let place = Point2::new(-1.0, 1.0);
     assert!((rig.pose.position().distance(place) - 0.18).abs() < 0.01);
     let at_drop = rig.pose.position();
     let out = rig.until(100, |out, _| !out.log.is_empty());

@@ -88,6 +88,7 @@ mod map_io;
 mod map_load;
 mod mcl;
 mod mission;
+mod mission_drop;
 mod mission_machine;
 mod mission_objects;
 mod mission_recovery;

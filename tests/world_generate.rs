@@ -433,3 +433,205 @@ fn worlds_without_wall_markers_and_with_loops_are_written_and_run_by_name() {
     assert_eq!(report["world"], "generated:corridors:4:loops:bare");
     std::fs::remove_dir_all(dir).unwrap();
 }
+
+/// Boundary markers along the south wall (y = -h/2), sorted by x.
+fn south_markers(world: &World) -> Vec<f64> {
+    let mut xs: Vec<f64> = (world.markers.iter())
+        .filter(|m| MarkerCategory::of(m.id) == MarkerCategory::Boundary)
+        .filter(|m| (m.position.y + world.height / 2.0).abs() < 1e-9)
+        .map(|m| m.position.x)
+        .collect();
+    xs.sort_by(f64::total_cmp);
+    xs
+}
+
+/// The gaps between the collinear pieces of the interior walls: the doorways' widths.
+fn doorways(world: &World) -> Vec<f64> {
+    let interior = world.walls.len() - 4 - 4 * world.obstacles.len();
+    let walls = &world.walls[4..4 + interior];
+    // Each piece's gap to the next piece on its line; pieces of two walls that meet end
+    // to end leave none.
+    (walls.iter())
+        .filter_map(|a| {
+            (walls.iter())
+                .filter_map(|b| {
+                    let along_y = (a.a.x - a.b.x).abs() < 1e-9 && (b.a.x - b.b.x).abs() < 1e-9;
+                    let along_x = (a.a.y - a.b.y).abs() < 1e-9 && (b.a.y - b.b.y).abs() < 1e-9;
+                    let gap = if along_y && (a.a.x - b.a.x).abs() < 1e-9 {
+                        b.a.y - a.b.y
+                    } else if along_x && (a.a.y - b.a.y).abs() < 1e-9 {
+                        b.a.x - a.b.x
+                    } else {
+                        return None;
+                    };
+                    (gap > -1e-9).then_some(gap)
+                })
+                .fold(None, |m: Option<f64>, g| Some(m.map_or(g, |m| m.min(g))))
+        })
+        .filter(|g| *g > 1e-9)
+        .collect()
+}
+
+#[test]
+fn marker_spacing_colours_doorways_and_rooms_give_what_was_asked() {
+    use navdeck::sim::BlockColor;
+    use navdeck::sim::generate::Colours;
+    for seed in 1..=8 {
+        // Markers every 1 m along the walls.
+        let sparse = GenerateOptions {
+            marker_spacing: 1.0,
+            ..options(seed, Style::Boxes)
+        };
+        let world = generate(&sparse).unwrap_or_else(|e| panic!("{e}"));
+        assert_sound(&world, &sparse);
+        let xs = south_markers(&world);
+        assert!(
+            xs.windows(2).all(|w| (w[1] - w[0] - 1.0).abs() < 1e-6),
+            "{xs:?}"
+        );
+
+        // Colours drawn at random: the same for the same seed, at most a gate's drop
+        // places of either, and all red with `one`.
+        let random = GenerateOptions {
+            blocks: 12,
+            colours: Colours::Random,
+            size: Some((6.0, 6.0)),
+            ..options(seed, Style::Boxes)
+        };
+        let world = generate(&random).unwrap_or_else(|e| panic!("{e}"));
+        assert_sound(&world, &random);
+        let reds = world
+            .blocks
+            .iter()
+            .filter(|b| b.color == BlockColor::Red)
+            .count();
+        assert!(reds <= 9 && 12 - reds <= 9, "{reds} red of 12");
+        assert_eq!(generate(&random).unwrap().to_toml(), world.to_toml());
+        let one = GenerateOptions {
+            blocks: 8,
+            colours: Colours::One,
+            ..options(seed, Style::Boxes)
+        };
+        let world = generate(&one).unwrap_or_else(|e| panic!("{e}"));
+        assert_sound(&world, &one);
+        assert!(world.blocks.iter().all(|b| b.color == BlockColor::Red));
+
+        // Six rooms in an 8 m x 6 m flat, every doorway 0.7 m.
+        let flat = GenerateOptions {
+            size: Some((8.0, 6.0)),
+            rooms: Some(6),
+            doorway: Some(0.7),
+            ..options(seed, Style::Rooms)
+        };
+        let world = generate(&flat).unwrap_or_else(|e| panic!("{e}"));
+        assert_sound(&world, &flat);
+        let gaps = doorways(&world);
+        assert_eq!(gaps.len(), 5, "five walls between six rooms: {gaps:?}");
+        assert!(gaps.iter().all(|g| (g - 0.7).abs() < 1e-6), "{gaps:?}");
+    }
+    // A 12 m flat with many rooms and sparse markers.
+    let large = GenerateOptions {
+        size: Some((12.0, 10.0)),
+        rooms: Some(9),
+        marker_spacing: 1.2,
+        blocks: 8,
+        ..options(3, Style::Rooms)
+    };
+    let world = generate(&large).unwrap_or_else(|e| panic!("{e}"));
+    assert_sound(&world, &large);
+    assert_eq!(doorways(&world).len(), 8);
+}
+
+#[test]
+fn every_variant_has_its_own_name_and_its_command_remakes_it() {
+    use navdeck::sim::generate::Colours;
+    let base = GenerateOptions {
+        size: Some((8.0, 6.0)),
+        ..options(4, Style::Rooms)
+    };
+    let variants = [
+        base.clone(),
+        GenerateOptions {
+            marker_spacing: 0.8,
+            ..base.clone()
+        },
+        GenerateOptions {
+            colours: Colours::Random,
+            ..base.clone()
+        },
+        GenerateOptions {
+            colours: Colours::One,
+            ..base.clone()
+        },
+        GenerateOptions {
+            doorway: Some(0.9),
+            ..base.clone()
+        },
+        GenerateOptions {
+            rooms: Some(5),
+            ..base.clone()
+        },
+    ];
+    let names: HashSet<String> = variants.iter().map(GenerateOptions::name).collect();
+    assert_eq!(names.len(), variants.len(), "{names:?}");
+    assert_eq!(variants[1].name(), "generated:rooms:4:markers0.8");
+    let dir = scratch("generate-variants");
+    for o in &variants[1..] {
+        let file = dir.join("v.toml");
+        let command = o.command();
+        let mut args: Vec<&str> = command.split(' ').skip(1).collect();
+        args.extend(["-o", file.to_str().unwrap()]);
+        let out = navdeck(&args);
+        assert!(
+            out.status.success(),
+            "{command}: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let world = World::load(&file).unwrap();
+        assert_eq!(world.to_toml(), generate(o).unwrap().to_toml(), "{command}");
+        assert_eq!(world.name, o.name());
+    }
+    std::fs::remove_dir_all(dir).unwrap();
+}
+
+#[test]
+fn the_new_options_are_refused_naming_the_flag_and_value() {
+    let dir = scratch("bad-new-options");
+    let file = dir.join("bad.toml");
+    let path = file.to_str().unwrap();
+    for (args, flag, value) in [
+        (vec!["--marker-spacing", "0.2"], "--marker-spacing", "0.2"),
+        (vec!["--marker-spacing", "wide"], "--marker-spacing", "wide"),
+        (vec!["--colours", "purple"], "--colours", "purple"),
+        (vec!["--colours", "one", "--blocks", "10"], "--blocks", "10"),
+        (vec!["--blocks", "19"], "--blocks", "19"),
+        (vec!["--doorway", "0.9"], "--doorway", "0.9 with boxes"),
+        (
+            vec!["--style", "rooms", "--doorway", "0.3"],
+            "--doorway",
+            "0.3",
+        ),
+        (vec!["--style", "rooms", "--rooms", "1"], "--rooms", "1"),
+        (vec!["--style", "rooms", "--rooms", "40"], "--rooms", "40"),
+        (
+            vec!["--style", "corridors", "--rooms", "3"],
+            "--rooms",
+            "3 with corridors",
+        ),
+    ] {
+        let mut all = vec!["world", "generate", "--seed", "1", "-o", path];
+        all.extend(args.iter().copied());
+        let out = navdeck(&all);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+        assert!(err.contains(flag) && err.contains(value), "{args:?}: {err}");
+        let first = err.lines().next().unwrap_or_default();
+        assert!(
+            first.contains(flag) && first.contains(value),
+            "one line says it: {err}"
+        );
+        assert!(!err.contains("panicked"), "{err}");
+        assert!(!file.exists(), "{args:?} wrote a file");
+    }
+    std::fs::remove_dir_all(dir).unwrap();
+}

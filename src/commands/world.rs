@@ -2,7 +2,7 @@
 //! binary, beside main.rs): the command line's side of `navdeck::sim::generate`.
 
 use anyhow::Result;
-use navdeck::sim::generate::{self, GenerateError, GenerateOptions, Style};
+use navdeck::sim::generate::{self, Colours, GenerateError, GenerateOptions, Style};
 use std::io::Write;
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -42,7 +42,7 @@ pub struct ShapeArgs {
     /// Width and height in metres, W,H (default 4,4 for boxes, 5,4 for rooms and corridors).
     #[arg(long, value_name = "W,H", value_parser = parse_size)]
     size: Option<(f64, f64)>,
-    /// Blocks, red and blue in turn (default 3).
+    /// Blocks (default 3), red and blue in turn unless --colours says otherwise.
     #[arg(long, value_name = "K", allow_negative_numbers = true, value_parser = super::args::whole::<usize>)]
     blocks: Option<usize>,
     /// Box obstacles (default 3).
@@ -57,6 +57,20 @@ pub struct ShapeArgs {
     /// Ways round: a second doorway between rooms, corridor walls free at both ends.
     #[arg(long)]
     loops: bool,
+    /// Metres between wall markers, 0.4 to 2 (default 0.5, as maps/arena.toml).
+    #[arg(long, value_name = "M", allow_negative_numbers = true)]
+    marker_spacing: Option<f64>,
+    /// The blocks' colours: alternating (default), random (seeded; at most 9 of one, a
+    /// gate's drop places) or one (every block red).
+    #[arg(long, value_name = "HOW")]
+    colours: Option<Colours>,
+    /// Every doorway between rooms and every corridor turn this wide, metres, 0.5 to 2
+    /// (default: drawn from 0.8-1.1 and 0.8-1.2).
+    #[arg(long, value_name = "M", allow_negative_numbers = true)]
+    doorway: Option<f64>,
+    /// Rooms in a rooms world, 2 up to what its size holds (default: 2-4 drawn).
+    #[arg(long, value_name = "N", allow_negative_numbers = true, value_parser = super::args::whole::<usize>)]
+    rooms: Option<usize>,
 }
 
 impl ShapeArgs {
@@ -70,6 +84,10 @@ impl ShapeArgs {
             style: self.style.unwrap_or(default.style),
             wall_markers: !self.no_wall_markers,
             loops: self.loops,
+            marker_spacing: self.marker_spacing.unwrap_or(default.marker_spacing),
+            colours: self.colours.unwrap_or(default.colours),
+            doorway: self.doorway,
+            rooms: self.rooms,
         }
     }
 
@@ -82,6 +100,10 @@ impl ShapeArgs {
             (self.style.is_some(), "--style"),
             (self.no_wall_markers, "--no-wall-markers"),
             (self.loops, "--loops"),
+            (self.marker_spacing.is_some(), "--marker-spacing"),
+            (self.colours.is_some(), "--colours"),
+            (self.doorway.is_some(), "--doorway"),
+            (self.rooms.is_some(), "--rooms"),
         ]
         .into_iter()
         .find_map(|(given, flag)| given.then_some(flag))

@@ -12,8 +12,9 @@ use crate::runners::score::TruthScore;
 use serde::Serialize;
 use std::path::Path;
 
-/// A delivered block lies within this of its gate's centre in the twin, metres.
-const AT_GATE: f64 = 0.3;
+/// A delivered block lies within this of its gate's centre in the twin, metres: the
+/// region the mission's drop places are laid out in (mission/drop_places.rs).
+use crate::mission::drop_places::AT_GATE;
 
 /// One block's story.
 #[derive(Clone, Debug, PartialEq, Serialize)]

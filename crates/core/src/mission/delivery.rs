@@ -6,12 +6,14 @@ use super::arm_moves::{ArmMove, ArmMoves, arrived};
 use super::clearance::clear_ahead;
 use super::config::{BACK_OFF_SPEED, MissionConfig};
 use super::drive::{Wait, faces, opened, steer, turn_towards};
+use super::drop_places::{AT_GATE, at_gate, occupied_near, open, shifted, standable};
 use super::leg::{Ctx, Leg, LegStep};
 use super::objects::{Colour, Gate};
 use super::pickup::name;
 use super::step::{Inputs, Level, Motion};
 use crate::data::GripperCommand;
 use crate::geometry::{Point2, Twist, wrap_angle};
+use crate::map::costmap::Costmap;
 
 #[derive(Clone, Debug)]
 enum Stage {
@@ -24,14 +26,25 @@ enum Stage {
     /// The arm, empty, back to its carrying pose.
     Raise(ArmMove),
     BackOff,
+    /// Looking at where the block was let go: the lidar's map or the camera finds it there.
+    Check,
 }
 
 /// What a delivery step comes to.
 #[derive(Clone, Debug, PartialEq)]
 pub(crate) enum DropEvent {
     Go(Motion, Option<GripperCommand>),
-    /// Put down, its centre where it was let go.
-    Delivered(Point2),
+    /// Put down at its gate, its centre where it was let go, in drop place `slot`.
+    Delivered {
+        at: Point2,
+        slot: usize,
+    },
+    /// Let go in drop place `slot`, but not at its gate, or not found where it was let
+    /// go: the block is somewhere else, and not delivered (the reason).
+    Missed {
+        why: String,
+        slot: usize,
+    },
     GiveUp,
 }
 
@@ -40,81 +53,163 @@ pub(crate) enum DropEvent {
 pub(crate) struct Delivery {
     pub block: u32,
     pub colour: Colour,
-    /// The drop place: the gate moved sideways to this delivery's slot.
+    /// The gate as last estimated.
     gate: Gate,
+    /// The drop place: the gate moved sideways to this delivery's slot.
+    place: Gate,
     /// How much further out than `drop_distance` this slot stops, metres.
     depth: f64,
     slot: usize,
+    /// Drop places free at the gate, in the order to try them, and those tried so far.
+    free: Vec<usize>,
+    tried: Vec<usize>,
+    /// Every free drop place had no path once: legs now turn and retry before giving up.
+    every_place_tried: bool,
+    /// The gate's estimated normal points behind its wall (no drop place on its side is
+    /// mapped, those on the other side are): this delivery approaches from the other side.
+    turned_round: bool,
     stage: Stage,
     since: f64,
     /// Where the block's centre was when the gripper opened.
     let_go: Option<Point2>,
 }
 
-/// Drop places side by side across the 0.3 m gate, then a row further out: a block lies
-/// about 0.1 m ahead of the robot's centre, the body is 0.08 m round and a block lands a
-/// few centimetres off its place, so 0.2 m apart keeps the next drop clear of the last.
-const SLOT_OFFSETS: [f64; 2] = [-0.10, 0.10];
-const ROW_DEPTH: f64 = 0.12;
 /// How far ahead of the robot's centre a carried block's centre lies, metres.
 const CARRIED_AHEAD: f64 = 0.10;
+/// The creep stops when the lidar's map has something this near ahead of the robot's
+/// centre: the carried block's far face (0.14 m, clearance.rs) and 0.05 m to spare.
+const STOP_AHEAD: f64 = 0.19;
 /// A gate estimate that moved or turned this much gets a new drop place (metres, radians).
 const REFRESH_MOVE: f64 = 0.05;
 const REFRESH_TURN: f64 = 20.0 * std::f64::consts::PI / 180.0;
-
-/// The gate shifted along its width to `slot`'s place, and the extra depth of its row.
-fn drop_place(gate: Gate, slot: usize) -> (Gate, f64) {
-    let along = (-gate.normal.1, gate.normal.0);
-    let offset = SLOT_OFFSETS[slot % SLOT_OFFSETS.len()];
-    let depth = ROW_DEPTH * (slot / SLOT_OFFSETS.len()) as f64;
-    let center = crate::geometry::Point2::new(
-        gate.center.x + offset * along.0,
-        gate.center.y + offset * along.1,
-    );
-    (Gate { center, ..gate }, depth)
-}
+/// How long the robot looks for the block it let go, seconds: the planning map folds in a
+/// scan of a still robot every 2 s (pilot mapping.rs SCAN_EVERY), and twenty camera frames.
+const CHECK_TIME: f64 = 2.0;
+/// An occupied cell this near the let-go point is the block, metres: its 0.035 m
+/// half-diagonal and a centimetre cell either side.
+const FOUND_NEAR: f64 = 0.055;
 
 impl Delivery {
-    /// Delivers into drop place number `slot` of the gate: blocks already there are not
-    /// pushed by the next one.
+    /// Delivers into the first of the gate's `free` drop places (in order; one the map
+    /// shows no place to stand for is passed over on the way): blocks already there are
+    /// not pushed by the next one. `None` when the gate has no free drop place.
     pub fn new(
         block: u32,
         colour: Colour,
         gate: Gate,
-        slot: usize,
+        free: Vec<usize>,
         config: &MissionConfig,
         t: f64,
-    ) -> Self {
-        let (gate, depth) = drop_place(gate, slot);
-        // Seed 001: drop_location = gate_center + offset * perpendicular.
-        let goal = gate.in_front(config.drop_staging + depth);
-        let label = format!("{} gate", colour.label());
-        Self {
+    ) -> Option<Self> {
+        let first = *free.first()?;
+        let mut d = Self {
             block,
             colour,
             gate,
-            depth,
-            slot,
-            stage: Stage::Travel(Leg::new(goal, label)),
+            place: gate,
+            depth: 0.0,
+            slot: first,
+            free,
+            tried: Vec::new(),
+            every_place_tried: false,
+            turned_round: false,
+            stage: Stage::Face,
             since: t,
             let_go: None,
+        };
+        d.travel_to(first, config);
+        Some(d)
+    }
+
+    /// Whether the robot could stand at drop place `slot`'s staging point and stop on `map`.
+    fn standable(&self, slot: usize, map: &Costmap, config: &MissionConfig) -> bool {
+        let (staging, stop) = self.staging_and_stop(self.gate, slot, config);
+        standable(map, staging, stop)
+    }
+
+    fn staging_and_stop(
+        &self,
+        gate: Gate,
+        slot: usize,
+        config: &MissionConfig,
+    ) -> (Point2, Point2) {
+        let (place, depth) = shifted(gate, slot);
+        let staging = place.in_front(config.drop_staging + depth);
+        (staging, place.in_front(config.drop_distance + depth))
+    }
+
+    /// The gate as this delivery approaches it: turned round when it was found to face
+    /// behind its wall.
+    fn oriented(&self, gate: Gate) -> Gate {
+        match self.turned_round {
+            true => Gate {
+                normal: (-gate.normal.0, -gate.normal.1),
+                ..gate
+            },
+            false => gate,
         }
+    }
+
+    /// When no free drop place on the gate's side is on mapped floor and one on the other
+    /// side is, the gate's normal points behind its wall: the first such drop place on the
+    /// other side.
+    fn other_side(&self, map: &Costmap, config: &MissionConfig) -> Option<usize> {
+        let on = |gate: Gate, slot: usize| {
+            let (staging, stop) = self.staging_and_stop(gate, slot, config);
+            open(map, staging, stop)
+        };
+        let turned = Gate {
+            normal: (-self.gate.normal.0, -self.gate.normal.1),
+            ..self.gate
+        };
+        let here = self.free.iter().any(|&s| on(self.gate, s));
+        (!here).then(|| self.free.iter().copied().find(|&s| on(turned, s)))?
+    }
+
+    /// The first free drop place not tried yet that the robot could stand at, else the
+    /// first not tried at all.
+    fn next_slot(&self, map: &Costmap, config: &MissionConfig) -> Option<usize> {
+        let untried: Vec<usize> = (self.free.iter().copied())
+            .filter(|s| !self.tried.contains(s))
+            .collect();
+        (untried.iter().copied())
+            .find(|&s| self.standable(s, map, config))
+            .or(untried.first().copied())
+    }
+
+    /// Plans to drop place `slot`'s staging point: a leg that reports no path at once, so
+    /// another drop place is tried instead of the same point again (until every one was).
+    fn travel_to(&mut self, slot: usize, config: &MissionConfig) {
+        let (place, depth) = shifted(self.gate, slot);
+        self.slot = slot;
+        self.place = place;
+        self.depth = depth;
+        self.tried.push(slot);
+        // Seed 001: drop_location = gate_center + offset * perpendicular.
+        let goal = place.in_front(config.drop_staging + depth);
+        let label = format!("{} gate", self.colour.label());
+        self.stage = Stage::Travel(if self.every_place_tried {
+            Leg::new(goal, label)
+        } else {
+            Leg::replaceable(goal, label)
+        });
     }
 
     /// On the way, follows the gate as markers and map refine it: a drop place that
     /// moved more than 5 cm or turned more than 20° is planned to afresh (navdeck's).
     pub fn follow_gate(&mut self, gate: Gate, config: &MissionConfig) {
+        let gate = self.oriented(gate);
         if !matches!(self.stage, Stage::Travel(_)) {
+            self.gate = gate;
             return;
         }
-        let (place, depth) = drop_place(gate, self.slot);
-        let (a, b) = (place.normal, self.gate.normal);
+        let (place, _) = shifted(gate, self.slot);
+        let (a, b) = (place.normal, self.place.normal);
         let turned = a.0 * b.0 + a.1 * b.1 < REFRESH_TURN.cos();
-        if turned || place.center.distance(self.gate.center) > REFRESH_MOVE {
-            self.gate = place;
-            self.depth = depth;
-            let goal = place.in_front(config.drop_staging + depth);
-            self.stage = Stage::Travel(Leg::new(goal, format!("{} gate", self.colour.label())));
+        self.gate = gate;
+        if turned || place.center.distance(self.place.center) > REFRESH_MOVE {
+            self.tried.retain(|&s| s != self.slot);
+            self.travel_to(self.slot, config);
         }
     }
 
@@ -132,6 +227,7 @@ impl Delivery {
             Stage::Open => format!("drop {block}"),
             Stage::Raise(_) => "raise the arm".to_string(),
             Stage::BackOff => format!("back off from {gate} gate"),
+            Stage::Check => format!("look for {block} at {gate} gate"),
         }
     }
 
@@ -150,10 +246,41 @@ impl Delivery {
     ) -> DropEvent {
         let (t, pose) = (inputs.t, inputs.pose);
         let waited = t - self.since;
-        let error = wrap_angle(self.gate.facing() - pose.theta);
+        let error = wrap_angle(self.place.facing() - pose.theta);
         let stop = DropEvent::Go(Motion::Stop, None);
         let joints = inputs.arm;
         let open = DropEvent::Go(Motion::Stop, Some(GripperCommand::Open));
+        if matches!(self.stage, Stage::Travel(_))
+            && let Some(slot) = self.other_side(inputs.map, config)
+        {
+            log.push((
+                Level::Warn,
+                format!(
+                    "The drop places of the {} gate lie behind its wall on the map - approaching it from the other side",
+                    self.colour.label()
+                ),
+            ));
+            self.turned_round = !self.turned_round;
+            self.gate.normal = (-self.gate.normal.0, -self.gate.normal.1);
+            self.tried.clear();
+            self.travel_to(slot, config);
+        }
+        if matches!(self.stage, Stage::Travel(_))
+            && !self.standable(self.slot, inputs.map, config)
+            && let Some(next) = (self.next_slot(inputs.map, config))
+                .filter(|&s| self.standable(s, inputs.map, config))
+        {
+            log.push((
+                Level::Warn,
+                format!(
+                    "Drop place {} of the {} gate lies in a wall or ring on the map - trying drop place {}",
+                    self.slot + 1,
+                    self.colour.label(),
+                    next + 1
+                ),
+            ));
+            self.travel_to(next, config);
+        }
         match &mut self.stage {
             Stage::Travel(leg) => match leg.step(inputs, config, ctx, log) {
                 LegStep::Move(motion) => DropEvent::Go(motion, None),
@@ -161,7 +288,35 @@ impl Delivery {
                     self.enter(Stage::Face, t);
                     stop
                 }
-                LegStep::GiveUp | LegStep::Unreachable(_) => DropEvent::GiveUp,
+                LegStep::Unreachable(reason) => {
+                    let (gate, slot) = (self.colour.label(), self.slot + 1);
+                    if let Some(next) = self.next_slot(inputs.map, config) {
+                        log.push((
+                            Level::Warn,
+                            format!(
+                                "No path to drop place {slot} of the {gate} gate ({reason}) - trying drop place {}",
+                                next + 1
+                            ),
+                        ));
+                        self.travel_to(next, config);
+                        return stop;
+                    }
+                    // Every free drop place tried: seed 001's recovery (turn, look, plan
+                    // again) to the first, which gives up after its retries.
+                    log.push((
+                        Level::Warn,
+                        format!(
+                            "No path to any of the {} drop places free at the {gate} gate ({reason}) - turning and retrying",
+                            self.tried.len()
+                        ),
+                    ));
+                    self.tried.clear();
+                    self.every_place_tried = true;
+                    let first = self.next_slot(inputs.map, config).unwrap_or(self.slot);
+                    self.travel_to(first, config);
+                    stop
+                }
+                LegStep::GiveUp => DropEvent::GiveUp,
             },
             Stage::Face => {
                 if faces(error) {
@@ -171,12 +326,16 @@ impl Delivery {
                 DropEvent::Go(Motion::Drive(turn_towards(error, config)), None)
             }
             Stage::Forward => {
-                let distance = pose.position().distance(self.gate.center);
+                let distance = pose.position().distance(self.place.center);
                 let creep = (config.drop_staging - config.drop_distance) / config.approach_speed;
                 let stop_at = config.drop_distance + self.depth;
                 // The wall (or a block delivered earlier) as the lidar mapped it stops the
                 // creep too, wherever the markers put the gate.
-                let blocked = clear_ahead(inputs.map, inputs.occupied, pose, stop_at).is_some();
+                // Only what the carried block would touch counts: a block delivered in the
+                // row nearer the wall stands further ahead and is passed beside.
+                let blocked =
+                    clear_ahead(inputs.map, inputs.occupied, pose, STOP_AHEAD.min(stop_at))
+                        .is_some();
                 if distance <= stop_at || blocked || waited >= 2.0 * creep + 2.0 {
                     let lower = arm.map(|a| a.lower_to(config.block_size / 2.0, joints));
                     match lower {
@@ -236,11 +395,48 @@ impl Delivery {
             }
             Stage::BackOff => {
                 if waited >= config.back_off_time - 1e-9 {
-                    let here = pose.position();
-                    return DropEvent::Delivered(self.let_go.unwrap_or(here));
+                    self.enter(Stage::Check, t);
+                    return stop;
                 }
                 DropEvent::Go(Motion::Drive(Twist::new(-BACK_OFF_SPEED, 0.0)), None)
             }
+            Stage::Check => self.check(inputs, waited),
+        }
+    }
+}
+
+impl Delivery {
+    /// Whether the block let go is at its gate, as the robot can tell: the point it let go
+    /// lies in the gate's region, and the lidar's map or the camera finds the block there
+    /// within `CHECK_TIME`.
+    fn check(&self, inputs: &Inputs, waited: f64) -> DropEvent {
+        let let_go = self.let_go.unwrap_or(inputs.pose.position());
+        let off = let_go.distance(self.gate.center);
+        let slot = self.slot;
+        if !at_gate(&self.gate, let_go) {
+            let why = format!("let go {off:.2} m from the gate's centre, beyond its {AT_GATE} m");
+            return DropEvent::Missed { why, slot };
+        }
+        let map = inputs.map;
+        let lidar = inputs.occupied.len() == map.width * map.height && !inputs.occupied.is_empty();
+        let seen = (inputs.seen.iter()).any(|&id| id == self.block || id == self.block + 1);
+        let found = seen || (lidar && occupied_near(map, inputs.occupied, let_go, FOUND_NEAR));
+        let delivered = DropEvent::Delivered {
+            at: let_go,
+            slot: self.slot,
+        };
+        match () {
+            _ if found => delivered,
+            _ if waited < CHECK_TIME => DropEvent::Go(Motion::Stop, None),
+            // Without a lidar, a block whose markers face away is not seen: the jaws
+            // opened inside the gate's region, and that is what the robot knows.
+            _ if !lidar => delivered,
+            _ => DropEvent::Missed {
+                why: format!(
+                    "neither the lidar nor the camera finds it where it was let go, {off:.2} m from the gate's centre"
+                ),
+                slot,
+            },
         }
     }
 }
@@ -249,6 +445,7 @@ impl Delivery {
 mod tests {
     use super::*;
     use crate::geometry::Point2;
+    use crate::mission::drop_places::DROP_PLACES;
 
     fn gate(normal: (f64, f64)) -> Gate {
         Gate {
@@ -270,7 +467,8 @@ mod tests {
     fn a_gate_that_turns_on_the_way_gets_a_new_drop_place_and_a_steady_one_does_not() {
         let config = MissionConfig::default();
         // First placed facing out of the arena (+y), then seen to face in (-y).
-        let mut d = Delivery::new(421, Colour::Red, gate((0.0, 1.0)), 0, &config, 0.0);
+        let free = (0..DROP_PLACES.len()).collect();
+        let mut d = Delivery::new(421, Colour::Red, gate((0.0, 1.0)), free, &config, 0.0).unwrap();
         assert!(goal(&d).y > 2.0);
         d.follow_gate(gate((0.0, -1.0)), &config);
         let fixed = goal(&d);

@@ -5,6 +5,7 @@ use super::arm_moves::ArmMoves;
 use super::config::{LOST_SCAN_AFTER, MissionConfig, RELOCATE_STANDOFF};
 use super::delivery::{Delivery, DropEvent};
 use super::drive::Turn;
+use super::drop_places::DROP_PLACES;
 use super::explored::{Explored, GivenUp};
 use super::leg::{Ctx, Leg, LegStep};
 use super::objects::{Colour, Objects};
@@ -42,6 +43,8 @@ pub struct Mission {
     pub(super) held: Option<u32>,
     /// Markers of delivered blocks: ignored by the filter forever.
     pub(super) delivered_markers: Vec<u32>,
+    /// The drop places taken at each colour's gate (drop_places.rs).
+    pub(super) drop_slots: BTreeMap<Colour, BTreeSet<usize>>,
     /// Lost, the robot already went back to a landmark and scanned there.
     pub(super) relocated: bool,
     /// The arm that picks and places blocks, when the robot has one.
@@ -71,6 +74,7 @@ impl Mission {
             timeline: Vec::new(),
             held: None,
             delivered_markers: Vec::new(),
+            drop_slots: BTreeMap::new(),
             relocated: false,
             arm: None,
         }
@@ -284,8 +288,9 @@ impl Mission {
                 let arm = self.arm.as_mut();
                 match delivery.step(inputs, &self.config, &mut self.ctx, arm, log) {
                     DropEvent::Go(motion, gripper) => Tick::Out(motion, gripper),
-                    DropEvent::Delivered(at) => {
+                    DropEvent::Delivered { at, slot } => {
                         self.objects.deliver(odd, at);
+                        self.drop_slots.entry(colour).or_default().insert(slot);
                         self.held = None;
                         self.delivered_markers.extend([odd, odd + 1]);
                         self.stamp(odd, t, 3);
@@ -301,6 +306,22 @@ impl Mission {
                                 self.objects.delivered()
                             ),
                         ));
+                        self.phase = Phase::Choose;
+                        Tick::Again
+                    }
+                    DropEvent::Missed { why, slot } => {
+                        // Not at its gate: found again like a new block, and picked up again.
+                        // Whatever lies in its drop place, the next drop goes elsewhere.
+                        self.drop_slots.entry(colour).or_default().insert(slot);
+                        log.push((
+                            Level::Warn,
+                            format!(
+                                "{} not delivered: {why} - looking for it again",
+                                name(colour, odd)
+                            ),
+                        ));
+                        self.held = None;
+                        self.objects.forget(odd);
                         self.phase = Phase::Choose;
                         Tick::Again
                     }
@@ -326,14 +347,23 @@ impl Mission {
     }
 
     /// Off to the gate with held block `odd`, or exploring on while its gate is unknown.
-    pub(super) fn delivering(&self, odd: u32, colour: Colour, t: f64) -> Phase {
+    /// With every drop place at its gate taken, the mission hands over: a block put down
+    /// anywhere else would not be at its gate.
+    pub(super) fn delivering(&mut self, odd: u32, colour: Colour, t: f64) -> Phase {
         let Some(&gate) = self.objects.gate_for(colour) else {
             return Phase::Choose;
         };
-        let slot = (self.objects.blocks())
-            .filter(|b| b.delivered && b.colour == colour)
-            .count();
-        Phase::Deliver(Delivery::new(odd, colour, gate, slot, &self.config, t))
+        let taken = self.drop_slots.get(&colour);
+        let free: Vec<usize> = (0..DROP_PLACES.len())
+            .filter(|s| taken.is_none_or(|t| !t.contains(s)))
+            .collect();
+        match Delivery::new(odd, colour, gate, free, &self.config, t) {
+            Some(delivery) => Phase::Deliver(delivery),
+            None => {
+                self.handover = Some(Cause::GateFull.label());
+                Phase::Manual
+            }
+        }
     }
 
     pub(super) fn manual(&mut self, cause: Cause) -> Tick {

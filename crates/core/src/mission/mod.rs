@@ -11,6 +11,7 @@ pub mod config;
 pub mod coverage;
 mod delivery;
 mod drive;
+pub mod drop_places;
 mod explored;
 mod found;
 mod gate_side;

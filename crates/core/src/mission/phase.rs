@@ -58,6 +58,8 @@ pub(super) enum Cause {
     Delivery,
     /// Exploration was complete with found blocks left (their gate never seen).
     BlocksLeft,
+    /// A block was picked up for a gate whose every drop place is taken.
+    GateFull,
 }
 
 impl Cause {
@@ -68,6 +70,7 @@ impl Cause {
             Cause::Pickup => "pickup failed",
             Cause::Delivery => "delivery failed",
             Cause::BlocksLeft => "blocks left without a gate",
+            Cause::GateFull => "gate full",
         }
     }
 }

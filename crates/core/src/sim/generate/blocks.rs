@@ -1,4 +1,4 @@
-//! Blocks in open floor, colours alternating red and blue, and the robot's start.
+//! Blocks in open floor, of the colours drawn for them, and the robot's start.
 
 use super::draft::Draft;
 use super::draw::{heading, pick};
@@ -12,15 +12,16 @@ use rand_chacha::ChaCha8Rng;
 const FIRST_RED: u32 = 421;
 const FIRST_BLUE: u32 = 521;
 
-/// Places `count` blocks: red, blue, red, ...
-pub fn place(d: &mut Draft, rng: &mut ChaCha8Rng, count: usize) -> Result<(), String> {
-    for i in 0..count {
-        let (color, first) = if i % 2 == 0 {
-            (BlockColor::Red, FIRST_RED)
-        } else {
-            (BlockColor::Blue, FIRST_BLUE)
+/// Places a block of each of `colours`, in turn.
+pub fn place(d: &mut Draft, rng: &mut ChaCha8Rng, colours: &[BlockColor]) -> Result<(), String> {
+    let count = colours.len();
+    for (i, &color) in colours.iter().enumerate() {
+        let first = match color {
+            BlockColor::Red => FIRST_RED,
+            BlockColor::Blue => FIRST_BLUE,
         };
-        let odd = first + 2 * (i / 2) as u32;
+        let before = colours[..i].iter().filter(|&&c| c == color).count();
+        let odd = first + 2 * before as u32;
         let spot = open_spot(d, rng, WALL_CLEARANCE, MIN_BLOCK_SPACING);
         let Some(p) = spot else {
             return Err(format!(

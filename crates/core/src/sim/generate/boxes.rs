@@ -3,7 +3,7 @@
 
 use super::draft::Draft;
 use super::draw::{heading, pick, tidy};
-use super::rules::{BOX_SIDES, GATE_CLEARANCE, MARKER_SPACING, MIN_PASSAGE, TRIES};
+use super::rules::{BOX_SIDES, GATE_CLEARANCE, MIN_PASSAGE, TRIES};
 use crate::geometry::{Point2, Pose2, wrap_angle};
 use rand::Rng;
 use rand_chacha::ChaCha8Rng;
@@ -75,8 +75,8 @@ fn against_wall(d: &Draft, rng: &mut ChaCha8Rng, w: f64, h: f64) -> Option<Place
         return None;
     }
     let along = spots[rng.random_range(0..spots.len())];
-    // The neighbouring markers, MARKER_SPACING either side, stay MARKER_BESIDE clear.
-    let w = tidy(w.min(2.0 * (MARKER_SPACING - MARKER_BESIDE)));
+    // The neighbouring markers, a marker spacing either side, stay MARKER_BESIDE clear.
+    let w = tidy(w.min(2.0 * (d.spacing - MARKER_BESIDE)));
     let out = h / 2.0 + WALL_GAP;
     let centre = Point2::new(
         s.a.x + ux * along - side * uy * out,

@@ -55,7 +55,8 @@ pub fn build(d: &mut Draft, rng: &mut ChaCha8Rng, loops: bool) -> Result<(), Str
             let Some(v) = pick(rng, even - JITTER, even + JITTER, 0.05) else {
                 continue 'candidate;
             };
-            let Some(turn) = pick(rng, MIN_PASSAGE, MIN_PASSAGE + TURN_EXTRA, 0.05) else {
+            let drawn = pick(rng, MIN_PASSAGE, MIN_PASSAGE + TURN_EXTRA, 0.05);
+            let Some(turn) = d.doorway.or(drawn) else {
                 continue 'candidate;
             };
             if v - last < MIN_PASSAGE {
@@ -70,7 +71,8 @@ pub fn build(d: &mut Draft, rng: &mut ChaCha8Rng, loops: bool) -> Result<(), Str
             let both_free = loops && (k == free_wall || rng.random_bool(BOTH_ENDS_FREE));
             if both_free {
                 // A turn at the other end too: the wall stands alone.
-                let Some(other) = pick(rng, MIN_PASSAGE, MIN_PASSAGE + TURN_EXTRA, 0.05) else {
+                let drawn = pick(rng, MIN_PASSAGE, MIN_PASSAGE + TURN_EXTRA, 0.05);
+                let Some(other) = d.doorway.or(drawn) else {
                     continue 'candidate;
                 };
                 let end = fixed - fixed.signum() * other;

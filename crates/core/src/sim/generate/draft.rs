@@ -2,7 +2,7 @@
 //! on both faces, boxes with face markers, and the distance queries that placing needs.
 
 use super::draw::tidy;
-use super::rules::{GATE_WIDTH, MARKER_SPACING};
+use super::rules::GATE_WIDTH;
 use crate::geometry::{Point2, Pose2, Segment, wrap_angle};
 use crate::perception::markers::MarkerCategory;
 use crate::sim::shapes::{rect_contains, rect_corners, rect_edges, rect_faces, segment_distance2};
@@ -35,14 +35,18 @@ pub struct Draft {
     pub lanes: Vec<Segment>,
     /// Floor closed in by walls (a loop's island): nothing is placed there.
     pub islands: Vec<Obstacle>,
+    /// Wall markers every this many metres.
+    pub spacing: f64,
+    /// Every doorway and corridor turn this wide, metres; `None`: drawn.
+    pub doorway: Option<f64>,
     next_wall_id: u32,
     next_box_id: u32,
 }
 
 impl Draft {
     /// A `width` x `height` world with its boundary: a counter-clockwise wall with markers
-    /// every `MARKER_SPACING` facing inward, numbered from 1 (as maps/arena.toml's).
-    pub fn new(name: String, width: f64, height: f64) -> Draft {
+    /// every `spacing` metres facing inward, numbered from 1 (as maps/arena.toml's).
+    pub fn new(name: String, width: f64, height: f64, spacing: f64) -> Draft {
         let (hw, hh) = (width / 2.0, height / 2.0);
         let corners = [(-hw, -hh), (hw, -hh), (hw, hh), (-hw, hh)].map(|(x, y)| Point2::new(x, y));
         let mut draft = Draft {
@@ -63,6 +67,8 @@ impl Draft {
             doors: Vec::new(),
             lanes: Vec::new(),
             islands: Vec::new(),
+            spacing,
+            doorway: None,
             next_wall_id: 1,
             next_box_id: FIRST_OBSTACLE_ID,
         };
@@ -121,18 +127,19 @@ impl Draft {
         Ok(())
     }
 
-    /// A wall segment with markers every `MARKER_SPACING` centred on it, at least one
+    /// A wall segment with markers every `spacing` metres centred on it, at least one
     /// (build.rs's rule for `markers = { spacing }`), on the faces turned `sides` from its
     /// heading. Returns the marker spots.
     fn add_wall(&mut self, s: Segment, sides: &[f64]) -> Vec<Point2> {
         let len = s.length();
-        let n = (len / MARKER_SPACING + 1e-9).floor().max(1.0) as usize;
-        let first = (len - (n - 1) as f64 * MARKER_SPACING) / 2.0;
+        let spacing = self.spacing;
+        let n = (len / spacing + 1e-9).floor().max(1.0) as usize;
+        let first = (len - (n - 1) as f64 * spacing) / 2.0;
         let (ux, uy) = ((s.b.x - s.a.x) / len, (s.b.y - s.a.y) / len);
         let heading = uy.atan2(ux);
         let mut spots = Vec::with_capacity(n);
         for k in 0..n {
-            let d = first + k as f64 * MARKER_SPACING;
+            let d = first + k as f64 * spacing;
             let at = Point2::new(tidy(s.a.x + ux * d), tidy(s.a.y + uy * d));
             for side in sides {
                 self.world.markers.push(Marker {

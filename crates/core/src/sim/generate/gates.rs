@@ -2,7 +2,7 @@
 //! (as maps/arena.toml places its gates), with a clear lane in front for its drops.
 
 use super::draft::{Draft, Slot};
-use super::rules::{DROP_DISTANCE, DROP_ROW, DROP_STAGING, GATE_CLEARANCE, TRIES};
+use super::rules::{DROP_DISTANCE, DROP_SLOT, DROP_STAGING, GATE_CLEARANCE, TRIES, drop_places};
 use crate::geometry::{Point2, Segment};
 use crate::sim::BlockColor;
 use crate::sim::shapes::segment_distance2;
@@ -20,21 +20,25 @@ const GATE_SPACING: f64 = 1.0;
 /// (the 0.08 m body and a margin).
 const LANE_BEYOND: f64 = 0.15;
 
-/// Places both gates; `blocks` is the block count, which sets how deep the lanes are.
-pub fn place(d: &mut Draft, rng: &mut ChaCha8Rng, blocks: usize) -> Result<(), String> {
-    let reds = blocks.div_ceil(2);
-    let blues = blocks / 2;
+/// Places both gates; the blocks' `colours` set how deep each gate's lane is.
+pub fn place(d: &mut Draft, rng: &mut ChaCha8Rng, colours: &[BlockColor]) -> Result<(), String> {
+    let of = |c: BlockColor| colours.iter().filter(|&&b| b == c).count();
+    let (reds, blues) = (of(BlockColor::Red), of(BlockColor::Blue));
     for (color, ids, count) in [
         (BlockColor::Red, RED_GATE, reds),
         (BlockColor::Blue, BLUE_GATE, blues),
     ] {
-        // Drop places come in rows of two, each row DROP_ROW further out.
-        let rows = count.max(1).div_ceil(2);
-        let depth = DROP_STAGING + DROP_ROW * (rows - 1) as f64 + LANE_BEYOND;
+        // The lane runs out to the staging point of the furthest drop place used, and is
+        // wider by as much as a drop place used lies further aside than DROP_SLOT.
+        let used = drop_places(count);
+        let extra = used.iter().map(|p| p.extra).fold(0.0, f64::max);
+        let aside = used.iter().map(|p| p.across.abs()).fold(0.0, f64::max);
+        let depth = DROP_STAGING + extra + LANE_BEYOND;
+        let clearance = GATE_CLEARANCE + (aside - DROP_SLOT).max(0.0);
         let chosen = (0..TRIES).find_map(|_| {
             let slot = d.slots[rng.random_range(0..d.slots.len())];
             let lane = Segment::new(ahead(slot, DROP_DISTANCE), ahead(slot, depth));
-            let clear = d.segment_clearance(lane, Some(slot.wall)) >= GATE_CLEARANCE;
+            let clear = d.segment_clearance(lane, Some(slot.wall)) >= clearance;
             let apart = d
                 .lanes
                 .iter()

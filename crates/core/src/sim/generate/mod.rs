@@ -24,7 +24,7 @@ mod rules;
 #[cfg(test)]
 mod tests;
 
-pub use options::{GenerateError, GenerateOptions, Style};
+pub use options::{Colours, GenerateError, GenerateOptions, Style};
 pub use reach::check as check_reachable;
 pub use ring::centreline as loop_centreline;
 
@@ -67,16 +67,18 @@ pub fn generate(options: &GenerateOptions) -> Result<World, GenerateError> {
 /// One candidate world, or why it could not be finished.
 fn candidate(options: &GenerateOptions, rng: &mut ChaCha8Rng) -> Result<World, String> {
     let (w, h) = options.size();
-    let mut d = Draft::new(options.name(), w, h);
+    let mut d = Draft::new(options.name(), w, h, options.marker_spacing);
+    d.doorway = options.doorway;
     match options.style {
         Style::Boxes => {}
-        Style::Rooms => rooms::build(&mut d, rng, options.loops)?,
+        Style::Rooms => rooms::build(&mut d, rng, options.loops, options.rooms)?,
         Style::Corridors => corridors::build(&mut d, rng, options.loops)?,
         Style::Loop => ring::build(&mut d, rng)?,
     }
-    gates::place(&mut d, rng, options.blocks)?;
+    let colours = options.colours.draw(options.blocks, rng);
+    gates::place(&mut d, rng, &colours)?;
     boxes::place(&mut d, rng, options.obstacles)?;
-    blocks::place(&mut d, rng, options.blocks)?;
+    blocks::place(&mut d, rng, &colours)?;
     blocks::start(&mut d, rng)?;
     let mut world = d.world;
     if !options.wall_markers {

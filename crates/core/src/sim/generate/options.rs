@@ -1,8 +1,87 @@
 //! What a generated world is asked to be, the checks on that, and why generation fails.
 
-use super::rules::{MAX_BLOCKS, MAX_OBSTACLES, MAX_SIDE, MIN_BLOCK_SPACING, WALL_CLEARANCE};
+use super::rules::{
+    DOORWAYS, MARKER_SPACING, MARKER_SPACINGS, MAX_BLOCKS, MAX_OBSTACLES, MAX_PER_COLOUR, MAX_SIDE,
+    MIN_BLOCK_SPACING, MIN_ROOM, WALL_CLEARANCE,
+};
+use crate::data::number::short;
+use crate::sim::BlockColor;
+use rand::Rng;
+use rand_chacha::ChaCha8Rng;
 use std::fmt;
 use std::str::FromStr;
+
+/// How the blocks' colours are chosen.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Colours {
+    /// Red, blue, red, ...
+    #[default]
+    Alternating,
+    /// Each block red or blue at random (seeded), a gate's drop places at most of one.
+    Random,
+    /// Every block red: one gate takes them all.
+    One,
+}
+
+impl Colours {
+    pub const ALL: [Colours; 3] = [Colours::Alternating, Colours::Random, Colours::One];
+
+    pub fn label(self) -> &'static str {
+        match self {
+            Colours::Alternating => "alternating",
+            Colours::Random => "random",
+            Colours::One => "one",
+        }
+    }
+
+    /// The colour of each of `count` blocks, in turn (drawn from `rng` when random, at
+    /// most `MAX_PER_COLOUR` of either: a colour that is full gives way to the other).
+    pub fn draw(self, count: usize, rng: &mut ChaCha8Rng) -> Vec<BlockColor> {
+        let mut colours = Vec::with_capacity(count);
+        for i in 0..count {
+            let red = match self {
+                Colours::Alternating => i % 2 == 0,
+                Colours::One => true,
+                Colours::Random => {
+                    let reds = colours.iter().filter(|&&c| c == BlockColor::Red).count();
+                    let blues = i - reds;
+                    let drawn = rng.random_bool(0.5);
+                    (drawn && reds < MAX_PER_COLOUR) || blues >= MAX_PER_COLOUR
+                }
+            };
+            colours.push(if red {
+                BlockColor::Red
+            } else {
+                BlockColor::Blue
+            });
+        }
+        colours
+    }
+
+    /// The most blocks a world of these colours holds.
+    fn max_blocks(self) -> usize {
+        match self {
+            Colours::One => MAX_PER_COLOUR,
+            Colours::Alternating | Colours::Random => MAX_BLOCKS,
+        }
+    }
+}
+
+impl fmt::Display for Colours {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.label())
+    }
+}
+
+impl FromStr for Colours {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, String> {
+        Colours::ALL
+            .into_iter()
+            .find(|c| c.label() == s)
+            .ok_or_else(|| format!("unknown colours `{s}`: expected alternating, random or one"))
+    }
+}
 
 /// The shape of a generated world's interior.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
@@ -91,6 +170,13 @@ pub struct GenerateOptions {
     /// Rooms and corridors with ways round: a second doorway in the walls between rooms,
     /// corridor walls free at both ends.
     pub loops: bool,
+    /// Wall markers every this many metres.
+    pub marker_spacing: f64,
+    pub colours: Colours,
+    /// Every doorway (rooms) and corridor turn this wide, metres; `None`: drawn.
+    pub doorway: Option<f64>,
+    /// How many rooms a rooms world has; `None`: 2-4 drawn.
+    pub rooms: Option<usize>,
 }
 
 impl Default for GenerateOptions {
@@ -103,6 +189,10 @@ impl Default for GenerateOptions {
             style: Style::Boxes,
             wall_markers: true,
             loops: false,
+            marker_spacing: MARKER_SPACING,
+            colours: Colours::Alternating,
+            doorway: None,
+            rooms: None,
         }
     }
 }
@@ -114,20 +204,61 @@ impl GenerateOptions {
     }
 
     /// The world's name, e.g. `generated:boxes:7`, `generated:rooms:7:loops:bare` (with
-    /// loops, without wall markers): each variant keeps its own autosaved map.
+    /// loops, without wall markers), `generated:rooms:7:rooms6:door0.9:markers1:random`:
+    /// each variant keeps its own autosaved map.
     pub fn name(&self) -> String {
-        let loops = if self.loops { ":loops" } else { "" };
-        let bare = if self.wall_markers { "" } else { ":bare" };
-        format!("generated:{}:{}{loops}{bare}", self.style, self.seed)
+        format!(
+            "generated:{}:{}{}",
+            self.style,
+            self.seed,
+            self.variant(":", "", "")
+        )
+    }
+
+    /// The options that differ from the defaults, each as `sep` + name + value, with `flag`
+    /// before names and `space` between a name and its value.
+    fn variant(&self, sep: &str, flag: &str, space: &str) -> String {
+        let mut parts = Vec::new();
+        if self.loops {
+            parts.push(format!("{flag}loops"));
+        }
+        if !self.wall_markers {
+            parts.push(if flag.is_empty() {
+                "bare".into()
+            } else {
+                format!("{flag}no-wall-markers")
+            });
+        }
+        if let Some(n) = self.rooms {
+            parts.push(format!("{flag}rooms{space}{n}"));
+        }
+        if let Some(w) = self.doorway {
+            let name = if flag.is_empty() { "door" } else { "doorway" };
+            parts.push(format!("{flag}{name}{space}{}", short(w)));
+        }
+        if self.marker_spacing != MARKER_SPACING {
+            let name = if flag.is_empty() {
+                "markers"
+            } else {
+                "marker-spacing"
+            };
+            parts.push(format!("{flag}{name}{space}{}", short(self.marker_spacing)));
+        }
+        if self.colours != Colours::Alternating {
+            let colours = self.colours.label();
+            parts.push(if flag.is_empty() {
+                colours.into()
+            } else {
+                format!("{flag}colours {colours}")
+            });
+        }
+        parts.iter().map(|p| format!("{sep}{p}")).collect()
     }
 
     /// Refuses options no world can satisfy, naming the option.
     pub fn validate(&self) -> Result<(), GenerateError> {
         let (w, h) = self.size();
-        let size = || {
-            use crate::data::number::short;
-            format!("{},{}", short(w), short(h))
-        };
+        let size = || format!("{},{}", short(w), short(h));
         let bad = |option, value: String, reason: String| {
             Err(GenerateError::Option {
                 option,
@@ -146,9 +277,9 @@ impl GenerateOptions {
             let reason = format!("a side longer than {MAX_SIDE} m runs out of wall marker ids");
             return bad("size", size(), reason);
         }
-        let (long, short) = self.style.min_size();
-        if w.max(h) < long || w.min(h) < short {
-            let reason = format!("{} need at least {long} m x {short} m", self.style.label());
+        let (long, narrow) = self.style.min_size();
+        if w.max(h) < long || w.min(h) < narrow {
+            let reason = format!("{} need at least {long} m x {narrow} m", self.style.label());
             return bad("size", size(), reason);
         }
         if self.loops && !self.style.takes_loops() {
@@ -156,11 +287,53 @@ impl GenerateOptions {
             let value = format!("with {} worlds", self.style.label());
             return bad("loops", value, reason.into());
         }
-        if self.blocks == 0 || self.blocks > MAX_BLOCKS {
+        let max_blocks = self.colours.max_blocks();
+        if self.blocks == 0 || self.blocks > max_blocks {
             let reason = format!(
-                "must lie in 1..={MAX_BLOCKS} (15 marker pairs per colour, seed 001 section 1)"
+                "must lie in 1..={max_blocks} with {} colours (a gate has {MAX_PER_COLOUR} drop places, mission/drop_places.rs)",
+                self.colours
             );
             return bad("blocks", self.blocks.to_string(), reason);
+        }
+        let (lo, hi) = MARKER_SPACINGS;
+        if !(lo..=hi).contains(&self.marker_spacing) {
+            let reason = format!(
+                "must lie in {lo}..={hi} m (a gate's markers need 0.4 m between wall markers)"
+            );
+            return bad("marker-spacing", short(self.marker_spacing), reason);
+        }
+        if let Some(width) = self.doorway {
+            let (lo, hi) = DOORWAYS;
+            if !matches!(self.style, Style::Rooms | Style::Corridors) {
+                let value = format!("{} with {} worlds", short(width), self.style);
+                return bad(
+                    "doorway",
+                    value,
+                    "only rooms and corridors have doorways".into(),
+                );
+            }
+            if !(lo..=hi).contains(&width) {
+                let reason = format!(
+                    "must lie in {lo}..={hi} m (the planner's 0.15 m lethal radius each side and 0.2 m between)"
+                );
+                return bad("doorway", short(width), reason);
+            }
+        }
+        if let Some(n) = self.rooms {
+            if self.style != Style::Rooms {
+                let value = format!("{n} with {} worlds", self.style);
+                return bad("rooms", value, "only rooms worlds take a room count".into());
+            }
+            // Rooms are split across their longer side and are at least MIN_ROOM wide.
+            let across = |side: f64| (side / MIN_ROOM).floor().max(1.0) as usize;
+            let most = across(w) * across(h);
+            if n < 2 || n > most {
+                let reason = format!(
+                    "must lie in 2..={most} for a {} m world (rooms at least {MIN_ROOM} m wide)",
+                    size()
+                );
+                return bad("rooms", n.to_string(), reason);
+            }
         }
         if self.obstacles > MAX_OBSTACLES {
             let reason = format!(
@@ -185,15 +358,13 @@ impl GenerateOptions {
     /// The command that makes this world, for a file's first line.
     pub fn command(&self) -> String {
         let (w, h) = self.size();
-        let loops = if self.loops { " --loops" } else { "" };
-        let bare = if self.wall_markers {
-            ""
-        } else {
-            " --no-wall-markers"
-        };
         format!(
-            "navdeck world generate --seed {} --style {} --size {w},{h} --blocks {} --obstacles {}{loops}{bare}",
-            self.seed, self.style, self.blocks, self.obstacles
+            "navdeck world generate --seed {} --style {} --size {w},{h} --blocks {} --obstacles {}{}",
+            self.seed,
+            self.style,
+            self.blocks,
+            self.obstacles,
+            self.variant(" ", "--", " ")
         )
     }
 }

@@ -2,7 +2,7 @@
 //! wall or box closed to the robot's centre, then a flood fill from the start must reach
 //! each block's approach ring and each gate's drop places.
 
-use super::rules::{DROP_ROW, DROP_SLOT, DROP_STAGING, REACH_RADIUS, REACH_RESOLUTION, STAGING};
+use super::rules::{DROP_STAGING, REACH_RADIUS, REACH_RESOLUTION, STAGING, drop_places};
 use crate::geometry::Point2;
 use crate::map::grid::OCCUPIED;
 use crate::sim::World;
@@ -42,9 +42,10 @@ pub fn check(world: &World) -> Result<(), String> {
             return Err(format!("{} gate has no markers", g.color.label()));
         };
         let (s, c) = pose.theta.sin_cos();
-        // The first row of drop places (DROP_SLOT either side) and the one behind it.
-        for (side, depth) in [(-1.0, 0.0), (1.0, 0.0), (-1.0, DROP_ROW), (1.0, DROP_ROW)] {
-            let (across, out) = (side * DROP_SLOT, DROP_STAGING + depth);
+        // The staging point of every drop place the gate's blocks use.
+        let count = world.blocks.iter().filter(|b| b.color == g.color).count();
+        for place in drop_places(count) {
+            let (across, out) = (place.across, DROP_STAGING + place.extra);
             let p = Point2::new(pose.x + c * out - s * across, pose.y + s * out + c * across);
             if !reachable(p) {
                 return Err(format!(

@@ -6,14 +6,11 @@
 
 use super::draft::Draft;
 use super::draw::pick;
-use super::rules::{MARKER_END_CLEARANCE, MIN_PASSAGE, TRIES};
+use super::rules::{MARKER_END_CLEARANCE, MIN_PASSAGE, MIN_ROOM, TRIES};
 use crate::geometry::Point2;
 use rand::Rng;
 use rand_chacha::ChaCha8Rng;
 
-/// A room is at least this wide, metres: a 0.8 m doorway and a block 0.5 m from its walls
-/// both fit across it.
-const MIN_ROOM: f64 = 1.2;
 /// Wall left either side of a doorway, metres (at least one marker's width and a half).
 const MIN_PIECE: f64 = 0.25;
 /// Widest doorway above `MIN_PASSAGE`, metres.
@@ -42,10 +39,17 @@ impl Rect {
     }
 }
 
-/// Splits the draft's area into 2-4 rooms; with `loops`, at least one wall has two doorways.
-pub fn build(d: &mut Draft, rng: &mut ChaCha8Rng, loops: bool) -> Result<(), String> {
+/// Splits the draft's area into `rooms` rooms (2-4 drawn when `None`); with `loops`, at
+/// least one wall has two doorways.
+pub fn build(
+    d: &mut Draft,
+    rng: &mut ChaCha8Rng,
+    loops: bool,
+    rooms: Option<usize>,
+) -> Result<(), String> {
     let (hw, hh) = (d.world.width / 2.0, d.world.height / 2.0);
-    let wanted = rng.random_range(2..=4usize);
+    let drawn = rng.random_range(2..=4usize);
+    let wanted = rooms.unwrap_or(drawn);
     let mut rooms = vec![Rect {
         x0: -hw,
         y0: -hh,
@@ -64,6 +68,12 @@ pub fn build(d: &mut Draft, rng: &mut ChaCha8Rng, loops: bool) -> Result<(), Str
     }
     if rooms.len() < 2 {
         return Err("the area is too small to split into rooms".into());
+    }
+    if rooms.len() < wanted {
+        return Err(format!(
+            "only {} rooms of at least {MIN_ROOM} m fit where {wanted} were asked for",
+            rooms.len()
+        ));
     }
     // One doorway per wall but for each second one.
     if loops && d.doors.len() < rooms.len() {
@@ -104,7 +114,7 @@ fn split(
         let ends_clear = [a, b].into_iter().all(|p| {
             d.marker_distance(p) >= MARKER_END_CLEARANCE && d.door_distance(p) >= DOOR_MARGIN
         });
-        let Some(gaps) = doorways(rng, (s0, s1), loops) else {
+        let Some(gaps) = doorways(rng, (s0, s1), loops, d.doorway) else {
             continue;
         };
         if !ends_clear {
@@ -132,9 +142,18 @@ fn split(
 }
 
 /// Doorways, as (start, end) along a wall spanning `s0..s1`, `MIN_PIECE` of wall at its
-/// ends: one, or with `loops` two `LOOP_PIECE` apart where the wall is long enough.
-fn doorways(rng: &mut ChaCha8Rng, (s0, s1): (f64, f64), loops: bool) -> Option<Vec<(f64, f64)>> {
-    let mut door = || pick(rng, MIN_PASSAGE, MIN_PASSAGE + DOOR_EXTRA, 0.05);
+/// ends: one, or with `loops` two `LOOP_PIECE` apart where the wall is long enough; each
+/// `width` wide, or drawn.
+fn doorways(
+    rng: &mut ChaCha8Rng,
+    (s0, s1): (f64, f64),
+    loops: bool,
+    width: Option<f64>,
+) -> Option<Vec<(f64, f64)>> {
+    let mut door = || {
+        let drawn = pick(rng, MIN_PASSAGE, MIN_PASSAGE + DOOR_EXTRA, 0.05);
+        width.or(drawn)
+    };
     let first = door()?;
     let second = if loops { door() } else { None };
     match second {

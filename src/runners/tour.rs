@@ -18,7 +18,7 @@ use crate::pilot::navigation::Target;
 use crate::pilot::teleop::DriveKey;
 use crate::pilot::{Intent, LogLine, Pilot};
 use crate::runners::mission::take_log;
-use crate::slam::mcl::KnownMap;
+use crate::slam::mcl::{KnownMap, Phase};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use serde::Serialize;
@@ -84,10 +84,34 @@ pub struct TourReport {
     /// MCL at the end: particles, effective sample size, clusters.
     pub particles: Option<usize>,
     pub clusters: Option<usize>,
+    /// What MCL said of itself against the truth.
+    #[serde(flatten)]
+    pub localisation: LocalisationScore,
     pub warnings: Vec<String>,
     pub wall_time_s: Option<f64>,
     pub realtime_factor: Option<f64>,
 }
+
+/// MCL's own word against the truth: what it said at the end, how far off it was, and
+/// whether it ever said "localised" while wrong.
+#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+pub struct LocalisationScore {
+    /// MCL's status at the end: "localised", "localising: 3 hypotheses", "lost: ...".
+    pub localisation: Option<String>,
+    /// The estimate's error at the end, metres and degrees.
+    pub final_error_m: f64,
+    pub final_error_deg: f64,
+    /// Localised at the end, yet farther than `WRONG_M` or `WRONG_DEG` from the truth.
+    pub confidently_wrong: bool,
+    /// Seconds MCL said "localised" while that far from the truth.
+    pub confidently_wrong_s: f64,
+    /// When MCL first said it was lost (after a kidnapping).
+    pub lost_at: Option<f64>,
+}
+
+/// Wrong means farther than these from the truth (the global-localisation bar).
+pub const WRONG_M: f64 = 0.3;
+pub const WRONG_DEG: f64 = 10.0;
 
 /// Runs a tour on `link` (the twin) with `config`'s pilot, localised by `localizer` when given.
 pub fn run(
@@ -193,6 +217,10 @@ pub fn run(
         collisions: Some(truth.collisions()),
         particles: mcl.map(|s| s.particles),
         clusters: mcl.map(|s| s.clusters),
+        localisation: LocalisationScore {
+            localisation: mcl.map(|s| s.summary()),
+            ..scores.localisation
+        },
         warnings: once_each(&tour.log),
         wall_time_s: None,
         realtime_factor: None,
@@ -362,6 +390,7 @@ struct Scores {
     localised_at: Option<f64>,
     kidnapped_at: Option<f64>,
     localised_again: Option<f64>,
+    localisation: LocalisationScore,
 }
 
 impl Scores {
@@ -377,7 +406,19 @@ impl Scores {
         self.dr_position
             .add(truth.position().distance(dr.position()));
         self.dr_heading.add(wrap_angle(truth.theta - dr.theta));
-        let converged = pilot.mcl().is_none_or(|m| m.status().converged);
+        let status = pilot.mcl().map(|m| m.status());
+        let converged = status.is_none_or(|s| s.converged);
+        let score = &mut self.localisation;
+        score.final_error_m = dp;
+        score.final_error_deg = dh.abs().to_degrees();
+        let wrong = dp > WRONG_M || dh.abs().to_degrees() > WRONG_DEG;
+        score.confidently_wrong = status.is_some() && converged && wrong;
+        if score.confidently_wrong {
+            score.confidently_wrong_s += pilot.settings().robot.control_period;
+        }
+        if score.lost_at.is_none() && status.is_some_and(|s| s.phase == Phase::Lost) {
+            score.lost_at = Some(t);
+        }
         let within = dp < LOCALISED_M && dh.abs().to_degrees() < LOCALISED_DEG && converged;
         if within && self.localised_at.is_none() {
             self.localised_at = Some(t);

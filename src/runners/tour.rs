@@ -18,6 +18,7 @@ use crate::pilot::navigation::Target;
 use crate::pilot::teleop::DriveKey;
 use crate::pilot::{Intent, LogLine, Pilot};
 use crate::runners::mission::take_log;
+use crate::slam::mcl::seek::{Seek, SeekDrive};
 use crate::slam::mcl::{KnownMap, Phase};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
@@ -30,8 +31,8 @@ pub const LOCALISED_DEG: f64 = 5.0;
 const GOAL_CLEARANCE: f64 = 0.15;
 /// Goals are at least this far from the robot, metres.
 const GOAL_LEAST: f64 = 1.0;
-/// The wanderer turns when something is this near ahead, metres.
-const WANDER_NEAR: f64 = 0.4;
+/// The localising move keeps this far from what is ahead, metres.
+const SEEK_NEAR: f64 = 0.4;
 /// A goal not reached in this long is given up, seconds.
 const GOAL_PATIENCE: f64 = 90.0;
 
@@ -166,6 +167,7 @@ pub fn run(
         arrivals: Vec::new(),
         given_up: 0,
         log: Vec::new(),
+        seek: Seek::default(),
     };
     let mut scores = Scores::default();
     take_log(&mut tour.log, robot.tick(0.0, Vec::new()));
@@ -292,10 +294,13 @@ struct Tour {
     arrivals: Vec<Arrival>,
     given_up: usize,
     log: Vec<LogLine>,
+    /// The move that tells MCL's hypotheses apart, while it has not localised.
+    seek: Seek,
 }
 
 impl Tour {
-    /// Decides what the robot does next: wander until localised, then goal after goal.
+    /// Decides what the robot does next: the localising move until localised, then goal
+    /// after goal.
     fn steer(&mut self, pilot: &Pilot, t: f64, options: &TourOptions) -> Vec<Intent> {
         let mut asked = Vec::new();
         let localised = pilot.mcl().is_none_or(|m| m.status().converged);
@@ -303,10 +308,11 @@ impl Tour {
             if self.goal.take().is_some() {
                 asked.push(Intent::Mode(Mode::Manual));
             }
-            let key = wander_key(pilot);
+            let key = self.seek_key(pilot);
             asked.push(Intent::KeyDown { key, repeat: true });
             return asked;
         }
+        self.seek = Seek::default();
         let stale = self
             .goal
             .is_some_and(|(_, since)| t - since > GOAL_PATIENCE);
@@ -342,6 +348,26 @@ impl Tour {
         asked
     }
 
+    /// The drive key of the localising move.
+    fn seek_key(&mut self, pilot: &Pilot) -> DriveKey {
+        let (Some(mcl), Some((_, scan))) = (pilot.mcl(), pilot.newest_scan()) else {
+            return DriveKey::TurnLeft;
+        };
+        let clear = SEEK_NEAR.max(pilot.settings().robot.footprint_radius);
+        let drive = (self.seek).step(
+            pilot.odometry_pose(),
+            scan,
+            mcl.map(),
+            mcl.hypotheses(),
+            clear,
+        );
+        match drive {
+            SeekDrive::TurnLeft => DriveKey::TurnLeft,
+            SeekDrive::TurnRight => DriveKey::TurnRight,
+            SeekDrive::Forward => DriveKey::Forward,
+        }
+    }
+
     fn check_arrival(&mut self, pilot: &Pilot, truth: Pose2, t: f64) {
         if let Some((goal, _)) = self.goal
             && pilot.arrived()
@@ -358,23 +384,6 @@ impl Tour {
             });
             self.goal = None;
         }
-    }
-}
-
-/// Ahead while nothing is near in front (±30°), else a turn left.
-fn wander_key(pilot: &Pilot) -> DriveKey {
-    let Some((_, scan)) = pilot.newest_scan() else {
-        return DriveKey::TurnLeft;
-    };
-    let blocked = scan.ranges.iter().enumerate().any(|(k, &r)| {
-        let a = wrap_angle(scan.angle_min + k as f64 * scan.angle_increment);
-        let r = f64::from(r);
-        a.abs() < 30f64.to_radians() && r >= scan.range_min && r < WANDER_NEAR
-    });
-    if blocked {
-        DriveKey::TurnLeft
-    } else {
-        DriveKey::Forward
     }
 }
 

@@ -14,6 +14,7 @@ pub mod motion;
 mod recovery;
 pub mod resample;
 pub mod rivals;
+pub mod seek;
 pub mod sensor;
 
 pub use filter::{Mcl, Particle, Phase, Status};

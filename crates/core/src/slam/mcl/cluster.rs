@@ -157,7 +157,10 @@ mod tests {
         // The hypotheses, heaviest first, at their clusters' means.
         assert_eq!(e.hypotheses.len(), 2);
         let (second, w) = e.hypotheses[1];
-        assert!((w - 0.3).abs() < 1e-9 && (second.x - 5.0).abs() < 1e-9, "{second:?}");
+        assert!(
+            (w - 0.3).abs() < 1e-9 && (second.x - 5.0).abs() < 1e-9,
+            "{second:?}"
+        );
         assert!((second.y - 5.045).abs() < 1e-9 && (second.theta - 3.0).abs() < 1e-9);
         assert!((e.pose.x - 1.045).abs() < 1e-9 && (e.pose.y - 1.0).abs() < 1e-9);
         assert!((e.pose.theta - 0.1).abs() < 1e-9);

@@ -173,7 +173,12 @@ impl LocalizationConfig {
         check::counts_within(&[
             ("min_particles", u64::from(self.min_particles), 1, 100_000),
             ("max_particles", u64::from(self.max_particles), 1, 100_000),
-            ("global_max_particles", u64::from(self.global_max_particles), 1, 200_000),
+            (
+                "global_max_particles",
+                u64::from(self.global_max_particles),
+                1,
+                200_000,
+            ),
             ("max_beams", u64::from(self.max_beams), 1, 4096),
         ])?;
         if self.min_particles > self.max_particles {

@@ -8,6 +8,7 @@ use super::recovery::{Average, random_free_pose};
 use super::resample;
 use super::rivals;
 use super::sensor::{Beams, Weigher};
+pub use super::status::{Phase, Status};
 use crate::data::LaserScan;
 use crate::geometry::{Point2, Pose2, wrap_angle};
 use nalgebra::Matrix3;
@@ -22,56 +23,6 @@ use std::sync::Arc;
 pub struct Particle {
     pub pose: Pose2,
     pub weight: f64,
-}
-
-/// What the status panel shows of the filter.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Status {
-    /// Particles now (KLD-sampling sets the count at each resampling).
-    pub particles: usize,
-    /// The effective sample size 1 / Σ w² of the last scan's normalised weights, before
-    /// resampling (Probabilistic Robotics 4.3.4; AMCL resamples on it): how many
-    /// particles carry the belief. Equal to `particles` until a scan has weighed them.
-    pub effective: f64,
-    /// The share of the weight behind the estimate.
-    pub cluster_weight: f64,
-    pub clusters: usize,
-    pub converged: bool,
-    /// Localised, still localising, or lost after having been localised.
-    pub phase: Phase,
-    /// The heaviest cluster's position spread (standard deviation, worst direction), m.
-    pub spread: f64,
-    /// The chance each resampled particle was replaced by a random one, last time.
-    pub random_share: f64,
-    pub updates: u64,
-}
-
-/// Where the filter stands, as the console, the log and the JSON say it.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Phase {
-    /// One cluster holds the weight, is tight, and the map explains the scan there.
-    Localised,
-    /// Looking for the robot (global localisation, or the cluster not yet tight).
-    Localising,
-    /// Was localised, then the scans stopped fitting (augmented MCL's w_fast fell well
-    /// under w_slow): the robot was moved, or the map no longer holds. Looking again.
-    Lost,
-}
-
-impl Status {
-    /// "localised", "localising: 3 hypotheses", "localising: 1 hypothesis, spread
-    /// 0.40 m", or "lost: 3 hypotheses".
-    pub fn summary(&self) -> String {
-        let what = match self.phase {
-            Phase::Localised => return "localised".into(),
-            Phase::Localising => "localising",
-            Phase::Lost => "lost",
-        };
-        match self.clusters {
-            0 | 1 => format!("{what}: 1 hypothesis, spread {:.2} m", self.spread),
-            n => format!("{what}: {n} hypotheses"),
-        }
-    }
 }
 
 /// See the module comment.
@@ -98,6 +49,9 @@ pub struct Mcl {
     agreement: Option<f64>,
     /// The update at which the map was last searched for rivals of the estimate.
     rivals_checked: Option<u64>,
+    /// Looking for the robot anywhere (global localisation, or lost): only then is the
+    /// map searched for rivals; a pose the user placed is taken as told.
+    searching: bool,
     effective: f64,
     updates: u64,
 }
@@ -142,6 +96,7 @@ impl Mcl {
             lost: false,
             agreement: None,
             rivals_checked: None,
+            searching: false,
             effective: 0.0,
             updates: 0,
         }
@@ -168,6 +123,7 @@ impl Mcl {
             })
             .collect();
         self.restart();
+        self.searching = false;
     }
 
     /// Global localisation: particles spread evenly over the map's free space, headings
@@ -182,6 +138,7 @@ impl Mcl {
             })
             .collect();
         self.restart();
+        self.searching = true;
     }
 
     fn restart(&mut self) {
@@ -261,7 +218,7 @@ impl Mcl {
             1.0
         } else {
             let prior: Vec<f64> = self.particles.iter().map(|p| p.weight).collect();
-            tempering(&prior, &logs, top, self.config.resample_ess)
+            resample::tempering(&prior, &logs, top, self.config.resample_ess)
         };
         let mut total = 0.0;
         for (p, l) in self.particles.iter_mut().zip(&logs) {
@@ -290,15 +247,24 @@ impl Mcl {
         } else {
             0.0
         };
-        if self.converged && 1.0 - self.random_share < LOST_RATIO {
-            self.lost = true;
+        // Lost: the scans fit much worse lately than they used to, or the map no longer
+        // explains the scan at the estimate.
+        let tracking = self.converged;
+        let fell = tracking && 1.0 - self.random_share < LOST_RATIO;
+        if fell {
             self.converged = false;
         }
         let was = self.converged;
         self.refresh_estimate();
         self.agreement = Weigher::agreement(&self.map, self.estimate.pose, &beams, AGREE_NEAR);
         self.judge();
-        if self.converged && !was && self.has_rivals(&beams) {
+        let unexplained = self.agreement.is_none_or(|a| a < AGREE_LEAST);
+        if tracking && (fell || unexplained) {
+            self.lost = true;
+            self.searching = true;
+            self.converged = false;
+        }
+        if self.converged && !was && self.searching && self.has_rivals(&beams) {
             // The rivals now show among the hypotheses; the filter is not localised.
             self.refresh_estimate();
             self.converged = false;
@@ -327,7 +293,10 @@ impl Mcl {
     /// `rivals`); each such place is taken back as a hypothesis. Searched at most every
     /// `RECHECK_UPDATES` updates, so the robot has moved on between searches.
     fn has_rivals(&mut self, beams: &Beams) -> bool {
-        if self.rivals_checked.is_some_and(|u| self.updates < u + RECHECK_UPDATES) {
+        if self
+            .rivals_checked
+            .is_some_and(|u| self.updates < u + RECHECK_UPDATES)
+        {
             return true;
         }
         self.rivals_checked = Some(self.updates);
@@ -339,7 +308,11 @@ impl Mcl {
         };
         // Nearly as well: within what it costs every beam to end half a σ_hit farther
         // from the walls (the likelihood field's own scale, table 6.3).
-        let hits = beams.ranges.iter().filter(|&&r| r < beams.max_range).count();
+        let hits = beams
+            .ranges
+            .iter()
+            .filter(|&&r| r < beams.max_range)
+            .count();
         let margin = hits as f64 * (q(0.0) / q(0.5 * c.sigma_hit)).ln();
         let (_, weigher) = self.weigher.as_mut().expect("built by the first scan");
         let found = rivals::rivals(&self.map, weigher, beams, self.estimate.pose, margin);
@@ -350,7 +323,10 @@ impl Mcl {
         // and the filter may have lost the rival only by the luck of its first particles.
         let each = (self.config.min_particles as usize).max(1);
         let room = self.most_particles().saturating_sub(self.particles.len()) / each;
-        let (sd, sa) = (self.config.bin_size / 4.0, self.config.bin_angle_deg.to_radians() / 2.0);
+        let (sd, sa) = (
+            self.config.bin_size / 4.0,
+            self.config.bin_angle_deg.to_radians() / 2.0,
+        );
         let w = self.estimate.weight / each as f64;
         for rival in found.into_iter().take(room.max(1)) {
             for _ in 0..each {
@@ -497,36 +473,4 @@ impl Mcl {
     pub fn config(&self) -> &LocalizationConfig {
         &self.config
     }
-}
-
-
-/// The power β in (0, 1] of the scan's likelihood that keeps the effective sample size of
-/// `prior` · p^β at least `keep` of the prior's own: the largest such, 1 when the whole
-/// likelihood keeps that many. The annealed particle filter's rule (Deutscher, Blake and
-/// Reid 2000: each layer's exponent chosen for a survival rate, 0.5 there): sixty beams
-/// taken as independent make one scan's likelihood so sharp that a global localisation
-/// would keep the one particle that happened to land nearest a look-alike pose; tempered,
-/// a scan trims the hypotheses by half and the next scans, from elsewhere, decide.
-fn tempering(prior: &[f64], logs: &[f64], top: f64, keep: f64) -> f64 {
-    // Of weights not normalised: (Σ w)² / Σ w² (Probabilistic Robotics 4.3.4).
-    let ess = |beta: f64| {
-        let (mut sum, mut sum_sq) = (0.0, 0.0);
-        for (p, l) in prior.iter().zip(logs) {
-            let w = p * (beta * (l - top)).exp();
-            sum += w;
-            sum_sq += w * w;
-        }
-        if sum_sq > 0.0 { sum * sum / sum_sq } else { 0.0 }
-    };
-    let want = keep * ess(0.0);
-    if ess(1.0) >= want {
-        return 1.0;
-    }
-    // Bisection: the effective sample size falls as the power grows.
-    let (mut lo, mut hi) = (0.0, 1.0);
-    for _ in 0..30 {
-        let mid = 0.5 * (lo + hi);
-        if ess(mid) >= want { lo = mid } else { hi = mid }
-    }
-    lo
 }

@@ -16,6 +16,7 @@ pub mod resample;
 pub mod rivals;
 pub mod seek;
 pub mod sensor;
+mod status;
 
 pub use filter::{Mcl, Particle, Phase, Status};
 pub use known_map::{KnownMap, KnownMapError};

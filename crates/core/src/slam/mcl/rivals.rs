@@ -186,7 +186,10 @@ mod tests {
         // The room turned by a half-turn about its centre (2, 1): (3, 1.3) facing 0.3 - π.
         let mirror = Pose2::new(3.0, 1.3, wrap_angle(0.3 - std::f64::consts::PI));
         assert_eq!(found.len(), 1, "{found:?}");
-        assert!(found[0].position().distance(mirror.position()) < 0.1, "{found:?}");
+        assert!(
+            found[0].position().distance(mirror.position()) < 0.1,
+            "{found:?}"
+        );
         assert!(wrap_angle(found[0].theta - mirror.theta).abs() < 0.05);
         let boxed = room(true);
         let mut w = Weigher::new(&boxed, &c, 3.5);

@@ -58,13 +58,17 @@ impl Seek {
         if !sees_all_round && self.turned < std::f64::consts::TAU {
             return SeekDrive::TurnLeft;
         }
-        let done = self.leg.is_none_or(|(_, from, length)| {
-            from.position().distance(odom.position()) >= length
-        });
+        let done = self
+            .leg
+            .is_none_or(|(_, from, length)| from.position().distance(odom.position()) >= length);
         let blocked = clearance(scan, 0.0) < clear;
         if done || (blocked && self.aimed(odom)) {
             self.leg = best_bearing(scan, map, hypotheses, clear).map(|(b, open)| {
-                (wrap_angle(odom.theta + b), odom, (open - clear).clamp(0.1, LEG_M))
+                (
+                    wrap_angle(odom.theta + b),
+                    odom,
+                    (open - clear).clamp(0.1, LEG_M),
+                )
             });
         }
         let Some((heading, _, _)) = self.leg else {
@@ -185,7 +189,10 @@ mod tests {
         assert!(along > 0.9, "bearing {b}");
         let mut seek = Seek::default();
         let drive = seek.step(Pose2::new(0.0, 0.0, 0.0), &open_scan(), &map, &hyps, 0.3);
-        assert!(matches!(drive, SeekDrive::Forward | SeekDrive::TurnLeft | SeekDrive::TurnRight));
+        assert!(matches!(
+            drive,
+            SeekDrive::Forward | SeekDrive::TurnLeft | SeekDrive::TurnRight
+        ));
     }
 
     #[test]
@@ -197,7 +204,10 @@ mod tests {
         let mut seek = Seek::default();
         for k in 0..10 {
             let odom = Pose2::new(0.0, 0.0, 0.5 * k as f64);
-            assert_eq!(seek.step(odom, &narrow, &map, &hyps, 0.3), SeekDrive::TurnLeft);
+            assert_eq!(
+                seek.step(odom, &narrow, &map, &hyps, 0.3),
+                SeekDrive::TurnLeft
+            );
         }
     }
 }

@@ -129,6 +129,7 @@ impl Mcl {
     /// Global localisation: particles spread evenly over the map's free space, headings
     /// at random, as many as the global phase allows (`global_max_particles`).
     pub fn init_global(&mut self) {
+        self.searching = true;
         let n = self.most_particles();
         let w = 1.0 / n as f64;
         self.particles = (0..n)
@@ -157,7 +158,7 @@ impl Mcl {
     /// the robot, AMCL's `max_particles` while it tracks.
     fn most_particles(&self) -> usize {
         let c = &self.config;
-        if self.converged {
+        if self.converged || !self.searching {
             c.max_particles as usize
         } else {
             c.global_max_particles.max(c.max_particles) as usize
@@ -214,7 +215,7 @@ impl Mcl {
         self.w_fast.add(w_avg);
         let top = logs.iter().copied().fold(f64::NEG_INFINITY, f64::max);
         // Tracking takes the whole likelihood; looking for the robot, a power of it.
-        let power = if self.converged {
+        let power = if self.converged || !self.searching {
             1.0
         } else {
             let prior: Vec<f64> = self.particles.iter().map(|p| p.weight).collect();

@@ -15,6 +15,8 @@ pub struct EstimatorFigures {
     pub loop_closures: Option<usize>,
     /// Loops closed that the twin's truth contradicts (0 without a twin).
     pub false_loop_closures: Option<usize>,
+    /// MCL's status at the end: "localised", "localising: 3 hypotheses" or "lost: ...".
+    pub localisation: Option<String>,
 }
 
 impl EstimatorFigures {
@@ -25,6 +27,7 @@ impl EstimatorFigures {
             keyframes: slam.map(|s| s.slam.graph().poses.len()),
             loop_closures: slam.map(|s| s.closures.len()),
             false_loop_closures: slam.map(|s| s.false_closures()),
+            localisation: pilot.mcl().map(|m| m.status().summary()),
         }
     }
 }

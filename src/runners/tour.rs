@@ -18,7 +18,8 @@ use crate::pilot::navigation::Target;
 use crate::pilot::teleop::DriveKey;
 use crate::pilot::{Intent, LogLine, Pilot};
 use crate::runners::mission::take_log;
-use crate::slam::mcl::KnownMap;
+use crate::slam::mcl::seek::{Seek, SeekDrive};
+use crate::slam::mcl::{KnownMap, Phase};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use serde::Serialize;
@@ -30,8 +31,8 @@ pub const LOCALISED_DEG: f64 = 5.0;
 const GOAL_CLEARANCE: f64 = 0.15;
 /// Goals are at least this far from the robot, metres.
 const GOAL_LEAST: f64 = 1.0;
-/// The wanderer turns when something is this near ahead, metres.
-const WANDER_NEAR: f64 = 0.4;
+/// The localising move keeps this far from what is ahead, metres.
+const SEEK_NEAR: f64 = 0.4;
 /// A goal not reached in this long is given up, seconds.
 const GOAL_PATIENCE: f64 = 90.0;
 
@@ -84,10 +85,34 @@ pub struct TourReport {
     /// MCL at the end: particles, effective sample size, clusters.
     pub particles: Option<usize>,
     pub clusters: Option<usize>,
+    /// What MCL said of itself against the truth.
+    #[serde(flatten)]
+    pub localisation: LocalisationScore,
     pub warnings: Vec<String>,
     pub wall_time_s: Option<f64>,
     pub realtime_factor: Option<f64>,
 }
+
+/// MCL's own word against the truth: what it said at the end, how far off it was, and
+/// whether it ever said "localised" while wrong.
+#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+pub struct LocalisationScore {
+    /// MCL's status at the end: "localised", "localising: 3 hypotheses", "lost: ...".
+    pub localisation: Option<String>,
+    /// The estimate's error at the end, metres and degrees.
+    pub final_error_m: f64,
+    pub final_error_deg: f64,
+    /// Localised at the end, yet farther than `WRONG_M` or `WRONG_DEG` from the truth.
+    pub confidently_wrong: bool,
+    /// Seconds MCL said "localised" while that far from the truth.
+    pub confidently_wrong_s: f64,
+    /// When MCL first said it was lost (after a kidnapping).
+    pub lost_at: Option<f64>,
+}
+
+/// Wrong means farther than these from the truth (the global-localisation bar).
+pub const WRONG_M: f64 = 0.3;
+pub const WRONG_DEG: f64 = 10.0;
 
 /// Runs a tour on `link` (the twin) with `config`'s pilot, localised by `localizer` when given.
 pub fn run(
@@ -142,6 +167,7 @@ pub fn run(
         arrivals: Vec::new(),
         given_up: 0,
         log: Vec::new(),
+        seek: Seek::default(),
     };
     let mut scores = Scores::default();
     take_log(&mut tour.log, robot.tick(0.0, Vec::new()));
@@ -193,6 +219,10 @@ pub fn run(
         collisions: Some(truth.collisions()),
         particles: mcl.map(|s| s.particles),
         clusters: mcl.map(|s| s.clusters),
+        localisation: LocalisationScore {
+            localisation: mcl.map(|s| s.summary()),
+            ..scores.localisation
+        },
         warnings: once_each(&tour.log),
         wall_time_s: None,
         realtime_factor: None,
@@ -264,10 +294,13 @@ struct Tour {
     arrivals: Vec<Arrival>,
     given_up: usize,
     log: Vec<LogLine>,
+    /// The move that tells MCL's hypotheses apart, while it has not localised.
+    seek: Seek,
 }
 
 impl Tour {
-    /// Decides what the robot does next: wander until localised, then goal after goal.
+    /// Decides what the robot does next: the localising move until localised, then goal
+    /// after goal.
     fn steer(&mut self, pilot: &Pilot, t: f64, options: &TourOptions) -> Vec<Intent> {
         let mut asked = Vec::new();
         let localised = pilot.mcl().is_none_or(|m| m.status().converged);
@@ -275,10 +308,11 @@ impl Tour {
             if self.goal.take().is_some() {
                 asked.push(Intent::Mode(Mode::Manual));
             }
-            let key = wander_key(pilot);
+            let key = self.seek_key(pilot);
             asked.push(Intent::KeyDown { key, repeat: true });
             return asked;
         }
+        self.seek = Seek::default();
         let stale = self
             .goal
             .is_some_and(|(_, since)| t - since > GOAL_PATIENCE);
@@ -314,6 +348,26 @@ impl Tour {
         asked
     }
 
+    /// The drive key of the localising move.
+    fn seek_key(&mut self, pilot: &Pilot) -> DriveKey {
+        let (Some(mcl), Some((_, scan))) = (pilot.mcl(), pilot.newest_scan()) else {
+            return DriveKey::TurnLeft;
+        };
+        let clear = SEEK_NEAR.max(pilot.settings().robot.footprint_radius);
+        let drive = (self.seek).step(
+            pilot.odometry_pose(),
+            scan,
+            mcl.map(),
+            mcl.hypotheses(),
+            clear,
+        );
+        match drive {
+            SeekDrive::TurnLeft => DriveKey::TurnLeft,
+            SeekDrive::TurnRight => DriveKey::TurnRight,
+            SeekDrive::Forward => DriveKey::Forward,
+        }
+    }
+
     fn check_arrival(&mut self, pilot: &Pilot, truth: Pose2, t: f64) {
         if let Some((goal, _)) = self.goal
             && pilot.arrived()
@@ -333,23 +387,6 @@ impl Tour {
     }
 }
 
-/// Ahead while nothing is near in front (±30°), else a turn left.
-fn wander_key(pilot: &Pilot) -> DriveKey {
-    let Some((_, scan)) = pilot.newest_scan() else {
-        return DriveKey::TurnLeft;
-    };
-    let blocked = scan.ranges.iter().enumerate().any(|(k, &r)| {
-        let a = wrap_angle(scan.angle_min + k as f64 * scan.angle_increment);
-        let r = f64::from(r);
-        a.abs() < 30f64.to_radians() && r >= scan.range_min && r < WANDER_NEAR
-    });
-    if blocked {
-        DriveKey::TurnLeft
-    } else {
-        DriveKey::Forward
-    }
-}
-
 /// Errors of the estimate and of dead reckoning against the truth.
 #[derive(Default)]
 struct Scores {
@@ -362,6 +399,7 @@ struct Scores {
     localised_at: Option<f64>,
     kidnapped_at: Option<f64>,
     localised_again: Option<f64>,
+    localisation: LocalisationScore,
 }
 
 impl Scores {
@@ -377,7 +415,19 @@ impl Scores {
         self.dr_position
             .add(truth.position().distance(dr.position()));
         self.dr_heading.add(wrap_angle(truth.theta - dr.theta));
-        let converged = pilot.mcl().is_none_or(|m| m.status().converged);
+        let status = pilot.mcl().map(|m| m.status());
+        let converged = status.is_none_or(|s| s.converged);
+        let score = &mut self.localisation;
+        score.final_error_m = dp;
+        score.final_error_deg = dh.abs().to_degrees();
+        let wrong = dp > WRONG_M || dh.abs().to_degrees() > WRONG_DEG;
+        score.confidently_wrong = status.is_some() && converged && wrong;
+        if score.confidently_wrong {
+            score.confidently_wrong_s += pilot.settings().robot.control_period;
+        }
+        if score.lost_at.is_none() && status.is_some_and(|s| s.phase == Phase::Lost) {
+            score.lost_at = Some(t);
+        }
         let within = dp < LOCALISED_M && dh.abs().to_degrees() < LOCALISED_DEG && converged;
         if within && self.localised_at.is_none() {
             self.localised_at = Some(t);

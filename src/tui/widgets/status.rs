@@ -103,17 +103,8 @@ fn rows(app: &App) -> Vec<Row> {
             )
             .wrapping(2),
         );
-        let state = if st.converged {
-            "converged".to_string()
-        } else if st.clusters > 1 {
-            format!(
-                "{} hypotheses, best {:.0} %",
-                st.clusters,
-                100.0 * st.cluster_weight
-            )
-        } else {
-            format!("searching, spread {:.2} m", mcl.position_std())
-        };
+        // "localised", "localising: 3 hypotheses", "lost: ...": the filter's own word.
+        let state = st.summary();
         rows.push(Row::new("Locate", state, Need::High).wrapping(2));
     }
     rows.extend(lidar_slam_rows(app));

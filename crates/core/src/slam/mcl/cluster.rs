@@ -28,6 +28,8 @@ pub struct CloudEstimate {
     pub weight: f64,
     /// Clusters holding at least 1 % of the weight.
     pub clusters: usize,
+    /// Those clusters' weighted mean poses and weights, heaviest first: the hypotheses.
+    pub hypotheses: Vec<(Pose2, f64)>,
 }
 
 /// See the module comment. `weights` are normalised; `size` and `angle` are the bins'.
@@ -79,8 +81,38 @@ pub fn estimate(poses: &[Pose2], weights: &[f64], size: f64, angle: f64) -> Clou
         pose,
         covariance,
         weight: total,
-        clusters: cluster_weight.iter().filter(|&&w| w >= 0.01).count(),
+        clusters: cluster_weight.iter().filter(|&&w| w >= HYPOTHESIS).count(),
+        hypotheses: hypotheses(poses, weights, &bins, &cluster_of, &cluster_weight),
     }
+}
+
+/// A cluster counts as a hypothesis from this share of the weight.
+const HYPOTHESIS: f64 = 0.01;
+
+/// Each cluster of at least `HYPOTHESIS` of the weight: its weighted mean pose (heading
+/// as a circular mean) and its weight, heaviest first.
+fn hypotheses(
+    poses: &[Pose2],
+    weights: &[f64],
+    bins: &[Bin],
+    cluster_of: &HashMap<Bin, usize>,
+    cluster_weight: &[f64],
+) -> Vec<(Pose2, f64)> {
+    // Sums of w·x, w·y, w·cos θ, w·sin θ per cluster.
+    let mut sums = vec![[0.0f64; 4]; cluster_weight.len()];
+    for ((p, w), b) in poses.iter().zip(weights).zip(bins) {
+        let s = &mut sums[cluster_of[b]];
+        s[0] += w * p.x;
+        s[1] += w * p.y;
+        s[2] += w * p.theta.cos();
+        s[3] += w * p.theta.sin();
+    }
+    let mut out: Vec<(Pose2, f64)> = (sums.iter().zip(cluster_weight))
+        .filter(|(_, w)| **w >= HYPOTHESIS)
+        .map(|(s, &w)| (Pose2::new(s[0] / w, s[1] / w, s[3].atan2(s[2])), w))
+        .collect();
+    out.sort_by(|a, b| b.1.total_cmp(&a.1));
+    out
 }
 
 /// The weighted mean (the heading as a circular mean) and covariance of weighted poses.
@@ -122,6 +154,14 @@ mod tests {
         let e = estimate(&poses, &weights, 0.5, 10f64.to_radians());
         assert_eq!(e.clusters, 2);
         assert!((e.weight - 0.7).abs() < 1e-9);
+        // The hypotheses, heaviest first, at their clusters' means.
+        assert_eq!(e.hypotheses.len(), 2);
+        let (second, w) = e.hypotheses[1];
+        assert!(
+            (w - 0.3).abs() < 1e-9 && (second.x - 5.0).abs() < 1e-9,
+            "{second:?}"
+        );
+        assert!((second.y - 5.045).abs() < 1e-9 && (second.theta - 3.0).abs() < 1e-9);
         assert!((e.pose.x - 1.045).abs() < 1e-9 && (e.pose.y - 1.0).abs() < 1e-9);
         assert!((e.pose.theta - 0.1).abs() < 1e-9);
     }

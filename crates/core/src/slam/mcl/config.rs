@@ -70,6 +70,12 @@ pub struct LocalizationConfig {
     /// mcl --initial-pose unknown --random-start --sweep 1..50`).
     pub min_particles: u32,
     pub max_particles: u32,
+    /// KLD-sampling's maximum while the filter looks for the robot (global localisation,
+    /// or lost): the generous maximum of the global phase (Fox 2003: KLD-sampling sizes a
+    /// spread-out belief's set by the bins it covers), 20,000, about one particle per
+    /// KLD bin (0.5 m, 10°) over 140 m² of free space; KLD brings the count down to
+    /// `max_particles` and below as the hypotheses gather.
+    pub global_max_particles: u32,
     /// Odometry motion model noise (Probabilistic Robotics table 5.6, seed 002 "a1 - a4";
     /// AMCL `alpha1`..`alpha4`, 0.2 each): rotation from rotation, rotation from
     /// translation, translation from translation, translation from rotation.
@@ -131,6 +137,7 @@ impl Default for LocalizationConfig {
             model: SensorModel::LikelihoodField,
             min_particles: 500,
             max_particles: 5000,
+            global_max_particles: 20_000,
             alpha1: 0.2,
             alpha2: 0.2,
             alpha3: 0.2,
@@ -166,6 +173,12 @@ impl LocalizationConfig {
         check::counts_within(&[
             ("min_particles", u64::from(self.min_particles), 1, 100_000),
             ("max_particles", u64::from(self.max_particles), 1, 100_000),
+            (
+                "global_max_particles",
+                u64::from(self.global_max_particles),
+                1,
+                200_000,
+            ),
             ("max_beams", u64::from(self.max_beams), 1, 4096),
         ])?;
         if self.min_particles > self.max_particles {

@@ -4,8 +4,11 @@ use super::cluster::{self, CloudEstimate};
 use super::config::LocalizationConfig;
 use super::known_map::KnownMap;
 use super::motion::{self, OdometryStep};
+use super::recovery::{Average, random_free_pose};
 use super::resample;
+use super::rivals;
 use super::sensor::{Beams, Weigher};
+pub use super::status::{Phase, Status};
 use crate::data::LaserScan;
 use crate::geometry::{Point2, Pose2, wrap_angle};
 use nalgebra::Matrix3;
@@ -20,24 +23,6 @@ use std::sync::Arc;
 pub struct Particle {
     pub pose: Pose2,
     pub weight: f64,
-}
-
-/// What the status panel shows of the filter.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Status {
-    /// Particles now (KLD-sampling sets the count at each resampling).
-    pub particles: usize,
-    /// The effective sample size 1 / Σ w² of the last scan's normalised weights, before
-    /// resampling (Probabilistic Robotics 4.3.4; AMCL resamples on it): how many
-    /// particles carry the belief. Equal to `particles` until a scan has weighed them.
-    pub effective: f64,
-    /// The share of the weight behind the estimate.
-    pub cluster_weight: f64,
-    pub clusters: usize,
-    pub converged: bool,
-    /// The chance each resampled particle was replaced by a random one, last time.
-    pub random_share: f64,
-    pub updates: u64,
 }
 
 /// See the module comment.
@@ -58,9 +43,32 @@ pub struct Mcl {
     force_update: bool,
     estimate: CloudEstimate,
     converged: bool,
+    /// Lost after having been localised (see `Phase::Lost`), until localised again.
+    lost: bool,
+    /// The share of the last scan the map explains at the estimate.
+    agreement: Option<f64>,
+    /// The update at which the map was last searched for rivals of the estimate.
+    rivals_checked: Option<u64>,
+    /// Looking for the robot anywhere (global localisation, or lost): only then is the
+    /// map searched for rivals; a pose the user placed is taken as told.
+    searching: bool,
     effective: f64,
     updates: u64,
 }
+
+/// A beam agrees with the map when its end lies this near a mapped obstacle (AMCL's
+/// `beam_skip_distance`, 0.5 m).
+const AGREE_NEAR: f64 = 0.5;
+/// Localised needs at least this share of the scan's beams to agree with the map at the
+/// estimate: the map must explain most of what the lidar sees there (a wrong pose in a
+/// look-alike room leaves walls where the scan found none).
+const AGREE_LEAST: f64 = 0.5;
+/// Lost when the recent fit w_fast falls under this share of the long-run w_slow
+/// (Probabilistic Robotics table 8.3, line 13: augmented MCL then replaces at least every
+/// second resampled particle by a random one).
+const LOST_RATIO: f64 = 0.5;
+/// Updates between two searches for rivals (0.5 m or 0.5 rad of motion by default).
+const RECHECK_UPDATES: u64 = 5;
 
 impl Mcl {
     /// A filter on `map` with no particles yet: place them with `init_at` or `init_global`.
@@ -82,8 +90,13 @@ impl Mcl {
                 covariance: Matrix3::identity(),
                 weight: 0.0,
                 clusters: 0,
+                hypotheses: Vec::new(),
             },
             converged: false,
+            lost: false,
+            agreement: None,
+            rivals_checked: None,
+            searching: false,
             effective: 0.0,
             updates: 0,
         }
@@ -110,12 +123,14 @@ impl Mcl {
             })
             .collect();
         self.restart();
+        self.searching = false;
     }
 
     /// Global localisation: particles spread evenly over the map's free space, headings
-    /// at random.
+    /// at random, as many as the global phase allows (`global_max_particles`).
     pub fn init_global(&mut self) {
-        let n = self.config.max_particles as usize;
+        self.searching = true;
+        let n = self.most_particles();
         let w = 1.0 / n as f64;
         self.particles = (0..n)
             .map(|_| Particle {
@@ -124,6 +139,7 @@ impl Mcl {
             })
             .collect();
         self.restart();
+        self.searching = true;
     }
 
     fn restart(&mut self) {
@@ -133,7 +149,20 @@ impl Mcl {
         self.force_update = true;
         self.effective = self.particles.len() as f64;
         self.converged = false;
+        self.lost = false;
+        self.agreement = None;
         self.refresh_estimate();
+    }
+
+    /// KLD-sampling's maximum now: the generous global one while the filter looks for
+    /// the robot, AMCL's `max_particles` while it tracks.
+    fn most_particles(&self) -> usize {
+        let c = &self.config;
+        if self.converged || !self.searching {
+            c.max_particles as usize
+        } else {
+            c.global_max_particles.max(c.max_particles) as usize
+        }
     }
 
     /// Folds in the odometry pose (the robot's own dead reckoning) and, when the robot
@@ -185,11 +214,18 @@ impl Mcl {
         self.w_slow.add(w_avg);
         self.w_fast.add(w_avg);
         let top = logs.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        // Tracking takes the whole likelihood; looking for the robot, a power of it.
+        let power = if self.converged || !self.searching {
+            1.0
+        } else {
+            let prior: Vec<f64> = self.particles.iter().map(|p| p.weight).collect();
+            resample::tempering(&prior, &logs, top, self.config.resample_ess)
+        };
         let mut total = 0.0;
         for (p, l) in self.particles.iter_mut().zip(&logs) {
-            // Bayes: the prior weight times the likelihood, scaled by the best so nothing
-            // underflows.
-            p.weight *= (l - top).exp();
+            // Bayes: the prior weight times the likelihood (to `power`), scaled by the best
+            // so nothing underflows.
+            p.weight *= (power * (l - top)).exp();
             total += p.weight;
         }
         if !(total > 0.0 && total.is_finite()) {
@@ -204,7 +240,6 @@ impl Mcl {
         // noise to it (Probabilistic Robotics 4.3.4), and a random particle added below has
         // not yet met a scan, so it must not pull the estimate until one has weighed it.
         self.force_update = false;
-        self.refresh_estimate();
         // Table 8.3, line 13: random particles while the scans fit worse lately than they
         // used to.
         let (slow, fast) = (self.w_slow.value(), self.w_fast.value());
@@ -213,13 +248,100 @@ impl Mcl {
         } else {
             0.0
         };
+        // Lost: the scans fit much worse lately than they used to, or the map no longer
+        // explains the scan at the estimate.
+        let tracking = self.converged;
+        let fell = tracking && 1.0 - self.random_share < LOST_RATIO;
+        if fell {
+            self.converged = false;
+        }
+        let was = self.converged;
+        self.refresh_estimate();
+        self.agreement = Weigher::agreement(&self.map, self.estimate.pose, &beams, AGREE_NEAR);
+        self.judge();
+        let unexplained = self.agreement.is_none_or(|a| a < AGREE_LEAST);
+        if tracking && (fell || unexplained) {
+            self.lost = true;
+            self.searching = true;
+            self.converged = false;
+        }
+        if self.converged && !was && self.searching && self.has_rivals(&beams) {
+            // The rivals now show among the hypotheses; the filter is not localised.
+            self.refresh_estimate();
+            self.converged = false;
+        }
+        if self.converged && !was {
+            // Localised: from here the averages measure how well the scans fit while
+            // tracking, so that a kidnapping soon after shows as a fall from that fit, not
+            // from the poorer fit of the search.
+            self.w_slow = Average::new(self.config.alpha_slow);
+            self.w_fast = Average::new(self.config.alpha_fast);
+            self.lost = false;
+        }
         // Resample when the weights have grown lopsided, or to let random particles in: a
         // kidnapped robot's particles fit equally badly, so their weights stay even.
         let lopsided = self.effective < self.config.resample_ess * self.particles.len() as f64;
         if lopsided || self.random_share > 0.0 {
+            // The weights now, rivals taken back included.
+            let weights: Vec<f64> = self.particles.iter().map(|p| p.weight).collect();
             self.resample(&weights);
         }
         self.updates += 1;
+        true
+    }
+
+    /// Whether the scan fits elsewhere on the map nearly as well as at the estimate (see
+    /// `rivals`); each such place is taken back as a hypothesis. Searched at most every
+    /// `RECHECK_UPDATES` updates, so the robot has moved on between searches.
+    fn has_rivals(&mut self, beams: &Beams) -> bool {
+        if self
+            .rivals_checked
+            .is_some_and(|u| self.updates < u + RECHECK_UPDATES)
+        {
+            return true;
+        }
+        self.rivals_checked = Some(self.updates);
+        let c = &self.config;
+        let q = |d: f64| {
+            let g = (-(d * d) / (2.0 * c.sigma_hit * c.sigma_hit)).exp();
+            c.z_hit * g / ((2.0 * std::f64::consts::PI).sqrt() * c.sigma_hit)
+                + c.z_rand / beams.max_range
+        };
+        // Nearly as well: within what it costs every beam to end half a σ_hit farther
+        // from the walls (the likelihood field's own scale, table 6.3).
+        let hits = beams
+            .ranges
+            .iter()
+            .filter(|&&r| r < beams.max_range)
+            .count();
+        let margin = hits as f64 * (q(0.0) / q(0.5 * c.sigma_hit)).ln();
+        let (_, weigher) = self.weigher.as_mut().expect("built by the first scan");
+        let found = rivals::rivals(&self.map, weigher, beams, self.estimate.pose, margin);
+        if found.is_empty() {
+            return false;
+        }
+        // Each rival as heavy as the estimate's cluster: this scan cannot tell them apart,
+        // and the filter may have lost the rival only by the luck of its first particles.
+        let each = (self.config.min_particles as usize).max(1);
+        let room = self.most_particles().saturating_sub(self.particles.len()) / each;
+        let (sd, sa) = (
+            self.config.bin_size / 4.0,
+            self.config.bin_angle_deg.to_radians() / 2.0,
+        );
+        let w = self.estimate.weight / each as f64;
+        for rival in found.into_iter().take(room.max(1)) {
+            for _ in 0..each {
+                let n = |rng: &mut ChaCha8Rng| -> f64 { StandardNormal.sample(rng) };
+                let pose = Pose2::new(
+                    rival.x + sd * n(&mut self.rng),
+                    rival.y + sd * n(&mut self.rng),
+                    wrap_angle(rival.theta + sa * n(&mut self.rng)),
+                );
+                self.particles.push(Particle { pose, weight: w });
+            }
+        }
+        let total: f64 = self.particles.iter().map(|p| p.weight).sum();
+        self.particles.iter_mut().for_each(|p| p.weight /= total);
         true
     }
 
@@ -231,7 +353,7 @@ impl Mcl {
     fn resample(&mut self, weights: &[f64]) {
         let c = &self.config;
         let (size, angle) = (c.bin_size, c.bin_angle_deg.to_radians());
-        let (least, most) = (c.min_particles as usize, c.max_particles as usize);
+        let (least, most) = (c.min_particles as usize, self.most_particles());
         let mut pool = resample::low_variance(weights, most, &mut self.rng);
         pool.shuffle(&mut self.rng);
         let mut bins = std::collections::HashSet::new();
@@ -265,19 +387,32 @@ impl Mcl {
         let c = &self.config;
         self.estimate =
             cluster::estimate(&poses, &weights, c.bin_size, c.bin_angle_deg.to_radians());
+        self.judge();
+    }
+
+    /// Decides whether the filter has converged, from the estimate and the agreement.
+    fn judge(&mut self) {
+        let c = &self.config;
         // Converged: one cluster holds the weight and is tight. It is left only well past
         // those bounds (3/4 of the weight, twice the spread), so that the few random
         // particles augmented MCL adds do not make the status flicker.
         // Only a scan can tell: particles just placed have not met one yet.
         let (weight, spread) = (self.estimate.weight, self.position_std());
         let (w, sd) = (c.converged_weight, c.converged_std);
-        self.converged = if self.force_update {
+        let explained = self.agreement.is_some_and(|a| a >= AGREE_LEAST);
+        self.converged = if self.force_update || !explained {
             false
         } else if self.converged {
             weight >= 0.75 * w && spread <= 2.0 * sd
         } else {
             weight >= w && spread <= sd
         };
+    }
+
+    /// The hypotheses the filter weighs: each cluster's mean pose and weight, heaviest
+    /// first.
+    pub fn hypotheses(&self) -> &[(Pose2, f64)] {
+        &self.estimate.hypotheses
     }
 
     /// The estimate now, given the odometry pose now: the estimate at the last update
@@ -325,6 +460,12 @@ impl Mcl {
             cluster_weight: self.estimate.weight,
             clusters: self.estimate.clusters,
             converged: self.converged,
+            phase: match (self.converged, self.lost) {
+                (true, _) => Phase::Localised,
+                (false, true) => Phase::Lost,
+                (false, false) => Phase::Localising,
+            },
+            spread: self.position_std(),
             random_share: self.random_share,
             updates: self.updates,
         }
@@ -332,52 +473,5 @@ impl Mcl {
 
     pub fn config(&self) -> &LocalizationConfig {
         &self.config
-    }
-}
-
-/// A pose on a known free cell, anywhere in it, heading at random.
-fn random_free_pose(map: &KnownMap, rng: &mut ChaCha8Rng) -> Pose2 {
-    let free = map.free_cells();
-    let cell = free[rng.random_range(0..free.len())] as usize;
-    let c = map.center(cell);
-    let h = map.resolution / 2.0;
-    Pose2::new(
-        c.x + rng.random_range(-h..h),
-        c.y + rng.random_range(-h..h),
-        rng.random_range(-std::f64::consts::PI..std::f64::consts::PI),
-    )
-}
-
-/// An exponential average w += α (x - w) from w = 0 (Probabilistic Robotics table 8.3,
-/// lines 10-11), read corrected for its start: divided by 1 - (1 - α)^k after k samples,
-/// so that until about 1/α samples it is the mean of those seen, not the first one.
-/// Anchored at the first sample, the slow average would remember the poor fit of a
-/// global localisation's first scans for a thousand updates, and a kidnapping soon after
-/// would go unnoticed.
-#[derive(Clone, Copy, Debug)]
-struct Average {
-    alpha: f64,
-    raw: f64,
-    /// (1 - α)^k.
-    decay: f64,
-}
-
-impl Average {
-    fn new(alpha: f64) -> Self {
-        Self {
-            alpha,
-            raw: 0.0,
-            decay: 1.0,
-        }
-    }
-
-    fn add(&mut self, x: f64) {
-        self.raw += self.alpha * (x - self.raw);
-        self.decay *= 1.0 - self.alpha;
-    }
-
-    fn value(&self) -> f64 {
-        let weight = 1.0 - self.decay;
-        if weight > 0.0 { self.raw / weight } else { 0.0 }
     }
 }

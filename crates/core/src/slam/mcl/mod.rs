@@ -11,8 +11,12 @@ pub mod distance_transform;
 mod filter;
 pub mod known_map;
 pub mod motion;
+mod recovery;
 pub mod resample;
+pub mod rivals;
+pub mod seek;
 pub mod sensor;
+mod status;
 
-pub use filter::{Mcl, Particle, Status};
+pub use filter::{Mcl, Particle, Phase, Status};
 pub use known_map::{KnownMap, KnownMapError};

@@ -46,11 +46,62 @@ pub fn kld_bound(bins: usize, err: f64, z: f64) -> usize {
     (k / (2.0 * err) * x * x * x).ceil() as usize
 }
 
+/// The power β in (0, 1] of the scan's likelihood that keeps the effective sample size of
+/// `prior` · p^β at least `keep` of the prior's own: the largest such, 1 when the whole
+/// likelihood keeps that many. The annealed particle filter's rule (Deutscher, Blake and
+/// Reid 2000: each layer's exponent chosen for a survival rate, 0.5 there): sixty beams
+/// taken as independent make one scan's likelihood so sharp that a global localisation
+/// would keep the one particle that happened to land nearest a look-alike pose; tempered,
+/// a scan trims the hypotheses by half and the next scans, from elsewhere, decide.
+pub fn tempering(prior: &[f64], logs: &[f64], top: f64, keep: f64) -> f64 {
+    // Of weights not normalised: (Σ w)² / Σ w² (Probabilistic Robotics 4.3.4).
+    let ess = |beta: f64| {
+        let (mut sum, mut sum_sq) = (0.0, 0.0);
+        for (p, l) in prior.iter().zip(logs) {
+            let w = p * (beta * (l - top)).exp();
+            sum += w;
+            sum_sq += w * w;
+        }
+        if sum_sq > 0.0 {
+            sum * sum / sum_sq
+        } else {
+            0.0
+        }
+    };
+    let want = keep * ess(0.0);
+    if ess(1.0) >= want {
+        return 1.0;
+    }
+    // Bisection: the effective sample size falls as the power grows.
+    let (mut lo, mut hi) = (0.0, 1.0);
+    for _ in 0..30 {
+        let mid = 0.5 * (lo + hi);
+        if ess(mid) >= want { lo = mid } else { hi = mid }
+    }
+    lo
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
     use rand::SeedableRng;
     use rand_chacha::ChaCha8Rng;
+
+    #[test]
+    fn tempering_keeps_half_the_effective_sample_size() {
+        // Four even particles, log-likelihoods 0, -2, -4, -6: the whole likelihood leaves
+        // an effective size of (1 + e^-2 + e^-4 + e^-6)² / (1 + e^-4 + e^-8 + e^-12) = 1.31,
+        // under half of 4, so a power under 1 keeps exactly 2.
+        let prior = [0.25; 4];
+        let logs = [0.0, -2.0, -4.0, -6.0];
+        let beta = tempering(&prior, &logs, 0.0, 0.5);
+        assert!(beta > 0.0 && beta < 1.0, "{beta}");
+        let w: Vec<f64> = logs.iter().map(|l| (beta * l).exp()).collect();
+        let ess = w.iter().sum::<f64>().powi(2) / w.iter().map(|x| x * x).sum::<f64>();
+        assert!((ess - 2.0).abs() < 1e-6, "{ess}");
+        // Likelihoods that keep enough are taken whole.
+        assert_eq!(tempering(&prior, &[0.0, -0.1, -0.1, 0.0], 0.0, 0.5), 1.0);
+    }
 
     #[test]
     fn the_kld_bound_against_hand_worked_values() {

@@ -104,6 +104,24 @@ impl Weigher {
         }
     }
 
+    /// The share of the beams that hit something whose ends lie within `near` metres of
+    /// a mapped obstacle, seen from `pose`: how much of the scan the map explains there
+    /// (AMCL's beam skipping counts the same agreement, `beam_skip_distance`).
+    pub fn agreement(map: &KnownMap, pose: Pose2, beams: &Beams, near: f64) -> Option<f64> {
+        let (s, c) = pose.theta.sin_cos();
+        let (mut hits, mut near_wall) = (0usize, 0usize);
+        for (&(bc, bs), &r) in beams.directions.iter().zip(&beams.ranges) {
+            if r >= beams.max_range {
+                continue;
+            }
+            let (dc, ds) = (c * bc - s * bs, s * bc + c * bs);
+            hits += 1;
+            let d = map.distance_at(pose.x + r * dc, pose.y + r * ds);
+            near_wall += usize::from(d.is_some_and(|d| f64::from(d) <= near));
+        }
+        (hits > 0).then(|| near_wall as f64 / hits as f64)
+    }
+
     /// Table 6.3: each beam's end looked up in the field; readings at the maximum range
     /// are skipped (line 4).
     fn field_log_likelihood(&self, map: &KnownMap, pose: Pose2, beams: &Beams) -> f64 {

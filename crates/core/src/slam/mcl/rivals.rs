@@ -37,7 +37,8 @@ pub fn rivals(
     let mut scored: Vec<(f64, Pose2)> = Vec::new();
     for &cell in map.free_cells() {
         let cell = cell as usize;
-        if (cell % map.width) % stride != 0 || (cell / map.width) % stride != 0 {
+        if !(cell % map.width).is_multiple_of(stride) || !(cell / map.width).is_multiple_of(stride)
+        {
             continue;
         }
         let c = map.center(cell);

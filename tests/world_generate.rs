@@ -249,7 +249,6 @@ fn world_generate_writes_a_file_the_twin_and_the_mission_load() {
 fn bad_options_are_refused_naming_the_flag() {
     let dir = scratch("bad-options");
     let file = dir.join("bad.toml");
-    let path = file.to_str().unwrap();
     for (args, flag, value) in [
         (vec!["--size", "4x4"], "--size", "4x4"),
         (vec!["--size", "1,1"], "--size", "1,1"),
@@ -261,14 +260,7 @@ fn bad_options_are_refused_naming_the_flag() {
         (vec!["--loops"], "--loops", "boxes"),
         (vec!["--style", "loop", "--loops"], "--loops", "loop"),
     ] {
-        let mut all = vec!["world", "generate", "--seed", "1", "-o", path];
-        all.extend(args.iter().copied());
-        let out = navdeck(&all);
-        let err = String::from_utf8_lossy(&out.stderr);
-        assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
-        assert!(err.contains(flag) && err.contains(value), "{args:?}: {err}");
-        assert!(!err.contains("panicked"), "{err}");
-        assert!(!file.exists(), "{args:?} wrote a file");
+        refused(&args, flag, value, &file);
     }
     for flag in ["--style", "--no-wall-markers", "--loops"] {
         let mut args = vec!["mission", flag];
@@ -598,7 +590,6 @@ fn every_variant_has_its_own_name_and_its_command_remakes_it() {
 fn the_new_options_are_refused_naming_the_flag_and_value() {
     let dir = scratch("bad-new-options");
     let file = dir.join("bad.toml");
-    let path = file.to_str().unwrap();
     for (args, flag, value) in [
         (vec!["--marker-spacing", "0.2"], "--marker-spacing", "0.2"),
         (vec!["--marker-spacing", "wide"], "--marker-spacing", "wide"),
@@ -619,19 +610,27 @@ fn the_new_options_are_refused_naming_the_flag_and_value() {
             "3 with corridors",
         ),
     ] {
-        let mut all = vec!["world", "generate", "--seed", "1", "-o", path];
-        all.extend(args.iter().copied());
-        let out = navdeck(&all);
-        let err = String::from_utf8_lossy(&out.stderr);
-        assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
-        assert!(err.contains(flag) && err.contains(value), "{args:?}: {err}");
+        let err = refused(&args, flag, value, &file);
         let first = err.lines().next().unwrap_or_default();
         assert!(
             first.contains(flag) && first.contains(value),
             "one line says it: {err}"
         );
-        assert!(!err.contains("panicked"), "{err}");
-        assert!(!file.exists(), "{args:?} wrote a file");
     }
     std::fs::remove_dir_all(dir).unwrap();
+}
+
+/// `navdeck world generate --seed 1 -o FILE ARGS` is refused with usage status 2, naming
+/// `flag` and `value`, without a panic and without writing FILE; returns what it said.
+fn refused(args: &[&str], flag: &str, value: &str, file: &std::path::Path) -> String {
+    let path = file.to_str().unwrap();
+    let mut all = vec!["world", "generate", "--seed", "1", "-o", path];
+    all.extend(args.iter().copied());
+    let out = navdeck(&all);
+    let err = String::from_utf8_lossy(&out.stderr).into_owned();
+    assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+    assert!(err.contains(flag) && err.contains(value), "{args:?}: {err}");
+    assert!(!err.contains("panicked"), "{err}");
+    assert!(!file.exists(), "{args:?} wrote a file");
+    err
 }

@@ -2,7 +2,7 @@
 
 use crate::common;
 
-use common::{default_app, key, logged, navdeck};
+use common::{default_app, generated_mission, key, logged, navdeck};
 use navdeck::app::KeyKind;
 use navdeck::app::mode::Mode;
 use navdeck::runners::mission as mission_runner;
@@ -227,16 +227,7 @@ fn log_prints_every_line_the_mission_logged() {
 #[test]
 fn generated_worlds_that_once_failed_deliver_without_a_touch() {
     for (style, seed) in [("rooms", "63"), ("corridors", "41"), ("boxes", "18")] {
-        let out = navdeck(&[
-            "mission",
-            "--generated",
-            "--style",
-            style,
-            "--seed",
-            seed,
-            "--json",
-        ]);
-        let r: Value = serde_json::from_slice(&out.stdout).unwrap();
+        let r = generated_mission(style, seed, &[]);
         assert_eq!(r["outcome"], "delivered all", "{style} {seed}: {r}");
         assert_eq!(r["collisions"], 0, "{style} {seed}");
     }

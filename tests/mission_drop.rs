@@ -6,13 +6,12 @@
 use crate::common;
 use crate::mission_rig;
 
-use common::navdeck;
+use common::generated_mission;
 use mission_rig::{Rig, all_free, config, plan_to};
 use navdeck::geometry::Point2;
 use navdeck::map::costmap::LETHAL;
 use navdeck::mission::drop_places::DROP_PLACES;
 use navdeck::mission::step::PathStatus;
-use serde_json::Value;
 
 /// A rig holding red block 421, on its way to the red gate at (-1, 1) facing +x.
 fn heading_for_the_gate(rig: &mut Rig) -> Point2 {
@@ -113,23 +112,6 @@ fn a_block_neither_the_lidar_nor_the_camera_finds_where_it_was_let_go_is_not_cou
     assert_eq!(rig.mission.delivered(), 0);
 }
 
-/// `navdeck mission --generated` with `extra` options on `style` seed `seed`, as JSON.
-fn mission(style: &str, seed: &str, extra: &[&str]) -> Value {
-    let mut args = vec![
-        "mission",
-        "--generated",
-        "--style",
-        style,
-        "--seed",
-        seed,
-        "--json",
-    ];
-    args.extend(extra);
-    let out = navdeck(&args);
-    serde_json::from_slice(&out.stdout)
-        .unwrap_or_else(|e| panic!("{e}: {}", String::from_utf8_lossy(&out.stderr)))
-}
-
 /// Worlds where a third, fourth, ... block of one colour goes to its gate: the mission's
 /// count is the twin's, and every block is at its gate.
 #[test]
@@ -143,7 +125,7 @@ fn with_many_blocks_of_one_colour_every_delivery_counted_is_at_its_gate() {
             &["--colours", "one", "--blocks", "7", "--size", "6,5"][..],
         ),
     ] {
-        let r = mission(style, seed, extra);
+        let r = generated_mission(style, seed, extra);
         let total = r["total"].clone();
         assert_eq!(
             r["delivered"], r["true_delivered"],

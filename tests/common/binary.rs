@@ -8,3 +8,20 @@ pub fn navdeck(args: &[&str]) -> std::process::Output {
         .output()
         .expect("navdeck runs")
 }
+
+/// `navdeck mission --generated --style STYLE --seed SEED --json EXTRA...`: its report.
+pub fn generated_mission(style: &str, seed: &str, extra: &[&str]) -> serde_json::Value {
+    let mut args = vec![
+        "mission",
+        "--generated",
+        "--style",
+        style,
+        "--seed",
+        seed,
+        "--json",
+    ];
+    args.extend(extra);
+    let out = navdeck(&args);
+    serde_json::from_slice(&out.stdout)
+        .unwrap_or_else(|e| panic!("{e}: {}", String::from_utf8_lossy(&out.stderr)))
+}

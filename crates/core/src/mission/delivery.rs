@@ -6,13 +6,13 @@ use super::arm_moves::{ArmMove, ArmMoves, arrived};
 use super::clearance::clear_ahead;
 use super::config::{BACK_OFF_SPEED, MissionConfig};
 use super::drive::{Wait, faces, opened, steer, turn_towards};
-use super::drop_places::{AT_GATE, at_gate, occupied_near, open, shifted, standable};
+use super::drop_places::{AT_GATE, at_gate, open, shifted, standable};
 use super::leg::{Ctx, Leg, LegStep};
 use super::objects::{Colour, Gate};
 use super::pickup::name;
 use super::step::{Inputs, Level, Motion};
 use crate::data::GripperCommand;
-use crate::geometry::{Point2, Twist, wrap_angle};
+use crate::geometry::{Point2, Pose2, Twist, wrap_angle};
 use crate::map::costmap::Costmap;
 
 #[derive(Clone, Debug)]
@@ -26,6 +26,9 @@ enum Stage {
     /// The arm, empty, back to its carrying pose.
     Raise(ArmMove),
     BackOff,
+    /// Backing away from a drop place where the creep stopped short of the gate's region,
+    /// to try this other drop place instead, still holding the block.
+    Withdraw(usize),
     /// Looking at where the block was let go: the lidar's map or the camera finds it there.
     Check,
 }
@@ -195,6 +198,32 @@ impl Delivery {
         });
     }
 
+    /// After every free drop place had no path, each retry (turn, look, plan again) goes to
+    /// the next free drop place in turn, never to the same point twice running.
+    fn retry_elsewhere(&mut self, config: &MissionConfig, log: &mut Vec<(Level, String)>) {
+        let at = self.free.iter().position(|&s| s == self.slot).unwrap_or(0);
+        let Some(&next) = self.free.get((at + 1) % self.free.len().max(1)) else {
+            return;
+        };
+        if next == self.slot {
+            return;
+        }
+        let (place, depth) = shifted(self.gate, next);
+        let goal = place.in_front(config.drop_staging + depth);
+        (self.slot, self.place, self.depth) = (next, place, depth);
+        if let Stage::Travel(leg) = &mut self.stage {
+            leg.goal = goal;
+        }
+        log.push((
+            Level::Info,
+            format!(
+                "Next try: drop place {} of the {} gate",
+                next + 1,
+                self.colour.label()
+            ),
+        ));
+    }
+
     /// On the way, follows the gate as markers and map refine it: a drop place that
     /// moved more than 5 cm or turned more than 20° is planned to afresh (navdeck's).
     pub fn follow_gate(&mut self, gate: Gate, config: &MissionConfig) {
@@ -227,6 +256,7 @@ impl Delivery {
             Stage::Open => format!("drop {block}"),
             Stage::Raise(_) => "raise the arm".to_string(),
             Stage::BackOff => format!("back off from {gate} gate"),
+            Stage::Withdraw(_) => format!("back off from {gate} gate with {block}"),
             Stage::Check => format!("look for {block} at {gate} gate"),
         }
     }
@@ -281,9 +311,18 @@ impl Delivery {
             ));
             self.travel_to(next, config);
         }
+        let failures = match &self.stage {
+            Stage::Travel(leg) => leg.failures(),
+            _ => 0,
+        };
         match &mut self.stage {
             Stage::Travel(leg) => match leg.step(inputs, config, ctx, log) {
-                LegStep::Move(motion) => DropEvent::Go(motion, None),
+                LegStep::Move(motion) => {
+                    if leg.failures() > failures {
+                        self.retry_elsewhere(config, log);
+                    }
+                    DropEvent::Go(motion, None)
+                }
                 LegStep::Arrived => {
                     self.enter(Stage::Face, t);
                     stop
@@ -337,6 +376,26 @@ impl Delivery {
                     clear_ahead(inputs.map, inputs.occupied, pose, STOP_AHEAD.min(stop_at))
                         .is_some();
                 if distance <= stop_at || blocked || waited >= 2.0 * creep + 2.0 {
+                    let carried = ahead_of(pose, CARRIED_AHEAD);
+                    if distance > stop_at
+                        && !at_gate(&self.gate, carried)
+                        && let Some(next) = self.next_slot(inputs.map, config)
+                    {
+                        log.push((
+                            Level::Warn,
+                            format!(
+                                "Stopped {:.2} m from the {} gate's centre, short of its {AT_GATE} m - trying drop place {}",
+                                carried.distance(self.gate.center),
+                                self.colour.label(),
+                                next + 1
+                            ),
+                        ));
+                        self.enter(Stage::Withdraw(next), t);
+                        return DropEvent::Go(
+                            Motion::Drive(Twist::new(-BACK_OFF_SPEED, 0.0)),
+                            None,
+                        );
+                    }
                     let lower = arm.map(|a| a.lower_to(config.block_size / 2.0, joints));
                     match lower {
                         Some(Ok(m)) => {
@@ -363,11 +422,7 @@ impl Delivery {
             Stage::Open => match opened(inputs.gripper, waited, config) {
                 Wait::Waiting => stop,
                 outcome => {
-                    let ahead = Point2::new(pose.theta.cos(), pose.theta.sin());
-                    self.let_go = Some(Point2::new(
-                        pose.x + CARRIED_AHEAD * ahead.x,
-                        pose.y + CARRIED_AHEAD * ahead.y,
-                    ));
+                    self.let_go = Some(ahead_of(pose, CARRIED_AHEAD));
                     if outcome == Wait::TimedOut {
                         log.push((Level::Warn, "Gripper did not report open".into()));
                     }
@@ -400,85 +455,27 @@ impl Delivery {
                 }
                 DropEvent::Go(Motion::Drive(Twist::new(-BACK_OFF_SPEED, 0.0)), None)
             }
+            Stage::Withdraw(next) => {
+                if waited >= config.back_off_time - 1e-9 {
+                    let next = *next;
+                    self.travel_to(next, config);
+                    return stop;
+                }
+                DropEvent::Go(Motion::Drive(Twist::new(-BACK_OFF_SPEED, 0.0)), None)
+            }
             Stage::Check => self.check(inputs, waited),
         }
     }
 }
 
-impl Delivery {
-    /// Whether the block let go is at its gate, as the robot can tell: the point it let go
-    /// lies in the gate's region, and the lidar's map or the camera finds the block there
-    /// within `CHECK_TIME`.
-    fn check(&self, inputs: &Inputs, waited: f64) -> DropEvent {
-        let let_go = self.let_go.unwrap_or(inputs.pose.position());
-        let off = let_go.distance(self.gate.center);
-        let slot = self.slot;
-        if !at_gate(&self.gate, let_go) {
-            let why = format!("let go {off:.2} m from the gate's centre, beyond its {AT_GATE} m");
-            return DropEvent::Missed { why, slot };
-        }
-        let map = inputs.map;
-        let lidar = inputs.occupied.len() == map.width * map.height && !inputs.occupied.is_empty();
-        let seen = (inputs.seen.iter()).any(|&id| id == self.block || id == self.block + 1);
-        let found = seen || (lidar && occupied_near(map, inputs.occupied, let_go, FOUND_NEAR));
-        let delivered = DropEvent::Delivered {
-            at: let_go,
-            slot: self.slot,
-        };
-        match () {
-            _ if found => delivered,
-            _ if waited < CHECK_TIME => DropEvent::Go(Motion::Stop, None),
-            // Without a lidar, a block whose markers face away is not seen: the jaws
-            // opened inside the gate's region, and that is what the robot knows.
-            _ if !lidar => delivered,
-            _ => DropEvent::Missed {
-                why: format!(
-                    "neither the lidar nor the camera finds it where it was let go, {off:.2} m from the gate's centre"
-                ),
-                slot,
-            },
-        }
-    }
+/// The point `distance` ahead of `pose`.
+fn ahead_of(pose: Pose2, distance: f64) -> Point2 {
+    Point2::new(
+        pose.x + distance * pose.theta.cos(),
+        pose.y + distance * pose.theta.sin(),
+    )
 }
 
+mod check;
 #[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::geometry::Point2;
-    use crate::mission::drop_places::DROP_PLACES;
-
-    fn gate(normal: (f64, f64)) -> Gate {
-        Gate {
-            colour: Colour::Red,
-            markers: [401, 402],
-            center: Point2::new(0.0, 2.0),
-            normal,
-        }
-    }
-
-    fn goal(d: &Delivery) -> Point2 {
-        match &d.stage {
-            Stage::Travel(leg) => leg.goal,
-            _ => panic!("not travelling"),
-        }
-    }
-
-    #[test]
-    fn a_gate_that_turns_on_the_way_gets_a_new_drop_place_and_a_steady_one_does_not() {
-        let config = MissionConfig::default();
-        // First placed facing out of the arena (+y), then seen to face in (-y).
-        let free = (0..DROP_PLACES.len()).collect();
-        let mut d = Delivery::new(421, Colour::Red, gate((0.0, 1.0)), free, &config, 0.0).unwrap();
-        assert!(goal(&d).y > 2.0);
-        d.follow_gate(gate((0.0, -1.0)), &config);
-        let fixed = goal(&d);
-        assert!(
-            (fixed.y - (2.0 - config.drop_staging)).abs() < 1e-9,
-            "{fixed:?}"
-        );
-        // A turn of 10° is inside the estimate's wobble: the plan stands.
-        let (s, c) = (-100f64).to_radians().sin_cos();
-        d.follow_gate(gate((c, s)), &config);
-        assert_eq!(goal(&d), fixed);
-    }
-}
+mod tests;

@@ -14,12 +14,18 @@ const RING: f64 = 0.4;
 const SAMPLES: usize = 72;
 /// Fewer free samples than this say nothing (an unmapped gate).
 const MIN_FREE: usize = 6;
+/// The free directions must gather on one side: their mean resultant length (circular
+/// statistics' R, |Σ u| / n) at least this. A wall with its half circle free gives 2/π ≈
+/// 0.64; a wall the map shows free on both sides (scans folded in before the estimate
+/// corrected a drift) gives about 0 and says nothing (navdeck's).
+const MIN_RESULTANT: f64 = 0.3;
 /// A marker line whose normal lies within this of the free side is trusted, radians
 /// (30°): it is the finer of the two when the markers are well placed.
 const AGREE: f64 = std::f64::consts::PI / 6.0;
 
 /// The unit direction from `center` into the mapped free space around it (the mean of
-/// the free directions on a circle), if enough of the circle is mapped free.
+/// the free directions on a circle), if enough of the circle is mapped free and the free
+/// part lies to one side.
 pub fn free_side(map: &Costmap, center: Point2) -> Option<(f64, f64)> {
     let (mut sx, mut sy, mut n) = (0.0, 0.0, 0);
     for k in 0..SAMPLES {
@@ -35,7 +41,8 @@ pub fn free_side(map: &Costmap, center: Point2) -> Option<(f64, f64)> {
         }
     }
     let len = sx.hypot(sy);
-    (n >= MIN_FREE && len > 1e-9).then(|| (sx / len, sy / len))
+    let one_sided = n >= MIN_FREE && len >= MIN_RESULTANT * n as f64;
+    one_sided.then(|| (sx / len, sy / len))
 }
 
 /// The gate's normal: the markers' line normal turned to the free side when the two
@@ -95,6 +102,30 @@ mod tests {
             Point2::new(2.0, 0.3),
         );
         assert!((n.0 + 0.0995).abs() < 1e-3 && n.1 > 0.99, "{n:?}");
+    }
+
+    #[test]
+    fn a_wall_mapped_free_on_both_sides_leaves_the_markers_to_decide() {
+        // A drifted estimate folded scans in from both sides of the wall: free above and
+        // below, with a few cells more free off to one side, which alone would have
+        // turned the gate along its wall.
+        let mut map = wall_map();
+        for y in 0..150 {
+            for x in 0..150 {
+                let c = map.center_of(x, y);
+                if c.y < -0.15 && c.x < 0.2 {
+                    map.set(x, y, FREE);
+                }
+            }
+        }
+        assert!(free_side(&map, Point2::new(0.0, 0.0)).is_none());
+        let n = gate_normal(
+            &map,
+            Point2::new(0.1, 0.01),
+            Point2::new(-0.1, -0.01),
+            Point2::new(0.5, 1.0),
+        );
+        assert!(n.1 > 0.99, "the markers' normal, towards the robot: {n:?}");
     }
 
     #[test]

@@ -77,6 +77,11 @@ impl Leg {
         }
     }
 
+    /// Failed plans so far.
+    pub fn failures(&self) -> u32 {
+        self.failures
+    }
+
     /// Failed plans so far and whether a retry turn is under way.
     pub fn retrying(&self) -> Option<u32> {
         self.turn.as_ref().map(|_| self.failures)

@@ -6,7 +6,7 @@ use super::known_map::KnownMap;
 use super::motion::{self, OdometryStep};
 use super::recovery::{Average, random_free_pose};
 use super::resample;
-use super::rivals;
+use super::rivals::{self, RecentScans};
 use super::sensor::{Beams, Weigher};
 pub use super::status::{Phase, Status};
 use crate::data::LaserScan;
@@ -49,6 +49,8 @@ pub struct Mcl {
     agreement: Option<f64>,
     /// The update at which the map was last searched for rivals of the estimate.
     rivals_checked: Option<u64>,
+    /// The recent scans a rival is judged by.
+    recent: RecentScans,
     /// Looking for the robot anywhere (global localisation, or lost): only then is the
     /// map searched for rivals; a pose the user placed is taken as told.
     searching: bool,
@@ -96,6 +98,7 @@ impl Mcl {
             lost: false,
             agreement: None,
             rivals_checked: None,
+            recent: RecentScans::default(),
             searching: false,
             effective: 0.0,
             updates: 0,
@@ -151,6 +154,7 @@ impl Mcl {
         self.converged = false;
         self.lost = false;
         self.agreement = None;
+        self.recent.clear();
         self.refresh_estimate();
     }
 
@@ -264,6 +268,11 @@ impl Mcl {
             self.lost = true;
             self.searching = true;
             self.converged = false;
+            // The scans before the robot was moved say nothing of where it is now.
+            self.recent.clear();
+        }
+        if let Some(odom) = self.odom_at_update {
+            self.recent.push(odom, beams.clone());
         }
         if self.converged && !was && self.searching && self.has_rivals(&beams) {
             // The rivals now show among the hypotheses; the filter is not localised.
@@ -316,7 +325,12 @@ impl Mcl {
             .count();
         let margin = hits as f64 * (q(0.0) / q(0.5 * c.sigma_hit)).ln();
         let (_, weigher) = self.weigher.as_mut().expect("built by the first scan");
-        let found = rivals::rivals(&self.map, weigher, beams, self.estimate.pose, margin);
+        let (map, estimate) = (&self.map, self.estimate.pose);
+        let odom = self.odom_at_update.unwrap_or_default();
+        let found: Vec<Pose2> = rivals::rivals(map, weigher, beams, estimate, margin)
+            .into_iter()
+            .filter(|&r| !(self.recent).rule_out(map, weigher, odom, estimate, r, margin))
+            .collect();
         if found.is_empty() {
             return false;
         }

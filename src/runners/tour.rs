@@ -481,9 +481,10 @@ pub fn human(r: &TourReport) -> String {
         m(r.dr_heading_rmse_deg, 1.0, "°"),
     );
     s += &format!(
-        "localised at {}; kidnapped at {}, recovered after {}\n",
+        "localised at {}; kidnapped at {}, lost noticed at {}, recovered after {}\n",
         m(r.localised_at, 1.0, "s"),
         m(r.kidnapped_at, 1.0, "s"),
+        m(r.localisation.lost_at, 1.0, "s"),
         m(r.recovered_after, 1.0, "s"),
     );
     s += &format!(

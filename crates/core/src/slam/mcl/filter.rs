@@ -177,7 +177,7 @@ impl Mcl {
             if !self.force_update {
                 return false;
             }
-            return self.correct(scan);
+            return self.correct(scan, None);
         };
         let step = OdometryStep::between(last, odom);
         let turned = wrap_angle(odom.theta - last.theta).abs();
@@ -192,11 +192,12 @@ impl Mcl {
             }
         }
         self.odom_at_update = Some(odom);
-        self.correct(scan)
+        // Where the estimate should be now, had the robot moved only as the odometry says.
+        self.correct(scan, Some(self.estimate.pose.compose(last.between(odom))))
     }
 
     /// Weighs the particles by `scan`, and resamples when the weights are lopsided.
-    fn correct(&mut self, scan: &LaserScan) -> bool {
+    fn correct(&mut self, scan: &LaserScan, expected: Option<Pose2>) -> bool {
         self.force_update = false;
         let beams = Beams::pick(scan, self.config.max_beams);
         if beams.is_empty() || self.particles.is_empty() {
@@ -264,7 +265,11 @@ impl Mcl {
         self.agreement = Weigher::agreement(&self.map, self.estimate.pose, &beams, AGREE_NEAR);
         self.judge();
         let unexplained = self.agreement.is_none_or(|a| a < AGREE_LEAST);
-        if tracking && (fell || unexplained) {
+        // The heaviest cluster is now another place than the odometry carried the estimate
+        // to: the robot was not where the filter said (carried off, or it had settled on a
+        // look-alike).
+        let jumped = expected.is_some_and(|e| !rivals::near(e, self.estimate.pose));
+        if tracking && (fell || unexplained || jumped) {
             self.lost = true;
             self.searching = true;
             self.converged = false;

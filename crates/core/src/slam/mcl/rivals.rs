@@ -145,7 +145,7 @@ impl RecentScans {
 }
 
 /// Whether `a` is at the same place as `b`.
-fn near(a: Pose2, b: Pose2) -> bool {
+pub(super) fn near(a: Pose2, b: Pose2) -> bool {
     a.position().distance(b.position()) < ELSEWHERE_M
         && wrap_angle(a.theta - b.theta).abs() < ELSEWHERE_DEG.to_radians()
 }

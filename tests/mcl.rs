@@ -166,14 +166,30 @@ fn global_localisation_sweep() {
 }
 
 #[test]
-fn a_kidnapped_robot_finds_itself_again() {
-    let mut o = options(1, 80.0);
-    o.kidnap = Some((30.0, Pose2::new(0.5, -1.3, std::f64::consts::FRAC_PI_2)));
-    let r = tour_of(&spec(FLAT, 1, None), |_| {}, o);
-    assert!(r.kidnapped_at.is_some());
-    let after = r.recovered_after.unwrap_or(f64::INFINITY);
-    assert!(after <= 30.0, "recovered after {after} s: {r:?}");
-    assert_eq!(r.localisation.localisation.as_deref(), Some("localised"));
+fn a_kidnapped_robot_says_it_is_lost_then_finds_itself_again() {
+    let kidnaps = [
+        (30.0, Pose2::new(0.5, -1.3, std::f64::consts::FRAC_PI_2)),
+        (20.0, Pose2::new(-1.5, 1.0, 0.0)),
+        (25.0, Pose2::new(1.5, 1.5, std::f64::consts::PI)),
+    ];
+    for kidnap in kidnaps {
+        let mut o = options(1, 70.0);
+        o.kidnap = Some(kidnap);
+        let r = tour_of(&spec(FLAT, 1, None), |_| {}, o);
+        let at = r.kidnapped_at.expect("kidnapped");
+        // The status says "lost" within a few scans of the robot being carried off.
+        let lost = r.localisation.lost_at.unwrap_or(f64::INFINITY);
+        assert!(
+            lost - at <= 3.0,
+            "{kidnap:?}: lost noticed at {lost} s: {r:?}"
+        );
+        let after = r.recovered_after.unwrap_or(f64::INFINITY);
+        assert!(
+            after <= 30.0,
+            "{kidnap:?}: recovered after {after} s: {r:?}"
+        );
+        assert_eq!(r.localisation.localisation.as_deref(), Some("localised"));
+    }
 }
 
 #[test]

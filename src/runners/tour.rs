@@ -155,7 +155,12 @@ pub fn run(
             l.initial = crate::pilot::localize::InitialPose::At(start);
         }
     }
-    let mut robot = Runtime::new(link, config.pilot_settings(), 0.0);
+    let mut settings = config.pilot_settings();
+    // The localising move drives its keys at race mode's speed (seed 001's high-speed
+    // mode, 0.3 m/s by default) rather than the teleop's 0.15 m/s: at the slower speed a
+    // 30 s search covers too little of a flat to reach where look-alike rooms differ.
+    settings.teleop.linear_speed = settings.race.linear_speed.max(settings.teleop.linear_speed);
+    let mut robot = Runtime::new(link, settings, 0.0);
     if let Some(l) = &localizer {
         l.apply(robot.pilot_mut())?;
     }
@@ -168,6 +173,7 @@ pub fn run(
         given_up: 0,
         log: Vec::new(),
         seek: Seek::default(),
+        seek_key: None,
     };
     let mut scores = Scores::default();
     take_log(&mut tour.log, robot.tick(0.0, Vec::new()));
@@ -296,6 +302,9 @@ struct Tour {
     log: Vec<LogLine>,
     /// The move that tells MCL's hypotheses apart, while it has not localised.
     seek: Seek,
+    /// The drive key the move holds: released before another is pressed, or the teleop's
+    /// deadman would keep it held beside the new one.
+    seek_key: Option<DriveKey>,
 }
 
 impl Tour {
@@ -309,10 +318,18 @@ impl Tour {
                 asked.push(Intent::Mode(Mode::Manual));
             }
             let key = self.seek_key(pilot);
+            if let Some(old) = self.seek_key.replace(key)
+                && old != key
+            {
+                asked.push(Intent::KeyUp(old));
+            }
             asked.push(Intent::KeyDown { key, repeat: true });
             return asked;
         }
         self.seek = Seek::default();
+        if let Some(old) = self.seek_key.take() {
+            asked.push(Intent::KeyUp(old));
+        }
         let stale = self
             .goal
             .is_some_and(|(_, since)| t - since > GOAL_PATIENCE);
@@ -353,13 +370,13 @@ impl Tour {
         let (Some(mcl), Some((_, scan))) = (pilot.mcl(), pilot.newest_scan()) else {
             return DriveKey::TurnLeft;
         };
-        let clear = SEEK_NEAR.max(pilot.settings().robot.footprint_radius);
+        let footprint = pilot.settings().robot.footprint_radius;
         let drive = (self.seek).step(
             pilot.odometry_pose(),
             scan,
             mcl.map(),
             mcl.hypotheses(),
-            clear,
+            SEEK_NEAR.max(footprint),
         );
         match drive {
             SeekDrive::TurnLeft => DriveKey::TurnLeft,
@@ -464,9 +481,10 @@ pub fn human(r: &TourReport) -> String {
         m(r.dr_heading_rmse_deg, 1.0, "°"),
     );
     s += &format!(
-        "localised at {}; kidnapped at {}, recovered after {}\n",
+        "localised at {}; kidnapped at {}, lost noticed at {}, recovered after {}\n",
         m(r.localised_at, 1.0, "s"),
         m(r.kidnapped_at, 1.0, "s"),
+        m(r.localisation.lost_at, 1.0, "s"),
         m(r.recovered_after, 1.0, "s"),
     );
     s += &format!(

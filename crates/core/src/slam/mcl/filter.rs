@@ -6,7 +6,7 @@ use super::known_map::KnownMap;
 use super::motion::{self, OdometryStep};
 use super::recovery::{Average, random_free_pose};
 use super::resample;
-use super::rivals;
+use super::rivals::{self, RecentScans};
 use super::sensor::{Beams, Weigher};
 pub use super::status::{Phase, Status};
 use crate::data::LaserScan;
@@ -49,6 +49,8 @@ pub struct Mcl {
     agreement: Option<f64>,
     /// The update at which the map was last searched for rivals of the estimate.
     rivals_checked: Option<u64>,
+    /// The recent scans a rival is judged by.
+    recent: RecentScans,
     /// Looking for the robot anywhere (global localisation, or lost): only then is the
     /// map searched for rivals; a pose the user placed is taken as told.
     searching: bool,
@@ -96,6 +98,7 @@ impl Mcl {
             lost: false,
             agreement: None,
             rivals_checked: None,
+            recent: RecentScans::default(),
             searching: false,
             effective: 0.0,
             updates: 0,
@@ -151,6 +154,7 @@ impl Mcl {
         self.converged = false;
         self.lost = false;
         self.agreement = None;
+        self.recent.clear();
         self.refresh_estimate();
     }
 
@@ -173,7 +177,7 @@ impl Mcl {
             if !self.force_update {
                 return false;
             }
-            return self.correct(scan);
+            return self.correct(scan, None);
         };
         let step = OdometryStep::between(last, odom);
         let turned = wrap_angle(odom.theta - last.theta).abs();
@@ -188,11 +192,12 @@ impl Mcl {
             }
         }
         self.odom_at_update = Some(odom);
-        self.correct(scan)
+        // Where the estimate should be now, had the robot moved only as the odometry says.
+        self.correct(scan, Some(self.estimate.pose.compose(last.between(odom))))
     }
 
     /// Weighs the particles by `scan`, and resamples when the weights are lopsided.
-    fn correct(&mut self, scan: &LaserScan) -> bool {
+    fn correct(&mut self, scan: &LaserScan, expected: Option<Pose2>) -> bool {
         self.force_update = false;
         let beams = Beams::pick(scan, self.config.max_beams);
         if beams.is_empty() || self.particles.is_empty() {
@@ -260,10 +265,19 @@ impl Mcl {
         self.agreement = Weigher::agreement(&self.map, self.estimate.pose, &beams, AGREE_NEAR);
         self.judge();
         let unexplained = self.agreement.is_none_or(|a| a < AGREE_LEAST);
-        if tracking && (fell || unexplained) {
+        // The heaviest cluster is now another place than the odometry carried the estimate
+        // to: the robot was not where the filter said (carried off, or it had settled on a
+        // look-alike).
+        let jumped = expected.is_some_and(|e| !rivals::near(e, self.estimate.pose));
+        if tracking && (fell || unexplained || jumped) {
             self.lost = true;
             self.searching = true;
             self.converged = false;
+            // The scans before the robot was moved say nothing of where it is now.
+            self.recent.clear();
+        }
+        if let Some(odom) = self.odom_at_update {
+            self.recent.push(odom, beams.clone());
         }
         if self.converged && !was && self.searching && self.has_rivals(&beams) {
             // The rivals now show among the hypotheses; the filter is not localised.
@@ -316,7 +330,12 @@ impl Mcl {
             .count();
         let margin = hits as f64 * (q(0.0) / q(0.5 * c.sigma_hit)).ln();
         let (_, weigher) = self.weigher.as_mut().expect("built by the first scan");
-        let found = rivals::rivals(&self.map, weigher, beams, self.estimate.pose, margin);
+        let (map, estimate) = (&self.map, self.estimate.pose);
+        let odom = self.odom_at_update.unwrap_or_default();
+        let found: Vec<Pose2> = rivals::rivals(map, weigher, beams, estimate, margin)
+            .into_iter()
+            .filter(|&r| !(self.recent).rule_out(map, weigher, odom, estimate, r, margin))
+            .collect();
         if found.is_empty() {
             return false;
         }

@@ -407,3 +407,80 @@ fn a_goal_off_the_map_is_warned_once_with_a_count() {
     assert_eq!(off.len(), 1, "{:?}", r.warnings);
     assert!(off[0].contains(" times)"), "{off:?}");
 }
+
+fn logged(app: &App, text: &str) -> bool {
+    app.log_book().iter().any(|e| e.text.contains(text))
+}
+
+#[test]
+fn localise_drives_until_mcl_localises_then_stops_and_a_drive_key_takes_over() {
+    let mut app = common::app_with(spec(FLAT, 3, Some(InitialPose::Unknown)));
+    app.resize(120, 40);
+    app.update(0.1);
+    let start = app.true_pose().expect("the twin");
+    assert!(!app.pilot().mcl().unwrap().status().converged);
+    type_line(&mut app, "localise");
+    assert!(
+        logged(&app, "localise: driving"),
+        "{:?}",
+        app.log_book().last()
+    );
+    let mut t = app.now();
+    while t < 60.0 && !logged(&app, "MCL has localised, the move stops") {
+        t += 0.1;
+        app.update(t);
+    }
+    assert!(
+        logged(&app, "MCL has localised, the move stops"),
+        "not localised in 60 s"
+    );
+    let truth = app.true_pose().unwrap();
+    let turned = navdeck::geometry::wrap_angle(truth.theta - start.theta).abs();
+    let moved = truth.position().distance(start.position());
+    assert!(
+        moved > 0.05 || turned > 0.1,
+        "the move drove: {start:?} to {truth:?}"
+    );
+    let estimate = app.pilot().estimated_pose();
+    assert!(
+        estimate.position().distance(truth.position()) < 0.15,
+        "{estimate:?} vs {truth:?}"
+    );
+    // The move's key is released: the robot comes to rest.
+    for _ in 0..10 {
+        t += 0.1;
+        app.update(t);
+    }
+    assert!(
+        app.pilot().commanded().is_zero(),
+        "{:?}",
+        app.pilot().commanded()
+    );
+    type_line(&mut app, "localise");
+    assert!(logged(&app, "MCL has localised already"));
+
+    // Looking again, then taking the keys: the move stops at once, the log says so.
+    type_line(&mut app, "relocalize");
+    type_line(&mut app, "localise");
+    for _ in 0..5 {
+        t += 0.1;
+        app.update(t);
+    }
+    app.handle_key(Key::char('s'), KeyKind::Press, t);
+    assert!(logged(&app, "localise: stopped, taken over"));
+}
+
+#[test]
+fn localise_without_mcl_says_what_it_needs() {
+    let mut app = common::app_with(SessionSpec {
+        localize: LocalizeChoice {
+            estimator: None,
+            map: None,
+            initial_pose: None,
+        },
+        ..spec(FLAT, 1, None)
+    });
+    app.update(0.1);
+    type_line(&mut app, "localise");
+    assert!(logged(&app, "localise needs MCL"));
+}

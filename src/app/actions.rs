@@ -128,6 +128,7 @@ impl App {
             Typed::RestartMission => self.run_intent(pilot::Intent::RestartMission),
             Typed::SetPose(pose) => self.run_intent(pilot::Intent::SetPose(pose)),
             Typed::Relocalize => self.run_intent(pilot::Intent::Relocalize),
+            Typed::Localise => self.start_localising(),
             Typed::WhichController => {
                 let now = self.pilot().follower().controller().label();
                 self.log(

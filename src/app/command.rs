@@ -27,6 +27,8 @@ pub enum Typed {
     SetPose(crate::geometry::Pose2),
     /// `relocalize`: MCL's global localisation afresh.
     Relocalize,
+    /// `localise`: drive the move that tells MCL's hypotheses apart until it localises.
+    Localise,
     /// `waypoint add X Y [THETA_DEG]` or `goto+ X Y [THETA_DEG]`: queue a waypoint.
     AddWaypoint(Waypoint),
     /// `waypoint add` alone: queue the goal cursor.
@@ -61,7 +63,7 @@ impl From<Typed> for Intent {
     }
 }
 
-pub const USAGE: &str = "goto X Y [THETA_DEG] | goto marker ID | goto+ X Y [THETA_DEG] | waypoint add [X Y [THETA_DEG]] | route start|pause|skip|clear|loop N|save NAME|load NAME | controller [pid|pure_pursuit|hybrid] | clear | save [NAME] | mission restart | pose X Y THETA_DEG | relocalize | quit";
+pub const USAGE: &str = "goto X Y [THETA_DEG] | goto marker ID | goto+ X Y [THETA_DEG] | waypoint add [X Y [THETA_DEG]] | route start|pause|skip|clear|loop N|save NAME|load NAME | controller [pid|pure_pursuit|hybrid] | clear | save [NAME] | mission restart | pose X Y THETA_DEG | relocalize | localise | quit";
 
 /// A waypoint from `X Y [THETA_DEG]` words; `what` names the command in errors.
 fn waypoint(what: &str, words: &[&str]) -> Result<Waypoint, String> {
@@ -166,6 +168,7 @@ pub fn parse(line: &str) -> Result<Intent, String> {
             .map_err(|e| format!("pose: {e}")),
         ["pose", ..] => Err("pose wants X Y (metres) and THETA (degrees)".to_string()),
         ["relocalize"] => Ok(Typed::Relocalize.into()),
+        ["localise" | "localize"] => Ok(Typed::Localise.into()),
         // vim's quit: stops the robot and ends the session, as the quit key does.
         ["q" | "quit"] => Ok(Action::Quit.into()),
         ["mission", ..] => Err("mission wants `restart` (e resumes a paused mission)".to_string()),
@@ -210,6 +213,8 @@ mod tests {
             .into())
         );
         assert_eq!(parse("relocalize"), Ok(Typed::Relocalize.into()));
+        assert_eq!(parse("localise"), Ok(Typed::Localise.into()));
+        assert_eq!(parse("localize"), Ok(Typed::Localise.into()));
         assert_eq!(parse("q"), Ok(Intent::Action(Action::Quit)));
         assert_eq!(parse("quit"), Ok(Intent::Action(Action::Quit)));
     }

@@ -27,20 +27,24 @@ impl App {
     }
 
     pub(super) fn advance_to(&mut self, now: f64) {
-        let stepped = self.runtime.tick(now, Vec::new());
+        let intents = self.localising_intents();
+        let stepped = self.runtime.tick(now, intents);
         self.absorb(stepped);
     }
 
     /// Hands `intent` to the pilot in one step; a command follows at once when it changed
-    /// the motion.
+    /// the motion. Anything but a speed change takes over from the localising move.
     pub(super) fn run_intent(&mut self, intent: pilot::Intent) {
+        if !matches!(intent, pilot::Intent::Speed(_)) {
+            self.end_localising("taken over");
+        }
         let stepped = self.runtime.intend(intent);
         self.absorb(stepped);
     }
 
     /// Takes what the steps brought, in order: log lines, mode changes, what the camera
     /// and the markers showed, and the autosave of each exploration tick.
-    fn absorb(&mut self, stepped: Stepped) {
+    pub(super) fn absorb(&mut self, stepped: Stepped) {
         // The newest loop closure's line: flashed when it comes in.
         let closed = (self.pilot().lidar_slam())
             .and_then(|s| s.closures.last())

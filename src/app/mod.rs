@@ -10,6 +10,7 @@ mod camera_feed;
 mod command;
 mod control;
 pub mod loading;
+mod localising;
 pub mod log;
 mod pose_estimate;
 mod prompt;
@@ -29,6 +30,7 @@ use crate::keymap::Action;
 use crate::keymap::{Key, Keymap};
 use crate::link::RobotLink;
 use crate::link::runtime::Runtime;
+use crate::link::runtime::localising::LocalisingMove;
 use crate::map::grid::OccupancyGrid;
 use crate::pilot::{self, Pilot};
 use log::{Level, LogBook};
@@ -76,6 +78,8 @@ pub struct App {
     picker: loading::Picker,
     redraw: revision::Redraw,
     camera: camera_feed::CameraFeed,
+    /// `:localise`: the move that tells MCL's hypotheses apart, while it drives.
+    localising: Option<LocalisingMove>,
 }
 
 impl App {
@@ -100,6 +104,7 @@ impl App {
             picker: loading::Picker::default(),
             redraw: revision::Redraw::default(),
             camera: camera_feed::CameraFeed::default(),
+            localising: None,
             config,
         };
         if app.link().takes_log() {

@@ -9,11 +9,12 @@ use crate::keymap::{Key, KeyCode};
 const HISTORY: usize = 100;
 
 /// The words Tab completes first on a line.
-const COMMANDS: [&str; 11] = [
+const COMMANDS: [&str; 12] = [
     "clear",
     "controller",
     "goto",
     "goto+",
+    "localise",
     "mission",
     "pose",
     "quit",

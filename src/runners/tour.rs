@@ -11,14 +11,13 @@ use crate::data::Level;
 use crate::geometry::{Point2, Pose2, Rms, wrap_angle};
 use crate::link::RobotLink;
 use crate::link::runtime::Runtime;
+use crate::link::runtime::localising::LocalisingMove;
 use crate::map::grid::OccupancyGrid;
 use crate::pilot::localize::Localizer;
 use crate::pilot::mode::Mode;
 use crate::pilot::navigation::Target;
-use crate::pilot::teleop::DriveKey;
 use crate::pilot::{Intent, LogLine, Pilot};
 use crate::runners::mission::take_log;
-use crate::slam::mcl::seek::{Seek, SeekDrive};
 use crate::slam::mcl::{KnownMap, Phase};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
@@ -31,8 +30,6 @@ pub const LOCALISED_DEG: f64 = 5.0;
 const GOAL_CLEARANCE: f64 = 0.15;
 /// Goals are at least this far from the robot, metres.
 const GOAL_LEAST: f64 = 1.0;
-/// The localising move keeps this far from what is ahead, metres.
-const SEEK_NEAR: f64 = 0.4;
 /// A goal not reached in this long is given up, seconds.
 const GOAL_PATIENCE: f64 = 90.0;
 
@@ -172,8 +169,7 @@ pub fn run(
         arrivals: Vec::new(),
         given_up: 0,
         log: Vec::new(),
-        seek: Seek::default(),
-        seek_key: None,
+        seek: LocalisingMove::default(),
     };
     let mut scores = Scores::default();
     take_log(&mut tour.log, robot.tick(0.0, Vec::new()));
@@ -301,10 +297,7 @@ struct Tour {
     given_up: usize,
     log: Vec<LogLine>,
     /// The move that tells MCL's hypotheses apart, while it has not localised.
-    seek: Seek,
-    /// The drive key the move holds: released before another is pressed, or the teleop's
-    /// deadman would keep it held beside the new one.
-    seek_key: Option<DriveKey>,
+    seek: LocalisingMove,
 }
 
 impl Tour {
@@ -312,24 +305,14 @@ impl Tour {
     /// after goal.
     fn steer(&mut self, pilot: &Pilot, t: f64, options: &TourOptions) -> Vec<Intent> {
         let mut asked = Vec::new();
-        let localised = pilot.mcl().is_none_or(|m| m.status().converged);
-        if !localised {
+        if LocalisingMove::wanted(pilot) {
             if self.goal.take().is_some() {
                 asked.push(Intent::Mode(Mode::Manual));
             }
-            let key = self.seek_key(pilot);
-            if let Some(old) = self.seek_key.replace(key)
-                && old != key
-            {
-                asked.push(Intent::KeyUp(old));
-            }
-            asked.push(Intent::KeyDown { key, repeat: true });
+            asked.extend(self.seek.intents(pilot));
             return asked;
         }
-        self.seek = Seek::default();
-        if let Some(old) = self.seek_key.take() {
-            asked.push(Intent::KeyUp(old));
-        }
+        asked.extend(self.seek.stop());
         let stale = self
             .goal
             .is_some_and(|(_, since)| t - since > GOAL_PATIENCE);
@@ -363,26 +346,6 @@ impl Tour {
         asked.push(Intent::Mode(Mode::PathFollowing));
         self.goal = Some((goal, t));
         asked
-    }
-
-    /// The drive key of the localising move.
-    fn seek_key(&mut self, pilot: &Pilot) -> DriveKey {
-        let (Some(mcl), Some((_, scan))) = (pilot.mcl(), pilot.newest_scan()) else {
-            return DriveKey::TurnLeft;
-        };
-        let footprint = pilot.settings().robot.footprint_radius;
-        let drive = (self.seek).step(
-            pilot.odometry_pose(),
-            scan,
-            mcl.map(),
-            mcl.hypotheses(),
-            SEEK_NEAR.max(footprint),
-        );
-        match drive {
-            SeekDrive::TurnLeft => DriveKey::TurnLeft,
-            SeekDrive::TurnRight => DriveKey::TurnRight,
-            SeekDrive::Forward => DriveKey::Forward,
-        }
     }
 
     fn check_arrival(&mut self, pilot: &Pilot, truth: Pose2, t: f64) {

@@ -183,19 +183,22 @@ impl Delivery {
     /// Plans to drop place `slot`'s staging point: a leg that reports no path at once, so
     /// another drop place is tried instead of the same point again (until every one was).
     fn travel_to(&mut self, slot: usize, config: &MissionConfig) {
-        let (place, depth) = shifted(self.gate, slot);
-        self.slot = slot;
-        self.place = place;
-        self.depth = depth;
+        let goal = self.aim_at(slot, config);
         self.tried.push(slot);
-        // Seed 001: drop_location = gate_center + offset * perpendicular.
-        let goal = place.in_front(config.drop_staging + depth);
         let label = format!("{} gate", self.colour.label());
         self.stage = Stage::Travel(if self.every_place_tried {
             Leg::new(goal, label)
         } else {
             Leg::replaceable(goal, label)
         });
+    }
+
+    /// Makes drop place `slot` the one delivered to; its staging point, where the leg goes.
+    fn aim_at(&mut self, slot: usize, config: &MissionConfig) -> Point2 {
+        let (place, depth) = shifted(self.gate, slot);
+        (self.slot, self.place, self.depth) = (slot, place, depth);
+        // Seed 001: drop_location = gate_center + offset * perpendicular.
+        place.in_front(config.drop_staging + depth)
     }
 
     /// After every free drop place had no path, each retry (turn, look, plan again) goes to
@@ -208,9 +211,7 @@ impl Delivery {
         if next == self.slot {
             return;
         }
-        let (place, depth) = shifted(self.gate, next);
-        let goal = place.in_front(config.drop_staging + depth);
-        (self.slot, self.place, self.depth) = (next, place, depth);
+        let goal = self.aim_at(next, config);
         if let Stage::Travel(leg) = &mut self.stage {
             leg.goal = goal;
         }
@@ -280,6 +281,7 @@ impl Delivery {
         let stop = DropEvent::Go(Motion::Stop, None);
         let joints = inputs.arm;
         let open = DropEvent::Go(Motion::Stop, Some(GripperCommand::Open));
+        let back_off = DropEvent::Go(Motion::Drive(Twist::new(-BACK_OFF_SPEED, 0.0)), None);
         if matches!(self.stage, Stage::Travel(_))
             && let Some(slot) = self.other_side(inputs.map, config)
         {
@@ -376,7 +378,7 @@ impl Delivery {
                     clear_ahead(inputs.map, inputs.occupied, pose, STOP_AHEAD.min(stop_at))
                         .is_some();
                 if distance <= stop_at || blocked || waited >= 2.0 * creep + 2.0 {
-                    let carried = ahead_of(pose, CARRIED_AHEAD);
+                    let carried = carried_at(pose);
                     if distance > stop_at
                         && !at_gate(&self.gate, carried)
                         && let Some(next) = self.next_slot(inputs.map, config)
@@ -391,10 +393,7 @@ impl Delivery {
                             ),
                         ));
                         self.enter(Stage::Withdraw(next), t);
-                        return DropEvent::Go(
-                            Motion::Drive(Twist::new(-BACK_OFF_SPEED, 0.0)),
-                            None,
-                        );
+                        return back_off;
                     }
                     let lower = arm.map(|a| a.lower_to(config.block_size / 2.0, joints));
                     match lower {
@@ -422,7 +421,7 @@ impl Delivery {
             Stage::Open => match opened(inputs.gripper, waited, config) {
                 Wait::Waiting => stop,
                 outcome => {
-                    self.let_go = Some(ahead_of(pose, CARRIED_AHEAD));
+                    self.let_go = Some(carried_at(pose));
                     if outcome == Wait::TimedOut {
                         log.push((Level::Warn, "Gripper did not report open".into()));
                     }
@@ -431,7 +430,7 @@ impl Delivery {
                         return stop;
                     }
                     self.enter(Stage::BackOff, t);
-                    DropEvent::Go(Motion::Drive(Twist::new(-BACK_OFF_SPEED, 0.0)), None)
+                    back_off
                 }
             },
             Stage::Lower(m) => {
@@ -446,14 +445,14 @@ impl Delivery {
                     return stop;
                 }
                 self.enter(Stage::BackOff, t);
-                DropEvent::Go(Motion::Drive(Twist::new(-BACK_OFF_SPEED, 0.0)), None)
+                back_off
             }
             Stage::BackOff => {
                 if waited >= config.back_off_time - 1e-9 {
                     self.enter(Stage::Check, t);
                     return stop;
                 }
-                DropEvent::Go(Motion::Drive(Twist::new(-BACK_OFF_SPEED, 0.0)), None)
+                back_off
             }
             Stage::Withdraw(next) => {
                 if waited >= config.back_off_time - 1e-9 {
@@ -461,19 +460,16 @@ impl Delivery {
                     self.travel_to(next, config);
                     return stop;
                 }
-                DropEvent::Go(Motion::Drive(Twist::new(-BACK_OFF_SPEED, 0.0)), None)
+                back_off
             }
             Stage::Check => self.check(inputs, waited),
         }
     }
 }
 
-/// The point `distance` ahead of `pose`.
-fn ahead_of(pose: Pose2, distance: f64) -> Point2 {
-    Point2::new(
-        pose.x + distance * pose.theta.cos(),
-        pose.y + distance * pose.theta.sin(),
-    )
+/// Where the carried block's centre is with the robot at `pose`.
+fn carried_at(pose: Pose2) -> Point2 {
+    pose.transform_point(Point2::new(CARRIED_AHEAD, 0.0))
 }
 
 mod check;

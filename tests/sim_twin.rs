@@ -2,7 +2,7 @@
 //! step-size independence and determinism.
 
 use navdeck::config::Config;
-use navdeck::data::{GripperCommand, GripperState, SensorFrame};
+use navdeck::data::{GripperCommand, GripperState, LaserScan, SensorFrame};
 use navdeck::geometry::{Pose2, Twist};
 use navdeck::sim::{Twin, World};
 use std::f64::consts::PI;
@@ -247,6 +247,11 @@ fn camera_sees_block_markers_where_the_block_is() {
     assert_eq!(ids, vec![421, 422], "both faces show from the diagonal");
 }
 
+/// The range of `scan`'s beam nearest `deg` degrees from the robot's heading.
+fn range_at(scan: &LaserScan, deg: f64) -> f32 {
+    scan.ranges[((deg.to_radians() - scan.angle_min) / scan.angle_increment).round() as usize]
+}
+
 #[test]
 fn lidar_reads_the_arena_walls_and_obstacles() {
     let mut t = twin_in(world([0.0, 0.0, 0.0], ""), &quiet(), 1);
@@ -254,28 +259,26 @@ fn lidar_reads_the_arena_walls_and_obstacles() {
     let scan = t.take_frame().scan.unwrap();
     assert_eq!(scan.ranges.len(), 360);
     assert_eq!(scan.angle_min, -PI);
-    let beam =
-        |deg: f64| ((deg.to_radians() - scan.angle_min) / scan.angle_increment).round() as usize;
-    assert!((scan.ranges[beam(0.0)] - 2.0).abs() < 1e-6);
-    assert!((scan.ranges[beam(90.0)] - 2.0).abs() < 1e-6);
-    assert!((scan.ranges[beam(-90.0)] - 2.0).abs() < 1e-6);
-    assert!((scan.ranges[beam(45.0)] - 8f32.sqrt()).abs() < 1e-5);
+    assert!((range_at(&scan, 0.0) - 2.0).abs() < 1e-6);
+    assert!((range_at(&scan, 90.0) - 2.0).abs() < 1e-6);
+    assert!((range_at(&scan, -90.0) - 2.0).abs() < 1e-6);
+    assert!((range_at(&scan, 45.0) - 8f32.sqrt()).abs() < 1e-5);
 
     let boxed = "[[obstacles]]\ncenter = [0.0, -1.0]\nsize = [0.4, 0.2]\n";
     let mut t = twin_in(world([0.0, 0.0, 0.0], boxed), &quiet(), 1);
     t.step(0.2);
     let near = t.take_frame().scan.unwrap();
     assert!(
-        (near.ranges[beam(-90.0)] - 0.9).abs() < 1e-6,
+        (range_at(&near, -90.0) - 0.9).abs() < 1e-6,
         "the box face at y = -0.9"
     );
-    assert!((near.ranges[beam(-100.0)] - 0.9 / 80f32.to_radians().sin()).abs() < 1e-5);
+    assert!((range_at(&near, -100.0) - 0.9 / 80f32.to_radians().sin()).abs() < 1e-5);
     assert_eq!(
-        near.ranges[beam(0.0)],
-        scan.ranges[beam(0.0)],
+        range_at(&near, 0.0),
+        range_at(&scan, 0.0),
         "beams away from the box unchanged"
     );
-    assert_eq!(near.ranges[beam(-70.0)], scan.ranges[beam(-70.0)]);
+    assert_eq!(range_at(&near, -70.0), range_at(&scan, -70.0));
 }
 
 #[test]
@@ -378,14 +381,12 @@ fn lidar_sees_free_blocks_but_not_the_held_one() {
     assert_eq!(t.gripper(), GripperState::Holding);
     t.step(0.2);
     let scan = t.take_frame().scan.unwrap();
-    let beam =
-        |deg: f64| ((deg.to_radians() - scan.angle_min) / scan.angle_increment).round() as usize;
     assert!(
-        (scan.ranges[beam(90.0)] - 0.95).abs() < 1e-6,
+        (range_at(&scan, 90.0) - 0.95).abs() < 1e-6,
         "free block's face"
     );
     assert!(
-        (scan.ranges[beam(0.0)] - 2.0).abs() < 1e-6,
+        (range_at(&scan, 0.0) - 2.0).abs() < 1e-6,
         "the held block is not seen"
     );
 }
@@ -422,12 +423,10 @@ fn lidar_sees_a_door_jamb_end_on() {
     let mut t = twin_in(world([0.0, -0.5, 0.0], jamb), &quiet(), 1);
     t.step(0.2);
     let scan = t.take_frame().scan.unwrap();
-    let beam =
-        |deg: f64| ((deg.to_radians() - scan.angle_min) / scan.angle_increment).round() as usize;
     assert!(
-        (scan.ranges[beam(90.0)] - 1.0).abs() < 1e-6,
+        (range_at(&scan, 90.0) - 1.0).abs() < 1e-6,
         "the jamb's end 1 m north, read {}",
-        scan.ranges[beam(90.0)]
+        range_at(&scan, 90.0)
     );
     let faces = World::from_toml(
         &std::fs::read_to_string("maps/arena.toml").unwrap(),

@@ -103,18 +103,15 @@ pub fn open(map: &Costmap, staging: Point2, stop: Point2) -> bool {
 
 /// Whether the lidar found a cell occupied within `radius` of `at`.
 pub fn occupied_near(map: &Costmap, occupied: &[bool], at: Point2, radius: f64) -> bool {
-    let cells = (radius / map.resolution).ceil() as i64;
-    let Some((cx, cy)) = map.cell_of(at) else {
+    let window = map.cell_of(at).and_then(|_| {
+        let columns = map.columns_in(at.x - radius, at.x + radius)?;
+        Some((columns, map.rows_in(at.y - radius, at.y + radius)?))
+    });
+    let Some(((x0, x1), (y0, y1))) = window else {
         return false;
     };
-    (-cells..=cells).any(|dy| {
-        (-cells..=cells).any(|dx| {
-            let (x, y) = (cx as i64 + dx, cy as i64 + dy);
-            let inside = x >= 0 && y >= 0 && (x as usize) < map.width && (y as usize) < map.height;
-            inside
-                && map.center_of(x as usize, y as usize).distance(at) <= radius
-                && occupied[map.index(x as usize, y as usize)]
-        })
+    (y0..=y1).any(|y| {
+        (x0..=x1).any(|x| occupied[map.index(x, y)] && map.center_of(x, y).distance(at) <= radius)
     })
 }
 
@@ -153,5 +150,27 @@ mod tests {
                 assert!(robot.distance(*b) >= 0.155, "{i}: {robot:?} {b:?}");
             }
         }
+    }
+
+    #[test]
+    fn an_occupied_cell_counts_within_the_radius_only() {
+        use crate::map::costmap::FREE;
+        let map = Costmap::new(50, 50, 0.02, Point2::new(0.0, 0.0), FREE);
+        let mut occupied = vec![false; 50 * 50];
+        occupied[map.index(10, 20)] = true;
+        let cell = map.center_of(10, 20);
+        let at = |dx: f64| Point2::new(cell.x + dx, cell.y);
+        assert!(occupied_near(&map, &occupied, at(0.05), 0.055));
+        assert!(!occupied_near(&map, &occupied, at(0.06), 0.055));
+        assert!(occupied_near(&map, &occupied, at(-0.05), 0.055));
+        // A point off the map finds nothing, even beside an occupied edge cell.
+        occupied[map.index(0, 20)] = true;
+        let edge = map.center_of(0, 20);
+        assert!(!occupied_near(
+            &map,
+            &occupied,
+            Point2::new(edge.x - 0.02, edge.y),
+            0.055
+        ));
     }
 }

@@ -279,6 +279,14 @@ impl Mcl {
         if let Some(odom) = self.odom_at_update {
             self.recent.push(odom, beams.clone());
         }
+        let due = (self.rivals_checked).is_none_or(|u| self.updates >= u + RECHECK_UPDATES);
+        if !self.converged && self.searching && self.updates > 0 && due {
+            // Still looking: the places that fit the scan as well as the estimate or
+            // better, taken in as hypotheses, so that a truth the first particles missed
+            // is weighed again (a correlative scan matcher's global search).
+            self.has_rivals(&beams);
+            self.refresh_estimate();
+        }
         if self.converged && !was && self.searching && self.has_rivals(&beams) {
             // The rivals now show among the hypotheses; the filter is not localised.
             self.refresh_estimate();

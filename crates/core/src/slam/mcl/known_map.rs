@@ -69,8 +69,12 @@ pub struct KnownMap {
     pub origin: Point2,
     /// Indices of the known free cells.
     free: Vec<u32>,
-    /// The cells whose distances are kept: the obstacles' box widened by `reach`.
+    /// The cells whose distances are kept: the obstacles' box widened by `reach`, in
+    /// cells of the grid widened by `pad` on every side, so that the distances go on past
+    /// the grid's edge: a wall drawn on a map's very edge (a map cropped tight, or the
+    /// twin's own) is as near to a scan's end just past it as to one just inside.
     window: CellBox,
+    pad: usize,
     /// Distance from each window cell's centre to the nearest obstacle cell's centre,
     /// metres; every cell outside the window is farther than `reach`.
     distance: Vec<f32>,
@@ -105,18 +109,25 @@ impl KnownMap {
         };
         let occupied_bounds = (corner(solid.x0, solid.y0), corner(solid.x1, solid.y1));
         // A cell `margin` cells beyond the box is more than `reach` from every obstacle.
-        let margin = (reach.max(0.0) / grid.resolution).ceil().min(1e9) as usize + 1;
+        let margin = (reach.max(0.0) / grid.resolution).ceil().min(1e6) as usize + 1;
+        // The grid widened by `pad` cells on every side: by the margin, or by the grid's
+        // own size when that is less (no scan ends farther past the edge of the map it
+        // matches than the map is across).
+        let pad = margin.min(grid.width.max(grid.height));
         let window = CellBox {
-            x0: solid.x0.saturating_sub(margin),
-            y0: solid.y0.saturating_sub(margin),
-            x1: solid.x1.saturating_add(margin).min(grid.width),
-            y1: solid.y1.saturating_add(margin).min(grid.height),
+            x0: (solid.x0 + pad).saturating_sub(margin),
+            y0: (solid.y0 + pad).saturating_sub(margin),
+            x1: (solid.x1 + pad + margin).min(grid.width + 2 * pad),
+            y1: (solid.y1 + pad + margin).min(grid.height + 2 * pad),
         };
         let (ww, wh) = (window.width(), window.height());
         let mut seeds = Vec::with_capacity(ww * wh);
-        for cy in window.y0..window.y1 {
-            let row = &grid.cells[cy * grid.width + window.x0..cy * grid.width + window.x1];
-            seeds.extend(row.iter().map(|&c| c >= SOLID));
+        for py in window.y0..window.y1 {
+            for px in window.x0..window.x1 {
+                let (cx, cy) = (px.wrapping_sub(pad), py.wrapping_sub(pad));
+                let on_grid = cx < grid.width && cy < grid.height;
+                seeds.push(on_grid && grid.cells[cy * grid.width + cx] >= SOLID);
+            }
         }
         let squared = squared_distance_transform(&seeds, ww, wh);
         drop(seeds);
@@ -131,6 +142,7 @@ impl KnownMap {
             origin: grid.origin,
             free,
             window,
+            pad,
             distance,
             reach,
             occupied_bounds,
@@ -157,16 +169,20 @@ impl KnownMap {
     }
 
     /// The window's own index of the cell holding (x, y): the position of its distance in
-    /// `near_cells`, if the window holds it.
+    /// `near_distances`, if the window holds it.
     #[inline]
     pub fn near_index_at(&self, x: f64, y: f64) -> Option<usize> {
-        self.index_of(x, y).and_then(|i| self.near(i))
+        let px = ((x - self.origin.x) / self.resolution).floor() + self.pad as f64;
+        let py = ((y - self.origin.y) / self.resolution).floor() + self.pad as f64;
+        (px >= 0.0 && py >= 0.0 && px < usize::MAX as f64 && py < usize::MAX as f64)
+            .then(|| self.window.index(px as usize, py as usize))
+            .flatten()
     }
 
     /// The window's own index of cell `i`, if the window holds it.
     #[inline]
     fn near(&self, i: usize) -> Option<usize> {
-        self.window.index(i % self.width, i / self.width)
+        (self.window).index(i % self.width + self.pad, i / self.width + self.pad)
     }
 
     /// Distance to the nearest obstacle from the cell holding (x, y), metres (infinite
@@ -182,15 +198,13 @@ impl KnownMap {
         self.near(i).map_or(f32::INFINITY, |k| self.distance[k])
     }
 
-    /// The cells whose distance is finite, as (cell index, distance): the window's.
-    pub fn near_cells(&self) -> impl Iterator<Item = (usize, f32)> + '_ {
-        let w = &self.window;
-        (w.y0..w.y1)
-            .flat_map(move |cy| (w.x0..w.x1).map(move |cx| cy * self.width + cx))
-            .zip(self.distance.iter().copied())
+    /// The distances kept, in the order of `near_index_at`'s indices: the window's, on
+    /// the grid and past its edge.
+    pub fn near_distances(&self) -> impl Iterator<Item = f32> + '_ {
+        self.distance.iter().copied()
     }
 
-    /// How many cells `near_cells` gives.
+    /// How many distances `near_distances` gives.
     pub fn near_count(&self) -> usize {
         self.distance.len()
     }
@@ -236,7 +250,12 @@ impl KnownMap {
     /// diagonal (sphere tracing), which cannot pass over an obstacle cell.
     pub fn ray_cast(&self, x: f64, y: f64, c: f64, s: f64, max_range: f64) -> f64 {
         let inv = 1.0 / self.resolution;
-        let (gx, gy) = ((x - self.origin.x) * inv, (y - self.origin.y) * inv);
+        // In the widened grid's cells, as the window is.
+        let pad = self.pad as f64;
+        let (gx, gy) = (
+            (x - self.origin.x) * inv + pad,
+            (y - self.origin.y) * inv + pad,
+        );
         if self.index_of(x, y).is_none() {
             return max_range;
         }
@@ -253,8 +272,18 @@ impl KnownMap {
         while t < t_max && t < leave {
             let (px, py) = (gx + t * c, gy + t * s);
             // Clamped: at the window's edge rounding may put the point a hair outside.
-            let ix = (px.max(0.0) as usize).clamp(w.x0, w.x1 - 1);
-            let iy = (py.max(0.0) as usize).clamp(w.y0, w.y1 - 1);
+            // A beam on a cell's edge going down the axis is in the cell below: else the
+            // next edge would be the one it stands on and it would never move on.
+            let cell = |p: f64, step: f64| {
+                let i = p.max(0.0) as usize;
+                if step < 0.0 && p <= i as f64 {
+                    i.saturating_sub(1)
+                } else {
+                    i
+                }
+            };
+            let ix = cell(px, c).clamp(w.x0, w.x1 - 1);
+            let iy = cell(py, s).clamp(w.y0, w.y1 - 1);
             let k = (iy - w.y0) * w.width() + (ix - w.x0);
             let d = f64::from(self.distance[k]) * inv;
             if d == 0.0 {
@@ -356,6 +385,35 @@ mod tests {
         assert!(map.is_free(Point2::new(0.05, 0.05)));
         assert!(!map.is_known(Point2::new(-15.0, -15.0)));
         assert!(map.is_known(Point2::new(-0.95, 0.05)));
+    }
+
+    #[test]
+    fn a_wall_on_the_maps_edge_is_near_a_scan_end_just_past_it() {
+        // The room's walls are its grid's outermost cells: an end 0.1 m and 0.3 m west of
+        // the west wall's cell is that far from it, not infinitely far.
+        let map = KnownMap::new(&room()).unwrap();
+        let distances: Vec<f32> = map.near_distances().collect();
+        let at = |x: f64| distances[map.near_index_at(x, 0.55).expect("kept past the edge")];
+        assert!((at(-0.05) - 0.1).abs() < 1e-3, "{}", at(-0.05));
+        assert!((at(-0.25) - 0.3).abs() < 1e-3, "{}", at(-0.25));
+        // Farther than the reach, nothing is kept.
+        assert_eq!(map.near_index_at(-3.0, 0.55), None);
+        // Off the map no particle may stand, and no cell index is given.
+        assert_eq!(map.index_of(-0.05, 0.55), None);
+    }
+
+    #[test]
+    fn a_ray_from_a_cell_corner_along_an_axis_moves_on() {
+        let map = KnownMap::new(&room()).unwrap();
+        // cos(90°) is not quite 0: from a cell's corner the beam runs up (and down) its
+        // column's edge, barely leaning west, and must still reach the wall 0.4 m off.
+        let lean = -std::f64::consts::FRAC_PI_2.cos();
+        let up = map.ray_cast(1.0, 0.5, lean, 1.0, 3.5);
+        let down = map.ray_cast(1.0, 0.5, lean, -1.0, 3.5);
+        assert!(
+            (up - 0.4).abs() < 0.06 && (down - 0.4).abs() < 0.06,
+            "{up} {down}"
+        );
     }
 
     #[test]

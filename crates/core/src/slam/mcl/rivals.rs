@@ -7,8 +7,8 @@
 //! nearly as well as the estimate is a rival: the filter takes it back as a hypothesis
 //! and stays "localising" until the scans tell them apart. A rival is judged on the
 //! recent scans too, not only the last one: a place the robot's own motion has already
-//! ruled out (its recent scans fit far worse there) is not
-//! taken back, so that evidence gathered over metres of driving is not thrown away.
+//! ruled out (its recent scans, taken together, fit far worse there) is not taken back,
+//! so that evidence gathered over metres of driving is not thrown away.
 
 use super::known_map::KnownMap;
 use super::sensor::{Beams, Weigher};
@@ -92,6 +92,11 @@ pub fn rivals(
 /// the worst of robots; the twin and a TurtleBot3 drift far less).
 const RECENT_SCANS: usize = 20;
 
+/// How many single scans' "nearly as well" margins the recent scans must fall short by
+/// in all to rule a rival out: more than one scan's worth, as the beams of nearby scans
+/// are not independent of each other (Probabilistic Robotics 6.3.4).
+const RULED_OUT_SCANS: f64 = 3.0;
+
 /// The recent scans, each with the odometry pose it was taken at.
 #[derive(Clone, Debug, Default)]
 pub struct RecentScans {
@@ -112,9 +117,10 @@ impl RecentScans {
 
     /// Whether the recent scans rule `rival` out beside `estimate`, both poses now, at the
     /// odometry pose `odom`: carried back along the odometry, the rival's scans fit worse
-    /// than the estimate's by more than `margin` nats per scan on average (the same
-    /// "nearly as well" as for one scan, over all of them; a path through a wall fits
-    /// badly too).
+    /// than the estimate's by more than `RULED_OUT_SCANS` times `margin` nats in all (the
+    /// log-likelihood ratio of the two paths, Bayes over the scans kept; a path through a
+    /// wall fits badly too). Summed, not averaged: a few scans from where the two places
+    /// differ decide, however many were taken where they look alike.
     pub fn rule_out(
         &self,
         map: &KnownMap,
@@ -140,7 +146,7 @@ impl RecentScans {
             );
             shortfall += le - lr;
         }
-        shortfall / self.scans.len() as f64 > margin
+        shortfall > RULED_OUT_SCANS * margin
     }
 }
 

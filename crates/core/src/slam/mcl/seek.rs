@@ -1,10 +1,11 @@
 //! The move that tells hypotheses apart: while MCL weighs several places the robot could
-//! be, drive where they disagree most about what the lidar will see. A lidar that does
+//! be, drive to where they disagree most about what the lidar will see. A lidar that does
 //! not see all round turns in place first (a full turn shows everything near); then the
-//! robot heads for the open bearing along which the hypotheses' maps differ most (the
-//! spread of the ranges ray-traced from each, weighted by its share: active
-//! localisation's rule of going where the expected measurements differ, Fox, Burgard and
-//! Thrun, "Active Markov Localization for Mobile Robots", 1998), a leg at a time.
+//! robot picks, among the places it can reach in a straight line through the space its
+//! lidar sees open, the one where the hypotheses' views differ in the most beams for the
+//! driving it costs (active localisation's rule of going where the expected
+//! measurements differ, Fox, Burgard and Thrun, "Active Markov Localization for Mobile
+//! Robots", 1998), and drives there, a leg at a time.
 
 use super::known_map::KnownMap;
 use crate::data::LaserScan;
@@ -13,8 +14,18 @@ use crate::geometry::{Pose2, wrap_angle};
 /// Bearings tried, every 10°, and the lidar's clearance read over ±15° of each.
 const BEARING_STEP_DEG: f64 = 10.0;
 const SECTOR_DEG: f64 = 15.0;
-/// The longest leg driven before choosing again, metres.
-const LEG_M: f64 = 1.0;
+/// Places tried along a bearing, every half metre up to the longest leg.
+const LEG_STEP_M: f64 = 0.5;
+const LONGEST_LEG_M: f64 = 3.0;
+/// A hypothesis's view of a place: this many beams over the lidar's field of view.
+const VIEW_BEAMS: usize = 36;
+/// Two views differ in a beam whose ranges are this far apart (several of the
+/// likelihood field's σ_hit of 0.2 m; AMCL's `laser_sigma_hit`).
+const DIFFER_M: f64 = 0.5;
+/// A beam of difference is worth this much driving, metres.
+const METRES_PER_BEAM: f64 = 1.0;
+/// The leg driven when no place tells the hypotheses apart: on into the open.
+const WANDER_LEG_M: f64 = 1.0;
 /// Hypotheses compared, heaviest first.
 const MOST_HYPOTHESES: usize = 8;
 /// Facing within this of the chosen bearing, the robot drives ahead.
@@ -63,13 +74,8 @@ impl Seek {
             .is_none_or(|(_, from, length)| from.position().distance(odom.position()) >= length);
         let blocked = clearance(scan, 0.0) < clear;
         if done || (blocked && self.aimed(odom)) {
-            self.leg = best_bearing(scan, map, hypotheses, clear).map(|(b, open)| {
-                (
-                    wrap_angle(odom.theta + b),
-                    odom,
-                    (open - clear).clamp(0.1, LEG_M),
-                )
-            });
+            self.leg = best_leg(scan, map, hypotheses, clear)
+                .map(|(b, length)| (wrap_angle(odom.theta + b), odom, length));
         }
         let Some((heading, _, _)) = self.leg else {
             return SeekDrive::TurnLeft;
@@ -105,9 +111,11 @@ fn clearance(scan: &LaserScan, bearing: f64) -> f64 {
     least
 }
 
-/// The open bearing (robot frame) along which the hypotheses disagree most, and the
-/// lidar's clearance along it; the most open bearing when they agree everywhere.
-pub fn best_bearing(
+/// The leg to drive: a bearing (robot frame) and a length, to the place in the open the
+/// lidar sees where the hypotheses' views differ in the most beams, less one for every
+/// `METRES_PER_BEAM` of driving; when no place tells them apart by a beam, the most open
+/// bearing, a short leg.
+pub fn best_leg(
     scan: &LaserScan,
     map: &KnownMap,
     hypotheses: &[(Pose2, f64)],
@@ -115,34 +123,73 @@ pub fn best_bearing(
 ) -> Option<(f64, f64)> {
     let steps = (360.0 / BEARING_STEP_DEG).round() as usize;
     let top = &hypotheses[..hypotheses.len().min(MOST_HYPOTHESES)];
+    // (value, length, bearing) of the best place; (open, bearing) of the most open way.
     let mut best: Option<(f64, f64, f64)> = None;
+    let mut widest: Option<(f64, f64)> = None;
     for k in 0..steps {
         let b = wrap_angle((k as f64 * BEARING_STEP_DEG).to_radians());
         let open = clearance(scan, b);
         if open < clear + 0.1 {
             continue;
         }
-        // The weighted spread of the ranges each hypothesis's map shows along b.
-        let (mut sum, mut sum_sq, mut total) = (0.0, 0.0, 0.0);
-        for &(h, w) in top {
-            let a = h.theta + b;
-            let r = map.ray_cast(h.x, h.y, a.cos(), a.sin(), scan.range_max);
-            sum += w * r;
-            sum_sq += w * r * r;
-            total += w;
+        if widest.is_none_or(|(o, _)| open > o) {
+            widest = Some((open, b));
         }
-        let spread = if total > 0.0 {
-            (sum_sq / total - (sum / total).powi(2)).max(0.0)
-        } else {
-            0.0
-        };
-        // Ties (hypotheses that agree) go to the more open bearing.
-        let score = (spread, open);
-        if best.is_none_or(|(s, o, _)| score.0 > s + 1e-9 || (score.0 >= s - 1e-9 && score.1 > o)) {
-            best = Some((score.0, score.1, b));
+        let reach = (open - clear).min(LONGEST_LEG_M);
+        let mut t = LEG_STEP_M.min(reach);
+        while t <= reach + 1e-9 {
+            let beams = disagreement(map, scan, top, Pose2::new(t * b.cos(), t * b.sin(), b));
+            let value = beams - t / METRES_PER_BEAM;
+            if beams >= 1.0 && best.is_none_or(|(v, _, _)| value > v + 1e-9) {
+                best = Some((value, t, b));
+            }
+            t += LEG_STEP_M;
         }
     }
-    best.map(|(_, open, b)| (b, open))
+    match best {
+        Some((_, length, b)) => Some((b, length)),
+        None => widest.map(|(open, b)| (b, (open - clear).clamp(0.1, WANDER_LEG_M))),
+    }
+}
+
+/// How many beams the hypotheses' views differ in at `offset` (a pose in the robot's
+/// frame): each pair's count of beams whose ranges differ by more than `DIFFER_M`,
+/// weighted by both hypotheses' shares. A hypothesis that would put the place inside a
+/// wall differs from the others in every beam: getting there rules it out.
+fn disagreement(map: &KnownMap, scan: &LaserScan, top: &[(Pose2, f64)], offset: Pose2) -> f64 {
+    let span = (scan.angle_increment * scan.ranges.len() as f64)
+        .clamp(-std::f64::consts::TAU, std::f64::consts::TAU);
+    let views: Vec<Option<Vec<f64>>> = (top.iter())
+        .map(|&(h, _)| {
+            let at = h.compose(offset);
+            map.is_free(at.position()).then(|| {
+                (0..VIEW_BEAMS)
+                    .map(|k| {
+                        let a = at.theta + scan.angle_min + span * k as f64 / VIEW_BEAMS as f64;
+                        map.ray_cast(at.x, at.y, a.cos(), a.sin(), scan.range_max)
+                    })
+                    .collect()
+            })
+        })
+        .collect();
+    let (mut sum, mut total) = (0.0, 0.0);
+    for i in 0..top.len() {
+        for j in i + 1..top.len() {
+            let w = top[i].1 * top[j].1;
+            let differ = match (&views[i], &views[j]) {
+                (Some(a), Some(b)) => a
+                    .iter()
+                    .zip(b)
+                    .filter(|(x, y)| (*x - *y).abs() > DIFFER_M)
+                    .count(),
+                (None, None) => 0,
+                _ => VIEW_BEAMS,
+            };
+            sum += w * differ as f64;
+            total += w;
+        }
+    }
+    if total > 0.0 { sum / total } else { 0.0 }
 }
 
 #[cfg(test)]
@@ -184,7 +231,7 @@ mod tests {
             (Pose2::new(1.0, 1.0, 0.0), 0.5),
             (Pose2::new(5.0, 1.0, 0.0), 0.5),
         ];
-        let (b, _) = best_bearing(&open_scan(), &map, &hyps, 0.3).unwrap();
+        let (b, _) = best_leg(&open_scan(), &map, &hyps, 0.3).unwrap();
         let along = b.cos().abs();
         assert!(along > 0.9, "bearing {b}");
         let mut seek = Seek::default();

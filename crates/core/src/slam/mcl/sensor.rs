@@ -82,8 +82,8 @@ impl Weigher {
         let cap = c.likelihood_max_dist;
         let q = |d: f64| (c.z_hit * gaussian(d.min(cap), c.sigma_hit) + c.z_rand / max_range).ln();
         let field = match c.model {
-            SensorModel::LikelihoodField => (map.near_cells())
-                .map(|(_, d)| q(f64::from(d)) as f32)
+            SensorModel::LikelihoodField => (map.near_distances())
+                .map(|d| q(f64::from(d)) as f32)
                 .collect(),
             SensorModel::Beam => Vec::new(),
         };

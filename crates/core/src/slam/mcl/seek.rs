@@ -26,6 +26,13 @@ const DIFFER_M: f64 = 0.5;
 const METRES_PER_BEAM: f64 = 1.0;
 /// The leg driven when no place tells the hypotheses apart: on into the open.
 const WANDER_LEG_M: f64 = 1.0;
+/// Steps (0.1 s each) without moving more than `STILL_M` or `STILL_RAD` before the way
+/// ahead counts as refused, and how far the robot must then move on before it may try
+/// that way again.
+const STALL_STEPS: u32 = 20;
+const STILL_M: f64 = 0.01;
+const STILL_RAD: f64 = 0.02;
+const MOVED_ON_M: f64 = 0.3;
 /// Hypotheses compared, heaviest first.
 const MOST_HYPOTHESES: usize = 8;
 /// Facing within this of the chosen bearing, the robot drives ahead.
@@ -47,6 +54,10 @@ pub struct Seek {
     turned: f64,
     /// The leg: odometry heading to hold, where it started, how long it is.
     leg: Option<(f64, Pose2, f64)>,
+    /// The odometry pose when the robot last moved, and the steps since.
+    still: Option<(Pose2, u32)>,
+    /// A way the robot would not go (odometry heading), and where it was refused.
+    refused: Option<(f64, Pose2)>,
 }
 
 impl Seek {
@@ -69,12 +80,14 @@ impl Seek {
         if !sees_all_round && self.turned < std::f64::consts::TAU {
             return SeekDrive::TurnLeft;
         }
+        self.watch_for_stalls(odom);
         let done = self
             .leg
             .is_none_or(|(_, from, length)| from.position().distance(odom.position()) >= length);
         let blocked = clearance(scan, 0.0) < clear;
         if done || (blocked && self.aimed(odom)) {
-            self.leg = best_leg(scan, map, hypotheses, clear)
+            let refused = self.refused.map(|(h, _)| wrap_angle(h - odom.theta));
+            self.leg = best_leg(scan, map, hypotheses, clear, refused)
                 .map(|(b, length)| (wrap_angle(odom.theta + b), odom, length));
         }
         let Some((heading, _, _)) = self.leg else {
@@ -89,6 +102,38 @@ impl Seek {
             }
         } else {
             SeekDrive::Forward
+        }
+    }
+
+    /// Asked to move, the robot has not for `STALL_STEPS` steps: something the lidar's
+    /// clearance misses (or the pilot's own safety stop) holds it. The way it was
+    /// driving is refused, and another leg chosen, until it has moved on.
+    fn watch_for_stalls(&mut self, odom: Pose2) {
+        let moved = self.still.is_none_or(|(at, _)| {
+            at.position().distance(odom.position()) > STILL_M
+                || wrap_angle(odom.theta - at.theta).abs() > STILL_RAD
+        });
+        let steps = if moved {
+            0
+        } else {
+            self.still.map_or(0, |(_, n)| n + 1)
+        };
+        let since = if moved {
+            odom
+        } else {
+            self.still.map_or(odom, |(at, _)| at)
+        };
+        self.still = Some((since, steps));
+        if steps >= STALL_STEPS {
+            self.refused = Some((odom.theta, odom));
+            self.leg = None;
+            self.still = Some((odom, 0));
+        }
+        if self
+            .refused
+            .is_some_and(|(_, at)| at.position().distance(odom.position()) > MOVED_ON_M)
+        {
+            self.refused = None;
         }
     }
 
@@ -114,12 +159,14 @@ fn clearance(scan: &LaserScan, bearing: f64) -> f64 {
 /// The leg to drive: a bearing (robot frame) and a length, to the place in the open the
 /// lidar sees where the hypotheses' views differ in the most beams, less one for every
 /// `METRES_PER_BEAM` of driving; when no place tells them apart by a beam, the most open
-/// bearing, a short leg.
+/// bearing, a short leg. Bearings within twice the clearance sector of `refused` (robot
+/// frame) are not taken.
 pub fn best_leg(
     scan: &LaserScan,
     map: &KnownMap,
     hypotheses: &[(Pose2, f64)],
     clear: f64,
+    refused: Option<f64>,
 ) -> Option<(f64, f64)> {
     let steps = (360.0 / BEARING_STEP_DEG).round() as usize;
     let top = &hypotheses[..hypotheses.len().min(MOST_HYPOTHESES)];
@@ -129,7 +176,9 @@ pub fn best_leg(
     for k in 0..steps {
         let b = wrap_angle((k as f64 * BEARING_STEP_DEG).to_radians());
         let open = clearance(scan, b);
-        if open < clear + 0.1 {
+        let barred =
+            refused.is_some_and(|r| wrap_angle(b - r).abs() < 2.0 * SECTOR_DEG.to_radians());
+        if open < clear + 0.1 || barred {
             continue;
         }
         if widest.is_none_or(|(o, _)| open > o) {
@@ -231,7 +280,7 @@ mod tests {
             (Pose2::new(1.0, 1.0, 0.0), 0.5),
             (Pose2::new(5.0, 1.0, 0.0), 0.5),
         ];
-        let (b, _) = best_leg(&open_scan(), &map, &hyps, 0.3).unwrap();
+        let (b, _) = best_leg(&open_scan(), &map, &hyps, 0.3, None).unwrap();
         let along = b.cos().abs();
         assert!(along > 0.9, "bearing {b}");
         let mut seek = Seek::default();
@@ -240,6 +289,32 @@ mod tests {
             drive,
             SeekDrive::Forward | SeekDrive::TurnLeft | SeekDrive::TurnRight
         ));
+    }
+
+    #[test]
+    fn a_robot_held_still_while_driving_ahead_turns_to_another_way() {
+        // Two hypotheses that differ ahead: the move drives forward, but the robot does
+        // not move (held by something the lidar's clearance does not show).
+        let map = corridor();
+        let hyps = [
+            (Pose2::new(1.0, 1.0, 0.0), 0.5),
+            (Pose2::new(5.0, 1.0, 0.0), 0.5),
+        ];
+        let mut scan = open_scan();
+        scan.ranges = vec![3.0; 360];
+        let mut seek = Seek::default();
+        let odom = Pose2::new(0.0, 0.0, 0.0);
+        let first = seek.step(odom, &scan, &map, &hyps, 0.3);
+        let aimed = seek.leg.map(|(h, _, _)| h).unwrap();
+        let drives: Vec<SeekDrive> = (0..2 * STALL_STEPS)
+            .map(|_| seek.step(odom, &scan, &map, &hyps, 0.3))
+            .collect();
+        // Once the stall is noticed, the way it was taking is refused.
+        let now = seek.leg.map(|(h, _, _)| h).unwrap();
+        assert!(
+            wrap_angle(now - aimed).abs() >= 2.0 * SECTOR_DEG.to_radians() - 1e-9,
+            "{first:?} then {drives:?}: still heading {now} (was {aimed})"
+        );
     }
 
     #[test]

@@ -279,8 +279,7 @@ impl Mcl {
         if let Some(odom) = self.odom_at_update {
             self.recent.push(odom, beams.clone());
         }
-        let due = (self.rivals_checked).is_none_or(|u| self.updates >= u + RECHECK_UPDATES);
-        if !self.converged && self.searching && self.updates > 0 && due {
+        if !self.converged && self.searching && self.updates > 0 && self.rivals_due() {
             // Still looking: the places that fit the scan as well as the estimate or
             // better, taken in as hypotheses, so that a truth the first particles missed
             // is weighed again (a correlative scan matcher's global search).
@@ -316,27 +315,11 @@ impl Mcl {
     /// `rivals`); each such place is taken back as a hypothesis. Searched at most every
     /// `RECHECK_UPDATES` updates, so the robot has moved on between searches.
     fn has_rivals(&mut self, beams: &Beams) -> bool {
-        if self
-            .rivals_checked
-            .is_some_and(|u| self.updates < u + RECHECK_UPDATES)
-        {
+        if !self.rivals_due() {
             return true;
         }
         self.rivals_checked = Some(self.updates);
-        let c = &self.config;
-        let q = |d: f64| {
-            let g = (-(d * d) / (2.0 * c.sigma_hit * c.sigma_hit)).exp();
-            c.z_hit * g / ((2.0 * std::f64::consts::PI).sqrt() * c.sigma_hit)
-                + c.z_rand / beams.max_range
-        };
-        // Nearly as well: within what it costs every beam to end half a σ_hit farther
-        // from the walls (the likelihood field's own scale, table 6.3).
-        let hits = beams
-            .ranges
-            .iter()
-            .filter(|&&r| r < beams.max_range)
-            .count();
-        let margin = hits as f64 * (q(0.0) / q(0.5 * c.sigma_hit)).ln();
+        let margin = rivals::margin(&self.config, beams);
         let (_, weigher) = self.weigher.as_mut().expect("built by the first scan");
         let (map, estimate) = (&self.map, self.estimate.pose);
         let odom = self.odom_at_update.unwrap_or_default();
@@ -370,6 +353,11 @@ impl Mcl {
         let total: f64 = self.particles.iter().map(|p| p.weight).sum();
         self.particles.iter_mut().for_each(|p| p.weight /= total);
         true
+    }
+
+    /// Whether `RECHECK_UPDATES` updates have passed since the last search for rivals.
+    fn rivals_due(&self) -> bool {
+        (self.rivals_checked).is_none_or(|u| self.updates >= u + RECHECK_UPDATES)
     }
 
     /// Resampling with KLD-sampling's count (table 8.4): a low-variance draw of the most

@@ -109,7 +109,7 @@ impl KnownMap {
         };
         let occupied_bounds = (corner(solid.x0, solid.y0), corner(solid.x1, solid.y1));
         // A cell `margin` cells beyond the box is more than `reach` from every obstacle.
-        let margin = (reach.max(0.0) / grid.resolution).ceil().min(1e6) as usize + 1;
+        let margin = (reach.max(0.0) / grid.resolution).ceil().min(1e9) as usize + 1;
         // The grid widened by `pad` cells on every side: by the margin, or by the grid's
         // own size when that is less (no scan ends farther past the edge of the map it
         // matches than the map is across).

@@ -10,6 +10,7 @@
 //! ruled out (its recent scans, taken together, fit far worse there) is not taken back,
 //! so that evidence gathered over metres of driving is not thrown away.
 
+use super::config::LocalizationConfig;
 use super::known_map::KnownMap;
 use super::sensor::{Beams, Weigher};
 use crate::geometry::{Pose2, wrap_angle};
@@ -148,6 +149,21 @@ impl RecentScans {
         }
         shortfall > RULED_OUT_SCANS * margin
     }
+}
+
+/// "Nearly as well", in nats, for `beams`: what it costs every beam that hit something
+/// to end half a σ_hit farther from the walls (the likelihood field's own scale,
+/// Probabilistic Robotics table 6.3).
+pub fn margin(c: &LocalizationConfig, beams: &Beams) -> f64 {
+    let q = |d: f64| {
+        let g = (-(d * d) / (2.0 * c.sigma_hit * c.sigma_hit)).exp();
+        c.z_hit * g / ((2.0 * std::f64::consts::PI).sqrt() * c.sigma_hit)
+            + c.z_rand / beams.max_range
+    };
+    let hits = (beams.ranges.iter())
+        .filter(|&&r| r < beams.max_range)
+        .count();
+    hits as f64 * (q(0.0) / q(0.5 * c.sigma_hit)).ln()
 }
 
 /// Whether `a` is at the same place as `b`.

@@ -113,15 +113,9 @@ impl Seek {
             at.position().distance(odom.position()) > STILL_M
                 || wrap_angle(odom.theta - at.theta).abs() > STILL_RAD
         });
-        let steps = if moved {
-            0
-        } else {
-            self.still.map_or(0, |(_, n)| n + 1)
-        };
-        let since = if moved {
-            odom
-        } else {
-            self.still.map_or(odom, |(at, _)| at)
+        let (since, steps) = match self.still {
+            Some((at, n)) if !moved => (at, n + 1),
+            _ => (odom, 0),
         };
         self.still = Some((since, steps));
         if steps >= STALL_STEPS {
@@ -261,6 +255,14 @@ mod tests {
         KnownMap::new(&g).unwrap()
     }
 
+    /// One hypothesis near each end of the corridor, facing +x, equally heavy.
+    fn corridor_ends() -> [(Pose2, f64); 2] {
+        [
+            (Pose2::new(1.0, 1.0, 0.0), 0.5),
+            (Pose2::new(5.0, 1.0, 0.0), 0.5),
+        ]
+    }
+
     fn open_scan() -> LaserScan {
         LaserScan {
             angle_min: 0.0,
@@ -276,10 +278,7 @@ mod tests {
         let map = corridor();
         // Near the west end the wall ahead (+x) is 4.5 m off, near the east end 0.5 m:
         // they disagree ahead and behind, and agree sideways (the walls 0.9 m off).
-        let hyps = [
-            (Pose2::new(1.0, 1.0, 0.0), 0.5),
-            (Pose2::new(5.0, 1.0, 0.0), 0.5),
-        ];
+        let hyps = corridor_ends();
         let (b, _) = best_leg(&open_scan(), &map, &hyps, 0.3, None).unwrap();
         let along = b.cos().abs();
         assert!(along > 0.9, "bearing {b}");
@@ -296,10 +295,7 @@ mod tests {
         // Two hypotheses that differ ahead: the move drives forward, but the robot does
         // not move (held by something the lidar's clearance does not show).
         let map = corridor();
-        let hyps = [
-            (Pose2::new(1.0, 1.0, 0.0), 0.5),
-            (Pose2::new(5.0, 1.0, 0.0), 0.5),
-        ];
+        let hyps = corridor_ends();
         let mut scan = open_scan();
         scan.ranges = vec![3.0; 360];
         let mut seek = Seek::default();

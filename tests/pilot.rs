@@ -242,3 +242,84 @@ fn a_goto_on_the_robots_map_plans_a_path_and_following_reaches_it() {
         at.distance(goal)
     );
 }
+
+#[test]
+fn the_arbiter_says_which_behaviour_drives_and_logs_the_e_stop_once() {
+    use navdeck::pilot::behaviours::Behaviour;
+    let mut robot = rig(4);
+    let winner = |robot: &Runtime| robot.pilot().arbiter().winner().map(|(b, _)| b);
+    ticks(&mut robot, 0.0, 0.5);
+    assert_eq!(
+        winner(&robot),
+        Some(Behaviour::Teleop),
+        "manual mode: teleop"
+    );
+    ask(&mut robot, 0.5, Intent::Mode(Mode::Exploration));
+    ticks(&mut robot, 0.5, 2.0);
+    let task = winner(&robot);
+    assert!(
+        matches!(task, Some(Behaviour::Exploration | Behaviour::PickAndPlace)),
+        "{task:?}"
+    );
+    // The e-stop wins at once and says so once however many ticks it holds.
+    robot.tick(2.1, Vec::new());
+    let stepped = robot.intend(Intent::EmergencyStop);
+    let mut said: Vec<String> = (stepped.log_lines())
+        .filter(|(_, _, text)| text.starts_with("behaviour: e-stop"))
+        .map(|(_, _, text)| text.to_string())
+        .collect();
+    for k in 1..=20 {
+        let stepped = robot.tick(2.1 + k as f64 * PERIOD, Vec::new());
+        said.extend(
+            (stepped.log_lines())
+                .filter(|(_, _, text)| text.starts_with("behaviour: e-stop"))
+                .map(|(_, _, text)| text.to_string()),
+        );
+    }
+    let was = task.unwrap();
+    assert_eq!(said, [format!("behaviour: e-stop (was {was}): pressed")]);
+    assert_eq!(winner(&robot), Some(Behaviour::EmergencyStop));
+    assert_eq!(robot.pilot().commanded().linear, 0.0);
+    // Released, teleop has control again, and the history holds every change in order.
+    ask(&mut robot, 5.0, Intent::EmergencyStop);
+    ticks(&mut robot, 5.0, 5.5);
+    assert_eq!(winner(&robot), Some(Behaviour::Teleop));
+    let changes: Vec<Option<Behaviour>> =
+        robot.pilot().arbiter().history().map(|tr| tr.to).collect();
+    assert_eq!(changes.first(), Some(&Some(Behaviour::Teleop)));
+    assert_eq!(changes.last(), Some(&Some(Behaviour::Teleop)));
+    assert!(changes.contains(&Some(Behaviour::EmergencyStop)));
+}
+
+#[test]
+fn a_task_behaviour_switched_off_for_a_while_holds_the_robot_then_drives_again() {
+    use navdeck::pilot::behaviours::Behaviour;
+    let mut robot = rig(5);
+    let off = Intent::Behaviour {
+        behaviour: Behaviour::Teleop,
+        on: false,
+        seconds: Some(1.0),
+    };
+    ask(&mut robot, 0.0, off);
+    let down = |repeat| Intent::KeyDown {
+        key: DriveKey::TurnLeft,
+        repeat,
+    };
+    ask(&mut robot, 0.1, down(false));
+    assert_eq!(robot.pilot().commanded().angular, 0.0, "teleop is off");
+    assert_eq!(robot.pilot().arbiter().winner(), None);
+    ask(&mut robot, 1.2, down(true));
+    assert!(robot.pilot().commanded().angular > 0.0, "teleop is back");
+    // The e-stop cannot be switched off.
+    let estop_off = Intent::Behaviour {
+        behaviour: Behaviour::EmergencyStop,
+        on: false,
+        seconds: None,
+    };
+    robot.tick(1.3, Vec::new());
+    let stepped = robot.intend(estop_off);
+    assert!(
+        (stepped.log_lines()).any(|(_, _, text)| text.contains("cannot be switched off")),
+        "the refusal is logged"
+    );
+}

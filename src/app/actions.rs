@@ -145,6 +145,37 @@ impl App {
             Typed::SaveRoute(name) => self.save_route(&name),
             Typed::LoadRoute(name) => self.load_route(&name),
             Typed::ShowRoute => self.show_route(),
+            Typed::ShowBehaviours => self.show_behaviours(),
+            Typed::SwitchBehaviour {
+                behaviour,
+                on,
+                seconds,
+            } => self.run_intent(pilot::Intent::Behaviour {
+                behaviour,
+                on,
+                seconds,
+            }),
+        }
+    }
+
+    /// `:behaviours`: which behaviour drives, and the arbiter's transitions kept (the last
+    /// 100, newest last), in the log.
+    fn show_behaviours(&mut self) {
+        let arbiter = self.pilot().arbiter();
+        let now = match arbiter.winner() {
+            Some((b, "")) => format!("behaviour now: {b}"),
+            Some((b, why)) => format!("behaviour now: {b} ({why})"),
+            None => "behaviour now: idle".to_string(),
+        };
+        let lines: Vec<String> = (arbiter.history())
+            .map(|tr| format!("{:7.1} s {}", tr.t, tr.text()))
+            .collect();
+        self.log(
+            Level::Info,
+            format!("{now}; the last {} changes:", lines.len()),
+        );
+        for line in lines {
+            self.log(Level::Info, line);
         }
     }
 

@@ -41,6 +41,14 @@ pub enum Typed {
     LoadRoute(String),
     /// `route` or `route show`: list the waypoints in the log.
     ShowRoute,
+    /// `behaviours`: the arbiter's last transitions, in the log.
+    ShowBehaviours,
+    /// `behaviour NAME on|off [SECONDS]`.
+    SwitchBehaviour {
+        behaviour: crate::pilot::behaviours::Behaviour,
+        on: bool,
+        seconds: Option<f64>,
+    },
 }
 
 /// Everything that changes the console's state, through one door (`App::apply`): a key's
@@ -168,6 +176,8 @@ pub fn parse(line: &str) -> Result<Intent, String> {
             .map_err(|e| format!("pose: {e}")),
         ["pose", ..] => Err("pose wants X Y (metres) and THETA (degrees)".to_string()),
         ["relocalize"] => Ok(Typed::Relocalize.into()),
+        ["behaviours" | "behaviors"] => Ok(Typed::ShowBehaviours.into()),
+        ["behaviour" | "behavior", rest @ ..] => behaviour(rest),
         ["localise" | "localize"] => Ok(Typed::Localise.into()),
         // vim's quit: stops the robot and ends the session, as the quit key does.
         ["q" | "quit"] => Ok(Action::Quit.into()),
@@ -179,6 +189,45 @@ pub fn parse(line: &str) -> Result<Intent, String> {
         [] => Err(format!("empty command; try {USAGE}")),
         [other, ..] => Err(format!("unknown command `{other}`; try {USAGE}")),
     }
+}
+
+/// `behaviour NAME on|off [SECONDS]`.
+fn behaviour(words: &[&str]) -> Result<Intent, String> {
+    use crate::pilot::behaviours::Behaviour;
+    const WANTS: &str =
+        "behaviour wants NAME on|off [SECONDS], e.g. `behaviour collision_monitor off 30`";
+    let (name, switch, seconds) = match words {
+        [name, switch] => (name, switch, None),
+        [name, switch, s] => (name, switch, Some(s)),
+        _ => return Err(WANTS.to_string()),
+    };
+    let behaviour = Behaviour::named(name).ok_or_else(|| {
+        let names: Vec<&str> = Behaviour::ALL.iter().map(|b| b.name()).collect();
+        format!("behaviour: unknown `{name}`; one of {}", names.join(", "))
+    })?;
+    let on = match *switch {
+        "on" => true,
+        "off" => false,
+        other => return Err(format!("behaviour: `{other}` is not on or off; {WANTS}")),
+    };
+    let seconds = match seconds {
+        None => None,
+        Some(_) if on => return Err("behaviour: a time goes with off only".to_string()),
+        Some(s) => match s.parse::<f64>() {
+            Ok(v) if v.is_finite() && v > 0.0 => Some(v),
+            _ => {
+                return Err(format!(
+                    "behaviour: `{s}` is not a positive number of seconds"
+                ));
+            }
+        },
+    };
+    Ok(Typed::SwitchBehaviour {
+        behaviour,
+        on,
+        seconds,
+    }
+    .into())
 }
 
 #[cfg(test)]
@@ -213,6 +262,24 @@ mod tests {
             .into())
         );
         assert_eq!(parse("relocalize"), Ok(Typed::Relocalize.into()));
+        assert_eq!(parse("behaviours"), Ok(Typed::ShowBehaviours.into()));
+        use crate::pilot::behaviours::Behaviour;
+        assert_eq!(
+            parse("behaviour collision_monitor off 30"),
+            Ok(Typed::SwitchBehaviour {
+                behaviour: Behaviour::CollisionMonitor,
+                on: false,
+                seconds: Some(30.0)
+            }
+            .into())
+        );
+        assert!(parse("behaviour warp off").unwrap_err().contains("warp"));
+        assert!(parse("behaviour teleop off -3").unwrap_err().contains("-3"));
+        assert!(
+            parse("behaviour teleop maybe")
+                .unwrap_err()
+                .contains("maybe")
+        );
         assert_eq!(parse("localise"), Ok(Typed::Localise.into()));
         assert_eq!(parse("localize"), Ok(Typed::Localise.into()));
         assert_eq!(parse("q"), Ok(Intent::Action(Action::Quit)));

@@ -9,7 +9,9 @@ use crate::keymap::{Key, KeyCode};
 const HISTORY: usize = 100;
 
 /// The words Tab completes first on a line.
-const COMMANDS: [&str; 12] = [
+const COMMANDS: [&str; 14] = [
+    "behaviour",
+    "behaviours",
     "clear",
     "controller",
     "goto",

@@ -193,7 +193,7 @@ impl Pilot {
     pub(super) fn arm_command(&mut self, t: f64) -> Option<ArmTarget> {
         let timeout = self.settings.teleop.deadman_timeout;
         let period = self.settings.robot.control_period;
-        let in_doubt = self.gate.in_doubt();
+        let in_doubt = self.behaviours.gate.in_doubt();
         let gripper_mode = self.mode == Mode::Gripper && !in_doubt;
         let arm = self.arm.as_mut()?;
         if in_doubt {

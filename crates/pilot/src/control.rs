@@ -1,7 +1,6 @@
 //! Sense, decide, act: folding in what the robot reported and choosing the command.
 
 use super::Pilot;
-use super::mode::Mode;
 use navdeck_core::data::{Command, GripperState, Level, SensorFrame, WheelTravel};
 use navdeck_core::geometry::Twist;
 use navdeck_core::map::contact::JAWS;
@@ -78,22 +77,6 @@ impl Pilot {
             m.measured = twist_from_wheels(m.travel, self.settings.robot.track, m.travel_time);
             m.travel = WheelTravel::default();
             m.travel_time = 0.0;
-        }
-    }
-
-    /// The twist the active mode asks for at `t`; zero whenever control is in doubt.
-    fn decide(&mut self, t: f64) -> Twist {
-        // The deadman always drops expired keys, even while the command is forced to zero,
-        // so its deadline moves on and the console's tick loop always progresses.
-        let keys = self.teleop.twist(t, self.brake_margin());
-        if self.gate.in_doubt() {
-            return Twist::ZERO;
-        }
-        match self.mode {
-            Mode::PathFollowing => self.follow(t),
-            Mode::Exploration => self.explore(t),
-            m if m.drives_by_keys() => keys,
-            _ => Twist::ZERO,
         }
     }
 

@@ -57,6 +57,12 @@ pub enum Intent {
     ArmPose(super::arm::ArmPose),
     /// The waypoint route: add, start, pause, skip, loop, clear, load.
     Route(super::waypoints::RouteAsk),
+    /// Switch a behaviour on, or off for a while (None: until switched on).
+    Behaviour {
+        behaviour: super::behaviours::Behaviour,
+        on: bool,
+        seconds: Option<f64>,
+    },
 }
 
 impl Pilot {
@@ -116,6 +122,14 @@ impl Pilot {
                 self.set_controller(kind);
                 false
             }
+            Intent::Behaviour {
+                behaviour,
+                on,
+                seconds,
+            } => {
+                self.switch_behaviour(behaviour, on, seconds);
+                true
+            }
             Intent::NextController => {
                 let all = ControllerKind::ALL;
                 let k = all
@@ -146,7 +160,7 @@ impl Pilot {
             Intent::Halt => {
                 self.teleop.clear();
                 self.measuring.commanded = Twist::ZERO;
-                self.gate.halted = true;
+                self.behaviours.gate.halted = true;
                 false
             }
             Intent::AdoptMap { map, source } => {
@@ -190,7 +204,7 @@ impl Pilot {
             return false;
         }
         if let (Mode::PathFollowing | Mode::Exploration, LinkStatus::Lost(reason)) =
-            (mode, &self.gate.link)
+            (mode, &self.behaviours.gate.link)
         {
             // Autonomy needs the robot's odometry to start from.
             let text = format!(
@@ -259,7 +273,7 @@ impl Pilot {
             self.halt_arm();
             self.set_mode(Mode::Manual);
         }
-        if let LinkStatus::Lost(_) = &self.gate.link {
+        if let LinkStatus::Lost(_) = &self.behaviours.gate.link {
             // Nothing can move: say so rather than ignore the key, in one short line (the
             // status panel's Link row says why the link is lost).
             if !repeat {
@@ -269,7 +283,7 @@ impl Pilot {
             }
             return;
         }
-        if self.gate.estop {
+        if self.behaviours.gate.estop {
             // Leaving an emergency stop is its own deliberate key, never a side effect.
             if !repeat {
                 self.log(
@@ -332,8 +346,8 @@ impl Pilot {
     /// The emergency stop key: on, or off again when it is on (the robot stays still).
     fn emergency_stop(&mut self) {
         self.halt_arm();
-        if self.gate.estop {
-            self.gate.estop = false;
+        if self.behaviours.gate.estop {
+            self.behaviours.gate.estop = false;
             self.log(
                 Level::Success,
                 "emergency stop released: the robot stays still until driven",
@@ -341,7 +355,7 @@ impl Pilot {
             return;
         }
         self.teleop.clear();
-        self.gate.estop = true;
+        self.behaviours.gate.estop = true;
         if self.mode != Mode::Manual {
             self.set_speed_limits(Mode::Manual);
             self.mode = Mode::Manual;

@@ -10,6 +10,7 @@
 //! mission runner calls it directly.
 
 pub mod arm;
+pub mod behaviours;
 pub mod config;
 mod control;
 pub mod estimate;
@@ -89,7 +90,8 @@ pub struct Pilot {
     follower: navdeck_core::control::follower::Follower,
     nav: navigation::Navigation,
     exploring: exploration::Exploring,
-    gate: safety::Gate,
+    /// The arbiter, and the gate its e-stop reads.
+    behaviours: behaviours::Behaviours,
     measuring: control::Measuring,
     hand: Hand,
     /// The arm, when the config has one.
@@ -129,7 +131,7 @@ impl Pilot {
             ),
             nav: navigation::Navigation::default(),
             exploring: exploration::Exploring::default(),
-            gate: safety::Gate::default(),
+            behaviours: behaviours::Behaviours::default(),
             measuring: control::Measuring::default(),
             hand: Hand::default(),
             arm: settings.arm.clone().map(arm::ArmPilot::new),
@@ -189,15 +191,19 @@ impl Pilot {
         self.hand.state
     }
     pub fn estop(&self) -> bool {
-        self.gate.estop
+        self.behaviours.gate.estop
+    }
+    /// The arbiter: which behaviour's command goes out, and the transitions.
+    pub fn arbiter(&self) -> &behaviours::Arbiter {
+        &self.behaviours.arbiter
     }
     pub fn link_status(&self) -> &LinkStatus {
-        &self.gate.link
+        &self.behaviours.gate.link
     }
     /// Whether the robot has answered at least once this session: until it has, a link
     /// that is not answering is still being waited for, not lost.
     pub fn link_ever_up(&self) -> bool {
-        self.gate.link_was_up
+        self.behaviours.gate.link_was_up
     }
     pub fn slam(&self) -> &EkfSlam {
         &self.ekf

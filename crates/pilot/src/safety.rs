@@ -46,9 +46,9 @@ impl Gate {
 impl Pilot {
     /// The link answered at `t`.
     pub(super) fn link_answered(&mut self, t: f64) {
-        if let LinkStatus::Lost(_) = self.gate.link {
-            if self.gate.link_was_up {
-                self.gate.link = LinkStatus::Back;
+        if let LinkStatus::Lost(_) = self.behaviours.gate.link {
+            if self.behaviours.gate.link_was_up {
+                self.behaviours.gate.link = LinkStatus::Back;
                 self.log_at(
                     t,
                     Level::Success,
@@ -56,33 +56,33 @@ impl Pilot {
                 );
             } else {
                 // Control was never established, so there is nothing to resume.
-                self.gate.link = LinkStatus::Ok;
+                self.behaviours.gate.link = LinkStatus::Ok;
                 self.log_at(t, Level::Success, "link up");
             }
         }
-        self.gate.link_was_up = true;
+        self.behaviours.gate.link_was_up = true;
     }
 
     /// Control is lost: drop held keys, command nothing further, say so once.
     pub(super) fn lose_link(&mut self, t: f64, reason: String) {
-        if !matches!(self.gate.link, LinkStatus::Lost(_)) {
+        if !matches!(self.behaviours.gate.link, LinkStatus::Lost(_)) {
             // Before the robot first answers, waiting is expected rather than an error.
-            let level = if self.gate.link_was_up {
+            let level = if self.behaviours.gate.link_was_up {
                 Level::Error
             } else {
                 Level::Info
             };
             self.log_at(t, level, reason.clone());
         }
-        self.gate.link = LinkStatus::Lost(reason);
+        self.behaviours.gate.link = LinkStatus::Lost(reason);
         self.teleop.clear();
         self.measuring.commanded = Twist::ZERO;
     }
 
     /// The user's word after the link came back.
     pub(super) fn resume(&mut self) {
-        if self.gate.link == LinkStatus::Back {
-            self.gate.link = LinkStatus::Ok;
+        if self.behaviours.gate.link == LinkStatus::Back {
+            self.behaviours.gate.link = LinkStatus::Ok;
             self.log(Level::Success, "control resumed");
         }
     }

@@ -34,6 +34,17 @@ fn dash_if_empty<T>(items: &[T], text: String) -> String {
     if items.is_empty() { "-".into() } else { text }
 }
 
+/// Which behaviour has control (its command goes out), and why when a safety behaviour
+/// overrides the task.
+fn behaviour_row(app: &App) -> Row {
+    let text = match app.pilot().arbiter().winner() {
+        Some((b, why)) if b.is_safety() && !why.is_empty() => format!("{b}: {why}"),
+        Some((b, _)) => b.to_string(),
+        None => "idle".to_string(),
+    };
+    Row::new("Control", text, Need::Some).wrapping(2)
+}
+
 /// Status rows, fitted to `width` x `height`: long values wrap, and a short panel keeps
 /// the rows a user needs most (mode, link, pose, mission).
 pub fn lines(app: &App, theme: Theme, width: usize, height: usize) -> Vec<Line<'static>> {
@@ -63,6 +74,7 @@ fn rows(app: &App) -> Vec<Row> {
         );
     }
     rows.push(Row::new("Mode", app.pilot().mode().label(), Need::Must));
+    rows.push(behaviour_row(app));
     rows.extend(navigation_rows(app));
     rows.push(Row::new("Link", format!("{} {link}", app.link().label()), Need::Must).wrapping(2));
     if let LinkStatus::Lost(reason) = app.pilot().link_status() {

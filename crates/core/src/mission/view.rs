@@ -35,6 +35,12 @@ impl Mission {
         }
     }
 
+    /// Whether the mission is picking up a block or delivering one (pick-and-place), not
+    /// looking for one (exploration).
+    pub fn is_handling_a_block(&self) -> bool {
+        matches!(self.phase, Phase::Pickup(_) | Phase::Deliver(_))
+    }
+
     /// Why the mission is doing what `state_label` says, in two status rows at most,
     /// e.g. "camera has not looked there (4 left)".
     pub fn reason(&self) -> String {

@@ -65,6 +65,8 @@ pub struct Config {
     pub arm: Option<crate::arm::config::ArmConfig>,
     /// `--record`: what a recording holds, and a folder to record every session into.
     pub record: crate::record::RecordConfig,
+    /// The collision monitor's zones around the robot and its data's age limit.
+    pub safety: crate::control::collision_monitor::SafetyConfig,
 }
 
 impl Config {
@@ -130,6 +132,7 @@ impl Config {
             ("vision", self.vision.validate()),
             ("arm", self.arm.as_ref().map_or(Ok(()), |a| a.validate())),
             ("record", self.record.validate()),
+            ("safety", self.safety.validate()),
         ];
         let namespace = &self.ros2.namespace;
         if let Some(why) = crate::link::ros2::config::namespace_problem(namespace) {
@@ -153,14 +156,28 @@ impl Config {
                 });
             }
         }
+        if let Some((field, name, reason)) = self.safety.name_problem() {
+            let field = format!("safety.{field}");
+            return Err(ConfigError::Invalid {
+                path: path.to_path_buf(),
+                line: text.and_then(|t| line_of(t, &field)),
+                field,
+                value: format!("{name:?}"),
+                reason: reason.into(),
+            });
+        }
         Ok(())
     }
 }
 
 /// The line (from 1) of TOML `text` that sets the dotted `field` ("sim.camera.min_range";
 /// an index such as "[0]" is dropped), looked for under its table header or as a dotted
-/// key under a parent table.
+/// key under a parent table. A field of an array of tables ("safety.polygons[1].radius")
+/// is looked for in that table's second `[[safety.polygons]]`.
 fn line_of(text: &str, field: &str) -> Option<usize> {
+    if let Some(line) = line_in_array_of_tables(text, field) {
+        return Some(line);
+    }
     let field = field.split('[').next().unwrap_or(field);
     let mut table = String::new();
     for (n, line) in text.lines().enumerate() {
@@ -187,6 +204,38 @@ fn line_of(text: &str, field: &str) -> Option<usize> {
         }
     }
     None
+}
+
+/// The line of "table[k].key" in the k-th (from 0) `[[table]]` of `text`, or that
+/// header's line when the table does not set `key`; `None` for other fields.
+fn line_in_array_of_tables(text: &str, field: &str) -> Option<usize> {
+    let (table, rest) = field.split_once('[')?;
+    let (index, key) = rest.split_once("].")?;
+    let index: usize = index.parse().ok()?;
+    let header = format!("[[{table}]]");
+    let (mut seen, mut start) = (0, None);
+    for (n, line) in text.lines().enumerate() {
+        let line = line.split('#').next().unwrap_or_default().trim();
+        // A table header, not a row of a multi-line array such as `[0.4, 0.2],`.
+        let names = line.trim_start_matches('[');
+        if line.starts_with('[') && names.starts_with(|c: char| c.is_alphabetic() || c == '"') {
+            if start.is_some() {
+                break;
+            }
+            if line == header {
+                seen += 1;
+                start = (seen == index + 1).then_some(n + 1);
+            }
+            continue;
+        }
+        let sets_key = line
+            .split_once('=')
+            .is_some_and(|(k, _)| k.trim().trim_matches('"') == key);
+        if start.is_some() && sets_key {
+            return Some(n + 1);
+        }
+    }
+    start
 }
 
 #[cfg(test)]
@@ -246,6 +295,11 @@ mod tests {
             ),
             ("[robot]\ntrack = 1e308", "robot.track", "1e308"),
             ("[record]\nlevel = 0", "record.level", "0"),
+            (
+                "[safety]\nsource_timeout = 0.0",
+                "safety.source_timeout",
+                "0",
+            ),
         ];
         for (text, field, value) in cases {
             let err = Config::parse(text, Path::new("bad.toml"))
@@ -282,5 +336,55 @@ mod tests {
         assert!(e.contains("lqr") && e.contains("line 2"), "{e}");
         let ok = Config::parse("[follow]\ncontroller = \"pure_pursuit\"\n", path).unwrap();
         assert_eq!(ok.follow.controller.name(), "pure_pursuit");
+    }
+
+    #[test]
+    fn a_bad_safety_zone_is_named_with_its_value_and_line() {
+        let path = Path::new("safety.toml");
+        let err = |text: &str| Config::parse(text, path).unwrap_err().to_string();
+        let zones = "[safety]\nsource_timeout = 0.4\n\n\
+            [[safety.polygons]]\nname = \"stop\"\naction_type = \"stop\"\nradius = 0.15\n\n\
+            [[safety.polygons]]\nname = \"slow\"\naction_type = \"slowdown\"\n";
+        let e = err(&format!("{zones}radius = 0.4\nslowdown_ratio = 1.5\n"));
+        assert!(
+            e.starts_with(
+                "config safety.toml:13: field `safety.polygons[1].slowdown_ratio` = 1.5:"
+            ),
+            "{e}"
+        );
+        let e = err(&format!(
+            "{zones}points = [[0.0, 0.0], [0.4, 0.4], [0.4, 0.0], [0.0, 0.4]]\n"
+        ));
+        assert!(
+            e.starts_with("config safety.toml:12: field `safety.polygons[1].points` = 4:"),
+            "{e}"
+        );
+        assert!(e.contains("cross"), "{e}");
+        let e = err(&format!(
+            "{zones}points = [\n  [0.3, 0.2],\n  [0.3, -0.2],\n  [30.0, 0.0],\n]\n"
+        ));
+        assert!(
+            e.starts_with("config safety.toml:12: field `safety.polygons[1].points` = 30:"),
+            "{e}"
+        );
+        let e = err(&zones.replace("\"slow\"", "\"stop\""));
+        assert!(
+            e.starts_with("config safety.toml:10: field `safety.polygons[1].name` = \"stop\":"),
+            "{e}"
+        );
+        let e = err("[[safety.polygons]]\nname = \"x\"\naction_type = \"brake\"\n");
+        assert!(e.contains("brake"), "{e}");
+        let ok = Config::parse(&format!("{zones}radius = 0.4\n"), path).unwrap();
+        assert_eq!(ok.safety.polygons.len(), 2);
+        assert_eq!(ok.safety.polygons[1].slowdown_ratio, 0.5);
+        assert_eq!(ok.safety.polygons[1].min_points, 4);
+    }
+
+    #[test]
+    fn the_default_config_reads_back_as_written() {
+        let text = toml::to_string(&Config::default()).unwrap();
+        let back = Config::parse(&text, Path::new("written.toml")).unwrap();
+        assert_eq!(back, Config::default());
+        assert!(text.contains("[[safety.polygons]]"), "{text}");
     }
 }

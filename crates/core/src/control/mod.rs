@@ -1,6 +1,8 @@
-//! Path-following controllers: they turn a pose and a trajectory into a twist.
+//! Path-following controllers: they turn a pose and a trajectory into a twist; and the
+//! collision monitor, which holds back any command that would drive into an obstacle.
 //! The core never reads a clock or touches a terminal: poses and `dt` are passed in.
 
+pub mod collision_monitor;
 pub mod config;
 pub mod controller;
 pub mod follower;

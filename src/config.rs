@@ -84,6 +84,7 @@ impl Config {
             localization: self.localization.clone(),
             lidar_slam: self.lidar_slam.clone(),
             arm: self.arm.clone(),
+            safety: self.safety.clone(),
         }
     }
 

@@ -70,6 +70,7 @@ mod arm_cli;
 mod camera_panel;
 mod camera_pipeline;
 mod cli;
+mod collision_monitor;
 mod console;
 mod console_keys;
 mod console_slam;

@@ -26,6 +26,8 @@ pub struct Settings {
     pub lidar_slam: navdeck_core::slam::lidar::LidarSlamConfig,
     /// The arm, when the robot has one.
     pub arm: Option<navdeck_core::arm::ArmConfig>,
+    /// The collision monitor's zones (`[safety]`).
+    pub safety: navdeck_core::control::collision_monitor::SafetyConfig,
 }
 
 /// Race mode (seed 001: "High-speed mode (reduced SLAM updates)").

@@ -42,6 +42,7 @@ impl Pilot {
             self.note_frame(s.iter().map(|m| m.id).collect());
         }
         if let Some(scan) = &frame.scan {
+            self.note_scan_for_monitor(t);
             self.localize_scan(scan);
             self.map_scan(t, scan);
         }

@@ -131,7 +131,7 @@ impl Pilot {
             ),
             nav: navigation::Navigation::default(),
             exploring: exploration::Exploring::default(),
-            behaviours: behaviours::Behaviours::default(),
+            behaviours: behaviours::Behaviours::new(&settings),
             measuring: control::Measuring::default(),
             hand: Hand::default(),
             arm: settings.arm.clone().map(arm::ArmPilot::new),

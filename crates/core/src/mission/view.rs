@@ -41,6 +41,14 @@ impl Mission {
         matches!(self.phase, Phase::Pickup(_) | Phase::Deliver(_))
     }
 
+    /// The marker of the block being picked up, while one is.
+    pub fn block_being_picked(&self) -> Option<u32> {
+        match &self.phase {
+            Phase::Pickup(p) => Some(p.block),
+            _ => None,
+        }
+    }
+
     /// Why the mission is doing what `state_label` says, in two status rows at most,
     /// e.g. "camera has not looked there (4 left)".
     pub fn reason(&self) -> String {

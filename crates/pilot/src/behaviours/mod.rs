@@ -2,15 +2,29 @@
 //! picks the winner each tick, and the pilot's proposals from its modes and safety gate.
 
 pub mod arbiter;
+mod collision;
 mod propose;
 pub mod table;
 
 pub use arbiter::{Arbiter, Proposal, Transition};
 pub use table::Behaviour;
 
-/// The arbiter and what feeds its safety behaviours: the gate (e-stop, link in doubt).
-#[derive(Clone, Debug, Default)]
+/// The arbiter and what feeds its safety behaviours: the gate (e-stop, link in doubt)
+/// and the collision monitor.
+#[derive(Clone, Debug)]
 pub(crate) struct Behaviours {
     pub gate: crate::safety::Gate,
     pub arbiter: Arbiter,
+    pub collision: collision::CollisionWatch,
+}
+
+impl Behaviours {
+    pub fn new(settings: &crate::config::Settings) -> Self {
+        let radius = settings.robot.footprint_radius;
+        Self {
+            gate: crate::safety::Gate::default(),
+            arbiter: Arbiter::default(),
+            collision: collision::CollisionWatch::new(&settings.safety, radius),
+        }
+    }
 }

@@ -20,7 +20,15 @@ impl Pilot {
             // A stopped robot's tasks are suppressed, not merely outvoted: the mission
             // and the follower do not step while it stands.
             Some(why) => proposals.push(Proposal::new(Behaviour::EmergencyStop, Twist::ZERO, why)),
-            None => proposals.extend(self.task_proposal(t, keys)),
+            None => {
+                if let Some(task) = self.task_proposal(t, keys) {
+                    // Picking up and putting down a block touches it by design: the
+                    // monitor leaves the gripper's lane to it.
+                    let handling = task.behaviour == Behaviour::PickAndPlace;
+                    proposals.extend(self.collision_proposal(t, task.twist, handling));
+                    proposals.push(task);
+                }
+            }
         }
         let (twist, transition) = self.behaviours.arbiter.arbitrate(t, &proposals);
         // A change between task behaviours follows the mode or the mission, which log

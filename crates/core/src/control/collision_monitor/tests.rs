@@ -219,7 +219,12 @@ fn fewer_points_than_min_points_do_not_act() {
 
 #[test]
 fn the_most_restrictive_zone_wins() {
-    let monitor = CollisionMonitor::new(&SafetyConfig::default(), BURGER);
+    // The default zones with the slowdown switched on.
+    let mut config = SafetyConfig::default();
+    for zone in &mut config.polygons {
+        zone.enabled = true;
+    }
+    let monitor = CollisionMonitor::new(&config, BURGER);
     // 0.14 m: inside stop, slowdown and approach; the stop wins.
     let close = monitor.check(Twist::new(0.22, 0.0), &fresh(&points_ahead(0.14)));
     assert_eq!(acted(&close), Some(("stop", ActionType::Stop)));

@@ -1,8 +1,9 @@
 //! One zone's verdict on a command: what it lets through when enough points lie in it.
 //!
 //! A stop or slowdown zone only holds back motion that brings the robot towards the points
-//! inside it: moving straight, the robot's centre closes on a point p (robot frame) at
-//! the rate v p.x / |p|, so a point counts when v and p.x have the same sign. Turning in
+//! inside it: a point counts when the robot, driving straight the way `v` says, would
+//! sweep its footprint over it (v and p.x of the same sign, and |p.y| within the
+//! footprint's radius), so a wall alongside does not stop a robot passing it. Turning in
 //! place closes on nothing, since navdeck's footprint is round (`[robot].footprint_radius`),
 //! so a robot held at a wall can always turn, and back away. (Nav2's zones hold back any
 //! motion; navdeck's rule is its own, for a console driven from the keyboard.)
@@ -17,6 +18,8 @@ use crate::geometry::{Point2, Twist};
 pub struct Zone {
     pub config: PolygonConfig,
     pub shape: Shape,
+    /// Half the width the footprint sweeps driving straight, metres.
+    lane: f64,
 }
 
 /// What a zone lets through, when it acts.
@@ -32,6 +35,7 @@ impl Zone {
         Self {
             shape: Shape::of(config, footprint_radius),
             config: config.clone(),
+            lane: footprint_radius,
         }
     }
 
@@ -77,14 +81,17 @@ impl Zone {
         points.iter().filter(|&&p| self.shape.contains(p)).count()
     }
 
-    /// Points inside the shape that the command's linear motion heads towards.
+    /// Points inside the shape that the footprint, driving straight the way the
+    /// command's linear speed says, would sweep over.
     fn in_the_way(&self, command: Twist, points: &[Point2]) -> usize {
         if command.linear == 0.0 {
             return 0;
         }
         points
             .iter()
-            .filter(|&&p| command.linear * p.x > 0.0 && self.shape.contains(p))
+            .filter(|&&p| {
+                command.linear * p.x > 0.0 && p.y.abs() <= self.lane && self.shape.contains(p)
+            })
             .count()
     }
 }
@@ -116,6 +123,24 @@ mod tests {
         assert_eq!(out.command, Twist::new(0.0, 1.0));
         assert_eq!(zone.apply(Twist::new(-0.2, 1.0), &wall), None);
         assert_eq!(zone.apply(Twist::new(0.0, 2.0), &wall), None);
+    }
+
+    #[test]
+    fn a_wall_alongside_does_not_stop_a_robot_passing_it() {
+        let zone = Zone::new(
+            &PolygonConfig::new("stop", ActionType::Stop).circle(0.15),
+            0.1,
+        );
+        // A wall 0.13 m to the left, running along the robot's way.
+        let alongside: Vec<Point2> = (-10..=10)
+            .map(|k| Point2::new(k as f64 * 0.01, 0.13))
+            .collect();
+        assert_eq!(zone.apply(Twist::new(0.2, 0.0), &alongside), None);
+        // A box corner ahead inside the lane still stops it.
+        let corner: Vec<Point2> = (0..5)
+            .map(|k| Point2::new(0.12, 0.05 + k as f64 * 0.01))
+            .collect();
+        assert!(zone.apply(Twist::new(0.2, 0.0), &corner).is_some());
     }
 
     #[test]

@@ -1,0 +1,167 @@
+//! The collision monitor as a behaviour (priority 90): each control step it weighs the
+//! task's command against the newest lidar scan, its points moved to where the robot now
+//! stands (Nav2's `base_shift_correction`, by odometry since the scan), or, on a robot that
+//! never sent a scan, against the planning map's occupied cells round it; when a zone
+//! changes the command, the monitor proposes the changed one and so wins.
+
+use super::{Behaviour, Proposal};
+use crate::Pilot;
+use navdeck_core::control::collision_monitor::{
+    ActionType, CollisionMonitor, Obstacles, SafetyConfig, SourceKind, points_from_grid,
+};
+use navdeck_core::data::GripperState;
+use navdeck_core::geometry::{Point2, Pose2, Twist};
+use navdeck_core::map::contact::JAWS;
+use navdeck_core::map::grid::OccupancyGrid;
+
+/// Map cells are read this far round a robot without a lidar, metres.
+const MAP_RADIUS_M: f64 = 1.0;
+/// A lidar does not see closer than its least range (an LDS-01's 0.12 m is beyond a
+/// Burger's footprint): hits this near are remembered, by odometry, for this long, so that
+/// an obstacle the robot stopped short of still holds it once it is too near to see.
+const REMEMBER_WITHIN_M: f64 = 0.35;
+const REMEMBER_FOR_S: f64 = 2.0;
+/// While a block is picked up, the lidar's hits this near its marker's estimate are the
+/// block (a 5 cm block seen from any side, and the estimate's error), metres.
+const PICKED_BLOCK_M: f64 = 0.1;
+/// While a block is held, hits in the gripper's jaws (`map::contact::JAWS`) widened by this
+/// are the block, metres.
+const HELD_MARGIN_M: f64 = 0.03;
+
+/// The monitor and what it remembers between steps.
+#[derive(Clone, Debug)]
+pub(crate) struct CollisionWatch {
+    pub monitor: CollisionMonitor,
+    /// The same zones' stop zones alone, while a block is handled: its final approaches
+    /// are slow and guarded already, and an approach zone would slow them further.
+    handling_monitor: CollisionMonitor,
+    /// When the newest scan arrived and the odometry pose then.
+    pub scan_at: Option<(f64, Pose2)>,
+    /// The planning map as a grid, and the map revision it was made at.
+    map_grid: Option<(u64, OccupancyGrid)>,
+    /// Near hits of recent scans (odometry frame), and when each scan arrived.
+    remembered: Vec<(f64, Vec<Point2>)>,
+}
+
+impl CollisionWatch {
+    pub fn new(config: &SafetyConfig, footprint_radius: f64) -> Self {
+        let mut stops = config.clone();
+        stops.polygons.retain(|p| p.action_type == ActionType::Stop);
+        Self {
+            monitor: CollisionMonitor::new(config, footprint_radius),
+            handling_monitor: CollisionMonitor::new(&stops, footprint_radius),
+            scan_at: None,
+            map_grid: None,
+            remembered: Vec::new(),
+        }
+    }
+}
+
+impl Pilot {
+    /// A scan arrived at `t`: the monitor reads its points from where the robot was.
+    pub(crate) fn note_scan_for_monitor(&mut self, t: f64) {
+        self.behaviours.collision.scan_at = Some((t, self.odometry.pose()));
+    }
+
+    /// The monitor's proposal at `t` against the task's `twist`, when it changes it. With
+    /// `handling` (pick-and-place: a block is being picked up or carried), the block itself
+    /// is touched by design: the hits near the picked block's marker, or in the jaws that
+    /// hold it, are not obstacles, and only the stop zones act.
+    pub(crate) fn collision_proposal(
+        &mut self,
+        t: f64,
+        twist: Twist,
+        handling: bool,
+    ) -> Option<Proposal> {
+        if !self.behaviours.arbiter.is_on(Behaviour::CollisionMonitor) {
+            return None;
+        }
+        let odom = self.odometry.pose();
+        let (points, age, source) = match (self.behaviours.collision.scan_at, self.newest_scan()) {
+            (Some((at, then)), Some((_, scan))) => {
+                let hits: Vec<Point2> = scan.hits(Pose2::default()).collect();
+                let watch = &mut self.behaviours.collision;
+                watch
+                    .remembered
+                    .retain(|(seen, _)| t - seen <= REMEMBER_FOR_S);
+                if watch.remembered.last().is_none_or(|(seen, _)| *seen < at) {
+                    let near = (hits.iter())
+                        .filter(|p| p.x.hypot(p.y) <= REMEMBER_WITHIN_M)
+                        .map(|&p| then.transform_point(p))
+                        .collect();
+                    watch.remembered.push((at, near));
+                }
+                // From the robot's frame then to its frame now.
+                let shift = odom.inverse().compose(then);
+                let mut points: Vec<Point2> =
+                    hits.iter().map(|&p| shift.transform_point(p)).collect();
+                let older = watch
+                    .remembered
+                    .iter()
+                    .rev()
+                    .skip(1)
+                    .flat_map(|(_, near)| near);
+                points.extend(older.map(|&p| odom.inverse_transform_point(p)));
+                (points, Some(t - at), SourceKind::Scan)
+            }
+            _ => (self.map_points(), Some(0.0), SourceKind::Map),
+        };
+        let mut points = points;
+        if handling {
+            let block = self.picked_block_here();
+            let held = self.hand.state == Some(GripperState::Holding);
+            points.retain(|p| {
+                let is_block = block.is_some_and(|b| b.distance(*p) <= PICKED_BLOCK_M);
+                let in_jaws = held
+                    && p.x > 0.0
+                    && p.x <= JAWS.ahead + HELD_MARGIN_M
+                    && p.y.abs() <= JAWS.half_width + HELD_MARGIN_M;
+                !(is_block || in_jaws)
+            });
+        }
+        let obstacles = Obstacles {
+            points: &points,
+            age,
+            source,
+        };
+        let watch = &self.behaviours.collision;
+        let monitor = if handling {
+            &watch.handling_monitor
+        } else {
+            &watch.monitor
+        };
+        let verdict = monitor.check(twist, &obstacles);
+        let reason = verdict.reason?;
+        let reason = reason
+            .strip_prefix("collision monitor: ")
+            .unwrap_or(&reason);
+        Some(Proposal::new(
+            Behaviour::CollisionMonitor,
+            verdict.command,
+            reason,
+        ))
+    }
+
+    /// Where the marker of the block being picked up is, in the robot's frame.
+    fn picked_block_here(&self) -> Option<Point2> {
+        let id = self.exploring.mission.as_ref()?.block_being_picked()?;
+        let (_, at) = self
+            .ekf
+            .landmarks()
+            .map(|l| (l.id, l.mean))
+            .find(|(i, _)| *i == id)?;
+        Some(self.pose().inverse_transform_point(at))
+    }
+
+    /// The planning map's occupied cells round the robot, in its frame.
+    fn map_points(&mut self) -> Vec<Point2> {
+        let revision = self.belief.revision();
+        let pose = self.pose();
+        let watch = &mut self.behaviours.collision;
+        if watch.map_grid.as_ref().is_none_or(|(r, _)| *r != revision) {
+            watch.map_grid = Some((revision, self.belief.occupancy_grid()));
+        }
+        let grid = &watch.map_grid.as_ref().expect("just made").1;
+        points_from_grid(grid, pose, MAP_RADIUS_M)
+    }
+}

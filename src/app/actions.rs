@@ -145,6 +145,9 @@ impl App {
             Typed::SaveRoute(name) => self.save_route(&name),
             Typed::LoadRoute(name) => self.load_route(&name),
             Typed::ShowRoute => self.show_route(),
+            Typed::Fault(spec) => self.inject_fault(&spec),
+            Typed::ClearFaults => self.clear_faults(),
+            Typed::ShowFaults => self.show_faults(),
         }
     }
 

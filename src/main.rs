@@ -2,7 +2,7 @@
 
 use anyhow::{Result, bail};
 use clap::Parser;
-use commands::args::{parse_domain, parse_key_rate, parse_pose, whole};
+use commands::args::{parse_domain, parse_key_rate};
 use commands::arm::ArmCommand;
 use commands::map::MapCommand;
 use commands::mission::MissionArgs;
@@ -10,8 +10,8 @@ use commands::plan::PlanArgs;
 use commands::replay::ReplayArgs;
 use commands::ros2::Ros2Command;
 use commands::tour::{LocalizeArgs, TourArgs};
+use commands::twin_args::TwinArgs;
 use commands::world::WorldCommand;
-use navdeck::geometry::Pose2;
 use navdeck::session::LinkChoice;
 use std::io::Write;
 use std::path::PathBuf;
@@ -46,28 +46,11 @@ struct Cli {
     #[arg(long, value_name = "N", value_parser = parse_domain)]
     domain: Option<u16>,
 
-    /// World for the twin: a world file (TOML, see maps/) or a Nav2 map (map_server
-    /// YAML + PGM, its occupied cells walls); default: the built-in arena.
-    #[arg(long, value_name = "FILE")]
-    world: Option<PathBuf>,
-
-    /// Where the twin's robot starts, metres and degrees in the world's frame, instead
-    /// of the world's own start (a Nav2 map's is its roomiest free cell).
-    #[arg(long, value_name = "X,Y,THETA_DEG", value_parser = parse_pose, allow_hyphen_values = true)]
-    start: Option<Pose2>,
+    #[command(flatten)]
+    twin: TwinArgs,
 
     #[command(flatten)]
     localize: LocalizeArgs,
-
-    /// Seed for the twin's sensor noise: the same seed replays the same run.
-    #[arg(
-        long,
-        default_value_t = 1,
-        value_name = "N",
-        allow_negative_numbers = true,
-        value_parser = whole::<u64>
-    )]
-    seed: u64,
 
     /// Robot, teleop and twin parameters (TOML); unset fields keep seed 001's values.
     #[arg(long, value_name = "FILE")]
@@ -76,11 +59,6 @@ struct Cli {
     /// Keymap overlaid on the defaults, e.g. keymaps/teleop_twist_keyboard.toml.
     #[arg(long, value_name = "FILE")]
     keymap: Option<PathBuf>,
-
-    /// The twin sees through a rendered camera and OpenCV's ArUco detector instead of its
-    /// ideal marker sensor (needs a build with `--features vision`).
-    #[arg(long)]
-    sim_camera: bool,
 
     /// A camera beside the robot's link, read with OpenCV's ArUco detector on its own
     /// threads (feature `vision`): a V4L2 device (/dev/video0 or 0) or `ros2:TOPIC`
@@ -191,10 +169,11 @@ fn real_main(cli: Cli) -> Result<ExitCode> {
         // The console's own options do nothing for a subcommand: say so, never ignore.
         let given = [
             ("--config", cli.config.is_some()),
-            ("--world", cli.world.is_some()),
-            ("--start", cli.start.is_some()),
+            ("--world", cli.twin.world.is_some()),
+            ("--start", cli.twin.start.is_some()),
             ("--keymap", cli.keymap.is_some()),
-            ("--sim-camera", cli.sim_camera),
+            ("--sim-camera", cli.twin.sim_camera),
+            ("--fault", !cli.twin.fault.is_empty()),
             ("--headless", cli.headless),
             ("--camera", cli.camera.is_some()),
             ("--ros2", cli.ros2),

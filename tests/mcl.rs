@@ -58,9 +58,12 @@ fn options(seed: u64, duration: f64) -> TourOptions {
 #[test]
 fn mcl_tracks_the_turtlebot3_world_to_centimetres_where_dead_reckoning_drifts() {
     let r = tour_of(&spec(TB3, 1, None), |_| {}, options(1, 120.0));
-    let (pos, head) = (r.position_rmse.unwrap(), r.heading_rmse_deg.unwrap());
+    let (pos, head) = (
+        r.errors.position_rmse.unwrap(),
+        r.errors.heading_rmse_deg.unwrap(),
+    );
     assert!(pos < 0.03 && head < 1.5, "MCL RMSE {pos} m, {head}°");
-    let dr = r.dr_position_rmse.unwrap();
+    let dr = r.errors.dr_position_rmse.unwrap();
     assert!(dr > 2.0 * pos, "dead reckoning {dr} m against MCL {pos} m");
     assert_eq!(r.collisions, Some(0));
     assert!(r.arrivals.len() >= 3, "{r:?}");

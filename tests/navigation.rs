@@ -39,7 +39,7 @@ fn thinking_mode_plans_to_the_cursor_and_the_robot_stays_put() {
     assert!(route.plan.length > 0.2, "{}", route.plan.length);
     assert!(logged(&app, "path to ("), "log: plan time, length and cost");
     assert_eq!(app.pilot().mode(), Mode::Thinking);
-    let end = report.true_pose.unwrap();
+    let end = report.travel.true_pose.unwrap();
     assert!((end.x - start.x).abs() < 1e-6 && (end.y - start.y).abs() < 1e-6);
     assert!(app.goal_cursor().is_some());
 }
@@ -48,13 +48,13 @@ fn thinking_mode_plans_to_the_cursor_and_the_robot_stays_put() {
 fn goto_then_p_follows_to_destination_arrived() {
     let mut app = default_app();
     let report = play(&mut app, ":goto 0.9 0.6<enter>p");
-    assert!(report.arrived, "warnings: {:?}", report.warnings);
+    assert!(report.following.arrived, "warnings: {:?}", report.warnings);
     assert!(logged(&app, "Destination arrived"));
-    let p = report.true_pose.unwrap();
+    let p = report.travel.true_pose.unwrap();
     assert!((p.x - 0.9).hypot(p.y - 0.6) < 0.08, "ended at {p:?}");
     assert_eq!(report.collisions, Some(0));
     // The hybrid controller (the default) keeps within seed 004's curve error, and better.
-    assert!(report.true_cross_track_rms.unwrap() < 0.03);
+    assert!(report.following.true_cross_track_rms.unwrap() < 0.03);
     // Stopped at the end.
     assert!(app.pilot().commanded().is_zero());
 }
@@ -64,9 +64,9 @@ fn goto_marker_approaches_a_landmark_on_the_map() {
     let mut app = default_app();
     // Marker 311 is on the face of box 3 that looks at the robot's start: seen at once.
     let report = play(&mut app, ":goto marker 311<enter>p");
-    assert!(report.arrived, "warnings: {:?}", report.warnings);
+    assert!(report.following.arrived, "warnings: {:?}", report.warnings);
     let marker = app.pilot().slam().landmark(311).unwrap().mean;
-    let p = report.true_pose.unwrap();
+    let p = report.travel.true_pose.unwrap();
     let d = (p.x - marker.x).hypot(p.y - marker.y);
     assert!(
         (0.1..0.3).contains(&d),
@@ -89,7 +89,7 @@ fn a_goal_inside_an_obstacle_is_refused_and_the_robot_does_not_move() {
     assert!(logged(&app, "inside an obstacle"));
     assert!(logged(&app, "no path to follow"));
     assert_ne!(app.pilot().mode(), Mode::PathFollowing);
-    let end = report.true_pose.unwrap();
+    let end = report.travel.true_pose.unwrap();
     assert!((end.x - start.x).hypot(end.y - start.y) < 1e-6);
 }
 
@@ -110,7 +110,7 @@ fn an_unknown_marker_or_a_bad_command_is_named_in_the_log() {
 fn a_path_blocked_by_a_newly_seen_obstacle_is_replanned() {
     let mut app = world_app("hidden_box.toml");
     let report = play(&mut app, ":goto 1.5 0.0<enter>p");
-    assert!(report.arrived, "warnings: {:?}", report.warnings);
+    assert!(report.following.arrived, "warnings: {:?}", report.warnings);
     assert!(logged(&app, "path blocked at"), "{:?}", report.warnings);
     assert_eq!(report.collisions, Some(0));
 }
@@ -175,7 +175,11 @@ fn each_controller_reaches_the_goal_without_touching_anything() {
             &mut app,
             &format!(":controller {controller}<enter>:goto 1.2 1.2<enter>p"),
         );
-        assert!(report.arrived, "{controller}: {:?}", report.warnings);
+        assert!(
+            report.following.arrived,
+            "{controller}: {:?}",
+            report.warnings
+        );
         assert_eq!(report.collisions, Some(0), "{controller}");
     }
 }

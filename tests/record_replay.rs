@@ -73,12 +73,15 @@ fn an_exploration_re_run_on_its_recording_is_the_same_bit_for_bit() {
     assert_eq!(c.max_position_difference, 0.0);
     // The same report as the headless run, bar the link's name and the wall clock.
     let again = headless::report(replay.app(), original.keys);
-    assert_eq!(again.estimated_pose, original.estimated_pose);
+    assert_eq!(again.travel.estimated_pose, original.travel.estimated_pose);
     assert_eq!(again.sim_time, original.sim_time);
-    assert_eq!(again.true_pose, original.true_pose);
+    assert_eq!(again.travel.true_pose, original.travel.true_pose);
     assert_eq!(again.landmarks, original.landmarks);
     assert_eq!(again.mode, original.mode);
-    assert_eq!(again.distance_driven, original.distance_driven);
+    assert_eq!(
+        again.travel.distance_driven,
+        original.travel.distance_driven
+    );
     assert_eq!(again.score.position_rmse, original.score.position_rmse);
     assert_eq!(again.link, format!("replay:{}", original.link));
 }
@@ -88,7 +91,7 @@ fn a_re_run_on_another_estimator_scores_both_against_the_truth() {
     let path = scratch("ekf-then-mcl").join("ekf-then-mcl.mcap");
     let world = "maps/turtlebot3_world.yaml";
     let (_, original) = record(&spec(Some(world)), ":goto 1.5 0<enter>p", &path);
-    assert!(original.arrived);
+    assert!(original.following.arrived);
     let options = ReplayOptions {
         estimator: Some(Estimator::Mcl),
         ..ReplayOptions::default()

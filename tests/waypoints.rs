@@ -51,10 +51,10 @@ fn a_failed_goto_while_following_keeps_the_goal_and_the_robot_arrives() {
         ),
         "the log says the new goal was refused and the old one kept"
     );
-    assert!(report.arrived, "warnings: {:?}", report.warnings);
+    assert!(report.following.arrived, "warnings: {:?}", report.warnings);
     assert_eq!(app.pilot().route().unwrap().label, "marker 311");
     let marker = app.pilot().slam().landmark(311).unwrap().mean;
-    let p = report.true_pose.unwrap();
+    let p = report.travel.true_pose.unwrap();
     assert!(
         (p.x - marker.x).hypot(p.y - marker.y) < 0.3,
         "ended at {p:?}"
@@ -72,7 +72,7 @@ fn a_goal_that_cannot_be_planned_keeps_the_path_planned_before() {
     ));
     assert_eq!(app.pilot().route().unwrap().label, "(0.90, 0.60)");
     let report = play(&mut app, "p");
-    assert!(report.arrived, "warnings: {:?}", report.warnings);
+    assert!(report.following.arrived, "warnings: {:?}", report.warnings);
 }
 
 /// A generated world's console, and five goals in its free space, each 1 to 2 m from the

@@ -155,6 +155,9 @@ impl App {
                 on,
                 seconds,
             }),
+            Typed::Fault(spec) => self.inject_fault(&spec),
+            Typed::ClearFaults => self.clear_faults(),
+            Typed::ShowFaults => self.show_faults(),
         }
     }
 

@@ -49,6 +49,14 @@ pub enum Typed {
         on: bool,
         seconds: Option<f64>,
     },
+    /// `fault SPEC`: inject a fault into the twin, from now when SPEC has no `@START`
+    /// (`camera+20`), else at that simulated time (`camera@60+20`). The spec is kept as
+    /// typed: "now" is read when it is applied.
+    Fault(String),
+    /// `fault clear`: end every fault in force and forget those still to come.
+    ClearFaults,
+    /// `fault` alone: list the faults in force and those to come.
+    ShowFaults,
 }
 
 /// Everything that changes the console's state, through one door (`App::apply`): a key's
@@ -71,7 +79,7 @@ impl From<Typed> for Intent {
     }
 }
 
-pub const USAGE: &str = "goto X Y [THETA_DEG] | goto marker ID | goto+ X Y [THETA_DEG] | waypoint add [X Y [THETA_DEG]] | route start|pause|skip|clear|loop N|save NAME|load NAME | controller [pid|pure_pursuit|hybrid] | clear | save [NAME] | mission restart | pose X Y THETA_DEG | relocalize | localise | quit";
+pub const USAGE: &str = "goto X Y [THETA_DEG] | goto marker ID | goto+ X Y [THETA_DEG] | waypoint add [X Y [THETA_DEG]] | route start|pause|skip|clear|loop N|save NAME|load NAME | controller [pid|pure_pursuit|hybrid] | clear | save [NAME] | mission restart | pose X Y THETA_DEG | relocalize | localise | fault KIND[@START][+DURATION][:PARAM]|clear | quit";
 
 /// A waypoint from `X Y [THETA_DEG]` words; `what` names the command in errors.
 fn waypoint(what: &str, words: &[&str]) -> Result<Waypoint, String> {
@@ -179,6 +187,15 @@ pub fn parse(line: &str) -> Result<Intent, String> {
         ["behaviours" | "behaviors"] => Ok(Typed::ShowBehaviours.into()),
         ["behaviour" | "behavior", rest @ ..] => behaviour(rest),
         ["localise" | "localize"] => Ok(Typed::Localise.into()),
+        ["fault"] => Ok(Typed::ShowFaults.into()),
+        ["fault", "clear"] => Ok(Typed::ClearFaults.into()),
+        ["fault", spec] => crate::sim::FaultSpec::parse_at(spec, 0.0)
+            .map(|_| Typed::Fault(spec.to_string()).into())
+            .map_err(|e| e.to_string()),
+        ["fault", ..] => Err(
+            "fault wants one KIND[@START][+DURATION][:PARAM] (e.g. camera+20: dark for 20 s from now), or clear"
+                .to_string(),
+        ),
         // vim's quit: stops the robot and ends the session, as the quit key does.
         ["q" | "quit"] => Ok(Action::Quit.into()),
         ["mission", ..] => Err("mission wants `restart` (e resumes a paused mission)".to_string()),
@@ -282,6 +299,12 @@ mod tests {
         );
         assert_eq!(parse("localise"), Ok(Typed::Localise.into()));
         assert_eq!(parse("localize"), Ok(Typed::Localise.into()));
+        assert_eq!(
+            parse("fault camera+20"),
+            Ok(Typed::Fault("camera+20".into()).into())
+        );
+        assert_eq!(parse("fault clear"), Ok(Typed::ClearFaults.into()));
+        assert_eq!(parse("fault"), Ok(Typed::ShowFaults.into()));
         assert_eq!(parse("q"), Ok(Intent::Action(Action::Quit)));
         assert_eq!(parse("quit"), Ok(Intent::Action(Action::Quit)));
     }
@@ -298,6 +321,13 @@ mod tests {
         assert!(parse("pose 1 2").unwrap_err().contains("THETA"));
         assert!(parse("route loop 0").unwrap_err().contains("`0`"));
         assert!(parse("goto+ 1 east").unwrap_err().contains("`east`"));
+        let e = parse("fault cmaera+20").unwrap_err();
+        assert!(e.contains("unknown sensor `cmaera`"), "{e}");
+        assert!(
+            parse("fault camera 20")
+                .unwrap_err()
+                .starts_with("fault wants")
+        );
     }
 
     #[test]

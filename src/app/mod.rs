@@ -9,6 +9,7 @@ mod actions;
 mod camera_feed;
 mod command;
 mod control;
+mod faults;
 pub mod loading;
 mod localising;
 pub mod log;

@@ -9,11 +9,12 @@ use crate::keymap::{Key, KeyCode};
 const HISTORY: usize = 100;
 
 /// The words Tab completes first on a line.
-const COMMANDS: [&str; 14] = [
+const COMMANDS: [&str; 15] = [
     "behaviour",
     "behaviours",
     "clear",
     "controller",
+    "fault",
     "goto",
     "goto+",
     "localise",
@@ -29,6 +30,7 @@ const ROUTE_WORDS: [&str; 8] = [
     "clear", "load", "loop", "pause", "save", "show", "skip", "start",
 ];
 const CONTROLLERS: [&str; 3] = ["hybrid", "pid", "pure_pursuit"];
+const FAULT_WORDS: [&str; 6] = ["arm", "camera", "clear", "lidar", "odom", "slip"];
 
 /// The line being typed, and the commands typed before.
 #[derive(Default)]
@@ -182,6 +184,7 @@ impl App {
             ["save"] => self.maps_named(".yaml"),
             ["waypoint"] => vec!["add".to_string()],
             ["mission"] => vec!["restart".to_string()],
+            ["fault"] => owned(&FAULT_WORDS),
             _ => Vec::new(),
         }
     }

@@ -20,10 +20,14 @@ pub(crate) const MAX_HEADLESS_KEYS_TIME: f64 = 7200.0;
 
 /// Opens the console, or runs headless with --headless.
 pub(crate) fn run(cli: &Cli) -> Result<ExitCode> {
+    // Refused before a robot's link is opened: faults are the twin's.
+    if let (Some(fault), false) = (cli.twin.fault.first(), cli.link == LinkChoice::Sim) {
+        bail!("--fault {fault} needs the twin (--link sim)");
+    }
     let spec = SessionSpec {
-        world: cli.world.clone(),
-        seed: cli.seed,
-        start: cli.start,
+        world: cli.twin.world.clone(),
+        seed: cli.twin.seed,
+        start: cli.twin.start,
         config: cli.config.clone(),
         keymap: cli.keymap.clone(),
         link: match &cli.link {
@@ -37,9 +41,10 @@ pub(crate) fn run(cli: &Cli) -> Result<ExitCode> {
     };
     // Everything is loaded and validated before the terminal is touched.
     let mut session = Session::load(&spec)?;
+    session.inject_faults(&cli.twin.fault)?;
     // One monotonic clock times planning and camera detection alike.
     let stopwatch: std::sync::Arc<dyn Clock> = std::sync::Arc::new(WallClock::start());
-    if cli.sim_camera {
+    if cli.twin.sim_camera {
         session.use_sim_camera(Some(stopwatch.clone()), CameraFrames::Whole)?;
     }
     if let Some(source) = &cli.camera {
@@ -75,20 +80,31 @@ pub(crate) fn run(cli: &Cli) -> Result<ExitCode> {
 fn recording_metadata(cli: &Cli) -> std::collections::BTreeMap<String, String> {
     let mut m = std::collections::BTreeMap::new();
     let path = |p: &Option<PathBuf>| p.as_ref().map(|p| p.display().to_string());
-    m.insert("seed".into(), cli.seed.to_string());
+    m.insert("seed".into(), cli.twin.seed.to_string());
     let given = [
-        ("world", path(&cli.world)),
+        ("world", path(&cli.twin.world)),
         ("config", path(&cli.config)),
         ("keymap", path(&cli.keymap)),
         (
             "start",
-            cli.start
+            cli.twin
+                .start
                 .map(|p| format!("{},{},{}", p.x, p.y, p.theta.to_degrees())),
         ),
         ("estimator", cli.localize.estimator_name()),
         ("map", cli.localize.map_name()),
         ("initial_pose", cli.localize.initial_pose_text()),
-        ("sim_camera", cli.sim_camera.then(|| "true".to_string())),
+        (
+            "sim_camera",
+            cli.twin.sim_camera.then(|| "true".to_string()),
+        ),
+        (
+            "faults",
+            (!cli.twin.fault.is_empty()).then(|| {
+                let specs: Vec<String> = cli.twin.fault.iter().map(|f| f.to_string()).collect();
+                specs.join(" ")
+            }),
+        ),
         (
             "keymap_text",
             cli.keymap

@@ -7,8 +7,8 @@ use anyhow::{Result, bail};
 use navdeck::geometry::Pose2;
 use navdeck::runners::mission as mission_runner;
 use navdeck::session::{LinkChoice, Session, SessionSpec};
-use navdeck::sim::CameraFrames;
 use navdeck::sim::generate::{self, GenerateOptions};
+use navdeck::sim::{CameraFrames, FaultSpec};
 use std::io::Write;
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -55,6 +55,11 @@ pub(crate) struct MissionArgs {
     /// The twin sees through a rendered camera and the ArUco detector (feature `vision`).
     #[arg(long)]
     sim_camera: bool,
+    /// A fault injected into the twin: KIND@START[+DURATION][:PARAM], e.g. camera@60+20,
+    /// lidar@100+5, odom@30+5, arm@10, slip@30+10:0.5 (see `navdeck --help`); the same
+    /// faults in every run of a sweep. May be given again.
+    #[arg(long, value_name = "KIND@START[+DURATION][:PARAM]")]
+    fault: Vec<FaultSpec>,
     /// Also print every line the mission logged (one run; in the JSON as "log").
     #[arg(long, conflicts_with = "sweep")]
     log: bool,
@@ -112,6 +117,7 @@ pub(crate) fn run(args: &MissionArgs) -> Result<ExitCode> {
             // No camera panel: only what the detector can read is drawn.
             session.use_sim_camera(None, CameraFrames::Readable)?;
         }
+        session.inject_faults(&args.fault)?;
         Ok(session)
     };
     // Load once up front so a bad file is refused before anything runs.

@@ -39,4 +39,5 @@ pub(crate) mod plan;
 pub(crate) mod replay;
 pub(crate) mod ros2;
 pub(crate) mod tour;
+pub(crate) mod twin_args;
 pub(crate) mod world;

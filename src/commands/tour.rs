@@ -109,6 +109,10 @@ pub struct TourArgs {
     /// Print one JSON object per run.
     #[arg(long)]
     json: bool,
+    /// A fault injected into the twin: KIND@START[+DURATION][:PARAM], e.g. lidar@60+20
+    /// (see `navdeck --help`); the same faults in every run of a sweep. May be given again.
+    #[arg(long, value_name = "KIND@START[+DURATION][:PARAM]")]
+    fault: Vec<navdeck::sim::FaultSpec>,
 }
 
 /// A tour's length: at least one control period of the default robot (0.1 s; a shorter
@@ -166,7 +170,8 @@ pub fn run(args: &TourArgs) -> Result<ExitCode> {
     // Load once up front so a bad file is refused before anything runs.
     Session::load(&spec(args.seed))?;
     let one = |seed: u64| -> Result<TourReport> {
-        let session = Session::load(&spec(seed))?;
+        let mut session = Session::load(&spec(seed))?;
+        session.inject_faults(&args.fault)?;
         let localizer = session.localizer.clone();
         let (config, link) = session.into_link();
         let options = TourOptions {

@@ -24,11 +24,9 @@ pub struct Report {
     /// Simulated seconds the run covered.
     pub sim_time: f64,
     pub mode: String,
-    pub true_pose: Option<Pose2>,
-    pub estimated_pose: Pose2,
-    /// True path length in the twin; the wheels' figure where there is no twin.
-    pub distance_driven: f64,
-    pub odometry_distance: f64,
+    /// Where the robot ended up and how far it went.
+    #[serde(flatten)]
+    pub travel: Travel,
     pub collisions: Option<u32>,
     /// Landmarks in the EKF's state at the end.
     pub landmarks: usize,
@@ -38,13 +36,8 @@ pub struct Report {
     #[serde(flatten)]
     pub score: TruthScore,
     pub gripper: Option<String>,
-    /// Path following: the controller, whether the goal was reached, and the RMS
-    /// cross-track error of the estimated pose and (in the twin) of the true pose, metres.
-    pub controller: String,
-    pub arrived: bool,
-    pub path_length: Option<f64>,
-    pub cross_track_rms: Option<f64>,
-    pub true_cross_track_rms: Option<f64>,
+    #[serde(flatten)]
+    pub following: Following,
     pub quit: bool,
     /// Warnings and errors the session logged, in order.
     pub warnings: Vec<String>,
@@ -60,6 +53,30 @@ pub struct Report {
     /// The estimator and, with lidar SLAM, its pose graph's figures.
     #[serde(flatten)]
     pub estimator: super::slam_figures::EstimatorFigures,
+    /// The faults injected into the twin (`--fault`, `:fault`) and when each was in force.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub faults: Vec<super::faults::FaultWindow>,
+}
+
+/// Where the robot ended up, truly and as estimated, and how far it went.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Travel {
+    pub true_pose: Option<Pose2>,
+    pub estimated_pose: Pose2,
+    /// True path length in the twin; the wheels' figure where there is no twin.
+    pub distance_driven: f64,
+    pub odometry_distance: f64,
+}
+
+/// Path following: the controller, whether the goal was reached, and the RMS cross-track
+/// error of the estimated pose and (in the twin) of the true pose, metres.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Following {
+    pub controller: String,
+    pub arrived: bool,
+    pub path_length: Option<f64>,
+    pub cross_track_rms: Option<f64>,
+    pub true_cross_track_rms: Option<f64>,
 }
 
 /// Presses `keys` through the active keymap at `rate` keys per simulated second, waits
@@ -163,20 +180,24 @@ pub fn report(app: &App, keys: usize) -> Report {
         keys,
         sim_time: app.now(),
         mode: app.pilot().mode().label().to_string(),
-        true_pose: app.true_pose(),
-        estimated_pose: app.pilot().estimated_pose(),
-        distance_driven: twin.map_or(app.pilot().odometry_distance(), |t| t.distance_driven()),
-        odometry_distance: app.pilot().odometry_distance(),
+        travel: Travel {
+            true_pose: app.true_pose(),
+            estimated_pose: app.pilot().estimated_pose(),
+            distance_driven: twin.map_or(app.pilot().odometry_distance(), |t| t.distance_driven()),
+            odometry_distance: app.pilot().odometry_distance(),
+        },
         collisions: twin.map(|t| t.collisions()),
         landmarks: app.pilot().slam().landmark_count(),
         rejected_sightings: app.pilot().slam().rejected(),
         score: TruthScore::of(app.pilot(), twin),
         gripper: app.pilot().gripper().map(|g| g.label().to_string()),
-        controller: app.pilot().follower().controller().name().to_string(),
-        arrived: app.pilot().arrived(),
-        path_length: app.pilot().route().map(|r| r.plan.length),
-        cross_track_rms: app.pilot().cross_track_rms(),
-        true_cross_track_rms: app.pilot().true_cross_track_rms(),
+        following: Following {
+            controller: app.pilot().follower().controller().name().to_string(),
+            arrived: app.pilot().arrived(),
+            path_length: app.pilot().route().map(|r| r.plan.length),
+            cross_track_rms: app.pilot().cross_track_rms(),
+            true_cross_track_rms: app.pilot().true_cross_track_rms(),
+        },
         quit: app.should_quit(),
         // A robot node's line (its /rosout) names the node.
         warnings: app.log_book().problems().map(Entry::sourced_text).collect(),
@@ -185,6 +206,7 @@ pub fn report(app: &App, keys: usize) -> Report {
         recording: None,
         replay: None,
         estimator: super::slam_figures::EstimatorFigures::of(app.pilot()),
+        faults: super::faults::fault_windows(app.link()),
     }
 }
 
@@ -194,14 +216,14 @@ pub fn human(report: &Report) -> String {
         "navdeck headless on {}: {} keys, {:.1} s simulated\n",
         report.link, report.keys, report.sim_time
     );
-    let p = report.estimated_pose;
+    let p = report.travel.estimated_pose;
     out += &format!(
         "estimated pose  x {:.3} y {:.3} theta {:.1} deg\n",
         p.x,
         p.y,
         p.theta.to_degrees()
     );
-    if let Some(t) = report.true_pose {
+    if let Some(t) = report.travel.true_pose {
         out += &format!(
             "true pose       x {:.3} y {:.3} theta {:.1} deg\n",
             t.x,
@@ -209,7 +231,7 @@ pub fn human(report: &Report) -> String {
             t.theta.to_degrees()
         );
     }
-    out += &format!("distance driven {:.3} m\n", report.distance_driven);
+    out += &format!("distance driven {:.3} m\n", report.travel.distance_driven);
     if let Some(c) = report.collisions {
         out += &format!("collisions      {c}\n");
     }
@@ -220,23 +242,27 @@ pub fn human(report: &Report) -> String {
     if let (Some(line), Some(n)) = (report.score.line(), report.score.mean_nees) {
         out += &format!("error vs truth  {line}; mean NEES {n:.2}\n");
     }
-    if let Some(length) = report.path_length {
-        let arrived = if report.arrived {
+    let following = &report.following;
+    if let Some(length) = following.path_length {
+        let arrived = if following.arrived {
             "arrived"
         } else {
             "not arrived"
         };
         out += &format!(
             "path            {length:.2} m, {arrived}, {} controller\n",
-            report.controller
+            following.controller
         );
     }
-    if let Some(x) = report.cross_track_rms {
+    if let Some(x) = following.cross_track_rms {
         out += &format!("cross-track     RMS {:.1} cm", x * 100.0);
-        if let Some(t) = report.true_cross_track_rms {
+        if let Some(t) = following.true_cross_track_rms {
             out += &format!(" (true pose {:.1} cm)", t * 100.0);
         }
         out += "\n";
+    }
+    if let Some(line) = super::faults::human(&report.faults) {
+        out += &format!("{line}\n");
     }
     if let Some(c) = &report.replay {
         out += &format!(

@@ -1,6 +1,7 @@
 //! `navdeck mission`: the whole exploration-and-delivery mission on simulated time, once
 //! or over many seeds, reported for people or as JSON.
 
+use super::faults::{FaultWindow, fault_windows};
 use super::slam_figures::{EstimatorFigures, SweepEstimatorFigures};
 use crate::config::Config;
 use crate::data::Level;
@@ -61,6 +62,9 @@ pub struct MissionReport {
     /// The estimator and, with lidar SLAM, its pose graph's figures.
     #[serde(flatten)]
     pub estimator: EstimatorFigures,
+    /// The faults injected into the twin (`--fault`) and when each was in force.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub faults: Vec<FaultWindow>,
 }
 
 impl MissionReport {
@@ -227,6 +231,7 @@ fn report(
         realtime_factor: None,
         log: Vec::new(),
         estimator: EstimatorFigures::of(pilot),
+        faults: fault_windows(link),
     }
 }
 
@@ -334,6 +339,9 @@ pub fn human(r: &MissionReport) -> String {
     );
     if let Some(line) = r.score.line() {
         out += &format!("error vs truth {line}\n");
+    }
+    if let Some(line) = super::faults::human(&r.faults) {
+        out += &format!("{line}\n");
     }
     for b in &r.timeline {
         let at = |t: Option<f64>| t.map_or("-".to_string(), |t| format!("{t:.1} s"));

@@ -2,6 +2,7 @@
 //! console, for `--headless`) on simulated time and reports for people or as JSON.
 
 pub mod arm_pick;
+pub mod faults;
 pub mod headless;
 pub mod map_report;
 pub mod mission;

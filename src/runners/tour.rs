@@ -62,14 +62,8 @@ pub struct TourReport {
     pub estimator: String,
     pub sim_time: f64,
     pub distance: f64,
-    /// Errors of the estimate over the whole tour, and of dead reckoning alone.
-    pub position_rmse: Option<f64>,
-    pub heading_rmse_deg: Option<f64>,
-    pub dr_position_rmse: Option<f64>,
-    pub dr_heading_rmse_deg: Option<f64>,
-    /// The same, counted only once the estimate first came within the localised bounds.
-    pub tracking_position_rmse: Option<f64>,
-    pub tracking_heading_rmse_deg: Option<f64>,
+    #[serde(flatten)]
+    pub errors: TourErrors,
     /// When the estimate first came within 10 cm and 5° with the filter converged.
     pub localised_at: Option<f64>,
     pub kidnapped_at: Option<f64>,
@@ -88,6 +82,21 @@ pub struct TourReport {
     pub warnings: Vec<String>,
     pub wall_time_s: Option<f64>,
     pub realtime_factor: Option<f64>,
+    /// The faults injected into the twin (`--fault`) and when each was in force.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub faults: Vec<super::faults::FaultWindow>,
+}
+
+/// The RMS errors of the estimate over the whole tour and of dead reckoning alone, and
+/// the estimate's counted only once it first came within the localised bounds.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct TourErrors {
+    pub position_rmse: Option<f64>,
+    pub heading_rmse_deg: Option<f64>,
+    pub dr_position_rmse: Option<f64>,
+    pub dr_heading_rmse_deg: Option<f64>,
+    pub tracking_position_rmse: Option<f64>,
+    pub tracking_heading_rmse_deg: Option<f64>,
 }
 
 /// MCL's own word against the truth: what it said at the end, how far off it was, and
@@ -206,12 +215,14 @@ pub fn run(
         estimator: config.localization.estimator.label().to_string(),
         sim_time: t,
         distance: truth.distance_driven(),
-        position_rmse: scores.position.value(),
-        heading_rmse_deg: scores.heading.value().map(f64::to_degrees),
-        dr_position_rmse: scores.dr_position.value(),
-        dr_heading_rmse_deg: scores.dr_heading.value().map(f64::to_degrees),
-        tracking_position_rmse: scores.tracking_position.value(),
-        tracking_heading_rmse_deg: scores.tracking_heading.value().map(f64::to_degrees),
+        errors: TourErrors {
+            position_rmse: scores.position.value(),
+            heading_rmse_deg: scores.heading.value().map(f64::to_degrees),
+            dr_position_rmse: scores.dr_position.value(),
+            dr_heading_rmse_deg: scores.dr_heading.value().map(f64::to_degrees),
+            tracking_position_rmse: scores.tracking_position.value(),
+            tracking_heading_rmse_deg: scores.tracking_heading.value().map(f64::to_degrees),
+        },
         localised_at: scores.localised_at,
         kidnapped_at: scores.kidnapped_at,
         recovered_after: (scores.kidnapped_at.zip(scores.localised_again)).map(|(k, l)| l - k),
@@ -228,6 +239,7 @@ pub fn run(
         warnings: once_each(&tour.log),
         wall_time_s: None,
         realtime_factor: None,
+        faults: super::faults::fault_windows(robot.link()),
     })
 }
 
@@ -438,10 +450,10 @@ pub fn human(r: &TourReport) -> String {
     );
     s += &format!(
         "estimate RMSE {} / {}; dead reckoning {} / {}\n",
-        m(r.position_rmse, 1.0, "m"),
-        m(r.heading_rmse_deg, 1.0, "°"),
-        m(r.dr_position_rmse, 1.0, "m"),
-        m(r.dr_heading_rmse_deg, 1.0, "°"),
+        m(r.errors.position_rmse, 1.0, "m"),
+        m(r.errors.heading_rmse_deg, 1.0, "°"),
+        m(r.errors.dr_position_rmse, 1.0, "m"),
+        m(r.errors.dr_heading_rmse_deg, 1.0, "°"),
     );
     s += &format!(
         "localised at {}; kidnapped at {}, lost noticed at {}, recovered after {}\n",
@@ -456,5 +468,8 @@ pub fn human(r: &TourReport) -> String {
         m(r.worst_arrival_error, 1.0, "m"),
         r.goals_given_up
     );
+    if let Some(line) = super::faults::human(&r.faults) {
+        s += &format!("{line}\n");
+    }
     s
 }

@@ -266,6 +266,21 @@ impl Session {
         }
     }
 
+    /// Schedules `faults` in the twin (`--fault`), their times from the start of the run;
+    /// refused when the session's robot is not the twin.
+    pub fn inject_faults(&mut self, faults: &[crate::sim::FaultSpec]) -> Result<()> {
+        if faults.is_empty() {
+            return Ok(());
+        }
+        let Robot::Twin(twin) = &mut self.robot else {
+            bail!("--fault {} needs the twin (--link sim)", faults[0]);
+        };
+        for spec in faults {
+            twin.faults_mut().schedule(*spec);
+        }
+        Ok(())
+    }
+
     /// Adds a camera beside the link (`--camera`): a V4L2 device, or `ros2:TOPIC` for a
     /// sensor_msgs/Image topic, detected on the pipeline's own threads.
     pub fn with_camera(

@@ -81,5 +81,18 @@ pub fn cases() -> Vec<Case> {
             &["tour", "--world", "maps/flat.yaml", "--goals", "1,2;x,3"],
             "--goals",
         ),
+        case("cli", &["--headless", "--fault", "camera@1e308"], "start"),
+        case("cli", &["mission", "--fault", "slip@0+1:nan"], "slip ratio"),
+        case("cli", &["tour", "--fault", "odom@0+-1"], "duration"),
+        case(
+            "cli",
+            &["mission", "--fault", "lidar\u{7}@1"],
+            "unknown sensor",
+        ),
+        case(
+            "cli",
+            &["--link", "serial:/dev/null", "--fault", "arm@1"],
+            "--fault",
+        ),
     ]
 }

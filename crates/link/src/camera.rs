@@ -54,6 +54,14 @@ impl RobotLink for WithCamera {
         self.inner.ground_truth()
     }
 
+    fn faults(&self) -> Option<&navdeck_core::sim::Faults> {
+        self.inner.faults()
+    }
+
+    fn faults_mut(&mut self) -> Option<&mut navdeck_core::sim::Faults> {
+        self.inner.faults_mut()
+    }
+
     fn take_notes(&mut self) -> Vec<Notice> {
         self.inner.take_notes()
     }

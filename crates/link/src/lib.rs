@@ -114,6 +114,15 @@ pub trait RobotLink: Send {
     fn ground_truth(&self) -> Option<&dyn navdeck_core::sim::GroundTruth> {
         None
     }
+    /// The twin only: the faults injected into it (`--fault`, `:fault`), which are in
+    /// force now and when each was, on the twin's time. None where there is no twin.
+    fn faults(&self) -> Option<&navdeck_core::sim::Faults> {
+        None
+    }
+    /// The twin only: its fault schedule, to add to or clear. None where there is no twin.
+    fn faults_mut(&mut self) -> Option<&mut navdeck_core::sim::Faults> {
+        None
+    }
     /// What the link knows of its peer, for the status panel: short labels (at most
     /// seven characters) and values, e.g. the DDS domain and the rates topics arrive at.
     fn details(&self, _now: f64) -> Vec<(&'static str, String)> {

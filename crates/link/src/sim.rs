@@ -1,7 +1,7 @@
 //! The twin behind the link trait: the default robot when no hardware is at hand.
 
-use super::{Command, LinkError, RobotLink, SensorFrame};
-use navdeck_core::sim::Twin;
+use super::{Command, LinkError, Notice, RobotLink, SensorFrame};
+use navdeck_core::sim::{Faults, Twin};
 
 /// Drives the digital twin; `poll(now)` steps its physics up to `now`.
 pub struct SimLink {
@@ -50,5 +50,27 @@ impl RobotLink for SimLink {
     }
     fn ground_truth(&self) -> Option<&dyn navdeck_core::sim::GroundTruth> {
         Some(&self.twin)
+    }
+
+    fn faults(&self) -> Option<&Faults> {
+        Some(self.twin.faults())
+    }
+
+    fn faults_mut(&mut self) -> Option<&mut Faults> {
+        Some(self.twin.faults_mut())
+    }
+
+    /// Each injected fault as it begins (a warning) and ends.
+    fn take_notes(&mut self) -> Vec<Notice> {
+        let notes = self.twin.faults_mut().take_notes();
+        (notes.into_iter())
+            .map(|n| {
+                if n.began {
+                    Notice::warn(n.text)
+                } else {
+                    Notice::info(n.text)
+                }
+            })
+            .collect()
     }
 }

@@ -6,6 +6,8 @@
 //! * `generate` — worlds made from a seed (rooms, boxes, corridors or a loop), checked for reach.
 //! * `Twin` — the robot: speed/acceleration-limited diff drive, encoders with noise and
 //!   slip, a marker camera, a lidar, a gripper that carries blocks, and collisions.
+//! * `fault`, `faults` — faults injected into the twin on simulated time (`--fault`,
+//!   `:fault`): a dark camera, a silent lidar or odometry, an arm not answering, slip.
 //!
 //! Nothing here reads a clock or touches a terminal: time passes only through
 //! `Twin::step(dt)`, and all randomness comes from one generator seeded in `Twin::new`,
@@ -23,6 +25,8 @@ pub mod config;
 mod drive;
 mod encoders;
 mod error;
+pub mod fault;
+pub mod faults;
 #[cfg(feature = "vision")]
 mod frame_noise;
 pub mod generate;
@@ -49,6 +53,8 @@ pub use blocks::BlockState;
 pub use camera::clear_line as line_of_sight;
 pub use camera_frames::CameraFrames;
 pub use error::WorldError;
+pub use fault::{FaultKind, FaultSpec, FaultSpecError};
+pub use faults::{FaultNote, FaultRecord, Faults, Scheduled};
 pub use truth::{GroundTruth, collision_note};
 pub use twin::Twin;
 pub use world::{Block, BlockColor, Gate, Marker, Obstacle, World};

@@ -9,6 +9,8 @@ use super::collision::{Collider, Disc};
 use super::config::{PhysicsConfig, SimConfig};
 use super::drive::{clamp_twist, integrate, ramp, wheel_travel};
 use super::encoders::Encoders;
+use super::fault::FaultKind;
+use super::faults::Faults;
 use super::gripper::Gripper;
 use super::{Marker, World};
 use crate::data::robot::RobotConfig;
@@ -50,6 +52,8 @@ pub struct Twin {
     contacts: Contacts,
     /// The faces the lidar sees at the walls' free ends (`World::wall_end_faces`).
     wall_ends: Vec<Segment>,
+    /// Faults injected on the twin's time (`--fault`, `:fault`).
+    faults: Faults,
 }
 
 /// Half the thickness of the twin's walls as the lidar sees their ends, metres: a 5 cm
@@ -130,6 +134,7 @@ impl Twin {
             arm: None,
             released: None,
             wall_ends,
+            faults: Faults::default(),
         }
     }
 
@@ -153,8 +158,11 @@ impl Twin {
         self.arm = Some(super::arm::TwinArm::new(config));
     }
 
-    /// Asks the arm for new joint positions (no arm: nothing happens).
+    /// Asks the arm for new joint positions (no arm, or an arm fault: nothing happens).
     pub fn command_arm(&mut self, target: &crate::data::ArmTarget) {
+        if self.faults.is_active(FaultKind::Arm) {
+            return;
+        }
         if let Some(arm) = self.arm.as_mut() {
             arm.command(target);
         }
@@ -206,23 +214,53 @@ impl Twin {
         }
     }
 
-    /// What the robot reported since the previous take: wheel travel (always), the newest
-    /// camera frame and scan (if any arrived) and the gripper state (always).
+    /// What the robot reported since the previous take: wheel travel (always, but for an
+    /// odometry fault), the newest camera frame and scan (if any arrived), the gripper
+    /// state (always) and the arm's joints (with an arm, but for an arm fault).
     pub fn take_frame(&mut self) -> SensorFrame {
-        let elapsed = (self.clock.ticks - self.clock.taken_at) as f64 * self.clock.h;
+        let h = self.clock.h;
+        let taken_at = self.clock.taken_at as f64 * h;
+        let mut elapsed = (self.clock.ticks - self.clock.taken_at) as f64 * h;
         self.clock.taken_at = self.clock.ticks;
+        let now = self.time();
+        let odometry_silent = self.faults.is_active(FaultKind::Odom);
+        // The wheel travel covers the time since the previous take, or since an odometry
+        // fault ended if that was later: the encoders counted nothing before.
+        if let Some(end) = self
+            .faults
+            .last_ended(FaultKind::Odom)
+            .filter(|e| *e > taken_at)
+        {
+            elapsed = (now - end).max(0.0);
+        }
+        let arm_silent = self.faults.is_active(FaultKind::Arm);
+        // Counts from before a silence began go unreported with it.
+        let wheels = self.encoders.take();
         SensorFrame {
-            stamp: self.time(),
-            elapsed,
-            wheels: Some(self.encoders.take()),
+            stamp: now,
+            elapsed: if odometry_silent { 0.0 } else { elapsed },
+            wheels: (!odometry_silent).then_some(wheels),
             sightings: self.sensors.take_sightings(),
             scan: self.sensors.take_scan(),
             gripper: Some(self.gripper.state()),
             camera: self.sensors.take_camera_status(),
             initial_pose: None,
             goal: None,
-            arm: self.arm.as_ref().map(|a| a.state()),
+            arm: (self.arm.as_ref())
+                .filter(|_| !arm_silent)
+                .map(|a| a.state()),
         }
+    }
+
+    /// The faults injected so far and which are in force (simulated time).
+    pub fn faults(&self) -> &Faults {
+        &self.faults
+    }
+
+    /// The fault schedule, to add to or clear (`--fault`, `:fault`); its times are the
+    /// twin's.
+    pub fn faults_mut(&mut self) -> &mut Faults {
+        &mut self.faults
     }
 
     /// Replaces the ideal marker sensor by a rendered camera read with the ArUco
@@ -290,10 +328,16 @@ impl Twin {
         }
         self.clock.ticks += 1;
         let now = self.time();
+        self.faults.advance(now);
         if self.sensors.camera_due(now) {
-            self.capture_camera();
+            if self.faults.is_active(FaultKind::Camera) {
+                self.sensors.capture_dark();
+            } else {
+                self.capture_camera();
+            }
         }
-        if self.sensors.lidar_due(now) {
+        // A silent lidar keeps its clock: scans resume on their own schedule.
+        if self.sensors.lidar_due(now) && !self.faults.is_active(FaultKind::Lidar) {
             self.capture_scan();
         }
     }
@@ -302,7 +346,12 @@ impl Twin {
     fn move_base(&mut self, twist: Twist) {
         let track = self.robot.track;
         let (l, r) = wheel_travel(twist, track, self.clock.h);
-        let wheels = self.encoders.sample(&mut self.rng, [l, r]);
+        let mut wheels = self.encoders.sample(&mut self.rng, [l, r]);
+        if let Some(ratio) = self.faults.slip_ratio() {
+            // A slip fault: the contact points cover only `ratio` of the turned rims,
+            // which the encoders still count in full.
+            wheels.ground = wheels.ground.map(|g| g * ratio);
+        }
         let next = integrate(self.pose, wheels.ground[0], wheels.ground[1], track);
         self.contacts.discs.clear();
         let reach = self.gripper.reach_far();
@@ -352,7 +401,10 @@ impl Twin {
         if verdict.moves_away {
             self.contacts.in_contact = false;
         }
-        self.encoders.commit(&wheels);
+        // Silent odometry: what the wheels turn now is never reported.
+        if !self.faults.is_active(FaultKind::Odom) {
+            self.encoders.commit(&wheels);
+        }
         self.distance += ((wheels.ground[0] + wheels.ground[1]) / 2.0).abs();
         self.pose = next;
         if let Some((i, pose)) = self.gripper.held_pose(self.pose) {

@@ -109,6 +109,14 @@ impl RobotLink for Ros2Beside {
         self.inner.ground_truth()
     }
 
+    fn faults(&self) -> Option<&navdeck_core::sim::Faults> {
+        self.inner.faults()
+    }
+
+    fn faults_mut(&mut self) -> Option<&mut navdeck_core::sim::Faults> {
+        self.inner.faults_mut()
+    }
+
     fn details(&self, now: f64) -> Vec<(&'static str, String)> {
         let mut rows = self.inner.details(now);
         rows.push(("ROS 2", format!("domain {}", self.domain)));

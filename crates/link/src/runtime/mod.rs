@@ -340,6 +340,11 @@ impl Runtime {
     pub fn link_mut(&mut self) -> &mut dyn RobotLink {
         self.link.as_mut()
     }
+    /// The faults injected into the twin, and which are in force now (`Faults::active`,
+    /// `Faults::is_active`); None where no twin stands behind the link.
+    pub fn faults(&self) -> Option<&navdeck_core::sim::Faults> {
+        self.link.faults()
+    }
 
     /// Records what each step polls and sends and what each tick believes, from now on.
     pub fn record_into(&mut self, recording: Recording) {

@@ -11,6 +11,10 @@ use crate::sim::config::SimConfig;
 use crate::sim::lidar::Lidar;
 use rand_chacha::ChaCha8Rng;
 
+/// What the rendered camera reports of a frame while a camera fault lasts.
+#[cfg(feature = "vision")]
+const DARK: &str = "camera dark (injected fault)";
+
 /// The camera and lidar, their clocks, and their newest readings not yet taken.
 #[derive(Clone, Debug)]
 pub(super) struct Sensors {
@@ -70,6 +74,16 @@ impl Sensors {
             return;
         }
         self.sightings = Some(self.camera.observe(pose, markers, occluders, rng));
+    }
+
+    /// A frame from a dark (or covered) camera: nothing seen in it. The rendered camera,
+    /// which reports how each frame went, says it was dark.
+    pub(super) fn capture_dark(&mut self) {
+        self.sightings = Some(Vec::new());
+        #[cfg(feature = "vision")]
+        if self.rendered.is_some() {
+            self.camera_status = Some(CameraStatus::failed(DARK));
+        }
     }
 
     /// A lidar scan from `pose`, when there is a lidar.

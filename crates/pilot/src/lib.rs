@@ -193,6 +193,10 @@ impl Pilot {
     pub fn estop(&self) -> bool {
         self.behaviours.gate.estop
     }
+    /// The collision monitor's zones (`[safety]`), robot frame.
+    pub fn collision_zones(&self) -> &[navdeck_core::control::collision_monitor::zone::Zone] {
+        self.behaviours.collision.monitor.zones()
+    }
     /// The arbiter: which behaviour's command goes out, and the transitions.
     pub fn arbiter(&self) -> &behaviours::Arbiter {
         &self.behaviours.arbiter

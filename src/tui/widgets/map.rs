@@ -74,6 +74,7 @@ pub fn render(app: &App, theme: Theme, area: Rect, buf: &mut Buffer) {
         draw_robot(truth, 'o', &vp, theme.truth(), buf);
     }
     super::sensing::footprint(app, &vp, theme, buf);
+    super::zones::render(app, &vp, theme, buf);
     draw_robot(app.pilot().estimated_pose(), '@', &vp, theme.robot(), buf);
     super::path::cursor(app, &vp, theme, buf);
 }

@@ -17,6 +17,7 @@ pub mod status;
 pub mod text;
 pub mod title;
 pub mod viewport;
+pub mod zones;
 
 use ratatui::layout::Rect;
 

@@ -266,17 +266,36 @@ fn status_panel_shows_mode_link_pose_and_velocities() {
 }
 
 #[test]
-fn driving_into_a_wall_is_logged_as_a_collision() {
+fn driving_into_a_wall_stops_short_and_without_the_monitor_is_a_logged_collision() {
     // From the start pose facing east, turn right to face the south wall and drive on.
+    let plan = [('d', 1.1), ('w', 6.0)];
     let mut app = default_app();
-    hold_in_turn(&mut app, &[('d', 1.1), ('w', 6.0)], 0.0);
+    hold_in_turn(&mut app, &plan, 0.0);
+    assert_eq!(app.link().ground_truth().unwrap().collisions(), 0);
+    let said = |app: &App, start: &str| app.log_book().iter().any(|e| e.text.starts_with(start));
+    assert!(said(&app, "behaviour: collision monitor (was teleop)"));
+    // Held at the wall, the monitor has control and its zones are drawn round the robot
+    // (zoomed in, where they span several cells).
+    let t = hold_in_turn(&mut app, &[('w', 0.2)], 7.2);
+    for _ in 0..3 {
+        app.handle_key(Key::char('+'), KeyKind::Press, t);
+    }
+    let screen = render(&app);
+    let outline = screen
+        .lines()
+        .take(24)
+        .map(|l| l.matches('!').count())
+        .sum::<usize>();
+    assert!(outline >= 4, "no zone outline on the map:\n{screen}");
+    // With the monitor switched off, the same drive touches the wall and says so.
+    let mut app = default_app();
+    for c in ":behaviour collision_monitor off".chars() {
+        app.handle_key(key(&c.to_string()), KeyKind::Press, 0.0);
+    }
+    app.handle_key(key("enter"), KeyKind::Press, 0.0);
+    hold_in_turn(&mut app, &plan, 0.0);
     assert!(app.link().ground_truth().unwrap().collisions() >= 1);
-    assert!(
-        app.log_book()
-            .iter()
-            .any(|e| e.text.starts_with("collision at")),
-        "no collision line in the log"
-    );
+    assert!(said(&app, "collision at"), "no collision line in the log");
     assert_eq!(true_speed(&app), 0.0);
 }
 

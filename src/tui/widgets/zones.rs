@@ -79,8 +79,18 @@ mod tests {
             Point2::new(0.0, -0.15),
             Point2::new(0.0, 0.15),
         ];
-        let square = outline(&Shape::Polygon { corners, reach: 0.52 }, 0.05);
+        let square = outline(
+            &Shape::Polygon {
+                corners,
+                reach: 0.52,
+            },
+            0.05,
+        );
         assert!(square.contains(&Point2::new(0.5, 0.15)));
-        assert!(square.iter().all(|p| p.x.abs() <= 0.5 + 1e-9 && p.y.abs() <= 0.15 + 1e-9));
+        assert!(
+            square
+                .iter()
+                .all(|p| p.x.abs() <= 0.5 + 1e-9 && p.y.abs() <= 0.15 + 1e-9)
+        );
     }
 }

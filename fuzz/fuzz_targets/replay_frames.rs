@@ -221,23 +221,23 @@ fuzz_target!(|data: &[u8]| {
     assert!(start.is_finite() && end.is_finite(), "span {start} .. {end}");
     replay.run_to(end.min(start + RERUN));
     let report = headless::report(replay.app(), 0);
-    let p = report.estimated_pose;
+    let p = report.travel.estimated_pose;
     assert!(finite(&[p.x, p.y, p.theta]), "estimate {p:?}");
-    if let Some(t) = report.true_pose {
+    if let Some(t) = report.travel.true_pose {
         assert!(finite(&[t.x, t.y, t.theta]), "truth {t:?}");
     }
     let figures = [
         report.sim_time,
-        report.distance_driven,
-        report.odometry_distance,
+        report.travel.distance_driven,
+        report.travel.odometry_distance,
     ];
     assert!(finite(&figures), "{figures:?}");
     let optional = [
         report.score.position_rmse,
         report.score.heading_rmse_deg,
         report.score.mean_nees,
-        report.path_length,
-        report.cross_track_rms,
+        report.following.path_length,
+        report.following.cross_track_rms,
     ];
     assert!(optional.iter().flatten().all(|v| v.is_finite()), "{optional:?}");
     let c = replay.comparison();

@@ -39,7 +39,23 @@ impl Default for Gate {
 impl Gate {
     /// Whether control is in doubt: the command is forced to zero.
     pub fn in_doubt(&self) -> bool {
-        self.estop || self.halted || self.link != LinkStatus::Ok
+        self.why_in_doubt().is_some()
+    }
+
+    /// Why control is in doubt, if it is: the reason the e-stop behaviour gives.
+    pub fn why_in_doubt(&self) -> Option<String> {
+        if self.halted {
+            Some("the console is ending".into())
+        } else if self.estop {
+            Some("pressed".into())
+        } else {
+            match &self.link {
+                LinkStatus::Ok => None,
+                LinkStatus::Lost(_) if !self.link_was_up => Some("waiting for the robot".into()),
+                LinkStatus::Lost(why) => Some(format!("link lost ({why})")),
+                LinkStatus::Back => Some("link back: waiting for a key".into()),
+            }
+        }
     }
 }
 

@@ -8,10 +8,11 @@ use super::{Behaviour, Proposal};
 use crate::Pilot;
 use navdeck_core::control::collision_monitor::{
     ActionType, CollisionMonitor, Obstacles, SafetyConfig, SourceKind, points_from_grid,
+    points_from_scan,
 };
 use navdeck_core::data::GripperState;
 use navdeck_core::geometry::{Point2, Pose2, Twist};
-use navdeck_core::map::contact::JAWS;
+use navdeck_core::map::contact::{HeldZone, JAWS};
 use navdeck_core::map::grid::OccupancyGrid;
 
 /// Map cells are read this far round a robot without a lidar, metres.
@@ -77,45 +78,46 @@ impl Pilot {
             return None;
         }
         let odom = self.odometry.pose();
-        let (points, age, source) = match (self.behaviours.collision.scan_at, self.newest_scan()) {
-            (Some((at, then)), Some((_, scan))) => {
-                let hits: Vec<Point2> = scan.hits(Pose2::default()).collect();
-                let watch = &mut self.behaviours.collision;
-                watch
-                    .remembered
-                    .retain(|(seen, _)| t - seen <= REMEMBER_FOR_S);
-                if watch.remembered.last().is_none_or(|(seen, _)| *seen < at) {
-                    let near = (hits.iter())
-                        .filter(|p| p.x.hypot(p.y) <= REMEMBER_WITHIN_M)
-                        .map(|&p| then.transform_point(p))
-                        .collect();
-                    watch.remembered.push((at, near));
+        let (mut points, age, source) =
+            match (self.behaviours.collision.scan_at, self.newest_scan()) {
+                (Some((at, then)), Some((_, scan))) => {
+                    let hits = points_from_scan(scan, Pose2::default());
+                    let watch = &mut self.behaviours.collision;
+                    watch
+                        .remembered
+                        .retain(|(seen, _)| t - seen <= REMEMBER_FOR_S);
+                    if watch.remembered.last().is_none_or(|(seen, _)| *seen < at) {
+                        let near = (hits.iter())
+                            .filter(|p| p.x.hypot(p.y) <= REMEMBER_WITHIN_M)
+                            .map(|&p| then.transform_point(p))
+                            .collect();
+                        watch.remembered.push((at, near));
+                    }
+                    // From the robot's frame then to its frame now.
+                    let shift = odom.inverse().compose(then);
+                    let mut points: Vec<Point2> =
+                        hits.iter().map(|&p| shift.transform_point(p)).collect();
+                    let older = watch
+                        .remembered
+                        .iter()
+                        .rev()
+                        .skip(1)
+                        .flat_map(|(_, near)| near);
+                    points.extend(older.map(|&p| odom.inverse_transform_point(p)));
+                    (points, Some(t - at), SourceKind::Scan)
                 }
-                // From the robot's frame then to its frame now.
-                let shift = odom.inverse().compose(then);
-                let mut points: Vec<Point2> =
-                    hits.iter().map(|&p| shift.transform_point(p)).collect();
-                let older = watch
-                    .remembered
-                    .iter()
-                    .rev()
-                    .skip(1)
-                    .flat_map(|(_, near)| near);
-                points.extend(older.map(|&p| odom.inverse_transform_point(p)));
-                (points, Some(t - at), SourceKind::Scan)
-            }
-            _ => (self.map_points(), Some(0.0), SourceKind::Map),
-        };
-        let mut points = points;
+                _ => (self.map_points(), Some(0.0), SourceKind::Map),
+            };
         if handling {
             let block = self.picked_block_here();
             let held = self.hand.state == Some(GripperState::Holding);
-            points.retain(|p| {
-                let is_block = block.is_some_and(|b| b.distance(*p) <= PICKED_BLOCK_M);
-                let in_jaws = held
-                    && p.x > 0.0
-                    && p.x <= JAWS.ahead + HELD_MARGIN_M
-                    && p.y.abs() <= JAWS.half_width + HELD_MARGIN_M;
+            let jaws = HeldZone {
+                ahead: JAWS.ahead + HELD_MARGIN_M,
+                half_width: JAWS.half_width + HELD_MARGIN_M,
+            };
+            points.retain(|&p| {
+                let is_block = block.is_some_and(|b| b.distance(p) <= PICKED_BLOCK_M);
+                let in_jaws = held && jaws.contains(Pose2::default(), p);
                 !(is_block || in_jaws)
             });
         }

@@ -5,7 +5,6 @@
 use super::{Behaviour, Proposal};
 use crate::Pilot;
 use crate::mode::Mode;
-use crate::safety::LinkStatus;
 use navdeck_core::data::Level;
 use navdeck_core::geometry::Twist;
 
@@ -16,7 +15,7 @@ impl Pilot {
         // so its deadline moves on and the console's tick loop always progresses.
         let keys = self.teleop.twist(t, self.brake_margin());
         let mut proposals = Vec::with_capacity(2);
-        match self.doubt() {
+        match self.behaviours.gate.why_in_doubt() {
             // A stopped robot's tasks are suppressed, not merely outvoted: the mission
             // and the follower do not step while it stands.
             Some(why) => proposals.push(Proposal::new(Behaviour::EmergencyStop, Twist::ZERO, why)),
@@ -67,23 +66,6 @@ impl Pilot {
                 self.log(level, format!("behaviour {b}: off {how_long}"));
             }
             Err(why) => self.log(Level::Warn, format!("behaviour {b}: {why}")),
-        }
-    }
-
-    /// Why control is in doubt, if it is: the e-stop's proposal.
-    fn doubt(&self) -> Option<String> {
-        let gate = &self.behaviours.gate;
-        if gate.halted {
-            Some("the console is ending".into())
-        } else if gate.estop {
-            Some("pressed".into())
-        } else {
-            match &gate.link {
-                LinkStatus::Ok => None,
-                LinkStatus::Lost(_) if !gate.link_was_up => Some("waiting for the robot".into()),
-                LinkStatus::Lost(why) => Some(format!("link lost ({why})")),
-                LinkStatus::Back => Some("link back: waiting for a key".into()),
-            }
         }
     }
 

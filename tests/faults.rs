@@ -4,9 +4,8 @@
 
 use crate::common;
 
-use common::{default_app, logged, navdeck};
-use navdeck::app::{App, KeyKind};
-use navdeck::keymap::Key;
+use common::{command, default_app, logged, navdeck, run_to};
+use navdeck::app::App;
 use navdeck::sim::FaultKind;
 use serde_json::{Value, json};
 
@@ -120,25 +119,6 @@ fn a_bad_fault_is_refused_with_the_bad_part_named() {
         assert!(!out.status.success(), "{args:?}");
         assert!(matches!(out.status.code(), Some(1..=99)), "{args:?}: {err}");
         assert!(err.contains(says), "{args:?}: {err}");
-    }
-}
-
-/// Types `line` after `:` and presses Enter, at the console's time.
-fn command(app: &mut App, line: &str) {
-    let t = app.now();
-    app.handle_key(Key::char(':'), KeyKind::Press, t);
-    for c in line.chars() {
-        app.handle_key(Key::char(c), KeyKind::Press, t);
-    }
-    app.handle_key(common::key("enter"), KeyKind::Press, t);
-}
-
-/// Runs the console on until session time `until`, a control period at a time.
-fn run_to(app: &mut App, until: f64) {
-    let mut t = app.now();
-    while t < until - 1e-9 {
-        t = (t + 0.1).min(until);
-        app.update(t);
     }
 }
 

@@ -26,7 +26,8 @@ impl App {
         // Now to the millisecond, not after it: a fault from now is in force at once.
         let now = (faults.now() * 1000.0).floor() / 1000.0;
         let spec = match FaultSpec::parse_at(text, now) {
-            Ok(spec) => spec,
+            // A start window is drawn from the present's bits: any moment within it.
+            Ok(spec) => spec.drawn(now.to_bits()),
             Err(e) => return self.log(Level::Error, format!(":fault {text}: {e}")),
         };
         match faults.schedule(spec) {

@@ -41,7 +41,7 @@ pub(crate) fn run(cli: &Cli) -> Result<ExitCode> {
     };
     // Everything is loaded and validated before the terminal is touched.
     let mut session = Session::load(&spec)?;
-    session.inject_faults(&cli.twin.fault)?;
+    session.inject_faults(&cli.twin.fault, spec.seed)?;
     // One monotonic clock times planning and camera detection alike.
     let stopwatch: std::sync::Arc<dyn Clock> = std::sync::Arc::new(WallClock::start());
     if cli.twin.sim_camera {

@@ -57,7 +57,8 @@ pub(crate) struct MissionArgs {
     sim_camera: bool,
     /// A fault injected into the twin: KIND@START[+DURATION][:PARAM], e.g. camera@60+20,
     /// lidar@100+5, odom@30+5, arm@10, slip@30+10:0.5 (see `navdeck --help`); the same
-    /// faults in every run of a sweep. May be given again.
+    /// faults in every run of a sweep, but for a start window A..B (camera@30..180+20),
+    /// drawn from each run's seed. May be given again.
     #[arg(long, value_name = "KIND@START[+DURATION][:PARAM]")]
     fault: Vec<FaultSpec>,
     /// Also print every line the mission logged (one run; in the JSON as "log").
@@ -117,7 +118,7 @@ pub(crate) fn run(args: &MissionArgs) -> Result<ExitCode> {
             // No camera panel: only what the detector can read is drawn.
             session.use_sim_camera(None, CameraFrames::Readable)?;
         }
-        session.inject_faults(&args.fault)?;
+        session.inject_faults(&args.fault, seed)?;
         Ok(session)
     };
     // Load once up front so a bad file is refused before anything runs.

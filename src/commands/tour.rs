@@ -171,7 +171,7 @@ pub fn run(args: &TourArgs) -> Result<ExitCode> {
     Session::load(&spec(args.seed))?;
     let one = |seed: u64| -> Result<TourReport> {
         let mut session = Session::load(&spec(seed))?;
-        session.inject_faults(&args.fault)?;
+        session.inject_faults(&args.fault, seed)?;
         let localizer = session.localizer.clone();
         let (config, link) = session.into_link();
         let options = TourOptions {

@@ -36,7 +36,8 @@ pub(crate) struct TwinArgs {
     /// A fault injected into the twin, on simulated time: KIND@START[+DURATION][:PARAM]
     /// with KIND camera (dark), lidar, odom (silent), arm (not answering) or slip (the
     /// wheels deliver PARAM of the commanded travel, default 0.5), e.g. camera@60+20 or
-    /// slip@30+10:0.5; no +DURATION lasts to the end. May be given again.
+    /// slip@30+10:0.5; no +DURATION lasts to the end. START may be a window A..B
+    /// (camera@30..180+20): the start is drawn from the run's seed. May be given again.
     #[arg(long, value_name = "KIND@START[+DURATION][:PARAM]")]
     pub fault: Vec<FaultSpec>,
 }

@@ -1,6 +1,7 @@
 //! The faults injected into a run's twin (`--fault`, `:fault`), as the runs' JSON lists
 //! them: each as given, and when it was really in force on simulated time.
 
+use crate::health::{Outage, Sensor};
 use crate::link::RobotLink;
 use crate::sim::{FaultKind, FaultRecord};
 use serde::Serialize;
@@ -21,7 +22,8 @@ pub struct FaultWindow {
 
 impl FaultWindow {
     pub fn of(record: &FaultRecord) -> Self {
-        let ms = |t: f64| (t * 1000.0).round() / 1000.0;
+        // + 0.0: a time that rounds to zero shows no sign.
+        let ms = |t: f64| (t * 1000.0).round() / 1000.0 + 0.0;
         Self {
             kind: record.spec.kind,
             spec: record.spec.to_string(),
@@ -51,4 +53,92 @@ pub fn human(windows: &[FaultWindow]) -> Option<String> {
         })
         .collect();
     Some(format!("faults {}", each.join(", ")))
+}
+
+/// One time a sensor was lost, as the pilot saw it, and how long after its fault ended it
+/// was back.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Degradation {
+    pub sensor: Sensor,
+    /// When the pilot declared it lost, and when usable data came again (null: never
+    /// within the run), session seconds to the millisecond.
+    pub lost_s: f64,
+    pub recovered_s: Option<f64>,
+    /// Seconds from the end of the fault that silenced it to its recovery, when both are
+    /// known.
+    pub recovered_after_fault_s: Option<f64>,
+}
+
+/// The sensor each fault kind silences; none for a wheel slip, which silences nothing.
+fn silenced(kind: FaultKind) -> Option<Sensor> {
+    match kind {
+        FaultKind::Camera => Some(Sensor::Camera),
+        FaultKind::Lidar => Some(Sensor::Lidar),
+        FaultKind::Odom => Some(Sensor::Odometry),
+        FaultKind::Arm => Some(Sensor::Arm),
+        FaultKind::Slip => None,
+    }
+}
+
+/// The pilot's outages, each with the recovery after the latest fault of its sensor's kind
+/// that began before it was declared lost.
+pub fn degradations(outages: &[Outage], windows: &[FaultWindow]) -> Vec<Degradation> {
+    // + 0.0: a time that rounds to zero shows no sign.
+    let ms = |t: f64| (t * 1000.0).round() / 1000.0 + 0.0;
+    (outages.iter())
+        .map(|o| {
+            let fault_end = (windows.iter())
+                .filter(|w| silenced(w.kind) == Some(o.sensor))
+                .filter(|w| w.start_s.is_some_and(|s| s <= o.lost_at))
+                .filter_map(|w| w.end_s)
+                .reduce(f64::max);
+            Degradation {
+                sensor: o.sensor,
+                lost_s: ms(o.lost_at),
+                recovered_s: o.recovered_at.map(ms),
+                recovered_after_fault_s: o
+                    .recovered_at
+                    .zip(fault_end)
+                    .map(|(back, end)| ms(back - end)),
+            }
+        })
+        .collect()
+}
+
+/// The outages as a person reads them, one line: "degraded camera 61.0-80.3 s".
+pub fn human_degradations(all: &[Degradation]) -> Option<String> {
+    if all.is_empty() {
+        return None;
+    }
+    let each: Vec<String> = (all.iter())
+        .map(|d| match d.recovered_s {
+            Some(back) => format!("{} {:.1}-{back:.1} s", d.sensor, d.lost_s),
+            None => format!("{} from {:.1} s", d.sensor, d.lost_s),
+        })
+        .collect();
+    Some(format!("degraded {}", each.join(", ")))
+}
+
+/// The faults a run's twin had injected and what the pilot lost with them, as every
+/// run's JSON gives them (`faults`, `degraded`; each left out when empty).
+#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+pub struct FaultFigures {
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub faults: Vec<FaultWindow>,
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub degraded: Vec<Degradation>,
+}
+
+impl FaultFigures {
+    pub fn of(link: &dyn RobotLink, pilot: &crate::pilot::Pilot) -> Self {
+        let faults = fault_windows(link);
+        let degraded = degradations(pilot.sensor_health().outages(), &faults);
+        Self { faults, degraded }
+    }
+
+    /// The lines a person reads: the faults, then what degraded; empty when neither.
+    pub fn human(&self) -> String {
+        let lines = [human(&self.faults), human_degradations(&self.degraded)];
+        lines.into_iter().flatten().map(|l| l + "\n").collect()
+    }
 }

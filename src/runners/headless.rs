@@ -53,9 +53,10 @@ pub struct Report {
     /// The estimator and, with lidar SLAM, its pose graph's figures.
     #[serde(flatten)]
     pub estimator: super::slam_figures::EstimatorFigures,
-    /// The faults injected into the twin (`--fault`, `:fault`) and when each was in force.
-    #[serde(skip_serializing_if = "Vec::is_empty")]
-    pub faults: Vec<super::faults::FaultWindow>,
+    /// The faults injected into the twin (`--fault`, `:fault`) and when each was in force;
+    /// the sensors the pilot lost, and when each came back.
+    #[serde(flatten)]
+    pub faults: super::faults::FaultFigures,
 }
 
 /// Where the robot ended up, truly and as estimated, and how far it went.
@@ -206,7 +207,7 @@ pub fn report(app: &App, keys: usize) -> Report {
         recording: None,
         replay: None,
         estimator: super::slam_figures::EstimatorFigures::of(app.pilot()),
-        faults: super::faults::fault_windows(app.link()),
+        faults: super::faults::FaultFigures::of(app.link(), app.pilot()),
     }
 }
 
@@ -261,9 +262,7 @@ pub fn human(report: &Report) -> String {
         }
         out += "\n";
     }
-    if let Some(line) = super::faults::human(&report.faults) {
-        out += &format!("{line}\n");
-    }
+    out += &report.faults.human();
     if let Some(c) = &report.replay {
         out += &format!(
             "re-run          {} of {} control ticks' estimates identical to the recording; largest difference {:.4} m\n",

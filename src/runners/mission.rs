@@ -1,7 +1,6 @@
 //! `navdeck mission`: the whole exploration-and-delivery mission on simulated time, once
 //! or over many seeds, reported for people or as JSON.
 
-use super::faults::{FaultWindow, fault_windows};
 use super::slam_figures::{EstimatorFigures, SweepEstimatorFigures};
 use crate::config::Config;
 use crate::data::Level;
@@ -62,9 +61,10 @@ pub struct MissionReport {
     /// The estimator and, with lidar SLAM, its pose graph's figures.
     #[serde(flatten)]
     pub estimator: EstimatorFigures,
-    /// The faults injected into the twin (`--fault`) and when each was in force.
-    #[serde(skip_serializing_if = "Vec::is_empty")]
-    pub faults: Vec<FaultWindow>,
+    /// The faults injected into the twin (`--fault`) and when each was in force; the
+    /// sensors the pilot lost, and when each came back.
+    #[serde(flatten)]
+    pub faults: super::faults::FaultFigures,
 }
 
 impl MissionReport {
@@ -215,11 +215,15 @@ fn report(
         timeline: mission.map_or(Vec::new(), |m| {
             m.timeline()
                 .iter()
-                .map(|&(odd, found, picked, delivered)| BlockTimes {
-                    markers: [odd, odd + 1],
-                    found,
-                    picked,
-                    delivered,
+                .map(|&(odd, found, picked, delivered)| {
+                    // The mission's clock stands while it is held: back to session time.
+                    let session = |m: Option<f64>| m.map(|m| pilot.session_time_of(m));
+                    BlockTimes {
+                        markers: [odd, odd + 1],
+                        found: pilot.session_time_of(found),
+                        picked: session(picked),
+                        delivered: session(delivered),
+                    }
                 })
                 .collect()
         }),
@@ -231,7 +235,7 @@ fn report(
         realtime_factor: None,
         log: Vec::new(),
         estimator: EstimatorFigures::of(pilot),
-        faults: fault_windows(link),
+        faults: super::faults::FaultFigures::of(link, pilot),
     }
 }
 
@@ -340,9 +344,7 @@ pub fn human(r: &MissionReport) -> String {
     if let Some(line) = r.score.line() {
         out += &format!("error vs truth {line}\n");
     }
-    if let Some(line) = super::faults::human(&r.faults) {
-        out += &format!("{line}\n");
-    }
+    out += &r.faults.human();
     for b in &r.timeline {
         let at = |t: Option<f64>| t.map_or("-".to_string(), |t| format!("{t:.1} s"));
         out += &format!(

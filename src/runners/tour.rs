@@ -82,9 +82,10 @@ pub struct TourReport {
     pub warnings: Vec<String>,
     pub wall_time_s: Option<f64>,
     pub realtime_factor: Option<f64>,
-    /// The faults injected into the twin (`--fault`) and when each was in force.
-    #[serde(skip_serializing_if = "Vec::is_empty")]
-    pub faults: Vec<super::faults::FaultWindow>,
+    /// The faults injected into the twin (`--fault`) and when each was in force; the
+    /// sensors the pilot lost, and when each came back.
+    #[serde(flatten)]
+    pub faults: super::faults::FaultFigures,
 }
 
 /// The RMS errors of the estimate over the whole tour and of dead reckoning alone, and
@@ -239,7 +240,7 @@ pub fn run(
         warnings: once_each(&tour.log),
         wall_time_s: None,
         realtime_factor: None,
-        faults: super::faults::fault_windows(robot.link()),
+        faults: super::faults::FaultFigures::of(robot.link(), robot.pilot()),
     })
 }
 
@@ -468,8 +469,6 @@ pub fn human(r: &TourReport) -> String {
         m(r.worst_arrival_error, 1.0, "m"),
         r.goals_given_up
     );
-    if let Some(line) = super::faults::human(&r.faults) {
-        s += &format!("{line}\n");
-    }
+    s += &r.faults.human();
     s
 }

@@ -267,8 +267,9 @@ impl Session {
     }
 
     /// Schedules `faults` in the twin (`--fault`), their times from the start of the run;
-    /// refused when the session's robot is not the twin.
-    pub fn inject_faults(&mut self, faults: &[crate::sim::FaultSpec]) -> Result<()> {
+    /// refused when the session's robot is not the twin. A start window (`@A..B`) is
+    /// drawn from `seed`.
+    pub fn inject_faults(&mut self, faults: &[crate::sim::FaultSpec], seed: u64) -> Result<()> {
         if faults.is_empty() {
             return Ok(());
         }
@@ -276,7 +277,8 @@ impl Session {
             bail!("--fault {} needs the twin (--link sim)", faults[0]);
         };
         for spec in faults {
-            twin.faults_mut().schedule(*spec);
+            // A start window (`@A..B`) is drawn from the run's seed.
+            twin.faults_mut().schedule(spec.drawn(seed));
         }
         Ok(())
     }

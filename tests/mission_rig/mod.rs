@@ -114,6 +114,7 @@ impl Rig {
             position_std: self.position_std,
             localized: false,
             arm: self.arm.as_ref().map(|a| a.1),
+            can_pick: true,
         };
         let out = self.mission.step(&inputs);
         self.log.extend(out.log.iter().map(|(_, l)| l.clone()));

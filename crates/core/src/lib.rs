@@ -7,6 +7,7 @@ pub mod clock;
 pub mod control;
 pub mod data;
 pub mod geometry;
+pub mod health;
 pub mod map;
 pub mod mission;
 pub mod perception;

@@ -1,6 +1,7 @@
 //! Sense, decide, act: folding in what the robot reported and choosing the command.
 
 use super::Pilot;
+use crate::behaviours::camera_usable;
 use navdeck_core::data::{Command, GripperState, Level, SensorFrame, WheelTravel};
 use navdeck_core::geometry::Twist;
 use navdeck_core::map::contact::JAWS;
@@ -21,6 +22,7 @@ impl Pilot {
     /// Folds in what the robot reported up to `t`.
     pub(super) fn sense(&mut self, t: f64, frame: &SensorFrame) {
         self.link_answered(t);
+        self.note_sensor_health(t, frame);
         if let Some(arm) = frame.arm {
             self.arm_measured(arm.joints);
         }
@@ -36,7 +38,8 @@ impl Pilot {
             self.measuring.travel.right += wheels.right;
             self.measuring.travel_time += frame.elapsed;
         }
-        if let Some(s) = &frame.sightings {
+        // A dark or failed frame shows nothing, which is no evidence that nothing is there.
+        if let Some(s) = frame.sightings.as_ref().filter(|_| camera_usable(frame)) {
             self.estimate_sightings(s);
             self.map_sightings(s);
             self.note_frame(s.iter().map(|m| m.id).collect());

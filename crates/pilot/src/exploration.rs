@@ -25,13 +25,18 @@ pub(super) struct Exploring {
     pub no_path: Option<String>,
     /// Session time the mission started.
     pub started: f64,
+    /// The times the mission was held (e-stop, a lost sensor), which its clock does not
+    /// count (a hold is no lack of progress): its clock's reading as each began, and how
+    /// long it lasted; and since when (session time) it is held now.
+    pub holds: Vec<(f64, f64)>,
+    pub held_since: Option<f64>,
 }
 
 impl Pilot {
     /// On entering exploration mode: the mission kept since a takeover resumes, else one
     /// starts.
     pub(super) fn enter_mission(&mut self) {
-        let (now, gripper) = (self.now, self.hand.state);
+        let (now, gripper) = (self.mission_clock(self.now), self.hand.state);
         let Some(mission) = self.exploring.mission.as_mut() else {
             return self.start_mission();
         };
@@ -52,7 +57,7 @@ impl Pilot {
     /// Starts a fresh mission.
     pub(super) fn start_mission(&mut self) {
         self.drop_route();
-        let mission = Mission::new(self.settings.mission.clone(), self.now);
+        let mission = Mission::new(self.settings.mission.clone(), self.mission_clock(self.now));
         // With an arm, the mission picks with it (seed 000) instead of driving into blocks.
         let mission = match &self.settings.arm {
             Some(arm) => mission.with_arm(arm.clone()),
@@ -82,7 +87,7 @@ impl Pilot {
         let frame = self.exploring.frame.take();
         let path = self.path_status();
         let outputs = mission.step(&Inputs {
-            t,
+            t: self.mission_clock(t),
             pose: self.pose(),
             landmarks: &landmarks,
             seen: frame.as_deref().unwrap_or(&[]),
@@ -97,6 +102,7 @@ impl Pilot {
             localized: self.mcl().is_some_and(|m| m.status().converged)
                 || self.lidar_slam().is_some(),
             arm: self.arm.as_ref().and_then(|a| a.measured).map(|j| j.0),
+            can_pick: !self.sensor_lost(navdeck_core::health::Sensor::Arm),
         });
         self.exploring.mission = Some(mission);
         for (level, text) in outputs.log {
@@ -154,6 +160,33 @@ impl Pilot {
         };
         self.exploring.last_step = Some((t, twist));
         twist
+    }
+
+    /// The mission's clock at session time `t`: the session's, less the time it was held.
+    fn mission_clock(&self, t: f64) -> f64 {
+        let holding = self.exploring.held_since.map_or(0.0, |since| t - since);
+        let held: f64 = self.exploring.holds.iter().map(|h| h.1).sum();
+        t - held - holding
+    }
+
+    /// The session time at which the mission's clock read `m` (its timeline's times).
+    pub fn session_time_of(&self, m: f64) -> f64 {
+        let before = self.exploring.holds.iter().filter(|h| h.0 < m);
+        m + before.map(|h| h.1).sum::<f64>()
+    }
+
+    /// Whether the task was held at `t` (suppressed by the e-stop or sensor health): the
+    /// mission's clock stands still meanwhile.
+    pub(super) fn note_task_held(&mut self, t: f64, held: bool) {
+        match (held, self.exploring.held_since) {
+            (true, None) => self.exploring.held_since = Some(t),
+            (false, Some(since)) => {
+                let began = self.mission_clock(since);
+                self.exploring.holds.push((began, (t - since).max(0.0)));
+                self.exploring.held_since = None;
+            }
+            _ => {}
+        }
     }
 
     /// How the path the mission asked for is going.

@@ -197,6 +197,10 @@ impl Pilot {
     pub fn collision_zones(&self) -> &[navdeck_core::control::collision_monitor::zone::Zone] {
         self.behaviours.collision.monitor.zones()
     }
+    /// Each sensor's health: which are lost now, and the outages so far.
+    pub fn sensor_health(&self) -> &navdeck_core::health::SensorHealth {
+        &self.behaviours.health
+    }
     /// The arbiter: which behaviour's command goes out, and the transitions.
     pub fn arbiter(&self) -> &behaviours::Arbiter {
         &self.behaviours.arbiter

@@ -91,6 +91,7 @@ impl Pilot {
             self.log_at(t, level, reason.clone());
         }
         self.behaviours.gate.link = LinkStatus::Lost(reason);
+        self.restart_sensor_health();
         self.teleop.clear();
         self.measuring.commanded = Twist::ZERO;
     }

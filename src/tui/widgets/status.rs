@@ -45,6 +45,26 @@ fn behaviour_row(app: &App) -> Row {
     Row::new("Control", text, Need::Some).wrapping(2)
 }
 
+/// The sensors lost now, each with how long and what it changes, and the faults injected
+/// into the twin now; no row while every sensor answers and no fault is in force.
+fn health_row(app: &App) -> Option<Row> {
+    let health = app.pilot().sensor_health();
+    let mut parts: Vec<String> = (health.lost().into_iter())
+        .map(|s| {
+            let since = health.lost_since(s).unwrap_or(app.now());
+            format!("{s} LOST {:.0} s", (app.now() - since).max(0.0))
+        })
+        .collect();
+    if let Some(faults) = app.faults() {
+        let kinds = faults.active_kinds();
+        if !kinds.is_empty() {
+            let names: Vec<String> = kinds.iter().map(|k| k.to_string()).collect();
+            parts.push(format!("fault {}", names.join(", ")));
+        }
+    }
+    (!parts.is_empty()).then(|| Row::new("Sensors", parts.join("; "), Need::Must).wrapping(2))
+}
+
 /// Status rows, fitted to `width` x `height`: long values wrap, and a short panel keeps
 /// the rows a user needs most (mode, link, pose, mission).
 pub fn lines(app: &App, theme: Theme, width: usize, height: usize) -> Vec<Line<'static>> {
@@ -75,6 +95,7 @@ fn rows(app: &App) -> Vec<Row> {
     }
     rows.push(Row::new("Mode", app.pilot().mode().label(), Need::Must));
     rows.push(behaviour_row(app));
+    rows.extend(health_row(app));
     rows.extend(navigation_rows(app));
     rows.push(Row::new("Link", format!("{} {link}", app.link().label()), Need::Must).wrapping(2));
     if let LinkStatus::Lost(reason) = app.pilot().link_status() {

@@ -30,7 +30,8 @@ impl Mission {
             self.phase = Phase::Done;
             return;
         }
-        if let Some(block) = self.deliverable(robot) {
+        // Without an arm that answers, blocks wait and exploring goes on.
+        if let Some(block) = self.deliverable(robot).filter(|_| inputs.can_pick) {
             *self.attempts.entry(block.markers[0]).or_default() += 1;
             self.phase = Phase::Pickup(Pickup::new(
                 &block,
@@ -119,6 +120,14 @@ impl Mission {
                 turn: Turn::new(inputs.pose, inputs.t, angle, self.config.scan_speed),
                 initial: false,
             };
+            return;
+        }
+        if !inputs.can_pick && self.deliverable(robot).is_some() {
+            log.push((
+                Level::Warn,
+                "Nothing left to explore and the arm does not answer - waiting for it".into(),
+            ));
+            self.phase = Phase::WaitArm;
             return;
         }
         log.push((Level::Info, "Exploration complete".into()));

@@ -243,6 +243,11 @@ impl Delivery {
         }
     }
 
+    /// Whether the arm is at work putting the block down.
+    pub fn arm_engaged(&self) -> bool {
+        matches!(self.stage, Stage::Lower(_) | Stage::Raise(_))
+    }
+
     pub fn label(&self) -> String {
         let block = name(self.colour, self.block);
         let gate = self.colour.label();

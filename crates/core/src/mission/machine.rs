@@ -119,7 +119,8 @@ impl Mission {
             self.phase,
             Phase::Explore { .. } | Phase::Scan { initial: false, .. }
         );
-        if exploring && self.deliverable(inputs.pose.position()).is_some() {
+        // A block to pick up interrupts exploring, while the arm (if any) answers.
+        if exploring && inputs.can_pick && self.deliverable(inputs.pose.position()).is_some() {
             self.phase = Phase::Choose;
             return Tick::Again;
         }
@@ -258,6 +259,15 @@ impl Mission {
                 }
                 Tick::Out(scan, None)
             }
+            Phase::Pickup(pickup) if !inputs.can_pick && !pickup.arm_engaged() => {
+                let block = name(pickup.colour, pickup.block);
+                log.push((
+                    Level::Warn,
+                    format!("The arm does not answer - leaving {block} for later"),
+                ));
+                self.phase = Phase::Choose;
+                Tick::Again
+            }
             Phase::Pickup(pickup) => {
                 let (odd, colour) = (pickup.block, pickup.colour);
                 let arm = self.arm.as_mut();
@@ -341,6 +351,12 @@ impl Mission {
                 self.phase = Phase::Choose;
                 Tick::Again
             }
+            Phase::WaitArm if inputs.can_pick => {
+                log.push((Level::Success, "The arm answers - choosing again".into()));
+                self.phase = Phase::Choose;
+                Tick::Again
+            }
+            Phase::WaitArm => Tick::Out(Motion::Stop, None),
             Phase::Done => Tick::Out(Motion::Stop, None),
             Phase::Manual => Tick::Out(Motion::Stop, None),
         }

@@ -41,6 +41,9 @@ pub(super) enum Phase {
     BackOff(f64),
     Pickup(Pickup),
     Deliver(Delivery),
+    /// A block is there to pick up, nothing is left to explore, and the arm does not
+    /// answer (seed 000 §7.2.1: skip manipulation): standing still until it does.
+    WaitArm,
     Done,
     Manual,
 }

@@ -123,6 +123,19 @@ impl Pickup {
         }
     }
 
+    /// Whether the arm is at work on the block (reaching, gripping, lifting): a pick
+    /// that has not got there may be left for later.
+    pub fn arm_engaged(&self) -> bool {
+        matches!(
+            self.stage,
+            Stage::ArmAbove(_)
+                | Stage::ArmDown(_)
+                | Stage::Lift(_)
+                | Stage::ArmUp(_)
+                | Stage::Close
+        )
+    }
+
     pub fn label(&self) -> String {
         let what = match &self.stage {
             Stage::Travel(leg) if leg.retrying().is_some() => "no path: retry to",

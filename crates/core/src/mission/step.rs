@@ -47,6 +47,9 @@ pub struct Inputs<'a> {
     /// The arm's joints as the robot last reported them, radians (none without an arm,
     /// or before a report).
     pub arm: Option<[f64; 4]>,
+    /// Whether a block may be picked up now: false while the arm does not answer (seed
+    /// 000 §7.2.1, skip manipulation), so blocks wait and exploring goes on.
+    pub can_pick: bool,
 }
 
 /// How the robot should move this step.

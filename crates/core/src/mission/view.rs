@@ -30,6 +30,7 @@ impl Mission {
             Phase::BackOff(_) => "backing away from a lost block".into(),
             Phase::Pickup(p) => p.label(),
             Phase::Deliver(d) => d.label(),
+            Phase::WaitArm => "waiting for the arm".into(),
             Phase::Done => "done".into(),
             Phase::Manual => "handed to manual".into(),
         }
@@ -39,6 +40,16 @@ impl Mission {
     /// looking for one (exploration).
     pub fn is_handling_a_block(&self) -> bool {
         matches!(self.phase, Phase::Pickup(_) | Phase::Deliver(_))
+    }
+
+    /// Whether the arm is at work on a block (picking it up or putting it down): without
+    /// the arm, the mission cannot go on from there.
+    pub fn arm_engaged(&self) -> bool {
+        match &self.phase {
+            Phase::Pickup(p) => p.arm_engaged(),
+            Phase::Deliver(d) => d.arm_engaged(),
+            _ => false,
+        }
     }
 
     /// The marker of the block being picked up, while one is.
@@ -80,6 +91,7 @@ impl Mission {
             Phase::BackOff(_) => "block lost from view in the approach".into(),
             Phase::Pickup(_) => "block seen whole, its gate known".into(),
             Phase::Deliver(_) => "holding the block, its gate known".into(),
+            Phase::WaitArm => "a block to pick up, the arm not answering".into(),
             Phase::Done => "all explored, every block delivered".into(),
             Phase::Manual => self.handover.unwrap_or("taken over").to_string(),
         }

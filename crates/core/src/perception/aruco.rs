@@ -172,12 +172,16 @@ impl Detector {
     }
 
     /// Reads `frame` for the console: the sightings for the estimator, and the status
-    /// (IDs, counts, latency, thumbnail) for the camera panel.
+    /// (IDs, counts, latency, thumbnail) for the camera panel. A blank frame (a covered
+    /// camera, `blank::blank_reason`) is a failed one.
     pub fn read(
         &self,
         frame: &GrayFrame,
         stopwatch: Option<&dyn Clock>,
     ) -> (Vec<MarkerSighting>, CameraStatus) {
+        if let Some(why) = super::blank::blank_reason(frame) {
+            return (Vec::new(), CameraStatus::failed(why));
+        }
         match self.detect(frame, stopwatch) {
             Ok(d) => (
                 d.marker_sightings(),

@@ -9,6 +9,7 @@ mod aruco_identify;
 mod aruco_regions;
 #[cfg(feature = "vision")]
 pub mod bit_check;
+pub mod blank;
 #[cfg(feature = "vision")]
 pub mod calibration;
 pub mod config;

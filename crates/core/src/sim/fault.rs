@@ -63,6 +63,9 @@ pub struct FaultSpec {
     pub kind: FaultKind,
     /// Simulated seconds at which it begins.
     pub start_s: f64,
+    /// With `@A..B`, the latest it may begin: each run draws its start from `start_s` to
+    /// this (`drawn`), so a sweep meets the fault at a different moment in every run.
+    pub start_latest: Option<f64>,
     /// Seconds it lasts; `None`: to the end of the run.
     pub duration_s: Option<f64>,
     /// Slip only: the share (0 to 1) of the commanded wheel travel the wheels really
@@ -85,7 +88,9 @@ pub enum FaultProblem {
     Empty,
     #[error("unknown sensor `{0}`: expected camera, lidar, odom, arm or slip")]
     UnknownKind(String),
-    #[error("start `{0}` is not a time in seconds from 0 to {MAX_FAULT_TIME}")]
+    #[error(
+        "start `{0}` is not a time in seconds from 0 to {MAX_FAULT_TIME}, or a window A..B of two such times, A before B"
+    )]
     Start(String),
     #[error("duration `{0}` is not a number of seconds above 0 and at most {MAX_FAULT_TIME}")]
     Duration(String),
@@ -128,11 +133,17 @@ impl FaultSpec {
             .into_iter()
             .find(|k| k.name().eq_ignore_ascii_case(kind))
             .ok_or_else(|| fail(FaultProblem::UnknownKind(kind.to_string())))?;
-        let start_s = match start {
-            Some(s) => seconds(s)
-                .filter(|v| (0.0..=MAX_FAULT_TIME).contains(v))
-                .ok_or_else(|| fail(FaultProblem::Start(s.to_string())))?,
-            None => now,
+        let time = |s: &str| seconds(s).filter(|v| (0.0..=MAX_FAULT_TIME).contains(v));
+        let (start_s, start_latest) = match start {
+            Some(s) => match s.split_once("..") {
+                Some((a, b)) => time(a.trim())
+                    .zip(time(b.trim()))
+                    .filter(|(a, b)| a < b)
+                    .map(|(a, b)| (a, Some(b))),
+                None => time(s).map(|a| (a, None)),
+            }
+            .ok_or_else(|| fail(FaultProblem::Start(s.to_string())))?,
+            None => (now, None),
         };
         let duration_s = duration
             .map(|d| {
@@ -158,9 +169,29 @@ impl FaultSpec {
         Ok(FaultSpec {
             kind,
             start_s,
+            start_latest,
             duration_s,
             slip_ratio,
         })
+    }
+
+    /// The spec with its start drawn from its window (`@A..B`) by a generator seeded with
+    /// `seed` (a run's seed: the same run meets the same fault), to a tenth of a second; a
+    /// spec with one start time is itself.
+    pub fn drawn(self, seed: u64) -> FaultSpec {
+        use rand::{Rng, SeedableRng};
+        let Some(latest) = self.start_latest else {
+            return self;
+        };
+        // Each kind draws apart, so two faults of one run do not begin together.
+        let stream = seed ^ (0x5eed_fa17 + self.kind as u64);
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(stream);
+        let start = self.start_s + rng.random::<f64>() * (latest - self.start_s);
+        FaultSpec {
+            start_s: ((start * 10.0).round() / 10.0).min(latest),
+            start_latest: None,
+            ..self
+        }
     }
 
     /// Simulated seconds at which it ends, if it ends.
@@ -216,6 +247,9 @@ impl fmt::Display for FaultSpec {
     /// The spec in the syntax it is read in, e.g. `camera@60+20`, `slip@30+10:0.5`.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         write!(f, "{}@{}", self.kind, self.start_s)?;
+        if let Some(latest) = self.start_latest {
+            write!(f, "..{latest}")?;
+        }
         if let Some(d) = self.duration_s {
             write!(f, "+{d}")?;
         }
@@ -232,6 +266,34 @@ mod tests {
 
     fn spec(text: &str) -> FaultSpec {
         text.parse().unwrap()
+    }
+
+    #[test]
+    fn a_start_window_is_drawn_per_seed_within_it() {
+        let window = spec("lidar@30..180+20");
+        assert_eq!(window.to_string(), "lidar@30..180+20");
+        let starts: Vec<f64> = (1..=50).map(|seed| window.drawn(seed).start_s).collect();
+        assert!(starts.iter().all(|s| (30.0..=180.0).contains(s)));
+        assert_eq!(
+            window.drawn(7),
+            window.drawn(7),
+            "a seed draws the same start"
+        );
+        let (lo, hi) = (
+            starts.iter().copied().fold(f64::INFINITY, f64::min),
+            starts.iter().copied().fold(0.0, f64::max),
+        );
+        assert!(
+            lo < 60.0 && hi > 150.0,
+            "spread over the window: {lo}..{hi}"
+        );
+        let drawn = window.drawn(3);
+        assert_eq!((drawn.start_latest, drawn.duration_s), (None, Some(20.0)));
+        assert_eq!(spec("camera@60+20").drawn(3), spec("camera@60+20"));
+        for bad in ["lidar@90..30", "lidar@30..30", "lidar@..30", "lidar@30..x"] {
+            let e = FaultSpec::parse_at(bad, 0.0).unwrap_err();
+            assert!(matches!(e.problem, FaultProblem::Start(_)), "{bad}: {e}");
+        }
     }
 
     #[test]

@@ -1,7 +1,8 @@
 //! The collision monitor as a behaviour (priority 90): each control step it weighs the
 //! task's command against the newest lidar scan, its points moved to where the robot now
 //! stands (Nav2's `base_shift_correction`, by odometry since the scan), or, on a robot that
-//! never sent a scan, against the planning map's occupied cells round it; when a zone
+//! never sent a scan or whose lidar is lost, against the planning map's occupied cells
+//! round it; when a zone
 //! changes the command, the monitor proposes the changed one and so wins.
 
 use super::{Behaviour, Proposal};
@@ -13,7 +14,7 @@ use navdeck_core::control::collision_monitor::{
 use navdeck_core::data::GripperState;
 use navdeck_core::geometry::{Point2, Pose2, Twist};
 use navdeck_core::map::contact::{HeldZone, JAWS};
-use navdeck_core::map::grid::OccupancyGrid;
+use navdeck_core::map::grid::{OCCUPIED, OccupancyGrid, UNKNOWN};
 
 /// Map cells are read this far round a robot without a lidar, metres.
 const MAP_RADIUS_M: f64 = 1.0;
@@ -38,8 +39,9 @@ pub(crate) struct CollisionWatch {
     handling_monitor: CollisionMonitor,
     /// When the newest scan arrived and the odometry pose then.
     pub scan_at: Option<(f64, Pose2)>,
-    /// The planning map as a grid, and the map revision it was made at.
-    map_grid: Option<(u64, OccupancyGrid)>,
+    /// The planning map as a grid, the map revision it was made at, and whether its
+    /// unknown cells were made occupied (the lidar lost).
+    map_grid: Option<((u64, bool), OccupancyGrid)>,
     /// Near hits of recent scans (odometry frame), and when each scan arrived.
     remembered: Vec<(f64, Vec<Point2>)>,
 }
@@ -78,36 +80,38 @@ impl Pilot {
             return None;
         }
         let odom = self.odometry.pose();
-        let (mut points, age, source) =
-            match (self.behaviours.collision.scan_at, self.newest_scan()) {
-                (Some((at, then)), Some((_, scan))) => {
-                    let hits = points_from_scan(scan, Pose2::default());
-                    let watch = &mut self.behaviours.collision;
-                    watch
-                        .remembered
-                        .retain(|(seen, _)| t - seen <= REMEMBER_FOR_S);
-                    if watch.remembered.last().is_none_or(|(seen, _)| *seen < at) {
-                        let near = (hits.iter())
-                            .filter(|p| p.x.hypot(p.y) <= REMEMBER_WITHIN_M)
-                            .map(|&p| then.transform_point(p))
-                            .collect();
-                        watch.remembered.push((at, near));
-                    }
-                    // From the robot's frame then to its frame now.
-                    let shift = odom.inverse().compose(then);
-                    let mut points: Vec<Point2> =
-                        hits.iter().map(|&p| shift.transform_point(p)).collect();
-                    let older = watch
-                        .remembered
-                        .iter()
-                        .rev()
-                        .skip(1)
-                        .flat_map(|(_, near)| near);
-                    points.extend(older.map(|&p| odom.inverse_transform_point(p)));
-                    (points, Some(t - at), SourceKind::Scan)
+        // With the lidar lost, its last scan grows stale: the map is the source then.
+        let scan_at = (self.behaviours.collision.scan_at)
+            .filter(|_| !self.sensor_lost(navdeck_core::health::Sensor::Lidar));
+        let (mut points, age, source) = match (scan_at, self.newest_scan()) {
+            (Some((at, then)), Some((_, scan))) => {
+                let hits = points_from_scan(scan, Pose2::default());
+                let watch = &mut self.behaviours.collision;
+                watch
+                    .remembered
+                    .retain(|(seen, _)| t - seen <= REMEMBER_FOR_S);
+                if watch.remembered.last().is_none_or(|(seen, _)| *seen < at) {
+                    let near = (hits.iter())
+                        .filter(|p| p.x.hypot(p.y) <= REMEMBER_WITHIN_M)
+                        .map(|&p| then.transform_point(p))
+                        .collect();
+                    watch.remembered.push((at, near));
                 }
-                _ => (self.map_points(), Some(0.0), SourceKind::Map),
-            };
+                // From the robot's frame then to its frame now.
+                let shift = odom.inverse().compose(then);
+                let mut points: Vec<Point2> =
+                    hits.iter().map(|&p| shift.transform_point(p)).collect();
+                let older = watch
+                    .remembered
+                    .iter()
+                    .rev()
+                    .skip(1)
+                    .flat_map(|(_, near)| near);
+                points.extend(older.map(|&p| odom.inverse_transform_point(p)));
+                (points, Some(t - at), SourceKind::Scan)
+            }
+            _ => (self.map_points(), Some(0.0), SourceKind::Map),
+        };
         if handling {
             let block = self.picked_block_here();
             let held = self.hand.state == Some(GripperState::Holding);
@@ -155,13 +159,24 @@ impl Pilot {
         Some(self.pose().inverse_transform_point(at))
     }
 
-    /// The planning map's occupied cells round the robot, in its frame.
+    /// The planning map's occupied cells round the robot, in its frame. With the lidar
+    /// lost, cells the map does not know count as occupied too: blind, the robot drives
+    /// only where the map has seen free space.
     fn map_points(&mut self) -> Vec<Point2> {
-        let revision = self.belief.revision();
+        let key = (
+            self.belief.revision(),
+            self.sensor_lost(navdeck_core::health::Sensor::Lidar),
+        );
         let pose = self.pose();
         let watch = &mut self.behaviours.collision;
-        if watch.map_grid.as_ref().is_none_or(|(r, _)| *r != revision) {
-            watch.map_grid = Some((revision, self.belief.occupancy_grid()));
+        if watch.map_grid.as_ref().is_none_or(|(k, _)| *k != key) {
+            let mut grid = self.belief.occupancy_grid();
+            if key.1 {
+                for c in grid.cells.iter_mut().filter(|c| **c == UNKNOWN) {
+                    *c = OCCUPIED;
+                }
+            }
+            watch.map_grid = Some((key, grid));
         }
         let grid = &watch.map_grid.as_ref().expect("just made").1;
         points_from_grid(grid, pose, MAP_RADIUS_M)

@@ -3,19 +3,22 @@
 
 pub mod arbiter;
 mod collision;
+mod health;
 mod propose;
 pub mod table;
 
 pub use arbiter::{Arbiter, Proposal, Transition};
+pub(crate) use health::{Response, camera_usable};
 pub use table::Behaviour;
 
-/// The arbiter and what feeds its safety behaviours: the gate (e-stop, link in doubt)
-/// and the collision monitor.
+/// The arbiter and what feeds its safety behaviours: the gate (e-stop, link in doubt),
+/// the collision monitor and the sensors' health.
 #[derive(Clone, Debug)]
 pub(crate) struct Behaviours {
     pub gate: crate::safety::Gate,
     pub arbiter: Arbiter,
     pub collision: collision::CollisionWatch,
+    pub health: navdeck_core::health::SensorHealth,
 }
 
 impl Behaviours {
@@ -25,6 +28,7 @@ impl Behaviours {
             gate: crate::safety::Gate::default(),
             arbiter: Arbiter::default(),
             collision: collision::CollisionWatch::new(&settings.safety, radius),
+            health: navdeck_core::health::SensorHealth::new(settings.safety.health.clone()),
         }
     }
 }

@@ -2,7 +2,7 @@
 //! (teleop, race, path following, the mission's exploration or pick-and-place, gripper
 //! jogging). The arbiter picks among them each control step.
 
-use super::{Behaviour, Proposal};
+use super::{Behaviour, Proposal, Response};
 use crate::Pilot;
 use crate::mode::Mode;
 use navdeck_core::data::Level;
@@ -15,20 +15,36 @@ impl Pilot {
         // so its deadline moves on and the console's tick loop always progresses.
         let keys = self.teleop.twist(t, self.brake_margin());
         let mut proposals = Vec::with_capacity(2);
-        match self.behaviours.gate.why_in_doubt() {
+        if !self.behaviours.gate.in_doubt() {
+            self.check_sensor_health(t);
+        }
+        let held = match (self.behaviours.gate.why_in_doubt(), self.health_response()) {
             // A stopped robot's tasks are suppressed, not merely outvoted: the mission
             // and the follower do not step while it stands.
-            Some(why) => proposals.push(Proposal::new(Behaviour::EmergencyStop, Twist::ZERO, why)),
-            None => {
+            (Some(why), _) => Some(Proposal::new(Behaviour::EmergencyStop, Twist::ZERO, why)),
+            (None, Response::Hold(why)) => {
+                Some(Proposal::new(Behaviour::SensorHealth, Twist::ZERO, why))
+            }
+            (None, response) => {
                 if let Some(task) = self.task_proposal(t, keys) {
+                    let mut twist = task.twist;
+                    if let Response::Slow(linear, angular) = response
+                        && let Some(slow) = Self::slow_proposal(twist, linear, angular)
+                    {
+                        twist = slow.twist;
+                        proposals.push(slow);
+                    }
                     // Picking up and putting down a block touches it by design: the
                     // monitor leaves the gripper's lane to it.
                     let handling = task.behaviour == Behaviour::PickAndPlace;
-                    proposals.extend(self.collision_proposal(t, task.twist, handling));
+                    proposals.extend(self.collision_proposal(t, twist, handling));
                     proposals.push(task);
                 }
+                None
             }
-        }
+        };
+        self.note_task_held(t, held.is_some());
+        proposals.extend(held);
         let (twist, transition) = self.behaviours.arbiter.arbitrate(t, &proposals);
         // A change between task behaviours follows the mode or the mission, which log
         // themselves: the log gets the changes a safety behaviour makes; `:behaviours`

@@ -3,6 +3,8 @@
 //! exploration 50). The seed's table has no keyboard driving; navdeck places teleop and
 //! race at 75, where a user expects them: above every autonomous behaviour, below every
 //! safety one. Path following (65) and gripper jogging (55) sit between the seed's tasks.
+//! Sensor health (85, seed 000 §7.2.1's graceful degradation) holds or slows the task when
+//! a sensor is lost; the collision monitor, above it, still weighs what it lets through.
 
 use std::fmt;
 
@@ -11,6 +13,7 @@ use std::fmt;
 pub enum Behaviour {
     EmergencyStop,
     CollisionMonitor,
+    SensorHealth,
     TrafficCompliance,
     Teleop,
     Race,
@@ -22,9 +25,10 @@ pub enum Behaviour {
 }
 
 impl Behaviour {
-    pub const ALL: [Behaviour; 10] = [
+    pub const ALL: [Behaviour; 11] = [
         Behaviour::EmergencyStop,
         Behaviour::CollisionMonitor,
+        Behaviour::SensorHealth,
         Behaviour::TrafficCompliance,
         Behaviour::Teleop,
         Behaviour::Race,
@@ -40,6 +44,7 @@ impl Behaviour {
         match self {
             Behaviour::EmergencyStop => 100,
             Behaviour::CollisionMonitor => 90,
+            Behaviour::SensorHealth => 85,
             Behaviour::TrafficCompliance => 80,
             Behaviour::Teleop | Behaviour::Race => 75,
             Behaviour::LaneFollowing => 70,
@@ -61,6 +66,7 @@ impl Behaviour {
         match self {
             Behaviour::EmergencyStop => "emergency_stop",
             Behaviour::CollisionMonitor => "collision_monitor",
+            Behaviour::SensorHealth => "sensor_health",
             Behaviour::TrafficCompliance => "traffic_compliance",
             Behaviour::Teleop => "teleop",
             Behaviour::Race => "race",
@@ -78,6 +84,7 @@ impl Behaviour {
         let name = match name.as_str() {
             "estop" | "e_stop" => "emergency_stop",
             "collision" | "collision_avoidance" => "collision_monitor",
+            "health" | "degradation" => "sensor_health",
             other => other,
         }
         .to_string();
@@ -90,6 +97,7 @@ impl fmt::Display for Behaviour {
         let label = match self {
             Behaviour::EmergencyStop => "e-stop",
             Behaviour::CollisionMonitor => "collision monitor",
+            Behaviour::SensorHealth => "sensor health",
             Behaviour::TrafficCompliance => "traffic compliance",
             Behaviour::Teleop => "teleop",
             Behaviour::Race => "race",
@@ -121,6 +129,10 @@ mod tests {
         for (b, p) in seed {
             assert_eq!(b.priority(), p, "{b}");
         }
+        // Sensor health weighs the task; the collision monitor weighs what it lets by.
+        assert!(SensorHealth.is_safety());
+        assert!(SensorHealth.priority() < CollisionMonitor.priority());
+        assert!(SensorHealth.priority() > TrafficCompliance.priority());
         for keys in [Teleop, Race] {
             assert!(keys.priority() < TrafficCompliance.priority());
             for auto in [

@@ -161,6 +161,8 @@ pub struct SafetyConfig {
     pub block_if_invalid: bool,
     /// The zones, in the order they are checked; the most restrictive acting one wins.
     pub polygons: Vec<PolygonConfig>,
+    /// `[safety.health]`: when a sensor counts as lost, and the lidar-lost safety mode.
+    pub health: crate::health::HealthConfig,
 }
 
 impl Default for SafetyConfig {
@@ -169,6 +171,7 @@ impl Default for SafetyConfig {
             source_timeout: 0.5,
             block_if_invalid: true,
             polygons: default_polygons(),
+            health: crate::health::HealthConfig::default(),
         }
     }
 }

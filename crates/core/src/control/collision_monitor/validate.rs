@@ -55,6 +55,7 @@ impl SafetyConfig {
     /// shape. Names are checked by `name_problem`, as a name is not a number.
     pub fn validate(&self) -> Result<(), Invalid> {
         check::within(&[("source_timeout", self.source_timeout, 0.01, 60.0)])?;
+        self.health.validate()?;
         let count = self.polygons.len() as u64;
         check::counts_within(&[("polygons", count, 0, MAX_POLYGONS as u64)])?;
         for (polygon, fields) in self.polygons.iter().zip(&FIELDS) {

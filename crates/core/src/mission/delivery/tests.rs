@@ -67,6 +67,7 @@ fn once_every_drop_place_had_no_path_each_retry_goes_to_another() {
             position_std: 0.01,
             localized: false,
             arm: None,
+            can_pick: true,
         };
         let event = d.step(&inputs, &config, &mut ctx, None, &mut log);
         assert!(!matches!(event, DropEvent::GiveUp), "gave up at {t}");

@@ -11,8 +11,7 @@ use crate::sim::config::SimConfig;
 use crate::sim::lidar::Lidar;
 use rand_chacha::ChaCha8Rng;
 
-/// What the rendered camera reports of a frame while a camera fault lasts.
-#[cfg(feature = "vision")]
+/// What the camera reports of a frame while a camera fault lasts.
 const DARK: &str = "camera dark (injected fault)";
 
 /// The camera and lidar, their clocks, and their newest readings not yet taken.
@@ -76,14 +75,11 @@ impl Sensors {
         self.sightings = Some(self.camera.observe(pose, markers, occluders, rng));
     }
 
-    /// A frame from a dark (or covered) camera: nothing seen in it. The rendered camera,
-    /// which reports how each frame went, says it was dark.
+    /// A frame from a dark (or covered) camera: nothing seen in it, and a status saying it
+    /// was dark, as a real pipeline's brightness check would.
     pub(super) fn capture_dark(&mut self) {
         self.sightings = Some(Vec::new());
-        #[cfg(feature = "vision")]
-        if self.rendered.is_some() {
-            self.camera_status = Some(CameraStatus::failed(DARK));
-        }
+        self.camera_status = Some(CameraStatus::failed(DARK));
     }
 
     /// A lidar scan from `pose`, when there is a lidar.

@@ -234,14 +234,49 @@ pub fn summary(path: &Path) -> Result<(f64, f64, usize, String), MapFileError> {
     ))
 }
 
-/// Reads a map from its YAML `text` (named `path` in errors), fetching the image it names
-/// through `read_image`: the whole reader without the file system, as the fuzz target
-/// drives it.
-pub fn decode(
+/// A map_server pair as written, before its pixels become cells: the header's values and
+/// the image, for a reader that converts pixels its own way (a Nav2 filter mask).
+#[derive(Clone, Debug)]
+pub struct RawMap {
+    pub resolution: f64,
+    pub origin: Point2,
+    pub negate: bool,
+    pub occupied_thresh: f64,
+    pub free_thresh: f64,
+    /// `trinary`, `scale` or `raw`.
+    pub mode: &'static str,
+    pub image: pgm::Pgm,
+}
+
+/// Reads a map_server YAML `text` (named `path` in errors) and the image it names,
+/// checked as `decode` checks them, without turning pixels into cells.
+pub fn decode_raw(
     text: &str,
     path: &Path,
     read_image: &mut dyn FnMut(&Path) -> Result<Vec<u8>, MapFileError>,
-) -> Result<MapFile, MapFileError> {
+) -> Result<RawMap, MapFileError> {
+    let (yaml, mode, image) = read_pair(text, path, read_image)?;
+    Ok(RawMap {
+        resolution: yaml.resolution,
+        origin: Point2::new(yaml.origin[0], yaml.origin[1]),
+        negate: yaml.negate != 0,
+        occupied_thresh: yaml.occupied_thresh,
+        free_thresh: yaml.free_thresh,
+        mode: match mode {
+            Mode::Trinary => "trinary",
+            Mode::Scale => "scale",
+            Mode::Raw => "raw",
+        },
+        image,
+    })
+}
+
+/// The YAML parsed and checked, and the image it names decoded.
+fn read_pair(
+    text: &str,
+    path: &Path,
+    read_image: &mut dyn FnMut(&Path) -> Result<Vec<u8>, MapFileError>,
+) -> Result<(MapYaml, Mode, pgm::Pgm), MapFileError> {
     if let Some(depth) = too_deep(text) {
         return Err(MapFileError::Yaml {
             path: path.to_path_buf(),
@@ -266,6 +301,18 @@ pub fn decode(
         path: image_path.clone(),
         error: source,
     })?;
+    Ok((yaml, mode, image))
+}
+
+/// Reads a map from its YAML `text` (named `path` in errors), fetching the image it names
+/// through `read_image`: the whole reader without the file system, as the fuzz target
+/// drives it.
+pub fn decode(
+    text: &str,
+    path: &Path,
+    read_image: &mut dyn FnMut(&Path) -> Result<Vec<u8>, MapFileError>,
+) -> Result<MapFile, MapFileError> {
+    let (yaml, mode, image) = read_pair(text, path, read_image)?;
     let origin = Point2::new(yaml.origin[0], yaml.origin[1]);
     let (w, h) = (image.width, image.height);
     let mut grid = OccupancyGrid::new(w, h, yaml.resolution, origin, UNKNOWN);

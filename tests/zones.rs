@@ -294,6 +294,39 @@ fn teleop_and_race_keep_to_a_speed_zone_and_stop_at_a_keepout_edge() {
     }
 }
 
+#[test]
+fn the_mission_explores_round_a_keepout_zone_without_entering_it() {
+    let (mut robot, zones) = facing_goal(3, |start, goal| {
+        vec![Zone::keepout(square(lerp(start, goal, 0.5), 0.6))]
+    });
+    let keepout = zones[0].rect;
+    robot.tick(PERIOD, vec![Intent::Mode(Mode::Exploration)]);
+    let mut t = PERIOD;
+    let mut nearest = f64::MAX;
+    while t < 240.0 {
+        t += PERIOD;
+        robot.tick(t, Vec::new());
+        let p = robot.link().ground_truth().expect("twin").pose().position();
+        assert!(
+            !keepout.contains(p),
+            "at {t:.1} s the robot is inside the keepout"
+        );
+        nearest = nearest.min(keepout.distance(p));
+        if let Some(route) = robot.pilot().route() {
+            let mut points = route.plan.trajectory.points.iter();
+            assert!(
+                points.all(|q| !keepout.contains(q.position)),
+                "a leg through it"
+            );
+        }
+    }
+    assert!(
+        nearest < 1.0,
+        "the mission came near the zone ({nearest:.2} m)"
+    );
+    assert_eq!(robot.link().ground_truth().expect("twin").collisions(), 0);
+}
+
 /// 50 generated worlds (styles from the seed), a keepout across the straight line to a
 /// goal and a speed zone near it; prints what was planned and driven inside them.
 #[test]

@@ -332,4 +332,39 @@ mod tests {
         assert!(zones.in_keepout(Point2::new(5.5, 5.5)));
         assert!(!zones.in_keepout(Point2::new(4.9, 5.5)));
     }
+
+    #[test]
+    fn the_planner_goes_round_a_keepout_zone_and_never_into_one() {
+        use crate::map::belief::BeliefMap;
+        use crate::map::config::MapConfig;
+        use crate::plan::config::PlanConfig;
+        use crate::plan::pipeline::Planner;
+        let mut belief = BeliefMap::new(&MapConfig::default(), (4.0, 4.0));
+        let keepout = rect(-0.3, -1.0, 0.3, 1.0);
+        belief.set_keepout(1, &[keepout]);
+        assert_eq!(belief.keepout_tag(), 1);
+        let (start, goal) = (Point2::new(-1.5, 0.0), Point2::new(1.5, 0.0));
+        let config = PlanConfig::default();
+        let plan = Planner::default()
+            .plan(belief.costmap(), start, goal, &config)
+            .expect("a way round the zone");
+        // Every pose clears the zone by the lethal radius (0.15 m), less a cell.
+        for p in &plan.trajectory.points {
+            assert!(keepout.distance(p.position) >= 0.14, "{:?}", p.position);
+        }
+        assert!(
+            plan.length > 3.0 + 0.5,
+            "it went round: {:.2} m",
+            plan.length
+        );
+        // A goal inside the zone has no path; the zone cleared, the straight line is back.
+        let inside =
+            Planner::default().plan(belief.costmap(), start, Point2::new(0.0, 0.5), &config);
+        assert!(inside.is_err());
+        belief.set_keepout(2, &[]);
+        let straight = Planner::default()
+            .plan(belief.costmap(), start, goal, &config)
+            .unwrap();
+        assert!(straight.length < 3.05, "{:.2} m", straight.length);
+    }
 }

@@ -8,7 +8,7 @@
 use super::raster::{Frame, paint, rectangles};
 use super::{Rect, SpeedLimit, Zone, ZoneError, ZoneKind, ZoneList};
 use crate::map::grid::OccupancyGrid;
-use crate::map::io::{MapFileError, RawMap, decode_raw, io_reason};
+use crate::map::io::{MapFileError, Mode, RawMap, decode_raw, io_reason};
 use crate::map::pgm;
 use std::path::{Path, PathBuf};
 
@@ -233,7 +233,7 @@ pub fn mask_values(raw: &RawMap) -> OccupancyGrid {
         let shade = f64::from(pixel) / max;
         let occ = if raw.negate { shade } else { 1.0 - shade };
         let value = match raw.mode {
-            "raw" => {
+            Mode::Raw => {
                 let v = (shade * 255.0).round();
                 if (0.0..=100.0).contains(&v) {
                     v as i8
@@ -243,8 +243,8 @@ pub fn mask_values(raw: &RawMap) -> OccupancyGrid {
             }
             _ if occ > occ_t => 100,
             _ if occ < free_t => 0,
-            "scale" => ((occ - free_t) / (occ_t - free_t) * 100.0).round() as i8,
-            _ => -1,
+            Mode::Scale => ((occ - free_t) / (occ_t - free_t) * 100.0).round() as i8,
+            Mode::Trinary => -1,
         };
         grid.set(k % w, h - 1 - k / w, value);
     }

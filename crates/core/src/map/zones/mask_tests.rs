@@ -135,8 +135,9 @@ fn nav2_scale_values_follow_map_server() {
         negate: false,
         occupied_thresh: 1.0,
         free_thresh: 0.0,
-        mode: "scale",
+        mode: crate::map::io::Mode::Scale,
         image,
+        extras: None,
     };
     assert_eq!(mask_values(&raw).cells, grid.cells);
 }

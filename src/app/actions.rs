@@ -104,6 +104,7 @@ impl App {
             }
             Handler::PoseEstimate => self.pose_estimate_key(),
             Handler::AddWaypoint => self.add_waypoint(None),
+            Handler::ZoneCorner(speed) => self.zone_corner(speed),
             Handler::CommandLine => self.prompt.open(""),
             Handler::SaveMap => {
                 self.save_map(saving::SAVE_KEY_NAME);
@@ -158,6 +159,7 @@ impl App {
             Typed::Fault(spec) => self.inject_fault(&spec),
             Typed::ClearFaults => self.clear_faults(),
             Typed::ShowFaults => self.show_faults(),
+            Typed::Zone(z) => self.apply_zone(z),
         }
     }
 

@@ -57,6 +57,8 @@ pub enum Typed {
     ClearFaults,
     /// `fault` alone: list the faults in force and those to come.
     ShowFaults,
+    /// `zone …`: keepout and speed zones (app/zones.rs).
+    Zone(super::zones::ZoneTyped),
 }
 
 /// Everything that changes the console's state, through one door (`App::apply`): a key's
@@ -79,7 +81,7 @@ impl From<Typed> for Intent {
     }
 }
 
-pub const USAGE: &str = "goto X Y [THETA_DEG] | goto marker ID | goto+ X Y [THETA_DEG] | waypoint add [X Y [THETA_DEG]] | route start|pause|skip|clear|loop N|save NAME|load NAME | controller [pid|pure_pursuit|hybrid] | clear | save [NAME] | mission restart | pose X Y THETA_DEG | relocalize | localise | fault KIND[@START][+DURATION][:PARAM]|clear | quit";
+pub const USAGE: &str = "goto X Y [THETA_DEG] | goto marker ID | goto+ X Y [THETA_DEG] | waypoint add [X Y [THETA_DEG]] | route start|pause|skip|clear|loop N|save NAME|load NAME | controller [pid|pure_pursuit|hybrid] | clear | save [NAME] | mission restart | pose X Y THETA_DEG | relocalize | localise | fault KIND[@START][+DURATION][:PARAM]|clear | zone keepout|speed|list|delete|clear|load … | quit";
 
 /// A waypoint from `X Y [THETA_DEG]` words; `what` names the command in errors.
 fn waypoint(what: &str, words: &[&str]) -> Result<Waypoint, String> {
@@ -167,6 +169,7 @@ pub fn parse(line: &str) -> Result<Intent, String> {
             Err("waypoint wants `add` (at the cursor) or `add X Y [THETA_DEG]`".to_string())
         }
         ["route", rest @ ..] => route(rest),
+        ["zone" | "zones", rest @ ..] => super::zones::parse(rest).map(Intent::Typed),
         ["controller"] => Ok(Typed::WhichController.into()),
         ["controller", name] => name
             .parse()

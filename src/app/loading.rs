@@ -168,6 +168,7 @@ impl App {
             map,
             source: entry.path.display().to_string(),
         });
+        self.load_zones_beside(&entry.path);
     }
 
     /// Whether `map` may be loaded at once: true when nothing speaks against it, else it

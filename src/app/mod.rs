@@ -19,6 +19,7 @@ mod recording;
 mod revision;
 mod route_file;
 mod saving;
+pub mod zones;
 pub use saving::save_map_files;
 pub mod screen;
 mod table;
@@ -81,6 +82,8 @@ pub struct App {
     camera: camera_feed::CameraFeed,
     /// `:localise`: the move that tells MCL's hypotheses apart, while it drives.
     localising: Option<LocalisingMove>,
+    /// A keepout or speed zone being drawn with the cursor.
+    zone_drawing: zones::Drawing,
 }
 
 impl App {
@@ -100,6 +103,7 @@ impl App {
             world_grid,
             cursor: None,
             pose_anchor: None,
+            zone_drawing: zones::Drawing::default(),
             prompt: prompt::Prompt::default(),
             files: saving::Files::new(now),
             picker: loading::Picker::default(),

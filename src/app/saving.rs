@@ -191,7 +191,13 @@ pub fn save_map_files(
         (file, s.slam.save().to_json().into_bytes())
     });
     let graph_file = graph.as_ref().map(|(file, _)| file.clone());
-    io::save_beside(path, &map, graph.into_iter().collect()).map_err(|e| e.to_string())?;
+    let (masks, zones) = zone_masks(path, pilot, &map.grid);
+    let beside = graph.into_iter().chain(masks).collect();
+    io::save_beside(path, &map, beside).map_err(|e| e.to_string())?;
+    let zones = match zones {
+        0 => String::new(),
+        n => format!(", {n} zones as Nav2 filter masks beside it"),
+    };
     Ok(match (graph_file, pilot.lidar_slam()) {
         (Some(file), Some(s)) => format!(
             "map saved to {} ({count} landmarks) and its pose graph to {} ({} keyframes, {} loops)",
@@ -200,8 +206,37 @@ pub fn save_map_files(
             s.slam.graph().poses.len(),
             s.slam.loops()
         ),
-        _ => format!("map saved to {} ({count} landmarks)", path.display()),
+        _ => format!("map saved to {} ({count} landmarks){zones}", path.display()),
     })
+}
+
+/// The Nav2 filter masks of the pilot's zones beside the map `path` (keepout, speed), on
+/// the map's grid grown to hold them, and how many zones they hold. A kind with no zones
+/// is written (empty) only over masks already there, so a cleared zone stays cleared.
+fn zone_masks(
+    path: &Path,
+    pilot: &Pilot,
+    grid: &crate::map::grid::OccupancyGrid,
+) -> (Vec<(PathBuf, Vec<u8>)>, usize) {
+    use crate::map::zones::{mask, raster::Frame};
+    let zones = pilot.zones();
+    let max_speed = pilot.settings().robot.max_linear;
+    let mut files = Vec::new();
+    for kind in mask::MaskKind::ALL {
+        let has = zones.zones().iter().any(|z| {
+            matches!(
+                (kind, z.kind),
+                (
+                    mask::MaskKind::Keepout,
+                    crate::map::zones::ZoneKind::Keepout
+                ) | (mask::MaskKind::Speed, crate::map::zones::ZoneKind::Speed(_))
+            )
+        });
+        if has || mask::paths(path, kind).2.is_file() {
+            files.extend(mask::encode(zones, kind, path, Frame::of(grid), max_speed));
+        }
+    }
+    (files, zones.len())
 }
 
 /// Blocks and gates as the landmarks show them (seed 001's marker pairs).

@@ -52,6 +52,8 @@ pub enum Handler {
     PoseEstimate,
     /// Queue the goal cursor as a waypoint.
     AddWaypoint,
+    /// A corner of a keepout (false) or speed (true) zone at the cursor.
+    ZoneCorner(bool),
     CommandLine,
     SaveMap,
     /// Nothing at all.
@@ -182,6 +184,9 @@ actions! {
     PoseEstimate: "pose_estimate", "set the pose at the cursor" => Console(PoseEstimate);
     /// Nav2's waypoint mode: the cursor joins the route (`:route start` drives it).
     AddWaypoint: "add_waypoint", "cursor as the next waypoint" => Console(AddWaypoint);
+    /// RViz-style drawing: a corner at the cursor, the same key again at the opposite one.
+    ZoneKeepout: "zone_keepout", "keepout zone corner at cursor" => Console(ZoneCorner(false));
+    ZoneSpeed: "zone_speed", "speed zone corner at cursor" => Console(ZoneCorner(true));
     CommandLine: "command_line", "command (:goto x y …)" => Console(CommandLine);
     ClearRoute: "clear_route", "forget the planned path" => Pilot(Intent::ClearRoute);
     NextController: "next_controller", "next path controller" => Pilot(Intent::NextController);

@@ -372,6 +372,8 @@ impl Session {
         let mut app = App::new(self.config, self.keymap, self.robot.into_link(), now);
         if let Some(localizer) = &self.localizer {
             app.localize(localizer);
+            // The map's keepout and speed zones, when Nav2 filter masks lie beside it.
+            app.load_zones_beside(std::path::Path::new(&localizer.source));
         }
         app
     }

@@ -63,7 +63,10 @@ impl Pilot {
 
     /// Decides the command for `t`.
     pub(super) fn act(&mut self, t: f64) -> Command {
+        self.sync_keepout();
         let twist = self.decide(t);
+        // The zones' speed limit caps whichever behaviour's command won.
+        let twist = self.zone_speed_cap(twist);
         self.measuring.commanded = twist;
         Command {
             twist,

@@ -57,6 +57,8 @@ pub enum Intent {
     ArmPose(super::arm::ArmPose),
     /// The waypoint route: add, start, pause, skip, loop, clear, load.
     Route(super::waypoints::RouteAsk),
+    /// Keepout and speed zones: add, delete, clear, or take a map's.
+    Zones(super::zones::ZoneAsk),
     /// Switch a behaviour on, or off for a while (None: until switched on).
     Behaviour {
         behaviour: super::behaviours::Behaviour,
@@ -188,6 +190,10 @@ impl Pilot {
                 true
             }
             Intent::Route(ask) => self.ask_route(ask),
+            Intent::Zones(ask) => {
+                self.ask_zones(ask);
+                false
+            }
         }
     }
 

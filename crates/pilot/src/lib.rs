@@ -27,6 +27,7 @@ mod step;
 pub mod teleop;
 mod trail;
 pub mod waypoints;
+pub mod zones;
 
 use config::Settings;
 use mode::Mode;

@@ -73,6 +73,7 @@ pub fn render(app: &App, theme: Theme, area: Rect, buf: &mut Buffer) {
     {
         draw_robot(truth, 'o', &vp, theme.truth(), buf);
     }
+    super::filter_zones::render(app, &vp, theme, buf);
     super::sensing::footprint(app, &vp, theme, buf);
     super::zones::render(app, &vp, theme, buf);
     draw_robot(app.pilot().estimated_pose(), '@', &vp, theme.robot(), buf);

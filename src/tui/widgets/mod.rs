@@ -4,6 +4,7 @@ pub mod arm_view;
 pub mod beliefs;
 pub mod camera;
 pub mod explore;
+pub mod filter_zones;
 pub mod graph;
 pub mod help;
 pub mod landmarks;

@@ -26,6 +26,9 @@ pub struct BeliefMap {
     revision: u64,
     recomputed: u64,
     touched: Vec<usize>,
+    /// The keepout zones' layer (`zones::raster::keepout_costs`) and which zones it shows.
+    keepout_cost: Vec<u8>,
+    keepout_tag: u64,
 }
 
 impl BeliefMap {
@@ -55,6 +58,8 @@ impl BeliefMap {
             revision: 0,
             recomputed: 0,
             touched: Vec::new(),
+            keepout_cost: vec![0; w * h],
+            keepout_tag: 0,
             config: config.clone(),
         }
     }
@@ -78,6 +83,31 @@ impl BeliefMap {
     /// one's, so that whoever drew or planned on the old map sees a change.
     pub fn succeed(&mut self, previous: &BeliefMap) {
         self.revision = previous.revision + 1;
+    }
+
+    /// Lays the keepout zones `rects` over the map as obstacles (lethal within the lethal
+    /// radius, inflated within the inflation), remembered as `tag`.
+    pub fn set_keepout(&mut self, tag: u64, rects: &[super::zones::Rect]) {
+        let cost = super::zones::raster::keepout_costs(
+            &self.costmap,
+            rects,
+            self.config.lethal_radius,
+            self.config.obstacle_inflation,
+        );
+        let old = std::mem::replace(&mut self.keepout_cost, cost);
+        self.keepout_tag = tag;
+        let changed: Vec<usize> = (old.iter().zip(&self.keepout_cost).enumerate())
+            .filter(|(_, (a, b))| a != b)
+            .map(|(i, _)| i)
+            .collect();
+        for i in changed {
+            self.refresh(i);
+        }
+    }
+
+    /// Which zones the keepout layer shows (0: none were ever laid).
+    pub fn keepout_tag(&self) -> u64 {
+        self.keepout_tag
     }
 
     /// Cells recomputed so far: the work the incremental updates did.
@@ -391,7 +421,7 @@ impl BeliefMap {
         } else {
             0
         };
-        let mut cost = self.landmark_cost[i].max(sensed);
+        let mut cost = self.landmark_cost[i].max(sensed).max(self.keepout_cost[i]);
         if cost == 0 && !e.known(i) {
             cost = NO_INFORMATION;
         }

@@ -234,14 +234,27 @@ pub fn summary(path: &Path) -> Result<(f64, f64, usize, String), MapFileError> {
     ))
 }
 
-/// Reads a map from its YAML `text` (named `path` in errors), fetching the image it names
-/// through `read_image`: the whole reader without the file system, as the fuzz target
-/// drives it.
-pub fn decode(
+/// A map_server pair as read, checked, before its pixels become cells: a Nav2 filter
+/// mask turns them into values its own way.
+#[derive(Clone, Debug)]
+pub struct RawMap {
+    pub resolution: f64,
+    pub origin: Point2,
+    pub negate: bool,
+    pub occupied_thresh: f64,
+    pub free_thresh: f64,
+    pub mode: Mode,
+    pub image: pgm::Pgm,
+    pub extras: Option<Extras>,
+}
+
+/// Reads a map_server YAML `text` (named `path` in errors) and the image it names, as
+/// `decode` does, without turning pixels into cells.
+pub fn decode_raw(
     text: &str,
     path: &Path,
     read_image: &mut dyn FnMut(&Path) -> Result<Vec<u8>, MapFileError>,
-) -> Result<MapFile, MapFileError> {
+) -> Result<RawMap, MapFileError> {
     if let Some(depth) = too_deep(text) {
         return Err(MapFileError::Yaml {
             path: path.to_path_buf(),
@@ -266,25 +279,46 @@ pub fn decode(
         path: image_path.clone(),
         error: source,
     })?;
-    let origin = Point2::new(yaml.origin[0], yaml.origin[1]);
+    Ok(RawMap {
+        resolution: yaml.resolution,
+        origin: Point2::new(yaml.origin[0], yaml.origin[1]),
+        negate: yaml.negate != 0,
+        occupied_thresh: yaml.occupied_thresh,
+        free_thresh: yaml.free_thresh,
+        mode,
+        image,
+        extras: yaml.navdeck,
+    })
+}
+
+/// Reads a map from its YAML `text` (named `path` in errors), fetching the image it names
+/// through `read_image`: the whole reader without the file system, as the fuzz target
+/// drives it.
+pub fn decode(
+    text: &str,
+    path: &Path,
+    read_image: &mut dyn FnMut(&Path) -> Result<Vec<u8>, MapFileError>,
+) -> Result<MapFile, MapFileError> {
+    let raw = decode_raw(text, path, read_image)?;
+    let (image, mode) = (&raw.image, raw.mode);
     let (w, h) = (image.width, image.height);
-    let mut grid = OccupancyGrid::new(w, h, yaml.resolution, origin, UNKNOWN);
+    let mut grid = OccupancyGrid::new(w, h, raw.resolution, raw.origin, UNKNOWN);
     let max = f64::from(image.maxval);
     for (k, &pixel) in image.pixels.iter().enumerate() {
         let p = f64::from(pixel) / max;
         // map_server: occupancy = (255 - p) / 255, or p / 255 when negated.
-        let occupancy = if yaml.negate == 0 { 1.0 - p } else { p };
+        let occupancy = if raw.negate { p } else { 1.0 - p };
         let value = match mode {
             Mode::Raw => i8::try_from(pixel)
                 .ok()
                 .filter(|v| *v <= OCCUPIED)
                 .unwrap_or(UNKNOWN),
-            _ if occupancy > yaml.occupied_thresh => OCCUPIED,
-            _ if occupancy < yaml.free_thresh => FREE,
+            _ if occupancy > raw.occupied_thresh => OCCUPIED,
+            _ if occupancy < raw.free_thresh => FREE,
             Mode::Trinary => UNKNOWN,
             // map_server scale: 1..99 between the thresholds.
             Mode::Scale => {
-                let t = (occupancy - yaml.free_thresh) / (yaml.occupied_thresh - yaml.free_thresh);
+                let t = (occupancy - raw.free_thresh) / (raw.occupied_thresh - raw.free_thresh);
                 (1.0 + 98.0 * t).round() as i8
             }
         };
@@ -292,7 +326,7 @@ pub fn decode(
         grid.set(k % w, h - 1 - k / w, value);
     }
     // What the file says of itself reaches the terminal: made printable.
-    let extras = yaml.navdeck.map(|mut e| {
+    let extras = raw.extras.map(|mut e| {
         e.created = crate::data::printable::printable(&e.created, Some(64));
         e
     });
@@ -330,8 +364,9 @@ fn too_deep(text: &str) -> Option<usize> {
     (indent / 2 > MAX_NESTING).then_some(indent / 2)
 }
 
+/// map_server's `mode`.
 #[derive(Clone, Copy, Debug, PartialEq)]
-enum Mode {
+pub enum Mode {
     Trinary,
     Scale,
     Raw,

@@ -14,3 +14,4 @@ pub mod pgm;
 pub mod reach;
 pub mod stamp;
 pub mod truth;
+pub mod zones;

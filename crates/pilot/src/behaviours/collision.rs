@@ -112,6 +112,8 @@ impl Pilot {
             }
             _ => (self.map_points(), Some(0.0), SourceKind::Map),
         };
+        // Keepout zones' edges are obstacles too (zones.rs).
+        points.extend(self.keepout_points(MAP_RADIUS_M));
         if handling {
             let block = self.picked_block_here();
             let held = self.hand.state == Some(GripperState::Holding);

@@ -104,6 +104,8 @@ pub(super) struct Navigation {
     pub cross_track: Rms,
     /// The queued waypoints (Nav2's waypoint following) and the progress along them.
     pub waypoints: super::waypoints::Waypoints,
+    /// The keepout and speed zones.
+    pub zones: super::zones::Zones,
 }
 
 /// What a failed plan does to the path there was before it.
@@ -151,6 +153,15 @@ impl Pilot {
                 }
             },
         };
+        if let Some(n) = self.keepout_holding(goal) {
+            self.log(
+                Level::Error,
+                format!("no path to {label}: it is inside keepout zone {n}"),
+            );
+            self.refuse(&label, on_failure);
+            return false;
+        }
+        self.sync_keepout();
         let map = escape_map(
             self.belief.costmap(),
             start,

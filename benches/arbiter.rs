@@ -1,6 +1,6 @@
 //! The arbiter's overhead per control step (seed 000 §5.3's priority pick): the pick among
 //! a task's proposal and the collision monitor's, as the pilot makes it every 0.1 s, and
-//! the pick among all ten behaviours at once with a change of winner each time (the
+//! the pick among every behaviour at once with a change of winner each time (the
 //! transition recorded in the 100-long history).
 
 use criterion::{Criterion, criterion_group, criterion_main};

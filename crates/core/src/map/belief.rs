@@ -15,6 +15,8 @@ use crate::geometry::{Point2, Pose2};
 /// inside the lethal radius's margin for landmark uncertainty.
 const LANDMARK_MOVE: f64 = 0.02;
 
+mod keepout;
+
 /// What the robot believes about the space around it, as a costmap for the planner.
 #[derive(Clone, Debug)]
 pub struct BeliefMap {
@@ -83,31 +85,6 @@ impl BeliefMap {
     /// one's, so that whoever drew or planned on the old map sees a change.
     pub fn succeed(&mut self, previous: &BeliefMap) {
         self.revision = previous.revision + 1;
-    }
-
-    /// Lays the keepout zones `rects` over the map as obstacles (lethal within the lethal
-    /// radius, inflated within the inflation), remembered as `tag`.
-    pub fn set_keepout(&mut self, tag: u64, rects: &[super::zones::Rect]) {
-        let cost = super::zones::raster::keepout_costs(
-            &self.costmap,
-            rects,
-            self.config.lethal_radius,
-            self.config.obstacle_inflation,
-        );
-        let old = std::mem::replace(&mut self.keepout_cost, cost);
-        self.keepout_tag = tag;
-        let changed: Vec<usize> = (old.iter().zip(&self.keepout_cost).enumerate())
-            .filter(|(_, (a, b))| a != b)
-            .map(|(i, _)| i)
-            .collect();
-        for i in changed {
-            self.refresh(i);
-        }
-    }
-
-    /// Which zones the keepout layer shows (0: none were ever laid).
-    pub fn keepout_tag(&self) -> u64 {
-        self.keepout_tag
     }
 
     /// Cells recomputed so far: the work the incremental updates did.

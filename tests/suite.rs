@@ -10,6 +10,7 @@
 mod common {
     pub mod app_with;
     pub mod binary;
+    pub mod clear_round;
     pub mod console_command;
     pub mod default_app;
     pub mod hold;
@@ -27,9 +28,9 @@ mod common {
     pub mod switched_link;
     pub mod until;
     pub use {
-        app_with::*, binary::*, console_command::*, default_app::*, hold::*, key::*, logged::*,
-        press::*, recording::*, render::*, render_at::*, replay_played::*, run_loop::*, scratch::*,
-        screen::*, script::*, switched_link::*, until::*,
+        app_with::*, binary::*, clear_round::*, console_command::*, default_app::*, hold::*,
+        key::*, logged::*, press::*, recording::*, render::*, render_at::*, replay_played::*,
+        run_loop::*, scratch::*, screen::*, script::*, switched_link::*, until::*,
     };
 }
 #[path = "plan_support"]

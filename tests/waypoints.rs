@@ -92,18 +92,7 @@ fn generated_route() -> (App, Vec<Point2>) {
     let grid = app.world_grid().expect("the twin's walls").clone();
     let (_, (w, h)) = app.world_extent();
     let clear = |p: Point2, r: f64| {
-        let mut k = 0.0;
-        while k <= r {
-            for a in 0..16 {
-                let angle = f64::from(a) * std::f64::consts::TAU / 16.0;
-                let q = Point2::new(p.x + k * angle.cos(), p.y + k * angle.sin());
-                if q.x.abs() > w / 2.0 - 0.1 || q.y.abs() > h / 2.0 - 0.1 || grid.at(q) > 50 {
-                    return false;
-                }
-            }
-            k += 0.05;
-        }
-        blocks.iter().all(|b| b.distance(p) > 0.5)
+        common::clear_round(&grid, (w, h), p, r) && blocks.iter().all(|b| b.distance(p) > 0.5)
     };
     let line_clear = |a: Point2, b: Point2| {
         let n = (a.distance(b) / 0.05).ceil() as usize;

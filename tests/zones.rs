@@ -4,7 +4,7 @@
 //! under its limit. The zones' Nav2 filter masks read back through an independent reader
 //! (tests/interop/nav2_mask_check.py).
 
-use crate::common::scratch;
+use crate::common::{self, scratch};
 use crate::python_support;
 use navdeck::config::Config;
 use navdeck::geometry::Point2;
@@ -65,18 +65,7 @@ fn goal_for(world: &World) -> Option<Point2> {
     let blocks: Vec<Point2> = world.blocks.iter().map(|b| b.pose.position()).collect();
     let (w, h) = (world.width, world.height);
     let clear = |p: Point2, r: f64| {
-        let mut k = 0.0;
-        while k <= r {
-            for a in 0..16 {
-                let angle = f64::from(a) * std::f64::consts::TAU / 16.0;
-                let q = Point2::new(p.x + k * angle.cos(), p.y + k * angle.sin());
-                if q.x.abs() > w / 2.0 - 0.1 || q.y.abs() > h / 2.0 - 0.1 || grid.at(q) > 50 {
-                    return false;
-                }
-            }
-            k += 0.05;
-        }
-        blocks.iter().all(|b| b.distance(p) > 0.4)
+        common::clear_round(&grid, (w, h), p, r) && blocks.iter().all(|b| b.distance(p) > 0.4)
     };
     let start = world.start.position();
     let line_clear = |b: Point2| {

@@ -164,3 +164,95 @@ fn with_the_arm_lost_the_mission_explores_on_and_waits_for_it() {
     assert_eq!(r["degraded"][0]["sensor"], "arm");
     assert_eq!(r["degraded"][0]["recovered_s"], serde_json::Value::Null);
 }
+
+/// A robot that drives exactly as commanded and whose wheels go silent from `silent.0` to
+/// `silent.1`; the first travel after it spans the silence (wheels that counted on while
+/// their reports were lost) or starts at its end (counts lost with the reports).
+struct SilentWheels {
+    silent: (f64, f64),
+    spans: bool,
+    driven: f64,
+    speed: f64,
+    at: f64,
+    reported: f64,
+    reported_at: f64,
+}
+
+impl navdeck::pilot::Robot for SilentWheels {
+    fn poll(&mut self, t: f64) -> Result<navdeck::data::SensorFrame, String> {
+        self.driven += self.speed * (t - self.at);
+        self.at = t;
+        let mut frame = navdeck::data::SensorFrame {
+            stamp: t,
+            ..Default::default()
+        };
+        if t >= self.silent.0 && t < self.silent.1 {
+            return Ok(frame);
+        }
+        if !self.spans && self.reported_at < self.silent.1 && t >= self.silent.1 {
+            // The counts of the silence are gone: the travel starts at its end.
+            self.reported = self.driven;
+            self.reported_at = self.silent.1;
+        }
+        let d = self.driven - self.reported;
+        frame.wheels = Some(navdeck::data::WheelTravel { left: d, right: d });
+        frame.elapsed = t - self.reported_at;
+        (self.reported, self.reported_at) = (self.driven, t);
+        Ok(frame)
+    }
+    fn truth(&self) -> Option<Pose2> {
+        None
+    }
+    fn send(&mut self, command: &navdeck::data::Command) -> Result<(), String> {
+        self.speed = command.twist.linear;
+        Ok(())
+    }
+}
+
+/// Odometry lost mid-drive: the robot stops, what it drove blind is reckoned from the
+/// commands, and the estimate neither falls behind (counts lost with the reports) nor
+/// runs ahead (a later travel that spans the silence counts it again).
+#[test]
+fn what_the_robot_drove_blind_is_reckoned_once() {
+    use navdeck::pilot::teleop::DriveKey;
+    use navdeck::pilot::{Due, Input, Intent, Pilot};
+    for spans in [false, true] {
+        let settings = navdeck::config::Config::default().pilot_settings();
+        let mut pilot = Pilot::new(settings, Pose2::default(), (4.0, 4.0), 0.0);
+        let mut robot = SilentWheels {
+            silent: (2.0, 4.0),
+            spans,
+            driven: 0.0,
+            speed: 0.0,
+            at: 0.0,
+            reported: 0.0,
+            reported_at: 0.0,
+        };
+        let mut log = Vec::new();
+        for k in 1..=60 {
+            let t = f64::from(k) * 0.1;
+            let forward = Intent::KeyDown {
+                key: DriveKey::Forward,
+                repeat: k > 1,
+            };
+            pilot.step(Input::apply(t, forward), &mut robot);
+            log.extend(pilot.step(Input::due(t, Due::Tick), &mut robot).log);
+        }
+        let said = |what: &str| log.iter().any(|l| l.text.contains(what));
+        assert!(
+            said("m driven meanwhile, reckoned from the commands"),
+            "{log:?}"
+        );
+        assert!(said("odometry back after"), "{log:?}");
+        let blind = robot.driven - pilot.odometry_distance();
+        assert!(
+            blind.abs() < 0.01,
+            "spans {spans}: estimate off by {blind:.3} m"
+        );
+        assert!(
+            robot.driven > 0.4,
+            "it drove on after the silence: {}",
+            robot.driven
+        );
+    }
+}

@@ -16,7 +16,18 @@ pub(super) struct Measuring {
     pub measured: Twist,
     travel: WheelTravel,
     travel_time: f64,
+    /// The commands sent since the wheels last reported travel, and when: what the robot
+    /// was asked to drive while its odometry was silent.
+    pub unmeasured: Vec<(f64, Twist)>,
+    /// The travel reckoned from those commands when odometry was found lost, and from
+    /// when: a link whose first travel afterwards spans that time reports it again.
+    pub reckoned: Option<(f64, WheelTravel)>,
 }
+
+/// Commands remembered while the wheels are silent, at most: a minute at 10 Hz.
+const UNMEASURED_KEPT: usize = 600;
+/// A travel spans a silence when it covers all but this much of it, seconds.
+const SPAN_SLACK_S: f64 = 0.05;
 
 impl Pilot {
     /// Folds in what the robot reported up to `t`.
@@ -32,7 +43,16 @@ impl Pilot {
         if let Some(goal) = frame.goal {
             self.drive_to_goal(goal);
         }
-        if let Some(wheels) = frame.wheels {
+        if let Some(mut wheels) = frame.wheels {
+            self.measuring.unmeasured.clear();
+            if let Some((since, reckoned)) = self.measuring.reckoned.take()
+                && frame.elapsed >= t - since - SPAN_SLACK_S
+            {
+                // The wheels counted on through the silence (a ROS odometry whose messages
+                // were lost): the part reckoned is in this travel already.
+                wheels.left -= reckoned.left;
+                wheels.right -= reckoned.right;
+            }
             self.estimate_motion(wheels);
             self.measuring.travel.left += wheels.left;
             self.measuring.travel.right += wheels.right;
@@ -68,6 +88,11 @@ impl Pilot {
         // The zones' speed limit caps whichever behaviour's command won.
         let twist = self.zone_speed_cap(twist);
         self.measuring.commanded = twist;
+        let unmeasured = &mut self.measuring.unmeasured;
+        if unmeasured.len() == UNMEASURED_KEPT {
+            unmeasured.remove(0);
+        }
+        unmeasured.push((t, twist));
         Command {
             twist,
             gripper: self.hand.pending.take(),

@@ -16,7 +16,7 @@
 use super::{Behaviour, Proposal};
 use crate::Pilot;
 use crate::mode::Mode;
-use navdeck_core::data::{Level, SensorFrame};
+use navdeck_core::data::{Level, SensorFrame, WheelTravel};
 use navdeck_core::geometry::Twist;
 use navdeck_core::health::{Change, Sensor};
 
@@ -67,19 +67,51 @@ impl Pilot {
     pub(crate) fn check_sensor_health(&mut self, t: f64) {
         for change in self.behaviours.health.check(t) {
             if let Change::Lost { sensor, silent_for } = change {
+                let reckoned = match sensor {
+                    Sensor::Odometry => self.reckon_unmeasured(t),
+                    _ => 0.0,
+                };
                 let what = match sensor {
                     Sensor::Odometry => "no wheel travel",
                     Sensor::Lidar => "no scan",
                     Sensor::Camera => "no usable camera frame",
                     Sensor::Arm => "no joint states",
                 };
-                let text = format!(
+                let mut text = format!(
                     "{sensor} lost ({what} for {silent_for:.1} s): {}",
                     self.degradation(sensor)
                 );
+                if reckoned > 0.0 {
+                    text +=
+                        &format!(" ({reckoned:.2} m driven meanwhile, reckoned from the commands)");
+                }
                 self.log_at(t, Level::Warn, text);
             }
         }
+    }
+
+    /// Odometry was just found lost at `t`: the robot drove on blind since the wheels
+    /// last reported. The commands sent meanwhile stand in for the travel they did not
+    /// report (a motion model on the commanded velocity, as an EKF runs without wheel
+    /// odometry), so that the estimate is not left behind; returns the metres reckoned.
+    fn reckon_unmeasured(&mut self, t: f64) -> f64 {
+        let commands = std::mem::take(&mut self.measuring.unmeasured);
+        let half_track = 0.5 * self.settings.robot.track;
+        let mut travel = WheelTravel::default();
+        let ends = commands.iter().skip(1).map(|c| c.0).chain([t]);
+        for (&(at, twist), until) in commands.iter().zip(ends) {
+            let dt = (until - at).max(0.0);
+            // Seed 001's differential drive: each wheel at v ∓ ω b / 2.
+            travel.left += (twist.linear - twist.angular * half_track) * dt;
+            travel.right += (twist.linear + twist.angular * half_track) * dt;
+        }
+        if let Some(&(since, _)) = commands.first()
+            && travel != WheelTravel::default()
+        {
+            self.estimate_motion(travel);
+            self.measuring.reckoned = Some((since, travel));
+        }
+        0.5 * (travel.left + travel.right).abs()
     }
 
     /// The link was lost: the sensors are judged afresh from the robot's next frame.

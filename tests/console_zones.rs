@@ -118,3 +118,15 @@ fn zones_are_saved_with_the_map_as_nav2_masks_and_load_back() {
     broken.load_zones_beside(&dir.join("lab.yaml"));
     assert!(logged(&broken, "lab.speed.pgm"), "the bad file is named");
 }
+
+/// Inside a speed zone the status panel says which limit holds the robot back.
+#[test]
+fn the_status_panel_names_the_speed_limit_being_kept() {
+    let mut app = default_app();
+    play(&mut app, "wwwww");
+    let before = render_at(&app, 100, 40);
+    assert!(!before.contains("speed limit"), "{before}");
+    play(&mut app, ":zone speed 0.05 -5 -5 5 5<enter>wwwww");
+    let screen = render_at(&app, 100, 40);
+    assert!(screen.contains("speed limit 0.05 m/s"), "{screen}");
+}

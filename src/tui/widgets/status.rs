@@ -96,6 +96,13 @@ fn rows(app: &App) -> Vec<Row> {
     rows.push(Row::new("Mode", app.pilot().mode().label(), Need::Must));
     rows.push(behaviour_row(app));
     rows.extend(health_row(app));
+    if let Some(limit) = app.pilot().zone_speed_limit() {
+        rows.push(Row::new(
+            "Zone",
+            format!("speed limit {limit:.2} m/s"),
+            Need::High,
+        ));
+    }
     rows.extend(navigation_rows(app));
     rows.push(Row::new("Link", format!("{} {link}", app.link().label()), Need::Must).wrapping(2));
     if let LinkStatus::Lost(reason) = app.pilot().link_status() {

@@ -185,7 +185,7 @@ actions! {
     /// Nav2's waypoint mode: the cursor joins the route (`:route start` drives it).
     AddWaypoint: "add_waypoint", "cursor as the next waypoint" => Console(AddWaypoint);
     /// RViz-style drawing: a corner at the cursor, the same key again at the opposite one.
-    ZoneKeepout: "zone_keepout", "keepout zone corner at cursor" => Console(ZoneCorner(false));
+    ZoneKeepout: "zone_keepout", "keepout corner at cursor" => Console(ZoneCorner(false));
     ZoneSpeed: "zone_speed", "speed zone corner at cursor" => Console(ZoneCorner(true));
     CommandLine: "command_line", "command (:goto x y …)" => Console(CommandLine);
     ClearRoute: "clear_route", "forget the planned path" => Pilot(Intent::ClearRoute);

@@ -183,8 +183,10 @@ impl FaultSpec {
         let Some(latest) = self.start_latest else {
             return self;
         };
-        // Each kind draws apart, so two faults of one run do not begin together.
-        let stream = seed ^ (0x5eed_fa17 + self.kind as u64);
+        // Each kind draws apart, so two faults of one run do not begin together; the seed
+        // is spread over every bit first (Fibonacci hashing's 2^64 / φ), so that seeds one
+        // apart do not trade draws between kinds.
+        let stream = seed.wrapping_mul(0x9e37_79b9_7f4a_7c15) ^ (0x5eed_fa17 + self.kind as u64);
         let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(stream);
         let start = self.start_s + rng.random::<f64>() * (latest - self.start_s);
         FaultSpec {

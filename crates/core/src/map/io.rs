@@ -2,8 +2,10 @@
 //! opens in RViz and Nav2 and a Nav2 map opens here. navdeck's own extras (landmarks, the
 //! robot's pose) ride in the same YAML under the `navdeck` key, which map_server ignores.
 
-use super::grid::{FREE, OCCUPIED, OccupancyGrid, UNKNOWN};
+use super::grid::OccupancyGrid;
 use super::pgm::{self, PgmError};
+use super::raw_map::Reading;
+use super::raw_map::{Mode, RawMap};
 use crate::geometry::Point2;
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
@@ -234,20 +236,6 @@ pub fn summary(path: &Path) -> Result<(f64, f64, usize, String), MapFileError> {
     ))
 }
 
-/// A map_server pair as read, checked, before its pixels become cells: a Nav2 filter
-/// mask turns them into values its own way.
-#[derive(Clone, Debug)]
-pub struct RawMap {
-    pub resolution: f64,
-    pub origin: Point2,
-    pub negate: bool,
-    pub occupied_thresh: f64,
-    pub free_thresh: f64,
-    pub mode: Mode,
-    pub image: pgm::Pgm,
-    pub extras: Option<Extras>,
-}
-
 /// Reads a map_server YAML `text` (named `path` in errors) and the image it names, as
 /// `decode` does, without turning pixels into cells.
 pub fn decode_raw(
@@ -300,31 +288,7 @@ pub fn decode(
     read_image: &mut dyn FnMut(&Path) -> Result<Vec<u8>, MapFileError>,
 ) -> Result<MapFile, MapFileError> {
     let raw = decode_raw(text, path, read_image)?;
-    let (image, mode) = (&raw.image, raw.mode);
-    let (w, h) = (image.width, image.height);
-    let mut grid = OccupancyGrid::new(w, h, raw.resolution, raw.origin, UNKNOWN);
-    let max = f64::from(image.maxval);
-    for (k, &pixel) in image.pixels.iter().enumerate() {
-        let p = f64::from(pixel) / max;
-        // map_server: occupancy = (255 - p) / 255, or p / 255 when negated.
-        let occupancy = if raw.negate { p } else { 1.0 - p };
-        let value = match mode {
-            Mode::Raw => i8::try_from(pixel)
-                .ok()
-                .filter(|v| *v <= OCCUPIED)
-                .unwrap_or(UNKNOWN),
-            _ if occupancy > raw.occupied_thresh => OCCUPIED,
-            _ if occupancy < raw.free_thresh => FREE,
-            Mode::Trinary => UNKNOWN,
-            // map_server scale: 1..99 between the thresholds.
-            Mode::Scale => {
-                let t = (occupancy - raw.free_thresh) / (raw.occupied_thresh - raw.free_thresh);
-                (1.0 + 98.0 * t).round() as i8
-            }
-        };
-        // Image rows run top to bottom; grid rows bottom to top.
-        grid.set(k % w, h - 1 - k / w, value);
-    }
+    let grid = raw.cells(Reading::Map);
     // What the file says of itself reaches the terminal: made printable.
     let extras = raw.extras.map(|mut e| {
         e.created = crate::data::printable::printable(&e.created, Some(64));
@@ -362,14 +326,6 @@ fn too_deep(text: &str) -> Option<usize> {
         .max()
         .unwrap_or(0);
     (indent / 2 > MAX_NESTING).then_some(indent / 2)
-}
-
-/// map_server's `mode`.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Mode {
-    Trinary,
-    Scale,
-    Raw,
 }
 
 /// The header's values in their bounds; `text` is the YAML, for the line of a bad field.

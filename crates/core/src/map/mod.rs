@@ -11,6 +11,7 @@ pub mod grid;
 pub mod io;
 pub mod landmark_layer;
 pub mod pgm;
+pub mod raw_map;
 pub mod reach;
 pub mod stamp;
 pub mod truth;

@@ -8,8 +8,9 @@
 use super::raster::{Frame, paint, rectangles};
 use super::{Rect, SpeedLimit, Zone, ZoneError, ZoneKind, ZoneList};
 use crate::map::grid::OccupancyGrid;
-use crate::map::io::{MapFileError, Mode, RawMap, decode_raw, io_reason};
+use crate::map::io::{MapFileError, decode_raw, io_reason};
 use crate::map::pgm;
+use crate::map::raw_map::{RawMap, Reading};
 use std::path::{Path, PathBuf};
 
 /// Nav2 CostmapFilterInfo `type`: keepout, speed in percent, speed in m/s.
@@ -223,32 +224,7 @@ fn pixels(grid: &OccupancyGrid, shade: impl Fn(i8) -> u8) -> Vec<u8> {
 
 /// A mask's cells as Nav2's map_server makes them: -1 unknown, 0..=100.
 pub fn mask_values(raw: &RawMap) -> OccupancyGrid {
-    let image = &raw.image;
-    let (w, h) = (image.width, image.height);
-    let mut grid = OccupancyGrid::new(w, h, raw.resolution, raw.origin, -1);
-    let max = f64::from(image.maxval);
-    let (occ_t, free_t) = (raw.occupied_thresh, raw.free_thresh);
-    for (k, &pixel) in image.pixels.iter().enumerate() {
-        // nav2_map_server map_io loadMapFromFile: shade in 0..1, occ = 1 - shade unless negated.
-        let shade = f64::from(pixel) / max;
-        let occ = if raw.negate { shade } else { 1.0 - shade };
-        let value = match raw.mode {
-            Mode::Raw => {
-                let v = (shade * 255.0).round();
-                if (0.0..=100.0).contains(&v) {
-                    v as i8
-                } else {
-                    -1
-                }
-            }
-            _ if occ > occ_t => 100,
-            _ if occ < free_t => 0,
-            Mode::Scale => ((occ - free_t) / (occ_t - free_t) * 100.0).round() as i8,
-            Mode::Trinary => -1,
-        };
-        grid.set(k % w, h - 1 - k / w, value);
-    }
-    grid
+    raw.cells(Reading::FilterMask)
 }
 
 /// The parameters a filter info file gives.

@@ -135,7 +135,7 @@ fn nav2_scale_values_follow_map_server() {
         negate: false,
         occupied_thresh: 1.0,
         free_thresh: 0.0,
-        mode: crate::map::io::Mode::Scale,
+        mode: crate::map::raw_map::Mode::Scale,
         image,
         extras: None,
     };

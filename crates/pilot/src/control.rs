@@ -18,7 +18,7 @@ pub(super) struct Measuring {
     travel_time: f64,
     /// The commands sent since the wheels last reported travel, and when: what the robot
     /// was asked to drive while its odometry was silent.
-    pub unmeasured: Vec<(f64, Twist)>,
+    pub unmeasured: std::collections::VecDeque<(f64, Twist)>,
     /// The travel reckoned from those commands when odometry was found lost, and from
     /// when: a link whose first travel afterwards spans that time reports it again.
     pub reckoned: Option<(f64, WheelTravel)>,
@@ -90,9 +90,9 @@ impl Pilot {
         self.measuring.commanded = twist;
         let unmeasured = &mut self.measuring.unmeasured;
         if unmeasured.len() == UNMEASURED_KEPT {
-            unmeasured.remove(0);
+            unmeasured.pop_front();
         }
-        unmeasured.push((t, twist));
+        unmeasured.push_back((t, twist));
         Command {
             twist,
             gripper: self.hand.pending.take(),

@@ -29,12 +29,7 @@ pub fn ramp(current: Twist, target: Twist, robot: &RobotConfig, h: f64) -> Twist
     )
 }
 
-/// Left and right wheel travel in metres for holding `twist` for `h` seconds: each wheel
-/// runs at v -/+ omega * track / 2 (inverse of seed 001 section 3's alpha = (r - l) / WIDTH).
-pub fn wheel_travel(twist: Twist, track: f64, h: f64) -> (f64, f64) {
-    let half = twist.angular * track / 2.0;
-    ((twist.linear - half) * h, (twist.linear + half) * h)
-}
+pub use crate::slam::odometry::wheel_travel;
 
 /// Pose after the wheels travel `l` and `r` metres, integrated exactly along the arc.
 ///

@@ -31,6 +31,13 @@ pub fn predict_pose(pose: Pose2, wheels: WheelTravel, track: f64) -> Pose2 {
     }
 }
 
+/// Left and right wheel travel in metres for holding `twist` for `h` seconds: each wheel
+/// runs at v -/+ omega * track / 2 (inverse of seed 001 section 3's alpha = (r - l) / WIDTH).
+pub fn wheel_travel(twist: Twist, track: f64, h: f64) -> (f64, f64) {
+    let half = twist.angular * track / 2.0;
+    ((twist.linear - half) * h, (twist.linear + half) * h)
+}
+
 /// The twist that produced `wheels` over `elapsed` seconds: v = (l + r) / 2dt, w = (r - l) / (track dt).
 pub fn twist_from_wheels(wheels: WheelTravel, track: f64, elapsed: f64) -> Twist {
     if elapsed <= 0.0 {

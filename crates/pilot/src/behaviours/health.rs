@@ -19,6 +19,7 @@ use crate::mode::Mode;
 use navdeck_core::data::{Level, SensorFrame, WheelTravel};
 use navdeck_core::geometry::Twist;
 use navdeck_core::health::{Change, Sensor};
+use navdeck_core::slam::odometry::wheel_travel;
 
 /// What sensor health does to the task this step.
 #[derive(Clone, Debug, PartialEq)]
@@ -96,16 +97,15 @@ impl Pilot {
     /// odometry), so that the estimate is not left behind; returns the metres reckoned.
     fn reckon_unmeasured(&mut self, t: f64) -> f64 {
         let commands = std::mem::take(&mut self.measuring.unmeasured);
-        let half_track = 0.5 * self.settings.robot.track;
+        let track = self.settings.robot.track;
         let mut travel = WheelTravel::default();
         let ends = commands.iter().skip(1).map(|c| c.0).chain([t]);
         for (&(at, twist), until) in commands.iter().zip(ends) {
-            let dt = (until - at).max(0.0);
-            // Seed 001's differential drive: each wheel at v ∓ ω b / 2.
-            travel.left += (twist.linear - twist.angular * half_track) * dt;
-            travel.right += (twist.linear + twist.angular * half_track) * dt;
+            let (left, right) = wheel_travel(twist, track, (until - at).max(0.0));
+            travel.left += left;
+            travel.right += right;
         }
-        if let Some(&(since, _)) = commands.first()
+        if let Some(&(since, _)) = commands.front()
             && travel != WheelTravel::default()
         {
             self.estimate_motion(travel);

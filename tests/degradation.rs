@@ -116,6 +116,36 @@ fn without_the_lidar_keys_drive_slowly_and_the_map_still_stops_the_robot_at_a_wa
     ));
 }
 
+/// A robot turning fast when its odometry goes quiet is stopped, and turns on while it
+/// brakes: that turn is reckoned from the command and the base's acceleration limit, so
+/// the heading the robot believes is the one it has (without it, 8° off here).
+#[test]
+fn the_turn_braked_through_after_odometry_is_lost_is_in_the_estimate() {
+    let mut app = default_app();
+    run_to(&mut app, 1.0);
+    let mut t = app.now();
+    let mut fault_at = None;
+    while t < 3.0 {
+        app.handle_key(Key::char('d'), KeyKind::Press, t);
+        t += 1.0 / 30.0;
+        app.update(t);
+        if fault_at.is_none() && t > 2.0 {
+            command(&mut app, "fault odom+10");
+            fault_at = Some(t);
+        }
+    }
+    assert!(logged(&app, "odometry lost (no wheel travel for"));
+    let turning = app.link().ground_truth().unwrap().velocity().angular.abs();
+    assert!(turning < 1e-9, "stopped, turning at {turning} rad/s");
+    let believed = app.pilot().pose().theta;
+    let off = (believed - truth(&app).theta)
+        .sin()
+        .asin()
+        .abs()
+        .to_degrees();
+    assert!(off < 2.0, "heading {off:.1}° off after the blind turn");
+}
+
 #[test]
 fn the_health_behaviour_can_be_switched_off_like_any_safety_behaviour() {
     let mut app = mission_to(40.0);
@@ -165,14 +195,15 @@ fn with_the_arm_lost_the_mission_explores_on_and_waits_for_it() {
     assert_eq!(r["degraded"][0]["recovered_s"], serde_json::Value::Null);
 }
 
-/// A robot that drives exactly as commanded and whose wheels go silent from `silent.0` to
-/// `silent.1`; the first travel after it spans the silence (wheels that counted on while
+/// A robot that drives as commanded, speeding up and braking at the default base's
+/// 1 m/s², and whose wheels go silent from `silent.0` to `silent.1`; the first travel after it spans the silence (wheels that counted on while
 /// their reports were lost) or starts at its end (counts lost with the reports).
 struct SilentWheels {
     silent: (f64, f64),
     spans: bool,
     driven: f64,
     speed: f64,
+    commanded: f64,
     at: f64,
     reported: f64,
     reported_at: f64,
@@ -180,8 +211,11 @@ struct SilentWheels {
 
 impl navdeck::pilot::Robot for SilentWheels {
     fn poll(&mut self, t: f64) -> Result<navdeck::data::SensorFrame, String> {
-        self.driven += self.speed * (t - self.at);
-        self.at = t;
+        // Linear speed changes at the acceleration limit: the mean speed gives the travel.
+        let h = t - self.at;
+        let speed = self.speed + (self.commanded - self.speed).clamp(-h, h);
+        self.driven += 0.5 * (self.speed + speed) * h;
+        (self.speed, self.at) = (speed, t);
         let mut frame = navdeck::data::SensorFrame {
             stamp: t,
             ..Default::default()
@@ -204,7 +238,7 @@ impl navdeck::pilot::Robot for SilentWheels {
         None
     }
     fn send(&mut self, command: &navdeck::data::Command) -> Result<(), String> {
-        self.speed = command.twist.linear;
+        self.commanded = command.twist.linear;
         Ok(())
     }
 }
@@ -224,6 +258,7 @@ fn what_the_robot_drove_blind_is_reckoned_once() {
             spans,
             driven: 0.0,
             speed: 0.0,
+            commanded: 0.0,
             at: 0.0,
             reported: 0.0,
             reported_at: 0.0,

@@ -2,6 +2,7 @@
 
 use super::Pilot;
 use crate::behaviours::camera_usable;
+use crate::reckoning::Reckoning;
 use navdeck_core::data::{Command, GripperState, Level, SensorFrame, WheelTravel};
 use navdeck_core::geometry::Twist;
 use navdeck_core::map::contact::JAWS;
@@ -19,9 +20,10 @@ pub(super) struct Measuring {
     /// The commands sent since the wheels last reported travel, and when: what the robot
     /// was asked to drive while its odometry was silent.
     pub unmeasured: std::collections::VecDeque<(f64, Twist)>,
-    /// The travel reckoned from those commands when odometry was found lost, and from
-    /// when: a link whose first travel afterwards spans that time reports it again.
-    pub reckoned: Option<(f64, WheelTravel)>,
+    /// The motion reckoned from those commands once odometry was found lost, on until
+    /// the wheels report again: a link whose first travel then spans the silence reports
+    /// it again.
+    pub reckoning: Option<Reckoning>,
 }
 
 /// Commands remembered while the wheels are silent, at most: a minute at 10 Hz.
@@ -45,13 +47,13 @@ impl Pilot {
         }
         if let Some(mut wheels) = frame.wheels {
             self.measuring.unmeasured.clear();
-            if let Some((since, reckoned)) = self.measuring.reckoned.take()
-                && frame.elapsed >= t - since - SPAN_SLACK_S
+            if let Some(reckoning) = self.measuring.reckoning.take()
+                && frame.elapsed >= t - reckoning.since - SPAN_SLACK_S
             {
                 // The wheels counted on through the silence (a ROS odometry whose messages
                 // were lost): the part reckoned is in this travel already.
-                wheels.left -= reckoned.left;
-                wheels.right -= reckoned.right;
+                wheels.left -= reckoning.travel.left;
+                wheels.right -= reckoning.travel.right;
             }
             self.estimate_motion(wheels);
             self.measuring.travel.left += wheels.left;
@@ -88,6 +90,7 @@ impl Pilot {
         // The zones' speed limit caps whichever behaviour's command won.
         let twist = self.zone_speed_cap(twist);
         self.measuring.commanded = twist;
+        self.reckon_on(t, twist);
         let unmeasured = &mut self.measuring.unmeasured;
         if unmeasured.len() == UNMEASURED_KEPT {
             unmeasured.pop_front();
@@ -97,6 +100,20 @@ impl Pilot {
             twist,
             gripper: self.hand.pending.take(),
             arm: self.arm_command(t),
+        }
+    }
+
+    /// While odometry is lost, the motion the command in force drove up to `t` goes into
+    /// the estimate, and `twist` is the command from now on.
+    fn reckon_on(&mut self, t: f64, twist: Twist) {
+        let robot = &self.settings.robot;
+        let Some(reckoning) = self.measuring.reckoning.as_mut() else {
+            return;
+        };
+        let stretch = reckoning.advance(t, robot);
+        reckoning.command(twist);
+        if stretch != WheelTravel::default() {
+            self.estimate_motion(stretch);
         }
     }
 

@@ -22,6 +22,7 @@ mod map_load;
 mod mapping;
 pub mod mode;
 pub mod navigation;
+mod reckoning;
 mod safety;
 mod step;
 pub mod teleop;

@@ -1,5 +1,6 @@
 //! `[robot]`: the robot's geometry and limits, which every layer reads.
 
+use crate::geometry::Twist;
 use serde::{Deserialize, Serialize};
 
 /// The differential-drive base (seed 001 "Robot Configuration").
@@ -38,6 +39,32 @@ impl Default for RobotConfig {
 }
 
 impl RobotConfig {
+    /// The requested twist clipped to the base's top speeds; NaN or infinite parts become 0.
+    pub fn clamp_twist(&self, cmd: Twist) -> Twist {
+        let clip = |v: f64, max: f64| {
+            if v.is_finite() {
+                v.clamp(-max, max)
+            } else {
+                0.0
+            }
+        };
+        Twist::new(
+            clip(cmd.linear, self.max_linear),
+            clip(cmd.angular, self.max_angular),
+        )
+    }
+
+    /// Moves the base's twist `current` toward `target` by at most `h` seconds' worth of
+    /// acceleration per axis.
+    pub fn ramp(&self, current: Twist, target: Twist, h: f64) -> Twist {
+        let toward =
+            |from: f64, to: f64, max_step: f64| from + (to - from).clamp(-max_step, max_step);
+        Twist::new(
+            toward(current.linear, target.linear, self.max_linear_accel * h),
+            toward(current.angular, target.angular, self.max_angular_accel * h),
+        )
+    }
+
     /// Checks what the parser cannot: every size, period and limit positive.
     pub fn validate(&self) -> Result<(), super::check::Invalid> {
         // Bounds: a small wheeled robot, from a 1 cm toy to a 2 m cart.

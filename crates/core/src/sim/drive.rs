@@ -1,33 +1,8 @@
-//! Differential-drive kinematics: speed and acceleration limits, wheel travel, and the
+//! Differential-drive kinematics: wheel travel and the
 //! exact pose update for one physics step.
 
-use crate::data::robot::RobotConfig;
-use crate::geometry::{Pose2, Twist};
+use crate::geometry::Pose2;
 use std::f64::consts::PI;
-
-/// The requested twist clipped to the base's top speeds; NaN or infinite parts become 0.
-pub fn clamp_twist(cmd: Twist, robot: &RobotConfig) -> Twist {
-    let clip = |v: f64, max: f64| {
-        if v.is_finite() {
-            v.clamp(-max, max)
-        } else {
-            0.0
-        }
-    };
-    Twist::new(
-        clip(cmd.linear, robot.max_linear),
-        clip(cmd.angular, robot.max_angular),
-    )
-}
-
-/// Moves `current` toward `target` by at most one step's worth of acceleration per axis.
-pub fn ramp(current: Twist, target: Twist, robot: &RobotConfig, h: f64) -> Twist {
-    let toward = |from: f64, to: f64, max_step: f64| from + (to - from).clamp(-max_step, max_step);
-    Twist::new(
-        toward(current.linear, target.linear, robot.max_linear_accel * h),
-        toward(current.angular, target.angular, robot.max_angular_accel * h),
-    )
-}
 
 pub use crate::slam::odometry::wheel_travel;
 
@@ -57,6 +32,8 @@ pub fn integrate(pose: Pose2, l: f64, r: f64, track: f64) -> Pose2 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::data::robot::RobotConfig;
+    use crate::geometry::Twist;
 
     #[test]
     fn straight_travel_moves_along_heading() {
@@ -94,9 +71,9 @@ mod tests {
     #[test]
     fn limits_clip_speed_and_ramp_acceleration() {
         let robot = RobotConfig::default();
-        let c = clamp_twist(Twist::new(5.0, f64::NAN), &robot);
+        let c = robot.clamp_twist(Twist::new(5.0, f64::NAN));
         assert_eq!(c, Twist::new(robot.max_linear, 0.0));
-        let v = ramp(Twist::ZERO, c, &robot, 0.01);
+        let v = robot.ramp(Twist::ZERO, c, 0.01);
         assert!((v.linear - robot.max_linear_accel * 0.01).abs() < 1e-15);
         let (l, r) = wheel_travel(Twist::new(0.0, 2.0), 0.1, 0.5);
         assert!((l + 0.05).abs() < 1e-15 && (r - 0.05).abs() < 1e-15);

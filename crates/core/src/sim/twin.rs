@@ -7,7 +7,7 @@ mod sensors;
 use super::blocks::BlockState;
 use super::collision::{Collider, Disc};
 use super::config::{PhysicsConfig, SimConfig};
-use super::drive::{clamp_twist, integrate, ramp, wheel_travel};
+use super::drive::{integrate, wheel_travel};
 use super::encoders::Encoders;
 use super::fault::FaultKind;
 use super::faults::Faults;
@@ -311,12 +311,8 @@ impl Twin {
             self.catch_block();
         }
         let before = self.drive;
-        self.drive = ramp(
-            before,
-            clamp_twist(self.command, &self.robot),
-            &self.robot,
-            h,
-        );
+        let target = self.robot.clamp_twist(self.command);
+        self.drive = self.robot.ramp(before, target, h);
         // Speed changes linearly within the step, so the mean twist gives the exact travel
         // under constant acceleration (trapezoidal rule).
         let mean = Twist::new(

@@ -16,10 +16,10 @@
 use super::{Behaviour, Proposal};
 use crate::Pilot;
 use crate::mode::Mode;
+use crate::reckoning::Reckoning;
 use navdeck_core::data::{Level, SensorFrame, WheelTravel};
 use navdeck_core::geometry::Twist;
 use navdeck_core::health::{Change, Sensor};
-use navdeck_core::slam::odometry::wheel_travel;
 
 /// What sensor health does to the task this step.
 #[derive(Clone, Debug, PartialEq)]
@@ -92,25 +92,27 @@ impl Pilot {
     }
 
     /// Odometry was just found lost at `t`: the robot drove on blind since the wheels
-    /// last reported. The commands sent meanwhile stand in for the travel they did not
-    /// report (a motion model on the commanded velocity, as an EKF runs without wheel
-    /// odometry), so that the estimate is not left behind; returns the metres reckoned.
+    /// last reported. The commands sent meanwhile, through the base's acceleration limits,
+    /// stand in for the travel they did not report (a motion model on the commanded
+    /// velocity, as an EKF runs without wheel odometry), and go on standing in while the
+    /// robot brakes, so that the estimate is not left behind; returns the metres reckoned.
     fn reckon_unmeasured(&mut self, t: f64) -> f64 {
         let commands = std::mem::take(&mut self.measuring.unmeasured);
-        let track = self.settings.robot.track;
-        let mut travel = WheelTravel::default();
-        let ends = commands.iter().skip(1).map(|c| c.0).chain([t]);
-        for (&(at, twist), until) in commands.iter().zip(ends) {
-            let (left, right) = wheel_travel(twist, track, (until - at).max(0.0));
-            travel.left += left;
-            travel.right += right;
+        let Some(&(since, _)) = commands.front() else {
+            return 0.0;
+        };
+        let robot = &self.settings.robot;
+        let mut reckoning = Reckoning::new(since, self.measuring.measured);
+        for &(at, twist) in &commands {
+            reckoning.advance(at, robot);
+            reckoning.command(twist);
         }
-        if let Some(&(since, _)) = commands.front()
-            && travel != WheelTravel::default()
-        {
+        reckoning.advance(t, robot);
+        let travel = reckoning.travel;
+        if travel != WheelTravel::default() {
             self.estimate_motion(travel);
-            self.measuring.reckoned = Some((since, travel));
         }
+        self.measuring.reckoning = Some(reckoning);
         0.5 * (travel.left + travel.right).abs()
     }
 

@@ -284,6 +284,10 @@ impl Mission {
                         self.objects.demote(odd);
                         self.ctx.recoveries += 1;
                         self.demoted.insert(odd, t);
+                        // A potential block again, with its looks to come: the ones that
+                        // confirmed it before must not keep it from being looked at anew
+                        // (the attempts at it stay bounded by MAX_BLOCK_ATTEMPTS).
+                        self.explored.potential_looks.remove(&odd);
                         self.phase = Phase::BackOff(t);
                         Tick::Again
                     }

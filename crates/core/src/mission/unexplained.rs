@@ -12,8 +12,18 @@ use crate::map::costmap::Costmap;
 /// small face lie a beam spacing apart (1.7 cm at 1 m for 360 beams), so they join.
 pub const GATHER: f64 = 0.05;
 
+/// A small object stands clear of other structure: other occupied `GATHER` cells within
+/// this of its cluster, metres, make it part of something bigger. A wall mapped twice
+/// by a drifting pose leaves short copies beside the wall (the 1° beams cross a 1 cm
+/// copy only here and there, so misses never clear it whole), and these are not blocks.
+const CLEAR_AROUND: f64 = 0.2;
+/// Occupied `GATHER` cells of other structure tolerated within `CLEAR_AROUND`: a stray
+/// hit or two is noise, three (15 cm) is a wall or a box.
+const OTHERS_TOLERATED: usize = 2;
+
 /// Centres of the clusters of `occupied` cells (row-major over `map`) that fit in a
-/// square of side `max_size`, cells joined when they share or touch a `GATHER` cell.
+/// square of side `max_size` and stand clear of other structure (`CLEAR_AROUND`), cells
+/// joined when they share or touch a `GATHER` cell.
 pub fn small_objects(map: &Costmap, occupied: &[bool], max_size: f64) -> Vec<Point2> {
     if occupied.len() != map.width * map.height || max_size <= 0.0 {
         return Vec::new();
@@ -43,6 +53,27 @@ pub fn small_objects(map: &Costmap, occupied: &[bool], max_size: f64) -> Vec<Poi
             };
             // Two clusters' extremes are whole cells apart; the object is at most this big.
             span(|c| c.0) < max_size && span(|c| c.1) < max_size
+        })
+        .filter(|cluster| {
+            let ring = (CLEAR_AROUND / cell).ceil() as usize;
+            let (x0, x1) = (
+                cluster.iter().map(|c| c.0).min(),
+                cluster.iter().map(|c| c.0).max(),
+            );
+            let (y0, y1) = (
+                cluster.iter().map(|c| c.1).min(),
+                cluster.iter().map(|c| c.1).max(),
+            );
+            let (Some(x0), Some(x1), Some(y0), Some(y1)) = (x0, x1, y0, y1) else {
+                return false;
+            };
+            let near = (y0.saturating_sub(ring)..=(y1 + ring).min(h - 1))
+                .flat_map(|y| {
+                    (x0.saturating_sub(ring)..=(x1 + ring).min(w - 1)).map(move |x| (x, y))
+                })
+                .filter(|&(x, y)| hits[y * w + x] > 0)
+                .count();
+            near - cluster.len() <= OTHERS_TOLERATED
         })
         .map(|cluster| {
             let (n, sx, sy) = cluster
@@ -87,12 +118,12 @@ mod tests {
     fn a_wall_and_a_box_are_too_big_and_two_blocks_apart_are_two() {
         let mut cells: Vec<(usize, usize)> = (0..200).map(|y| (5, y)).collect();
         cells.extend((60..95).map(|x| (x, 40)));
-        cells.extend([(150, 150), (151, 150), (100, 30)]);
+        cells.extend([(150, 150), (151, 150), (100, 10)]);
         let (map, occupied) = grid(&cells);
         let mut found = small_objects(&map, &occupied, 0.15);
         found.sort_by(|a, b| a.x.total_cmp(&b.x));
         assert_eq!(found.len(), 2, "{found:?}");
-        assert!(found[0].distance(Point2::new(1.005, 0.305)) < 0.01);
+        assert!(found[0].distance(Point2::new(1.005, 0.105)) < 0.01);
         assert!(found[1].distance(Point2::new(1.51, 1.505)) < 0.01);
         assert!(
             small_objects(&map, &occupied, 0.0).is_empty(),
@@ -101,6 +132,22 @@ mod tests {
         assert!(
             small_objects(&map, &[], 0.15).is_empty(),
             "no lidar, nothing"
+        );
+    }
+
+    #[test]
+    fn a_short_copy_of_a_wall_beside_it_is_not_an_object() {
+        // A wall along y = 1.0 m, and 8 cm of it mapped again 10 cm off (a drifted pose).
+        let mut cells: Vec<(usize, usize)> = (0..200).map(|x| (x, 100)).collect();
+        cells.extend((60..68).map(|x| (x, 90)));
+        // And a block 30 cm from the wall, which is one.
+        cells.extend([(150, 70), (151, 70)]);
+        let (map, occupied) = grid(&cells);
+        let found = small_objects(&map, &occupied, 0.15);
+        assert_eq!(found.len(), 1, "{found:?}");
+        assert!(
+            found[0].distance(Point2::new(1.51, 0.705)) < 0.01,
+            "{found:?}"
         );
     }
 }

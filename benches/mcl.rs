@@ -7,7 +7,9 @@ use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
 use navdeck::config::Config;
 use navdeck::data::LaserScan;
 use navdeck::geometry::Pose2;
-use navdeck::slam::mcl::config::{LocalizationConfig, SensorModel};
+use navdeck::slam::mcl::config::{
+    LocalizationConfig, MeasurementModel, ParticleCount, SensorModel, UpdateSchedule,
+};
 use navdeck::slam::mcl::sensor::{Beams, Weigher};
 use navdeck::slam::mcl::{KnownMap, Mcl};
 use std::path::Path;
@@ -31,12 +33,21 @@ fn map_and_scan(at: Pose2) -> (navdeck::map::grid::OccupancyGrid, LaserScan) {
 
 fn config(model: SensorModel) -> LocalizationConfig {
     LocalizationConfig {
-        model,
-        min_particles: 1000,
-        max_particles: 1000,
-        // Every call is an update.
-        update_min_d: 0.0,
-        update_min_a: 0.0,
+        measurement: MeasurementModel {
+            model,
+            ..MeasurementModel::default()
+        },
+        particles: ParticleCount {
+            min_particles: 1000,
+            max_particles: 1000,
+            ..ParticleCount::default()
+        },
+        schedule: UpdateSchedule {
+            // Every call is an update.
+            update_min_d: 0.0,
+            update_min_a: 0.0,
+            ..UpdateSchedule::default()
+        },
         ..LocalizationConfig::default()
     }
 }
@@ -52,8 +63,8 @@ fn bench(c: &mut Criterion) {
     let mut weigh = c.benchmark_group("mcl_weigh");
     for (name, model) in models {
         let cfg = config(model);
-        let mut weigher = Weigher::new(&map, &cfg, scan.range_max);
-        let beams = Beams::pick(&scan, cfg.max_beams);
+        let mut weigher = Weigher::new(&map, &cfg.measurement, scan.range_max);
+        let beams = Beams::pick(&scan, cfg.measurement.max_beams);
         let mut mcl = Mcl::new(map.clone(), &cfg, 1);
         mcl.init_at(at, 0.1, 0.1);
         let poses: Vec<Pose2> = mcl.particles().iter().map(|p| p.pose).collect();
@@ -68,8 +79,8 @@ fn bench(c: &mut Criterion) {
     }
     // The beam model in cells it has not traced from yet.
     let cfg = config(SensorModel::Beam);
-    let mut weigher = Weigher::new(&map, &cfg, scan.range_max);
-    let beams = Beams::pick(&scan, cfg.max_beams);
+    let mut weigher = Weigher::new(&map, &cfg.measurement, scan.range_max);
+    let beams = Beams::pick(&scan, cfg.measurement.max_beams);
     let mut mcl = Mcl::new(map.clone(), &cfg, 1);
     mcl.init_at(at, 0.1, 0.1);
     let poses: Vec<Pose2> = mcl.particles().iter().map(|p| p.pose).collect();

@@ -15,6 +15,7 @@ pub use crate::sim::config::{
     CameraConfig, EncoderConfig, GripperConfig, LidarConfig, PhysicsConfig, SimConfig,
 };
 pub use crate::slam::config::SlamConfig;
+use crate::slam::mcl::config::LocalizationConfig;
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
 
@@ -53,7 +54,7 @@ pub struct Config {
     pub follow: FollowConfig,
     pub mission: MissionConfig,
     /// Which estimator places the robot; Monte-Carlo localisation's settings.
-    pub localization: crate::slam::mcl::config::LocalizationConfig,
+    pub localization: LocalizationConfig,
     /// Lidar SLAM's matching, keyframes and loop closure (`--estimator slam`).
     pub lidar_slam: crate::slam::lidar::LidarSlamConfig,
     /// `--link ros2`: topics, QoS, message variants.
@@ -100,10 +101,20 @@ impl Config {
 
     /// Parses config text; `path` only names the source in errors.
     pub fn parse(text: &str, path: &Path) -> Result<Config, ConfigError> {
-        let config: Config = toml::from_str(text).map_err(|e| ConfigError::Parse {
-            path: path.to_path_buf(),
-            message: crate::data::number::shorten_long_numbers(e.to_string().trim_end()),
-        })?;
+        let refused = |mut e: toml::de::Error| {
+            e.set_input(Some(text));
+            ConfigError::Parse {
+                path: path.to_path_buf(),
+                message: crate::data::number::shorten_long_numbers(e.to_string().trim_end()),
+            }
+        };
+        let doc = toml::de::DeTable::parse(text).map_err(refused)?;
+        // `[localization]` is flat in the file and grouped in memory, which serde alone
+        // cannot check key by key.
+        if let Some(section) = doc.get_ref().get("localization") {
+            LocalizationConfig::check_section(section).map_err(refused)?;
+        }
+        let config = Config::deserialize(toml::de::Deserializer::from(doc)).map_err(refused)?;
         config.check_sections(path, Some(text))?;
         Ok(config)
     }
@@ -297,6 +308,21 @@ mod tests {
             ("[robot]\ntrack = 1e308", "robot.track", "1e308"),
             ("[record]\nlevel = 0", "record.level", "0"),
             (
+                "[localization]\nmax_beams = 0",
+                "localization.max_beams",
+                "0",
+            ),
+            (
+                "[localization]\nconverged_std = 0",
+                "localization.converged_std",
+                "0",
+            ),
+            (
+                "[localization]\nalpha_fast = 0.0005",
+                "localization.alpha_fast",
+                "0.0005",
+            ),
+            (
                 "[safety]\nsource_timeout = 0.0",
                 "safety.source_timeout",
                 "0",
@@ -379,6 +405,57 @@ mod tests {
         assert_eq!(ok.safety.polygons.len(), 2);
         assert_eq!(ok.safety.polygons[1].slowdown_ratio, 0.5);
         assert_eq!(ok.safety.polygons[1].min_points, 4);
+    }
+
+    #[test]
+    fn a_flat_localization_section_sets_every_group() {
+        let text = "[localization]\nestimator = \"mcl\"\nalpha1 = 0.3\nmax_particles = 3000\n\
+            model = \"beam\"\nz_hit = 0.7\nupdate_min_d = 0.2\nalpha_slow = 0.002\n\
+            initial_std_deg = 5.0\nconverged_std = 0.3\n";
+        let l = Config::parse(text, Path::new("legacy.toml"))
+            .unwrap()
+            .localization;
+        assert_eq!(l.estimator, crate::slam::mcl::config::Estimator::Mcl);
+        assert_eq!(l.motion.alpha1, 0.3);
+        assert_eq!(l.particles.max_particles, 3000);
+        assert_eq!(
+            l.measurement.model,
+            crate::slam::mcl::config::SensorModel::Beam
+        );
+        assert_eq!(l.measurement.z_hit, 0.7);
+        assert_eq!(l.schedule.update_min_d, 0.2);
+        assert_eq!(l.recovery.alpha_slow, 0.002);
+        assert_eq!(l.spread.initial_std_deg, 5.0);
+        assert_eq!(l.spread.converged_std, 0.3);
+        // What the file leaves out keeps its default, in the same groups.
+        let d = LocalizationConfig::default();
+        assert_eq!(l.motion.alpha2, d.motion.alpha2);
+        assert_eq!(l.particles.min_particles, d.particles.min_particles);
+        assert_eq!(l.spread.initial_std, d.spread.initial_std);
+    }
+
+    #[test]
+    fn an_unknown_localization_key_is_named_with_its_line() {
+        let parse = |text: &str| Config::parse(text, Path::new("typo.toml"));
+        for text in [
+            "[localization]\nalpha1 = 0.3\nalpha5 = 1\n",
+            "localization.alpha1 = 0.3\n\nlocalization.alpha5 = 1\n",
+        ] {
+            let e = parse(text).unwrap_err().to_string();
+            assert!(
+                e.starts_with("config typo.toml: TOML parse error at line 3"),
+                "{text}: {e}"
+            );
+            assert!(e.contains("unknown field `alpha5`"), "{text}: {e}");
+        }
+        // A value of the wrong kind, too, at its own line rather than the section's.
+        let e = parse("[localization]\nalpha1 = 0.3\nmax_particles = -3\n")
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("line 3") && e.contains("max_particles = -3"),
+            "{e}"
+        );
     }
 
     #[test]

@@ -284,7 +284,7 @@ fn pose_and_relocalize_commands_place_the_particles() {
     assert!(last.contains("off the map"), "{last}");
     type_line(&mut app, "relocalize");
     let mcl = app.pilot().mcl().unwrap();
-    let max = app.config().localization.global_max_particles as usize;
+    let max = app.config().localization.particles.global_max_particles as usize;
     assert_eq!(mcl.status().particles, max);
     assert!(!mcl.status().converged);
 }

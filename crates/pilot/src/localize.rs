@@ -75,7 +75,7 @@ impl Pilot {
             .check_extent(planning_extent(grid))
             .map_err(|why| format!("the map's planning map: {why}"))?;
         // Distances kept as far as the likelihood field reads them.
-        let reach = (self.settings.localization.likelihood_max_dist).max(DEFAULT_REACH);
+        let reach = (self.settings.localization.measurement.likelihood_max_dist).max(DEFAULT_REACH);
         let map = Arc::new(KnownMap::with_reach(grid, reach).map_err(|e| e.to_string())?);
         if let InitialPose::At(p) = initial {
             check_on_free_space(&map, p)?;
@@ -104,7 +104,7 @@ impl Pilot {
     }
 
     fn place(&mut self, mcl: &mut Mcl, initial: InitialPose) {
-        let c = &self.settings.localization;
+        let c = &self.settings.localization.spread;
         match initial {
             InitialPose::At(p) => mcl.init_at(p, c.initial_std, c.initial_std_deg.to_radians()),
             InitialPose::Unknown => mcl.init_global(),
@@ -210,7 +210,7 @@ impl Pilot {
             );
             return;
         }
-        let c = &self.settings.localization;
+        let c = &self.settings.localization.spread;
         let (sd, sa) = (c.initial_std, c.initial_std_deg.to_radians());
         // The check `--initial-pose` makes: on MCL's free space, or with the EKF at least
         // on the planning map.

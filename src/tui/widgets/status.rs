@@ -131,7 +131,7 @@ fn rows(app: &App) -> Vec<Row> {
     ));
     if let Some(mcl) = app.pilot().mcl() {
         let st = mcl.status();
-        let c = mcl.config();
+        let c = &mcl.config().particles;
         rows.push(
             Row::new(
                 "MCL",

@@ -4,7 +4,7 @@
 //! expected range. A particle in a cell visited before costs a table look-up per beam
 //! instead of a ray cast, an exponential and a logarithm.
 
-use super::config::LocalizationConfig;
+use super::config::MeasurementModel;
 use super::known_map::KnownMap;
 use super::sensor::beam_probability;
 use std::collections::HashMap;
@@ -26,7 +26,7 @@ pub struct BeamTable {
 }
 
 impl BeamTable {
-    pub fn new(config: &LocalizationConfig, max_range: f64) -> Self {
+    pub fn new(config: &MeasurementModel, max_range: f64) -> Self {
         let step = max_range / STEPS as f64;
         let n = STEPS + 1;
         let mut log_p = Vec::with_capacity(n * n);
@@ -103,7 +103,7 @@ mod tests {
 
     #[test]
     fn the_table_agrees_with_the_model_at_its_steps() {
-        let c = LocalizationConfig::default();
+        let c = MeasurementModel::default();
         let t = BeamTable::new(&c, 3.5);
         let (zi, ei) = (t.index(2.0), t.index(1.0));
         let (z, e) = (zi as f64 * t.step, ei as f64 * t.step);
@@ -122,7 +122,7 @@ mod tests {
             g.set(40, y, 100);
         }
         let map = KnownMap::new(&g).unwrap();
-        let table = BeamTable::new(&LocalizationConfig::default(), 3.5);
+        let table = BeamTable::new(&MeasurementModel::default(), 3.5);
         let mut memo = RangeMemo::default();
         let cell = map.index_of(1.03, 1.03).unwrap();
         let first = memo.expected(&map, &table, cell, 0.001, 3.5);

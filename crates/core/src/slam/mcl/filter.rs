@@ -82,8 +82,8 @@ impl Mcl {
             weigher: None,
             particles: Vec::new(),
             rng: ChaCha8Rng::seed_from_u64(seed),
-            w_slow: Average::new(config.alpha_slow),
-            w_fast: Average::new(config.alpha_fast),
+            w_slow: Average::new(config.recovery.alpha_slow),
+            w_fast: Average::new(config.recovery.alpha_fast),
             random_share: 0.0,
             odom_at_update: None,
             force_update: true,
@@ -112,7 +112,7 @@ impl Mcl {
     /// Particles spread around `pose` with standard deviations `std_xy` (m) and
     /// `std_theta` (rad), as RViz's "2D Pose Estimate" places them.
     pub fn init_at(&mut self, pose: Pose2, std_xy: f64, std_theta: f64) {
-        let n = self.config.max_particles as usize;
+        let n = self.config.particles.max_particles as usize;
         let w = 1.0 / n as f64;
         let normal = |rng: &mut ChaCha8Rng| -> f64 { StandardNormal.sample(rng) };
         self.particles = (0..n)
@@ -146,8 +146,8 @@ impl Mcl {
     }
 
     fn restart(&mut self) {
-        self.w_slow = Average::new(self.config.alpha_slow);
-        self.w_fast = Average::new(self.config.alpha_fast);
+        self.w_slow = Average::new(self.config.recovery.alpha_slow);
+        self.w_fast = Average::new(self.config.recovery.alpha_fast);
         self.random_share = 0.0;
         self.force_update = true;
         self.effective = self.particles.len() as f64;
@@ -161,7 +161,7 @@ impl Mcl {
     /// KLD-sampling's maximum now: the generous global one while the filter looks for
     /// the robot, AMCL's `max_particles` while it tracks.
     fn most_particles(&self) -> usize {
-        let c = &self.config;
+        let c = &self.config.particles;
         if self.converged || !self.searching {
             c.max_particles as usize
         } else {
@@ -181,12 +181,13 @@ impl Mcl {
         };
         let step = OdometryStep::between(last, odom);
         let turned = wrap_angle(odom.theta - last.theta).abs();
-        let moved = step.trans >= self.config.update_min_d || turned >= self.config.update_min_a;
+        let moved = step.trans >= self.config.schedule.update_min_d
+            || turned >= self.config.schedule.update_min_a;
         if !moved && !self.force_update {
             return false;
         }
         if !step.is_still() {
-            let std = motion::noise_std(&step, &self.config);
+            let std = motion::noise_std(&step, &self.config.motion);
             for p in &mut self.particles {
                 p.pose = motion::sample(p.pose, &step, std, &mut self.rng);
             }
@@ -199,13 +200,16 @@ impl Mcl {
     /// Weighs the particles by `scan`, and resamples when the weights are lopsided.
     fn correct(&mut self, scan: &LaserScan, expected: Option<Pose2>) -> bool {
         self.force_update = false;
-        let beams = Beams::pick(scan, self.config.max_beams);
+        let beams = Beams::pick(scan, self.config.measurement.max_beams);
         if beams.is_empty() || self.particles.is_empty() {
             return false;
         }
         let range = scan.range_max;
         if self.weigher.as_ref().is_none_or(|(r, _)| *r != range) {
-            self.weigher = Some((range, Weigher::new(&self.map, &self.config, range)));
+            self.weigher = Some((
+                range,
+                Weigher::new(&self.map, &self.config.measurement, range),
+            ));
         }
         let (_, weigher) = self.weigher.as_mut().expect("built above");
         let map = &self.map;
@@ -224,7 +228,7 @@ impl Mcl {
             1.0
         } else {
             let prior: Vec<f64> = self.particles.iter().map(|p| p.weight).collect();
-            resample::tempering(&prior, &logs, top, self.config.resample_ess)
+            resample::tempering(&prior, &logs, top, self.config.schedule.resample_ess)
         };
         let mut total = 0.0;
         for (p, l) in self.particles.iter_mut().zip(&logs) {
@@ -248,7 +252,7 @@ impl Mcl {
         // Table 8.3, line 13: random particles while the scans fit worse lately than they
         // used to.
         let (slow, fast) = (self.w_slow.value(), self.w_fast.value());
-        self.random_share = if slow > 0.0 && self.config.alpha_slow > 0.0 {
+        self.random_share = if slow > 0.0 && self.config.recovery.alpha_slow > 0.0 {
             (1.0 - fast / slow).max(0.0)
         } else {
             0.0
@@ -295,13 +299,14 @@ impl Mcl {
             // Localised: from here the averages measure how well the scans fit while
             // tracking, so that a kidnapping soon after shows as a fall from that fit, not
             // from the poorer fit of the search.
-            self.w_slow = Average::new(self.config.alpha_slow);
-            self.w_fast = Average::new(self.config.alpha_fast);
+            self.w_slow = Average::new(self.config.recovery.alpha_slow);
+            self.w_fast = Average::new(self.config.recovery.alpha_fast);
             self.lost = false;
         }
         // Resample when the weights have grown lopsided, or to let random particles in: a
         // kidnapped robot's particles fit equally badly, so their weights stay even.
-        let lopsided = self.effective < self.config.resample_ess * self.particles.len() as f64;
+        let lopsided =
+            self.effective < self.config.schedule.resample_ess * self.particles.len() as f64;
         if lopsided || self.random_share > 0.0 {
             // The weights now, rivals taken back included.
             let weights: Vec<f64> = self.particles.iter().map(|p| p.weight).collect();
@@ -319,7 +324,7 @@ impl Mcl {
             return true;
         }
         self.rivals_checked = Some(self.updates);
-        let margin = rivals::margin(&self.config, beams);
+        let margin = rivals::margin(&self.config.measurement, beams);
         let (_, weigher) = self.weigher.as_mut().expect("built by the first scan");
         let (map, estimate) = (&self.map, self.estimate.pose);
         let odom = self.odom_at_update.unwrap_or_default();
@@ -332,11 +337,11 @@ impl Mcl {
         }
         // Each rival as heavy as the estimate's cluster: this scan cannot tell them apart,
         // and the filter may have lost the rival only by the luck of its first particles.
-        let each = (self.config.min_particles as usize).max(1);
+        let each = (self.config.particles.min_particles as usize).max(1);
         let room = self.most_particles().saturating_sub(self.particles.len()) / each;
         let (sd, sa) = (
-            self.config.bin_size / 4.0,
-            self.config.bin_angle_deg.to_radians() / 2.0,
+            self.config.particles.bin_size / 4.0,
+            self.config.particles.bin_angle_deg.to_radians() / 2.0,
         );
         let w = self.estimate.weight / each as f64;
         for rival in found.into_iter().take(room.max(1)) {
@@ -366,7 +371,7 @@ impl Mcl {
     /// is as large as the bins it occupies ask for. Random particles count in the bins, so
     /// a filter that is looking for its robot grows its set.
     fn resample(&mut self, weights: &[f64]) {
-        let c = &self.config;
+        let c = &self.config.particles;
         let (size, angle) = (c.bin_size, c.bin_angle_deg.to_radians());
         let (least, most) = (c.min_particles as usize, self.most_particles());
         let mut pool = resample::low_variance(weights, most, &mut self.rng);
@@ -399,7 +404,7 @@ impl Mcl {
     fn refresh_estimate(&mut self) {
         let poses: Vec<Pose2> = self.particles.iter().map(|p| p.pose).collect();
         let weights: Vec<f64> = self.particles.iter().map(|p| p.weight).collect();
-        let c = &self.config;
+        let c = &self.config.particles;
         self.estimate =
             cluster::estimate(&poses, &weights, c.bin_size, c.bin_angle_deg.to_radians());
         self.judge();
@@ -407,7 +412,7 @@ impl Mcl {
 
     /// Decides whether the filter has converged, from the estimate and the agreement.
     fn judge(&mut self) {
-        let c = &self.config;
+        let c = &self.config.spread;
         // Converged: one cluster holds the weight and is tight. It is left only well past
         // those bounds (3/4 of the weight, twice the spread), so that the few random
         // particles augmented MCL adds do not make the status flicker.

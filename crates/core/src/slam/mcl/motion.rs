@@ -2,7 +2,7 @@
 //! motion model", a1 - a4): the relative motion between two odometry poses split into a
 //! turn, a straight and a turn, each corrupted by noise that grows with the motion.
 
-use super::config::LocalizationConfig;
+use super::config::OdometryNoise;
 use crate::geometry::{Pose2, wrap_angle};
 use rand::Rng;
 use rand_distr::{Distribution, StandardNormal};
@@ -47,7 +47,7 @@ fn turn_for_noise(rot: f64) -> f64 {
 /// The noise each part of `step` gets: standard deviations of rot1, trans, rot2
 /// (Probabilistic Robotics table 5.6, lines 5-7, with the variances a1 δ² + a2 δ²
 /// as AMCL writes them).
-pub fn noise_std(step: &OdometryStep, c: &LocalizationConfig) -> (f64, f64, f64) {
+pub fn noise_std(step: &OdometryStep, c: &OdometryNoise) -> (f64, f64, f64) {
     let (r1, r2) = (turn_for_noise(step.rot1), turn_for_noise(step.rot2));
     let t2 = step.trans * step.trans;
     (
@@ -81,13 +81,12 @@ mod tests {
     use rand_chacha::ChaCha8Rng;
     use std::f64::consts::FRAC_PI_2;
 
-    fn quiet() -> LocalizationConfig {
-        LocalizationConfig {
+    fn quiet() -> OdometryNoise {
+        OdometryNoise {
             alpha1: 0.0,
             alpha2: 0.0,
             alpha3: 0.0,
             alpha4: 0.0,
-            ..LocalizationConfig::default()
         }
     }
 
@@ -114,7 +113,7 @@ mod tests {
 
     #[test]
     fn noise_grows_with_the_motion_as_the_alphas_say() {
-        let c = LocalizationConfig::default();
+        let c = OdometryNoise::default();
         // A straight 1 m: rotation std sqrt(a2) = 0.447, translation std sqrt(a3) = 0.447.
         let s = OdometryStep::between(Pose2::default(), Pose2::new(1.0, 0.0, 0.0));
         let (r1, t, r2) = noise_std(&s, &c);
@@ -129,7 +128,7 @@ mod tests {
     #[test]
     fn sampled_translation_has_the_modelled_spread() {
         // Only a3: the straight's length varies with std sqrt(a3) * 0.5 = 0.05 m.
-        let c = LocalizationConfig {
+        let c = OdometryNoise {
             alpha3: 0.01,
             ..quiet()
         };

@@ -10,7 +10,7 @@
 //! ruled out (its recent scans, taken together, fit far worse there) is not taken back,
 //! so that evidence gathered over metres of driving is not thrown away.
 
-use super::config::LocalizationConfig;
+use super::config::MeasurementModel;
 use super::known_map::KnownMap;
 use super::sensor::{Beams, Weigher};
 use crate::geometry::{Pose2, wrap_angle};
@@ -154,7 +154,7 @@ impl RecentScans {
 /// "Nearly as well", in nats, for `beams`: what it costs every beam that hit something
 /// to end half a σ_hit farther from the walls (the likelihood field's own scale,
 /// Probabilistic Robotics table 6.3).
-pub fn margin(c: &LocalizationConfig, beams: &Beams) -> f64 {
+pub fn margin(c: &MeasurementModel, beams: &Beams) -> f64 {
     let q = |d: f64| {
         let g = (-(d * d) / (2.0 * c.sigma_hit * c.sigma_hit)).exp();
         c.z_hit * g / ((2.0 * std::f64::consts::PI).sqrt() * c.sigma_hit)
@@ -222,7 +222,7 @@ mod tests {
     use super::*;
     use crate::geometry::Point2;
     use crate::map::grid::OccupancyGrid;
-    use crate::slam::mcl::config::LocalizationConfig;
+    use crate::slam::mcl::config::MeasurementModel;
 
     /// A 4 m x 2 m room with a wall all round, and optionally a 0.6 m box in one corner.
     fn room(post: bool) -> KnownMap {
@@ -263,7 +263,7 @@ mod tests {
 
     #[test]
     fn a_bare_room_has_its_half_turn_as_a_rival_and_a_box_removes_it() {
-        let c = LocalizationConfig::default();
+        let c = MeasurementModel::default();
         let at = Pose2::new(1.0, 0.7, 0.3);
         let bare = room(false);
         let mut w = Weigher::new(&bare, &c, 3.5);
@@ -284,7 +284,7 @@ mod tests {
 
     #[test]
     fn the_recent_scans_rule_out_a_look_alike_but_never_the_truth() {
-        let c = LocalizationConfig::default();
+        let c = MeasurementModel::default();
         let boxed = room(true);
         let mut w = Weigher::new(&boxed, &c, 3.5);
         let mut recent = RecentScans::default();

@@ -4,7 +4,7 @@
 //! tracing"). Both return a log-likelihood: a sum over beams, free of underflow.
 
 use super::beam_memo::{BeamTable, RangeMemo};
-use super::config::{LocalizationConfig, SensorModel};
+use super::config::{MeasurementModel, SensorModel};
 use super::known_map::KnownMap;
 use crate::data::LaserScan;
 use crate::geometry::Pose2;
@@ -77,7 +77,7 @@ fn gaussian(x: f64, sigma: f64) -> f64 {
 
 impl Weigher {
     /// The weigher for `map`; `max_range` is the sensor's, for z_rand's density.
-    pub fn new(map: &KnownMap, config: &LocalizationConfig, max_range: f64) -> Self {
+    pub fn new(map: &KnownMap, config: &MeasurementModel, max_range: f64) -> Self {
         let c = config;
         let cap = c.likelihood_max_dist;
         let q = |d: f64| (c.z_hit * gaussian(d.min(cap), c.sigma_hit) + c.z_rand / max_range).ln();
@@ -171,7 +171,7 @@ impl Weigher {
 /// p(z | z*) of the beam model: a hit near the expected range, a short reading from
 /// something unmapped, a maximum-range reading and random noise (Probabilistic Robotics
 /// (6.2)-(6.12), the normalisers of the hit and short terms as there).
-pub fn beam_probability(z: f64, expected: f64, max: f64, c: &LocalizationConfig) -> f64 {
+pub fn beam_probability(z: f64, expected: f64, max: f64, c: &MeasurementModel) -> f64 {
     let p_hit = if (0.0..=max).contains(&z) {
         gaussian(z - expected, c.sigma_hit)
     } else {
@@ -197,7 +197,7 @@ mod tests {
 
     #[test]
     fn the_beam_model_against_hand_worked_values() {
-        let c = LocalizationConfig::default();
+        let c = MeasurementModel::default();
         // z = z* = 2 m, range 3.5 m, σ 0.2, λ 0.1:
         // hit 0.5 · 1/(√(2π) 0.2) = 0.997356; short 0.05 · 0.1 e^-0.2 / (1 - e^-0.2) =
         // 0.05 · 0.1 · 0.818731 / 0.181269 = 0.022583; rand 0.5 / 3.5 = 0.142857.
@@ -233,7 +233,7 @@ mod tests {
     #[test]
     fn the_likelihood_field_against_hand_worked_values() {
         let map = wall_map();
-        let c = LocalizationConfig::default();
+        let c = MeasurementModel::default();
         let mut w = Weigher::new(&map, &c, 3.5);
         // From (1.025, 1.025) facing +x a 0.99 m reading ends in the wall's cell: d = 0.
         let on = w.log_likelihood(&map, Pose2::new(1.025, 1.025, 0.0), &one_beam(0.99));
@@ -254,9 +254,9 @@ mod tests {
     fn both_models_prefer_the_true_pose() {
         let map = wall_map();
         for model in [SensorModel::LikelihoodField, SensorModel::Beam] {
-            let c = LocalizationConfig {
+            let c = MeasurementModel {
                 model,
-                ..LocalizationConfig::default()
+                ..MeasurementModel::default()
             };
             let mut w = Weigher::new(&map, &c, 3.5);
             let beams = Beams {

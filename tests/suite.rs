@@ -82,6 +82,7 @@ mod control_follow;
 mod dead_terminal;
 mod degradation;
 mod faults;
+mod generated_sweep;
 mod gripper;
 mod hangup;
 mod hostile;

@@ -145,24 +145,3 @@ fn a_block_whose_marker_estimate_strays_is_still_picked() {
     assert_eq!(r["delivered"], 3);
     assert_eq!(r["collisions"], 0);
 }
-
-/// A block whose marked faces turn away from where the robot comes in: the camera reads
-/// no marker on the way in, the lidar outlines the block, and it is picked, where it used
-/// to be "lost during the approach" three times over and left.
-#[test]
-fn a_block_approached_from_its_unmarked_side_is_still_picked() {
-    let r = common::generated_mission(
-        "boxes",
-        "39",
-        &[
-            "--size=4.9,4.1",
-            "--blocks=3",
-            "--colours=one",
-            "--marker-spacing=0.54",
-            "--time-limit=400",
-        ],
-    );
-    assert_eq!(r["true_delivered"], 3, "{}", r["warnings"]);
-    assert_eq!(r["delivered"], 3);
-    assert_eq!(r["collisions"], 0);
-}

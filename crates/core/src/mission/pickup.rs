@@ -209,10 +209,7 @@ impl Pickup {
                 (blind..=CAMERA_RANGE).contains(&distance) && error.abs() < CAMERA_HALF_FOV;
             let spotted =
                 inputs.camera_frame && block.markers.iter().any(|m| inputs.seen.contains(m));
-            // A block's markers face two of its four sides: approached from the others it
-            // shows the camera none, while the lidar outlines it where it stands.
-            let outlined = fitted.flatten().is_some();
-            if spotted || outlined || !in_view {
+            if spotted || !in_view {
                 self.last_seen = t;
             } else if t - self.last_seen >= BLOCK_LOST_AFTER {
                 log.push((

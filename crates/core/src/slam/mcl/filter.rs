@@ -1,7 +1,7 @@
 //! The particle filter itself; see the module comment in `mod.rs`.
 
 use super::cluster::{self, CloudEstimate};
-use super::config::LocalizationConfig;
+use super::config::{LocalizationConfig, SensorModel};
 use super::known_map::KnownMap;
 use super::motion::{self, OdometryStep};
 use super::recovery::{Average, random_free_pose};
@@ -10,13 +10,15 @@ use super::rivals::{self, RecentScans};
 use super::sensor::{Beams, Weigher};
 pub use super::status::{Phase, Status};
 use crate::data::LaserScan;
-use crate::geometry::{Point2, Pose2, wrap_angle};
+use crate::geometry::{Pose2, wrap_angle};
 use nalgebra::Matrix3;
 use rand::seq::SliceRandom;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, StandardNormal};
 use std::sync::Arc;
+
+mod view;
 
 /// One hypothesis of where the robot is, with its normalised weight.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -71,6 +73,9 @@ const AGREE_LEAST: f64 = 0.5;
 const LOST_RATIO: f64 = 0.5;
 /// Updates between two searches for rivals (0.5 m or 0.5 rad of motion by default).
 const RECHECK_UPDATES: u64 = 5;
+/// The share of a scan's beams that must hit something before it may judge whether the
+/// map explains the scan (navdeck's: 12 of AMCL's 60 beams).
+const JUDGED_SHARE: f64 = 0.2;
 
 impl Mcl {
     /// A filter on `map` with no particles yet: place them with `init_at` or `init_global`.
@@ -216,12 +221,31 @@ impl Mcl {
         let logs: Vec<f64> = (self.particles.iter())
             .map(|p| weigher.log_likelihood(map, p.pose, &beams))
             .collect();
-        let n_beams = beams.len() as f64;
-        // Augmented MCL's w_avg (table 8.3, line 8), per beam (the n-th root of each
-        // particle's likelihood) so that it does not depend on how many beams are weighed.
-        let w_avg = logs.iter().map(|l| (l / n_beams).exp()).sum::<f64>() / logs.len() as f64;
-        self.w_slow.add(w_avg);
-        self.w_fast.add(w_avg);
+        // The likelihood field skips readings at the maximum range (table 6.3, line 4): in
+        // a room wider than the lidar's reach few beams or none are weighed. A scan that
+        // hit next to nothing tells neither how well the scans fit lately nor whether the map
+        // explains them, so it must not call the filter lost or bring in rivals, which
+        // would fit it everywhere alike.
+        let hits = beams
+            .ranges
+            .iter()
+            .filter(|&&r| r < beams.max_range)
+            .count();
+        // A few beams that reach something far off (or something the map lacks, a block
+        // on the floor) are too few to judge the map by.
+        let hit_any = hits as f64 >= JUDGED_SHARE * beams.len() as f64;
+        let weighed = match self.config.measurement.model {
+            SensorModel::LikelihoodField => hits,
+            SensorModel::Beam => beams.len(),
+        };
+        // Augmented MCL's w_avg (table 8.3, line 8), per beam weighed (the n-th root of
+        // each particle's likelihood), so that it does not depend on how many were.
+        if weighed > 0 {
+            let n = weighed as f64;
+            let w_avg = logs.iter().map(|l| (l / n).exp()).sum::<f64>() / logs.len() as f64;
+            self.w_slow.add(w_avg);
+            self.w_fast.add(w_avg);
+        }
         let top = logs.iter().copied().fold(f64::NEG_INFINITY, f64::max);
         // Tracking takes the whole likelihood; looking for the robot, a power of it.
         let power = if self.converged || !self.searching {
@@ -266,9 +290,12 @@ impl Mcl {
         }
         let was = self.converged;
         self.refresh_estimate();
-        self.agreement = Weigher::agreement(&self.map, self.estimate.pose, &beams, AGREE_NEAR);
+        let agreement = Weigher::agreement(&self.map, self.estimate.pose, &beams, AGREE_NEAR);
+        if hit_any {
+            self.agreement = agreement;
+        }
         self.judge();
-        let unexplained = self.agreement.is_none_or(|a| a < AGREE_LEAST);
+        let unexplained = hit_any && agreement.is_none_or(|a| a < AGREE_LEAST);
         // The heaviest cluster is now another place than the odometry carried the estimate
         // to: the robot was not where the filter said (carried off, or it had settled on a
         // look-alike).
@@ -283,14 +310,14 @@ impl Mcl {
         if let Some(odom) = self.odom_at_update {
             self.recent.push(odom, beams.clone());
         }
-        if !self.converged && self.searching && self.updates > 0 && self.rivals_due() {
+        if hit_any && !self.converged && self.searching && self.updates > 0 && self.rivals_due() {
             // Still looking: the places that fit the scan as well as the estimate or
             // better, taken in as hypotheses, so that a truth the first particles missed
             // is weighed again (a correlative scan matcher's global search).
             self.has_rivals(&beams);
             self.refresh_estimate();
         }
-        if self.converged && !was && self.searching && self.has_rivals(&beams) {
+        if self.converged && !was && self.searching && (!hit_any || self.has_rivals(&beams)) {
             // The rivals now show among the hypotheses; the filter is not localised.
             self.refresh_estimate();
             self.converged = false;
@@ -427,68 +454,6 @@ impl Mcl {
         } else {
             weight >= w && spread <= sd
         };
-    }
-
-    /// The hypotheses the filter weighs: each cluster's mean pose and weight, heaviest
-    /// first.
-    pub fn hypotheses(&self) -> &[(Pose2, f64)] {
-        &self.estimate.hypotheses
-    }
-
-    /// The estimate now, given the odometry pose now: the estimate at the last update
-    /// moved by what the odometry measured since (REP 105's map -> odom at work).
-    pub fn pose(&self, odom: Pose2) -> Pose2 {
-        let at = self.estimate.pose;
-        let Some(last) = self.odom_at_update else {
-            return at;
-        };
-        // The odometry's motion since the update, in the robot's frame then.
-        let (s, c) = last.theta.sin_cos();
-        let (dx, dy) = (odom.x - last.x, odom.y - last.y);
-        let local = Point2::new(c * dx + s * dy, -s * dx + c * dy);
-        let here = at.transform_point(local);
-        Pose2::new(
-            here.x,
-            here.y,
-            wrap_angle(at.theta + odom.theta - last.theta),
-        )
-    }
-
-    /// The covariance (x, y, θ) of the heaviest cluster.
-    pub fn covariance(&self) -> Matrix3<f64> {
-        self.estimate.covariance
-    }
-
-    /// The estimate's position standard deviation along its worst direction, metres.
-    pub fn position_std(&self) -> f64 {
-        let c = self
-            .estimate
-            .covariance
-            .fixed_view::<2, 2>(0, 0)
-            .into_owned();
-        crate::slam::ellipse::axes(&c, 1.0).0
-    }
-
-    pub fn particles(&self) -> &[Particle] {
-        &self.particles
-    }
-
-    pub fn status(&self) -> Status {
-        Status {
-            particles: self.particles.len(),
-            effective: self.effective,
-            cluster_weight: self.estimate.weight,
-            clusters: self.estimate.clusters,
-            converged: self.converged,
-            phase: match (self.converged, self.lost) {
-                (true, _) => Phase::Localised,
-                (false, true) => Phase::Lost,
-                (false, false) => Phase::Localising,
-            },
-            spread: self.position_std(),
-            random_share: self.random_share,
-            updates: self.updates,
-        }
     }
 
     pub fn config(&self) -> &LocalizationConfig {

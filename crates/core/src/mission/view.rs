@@ -102,14 +102,6 @@ impl Mission {
         self.objects.delivered()
     }
 
-    /// The estimated centre of block `odd` (its odd marker), if found.
-    pub fn block_centre(&self, odd: u32) -> Option<crate::geometry::Point2> {
-        self.objects
-            .blocks()
-            .find(|b| b.markers[0] == odd)
-            .map(|b| b.position)
-    }
-
     /// Blocks delivered so far, each where it was put down.
     pub fn delivered_blocks(&self) -> impl Iterator<Item = &super::objects::Block> {
         self.objects.blocks().filter(|b| b.delivered)

@@ -23,9 +23,8 @@ const MAP_RADIUS_M: f64 = 1.0;
 /// an obstacle the robot stopped short of still holds it once it is too near to see.
 const REMEMBER_WITHIN_M: f64 = 0.35;
 const REMEMBER_FOR_S: f64 = 2.0;
-/// While a block is picked up, the lidar's hits this near its centre's or a marker's
-/// estimate are the block (a 5 cm block seen from any side, and the estimate's error),
-/// metres.
+/// While a block is picked up, the lidar's hits this near its marker's estimate are the
+/// block (a 5 cm block seen from any side, and the estimate's error), metres.
 const PICKED_BLOCK_M: f64 = 0.1;
 /// While a block is held, hits in the gripper's jaws (`map::contact::JAWS`) widened by this
 /// are the block, metres.
@@ -123,7 +122,7 @@ impl Pilot {
                 half_width: JAWS.half_width + HELD_MARGIN_M,
             };
             points.retain(|&p| {
-                let is_block = block.iter().any(|b| b.distance(p) <= PICKED_BLOCK_M);
+                let is_block = block.is_some_and(|b| b.distance(p) <= PICKED_BLOCK_M);
                 let in_jaws = held && jaws.contains(Pose2::default(), p);
                 !(is_block || in_jaws)
             });
@@ -151,25 +150,15 @@ impl Pilot {
         ))
     }
 
-    /// Where the block being picked up is, in the robot's frame: the mission's estimate of
-    /// its centre and each of its two markers' estimates. With markers far apart on the
-    /// walls a marker's estimate can stray 10 cm, and the block's face seen by the lidar
-    /// is then no nearer to that marker than to a wall.
-    fn picked_block_here(&self) -> Vec<Point2> {
-        let Some(mission) = self.exploring.mission.as_ref() else {
-            return Vec::new();
-        };
-        let Some(odd) = mission.block_being_picked() else {
-            return Vec::new();
-        };
-        let markers = (self.ekf.landmarks())
-            .filter(|l| l.id == odd || l.id == odd + 1)
-            .map(|l| l.mean);
-        let centre = mission.block_centre(odd);
-        let pose = self.pose();
-        (markers.chain(centre))
-            .map(|at| pose.inverse_transform_point(at))
-            .collect()
+    /// Where the marker of the block being picked up is, in the robot's frame.
+    fn picked_block_here(&self) -> Option<Point2> {
+        let id = self.exploring.mission.as_ref()?.block_being_picked()?;
+        let (_, at) = self
+            .ekf
+            .landmarks()
+            .map(|l| (l.id, l.mean))
+            .find(|(i, _)| *i == id)?;
+        Some(self.pose().inverse_transform_point(at))
     }
 
     /// The planning map's occupied cells round the robot, in its frame. With the lidar

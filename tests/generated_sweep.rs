@@ -74,6 +74,8 @@ fn sweep(style: &str) {
     let mut runs = runs.into_inner().unwrap();
     runs.sort_by_key(|(seed, _)| *seed);
     let (mut all, mut blocks, mut placed, mut times) = (0, 0, 0, Vec::new());
+    // A run counts as all delivered only with every block at its gate, the mission's
+    // count the twin's, and nothing touched; each other run is printed.
     let (mut dishonest, mut touched) = (0, 0);
     for (seed, r) in &runs {
         let total = r["total"].as_u64().unwrap();
@@ -81,14 +83,18 @@ fn sweep(style: &str) {
         (blocks, placed) = (blocks + total, placed + truly);
         dishonest += usize::from(r["delivered"] != r["true_delivered"]);
         touched += r["collisions"].as_u64().unwrap();
-        if r["outcome"] == "delivered all" && truly == total {
+        let clean = r["collisions"] == 0 && r["delivered"] == r["true_delivered"];
+        if r["outcome"] == "delivered all" && truly == total && clean {
             all += 1;
             times.push(r["sim_time"].as_f64().unwrap());
         } else {
             println!(
-                "{style} seed {seed} ({}): {}, {truly}/{total} at their gates",
+                "{style} seed {seed} ({}): {}, {truly}/{total} at their gates, mission's count {}, \
+                 {} collisions",
                 drawn(style, *seed).join(" "),
-                r["cause"]
+                r["cause"],
+                r["delivered"],
+                r["collisions"]
             );
         }
     }

@@ -109,6 +109,15 @@ impl Twist {
     pub fn is_zero(self) -> bool {
         self.linear == 0.0 && self.angular == 0.0
     }
+
+    /// The twist halfway to `other`, axis by axis: over a step whose speed ramps linearly
+    /// from one to the other, it gives the exact travel (trapezoidal rule).
+    pub fn halfway(self, other: Twist) -> Twist {
+        Twist::new(
+            (self.linear + other.linear) / 2.0,
+            (self.angular + other.angular) / 2.0,
+        )
+    }
 }
 
 /// A line segment between two points, the building block of walls and obstacle outlines.

@@ -53,12 +53,8 @@ impl Reckoning {
                 break;
             }
             let next_velocity = robot.ramp(self.velocity, target, h);
-            // The speed changes linearly within the step: its mean gives the exact travel
-            // under constant acceleration (trapezoidal rule).
-            let mean = Twist::new(
-                (self.velocity.linear + next_velocity.linear) / 2.0,
-                (self.velocity.angular + next_velocity.angular) / 2.0,
-            );
+            // The speed changes linearly within the step: the mean twist gives its travel.
+            let mean = self.velocity.halfway(next_velocity);
             let (left, right) = wheel_travel(mean, robot.track, h);
             stretch.left += left;
             stretch.right += right;

@@ -41,32 +41,16 @@ pub fn small_objects(map: &Costmap, occupied: &[bool], max_size: f64) -> Vec<Poi
         sums[j].1 += c.y;
     }
     let cell = k as f64 * map.resolution;
+    let ring = (CLEAR_AROUND / cell).ceil() as usize;
     clusters(w, h, |x, y| hits[y * w + x] > 0)
         .into_iter()
         .filter(|cluster| {
-            let span = |axis: fn(&(usize, usize)) -> usize| {
-                let (lo, hi) = cluster
-                    .iter()
-                    .map(axis)
-                    .fold((usize::MAX, 0), |(lo, hi), v| (lo.min(v), hi.max(v)));
-                (hi - lo) as f64 * cell
-            };
+            let (x0, x1, y0, y1) = bounds(cluster);
             // Two clusters' extremes are whole cells apart; the object is at most this big.
-            span(|c| c.0) < max_size && span(|c| c.1) < max_size
-        })
-        .filter(|cluster| {
-            let ring = (CLEAR_AROUND / cell).ceil() as usize;
-            let (x0, x1) = (
-                cluster.iter().map(|c| c.0).min(),
-                cluster.iter().map(|c| c.0).max(),
-            );
-            let (y0, y1) = (
-                cluster.iter().map(|c| c.1).min(),
-                cluster.iter().map(|c| c.1).max(),
-            );
-            let (Some(x0), Some(x1), Some(y0), Some(y1)) = (x0, x1, y0, y1) else {
+            let span = |lo: usize, hi: usize| (hi - lo) as f64 * cell;
+            if span(x0, x1) >= max_size || span(y0, y1) >= max_size {
                 return false;
-            };
+            }
             let near = (y0.saturating_sub(ring)..=(y1 + ring).min(h - 1))
                 .flat_map(|y| {
                     (x0.saturating_sub(ring)..=(x1 + ring).min(w - 1)).map(move |x| (x, y))
@@ -85,6 +69,14 @@ pub fn small_objects(map: &Costmap, occupied: &[bool], max_size: f64) -> Vec<Poi
             Point2::new(sx / f64::from(n), sy / f64::from(n))
         })
         .collect()
+}
+
+/// A cluster's cells' least and greatest column and row: (x0, x1, y0, y1).
+fn bounds(cluster: &[(usize, usize)]) -> (usize, usize, usize, usize) {
+    cluster.iter().fold(
+        (usize::MAX, 0, usize::MAX, 0),
+        |(x0, x1, y0, y1), &(x, y)| (x0.min(x), x1.max(x), y0.min(y), y1.max(y)),
+    )
 }
 
 #[cfg(test)]

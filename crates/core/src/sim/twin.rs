@@ -313,12 +313,8 @@ impl Twin {
         let before = self.drive;
         let target = self.robot.clamp_twist(self.command);
         self.drive = self.robot.ramp(before, target, h);
-        // Speed changes linearly within the step, so the mean twist gives the exact travel
-        // under constant acceleration (trapezoidal rule).
-        let mean = Twist::new(
-            (before.linear + self.drive.linear) / 2.0,
-            (before.angular + self.drive.angular) / 2.0,
-        );
+        // Speed changes linearly within the step: the mean twist gives its travel.
+        let mean = before.halfway(self.drive);
         if !mean.is_zero() {
             self.move_base(mean);
         }

@@ -222,18 +222,16 @@ impl Mcl {
             .map(|p| weigher.log_likelihood(map, p.pose, &beams))
             .collect();
         // The likelihood field skips readings at the maximum range (table 6.3, line 4): in
-        // a room wider than the lidar's reach few beams or none are weighed. A scan that
-        // hit next to nothing tells neither how well the scans fit lately nor whether the map
-        // explains them, so it must not call the filter lost or bring in rivals, which
-        // would fit it everywhere alike.
+        // a room wider than the lidar's reach few beams or none are weighed. A scan whose
+        // hits are that few (or on something the map lacks, a far block on the floor)
+        // cannot judge whether the map explains it: it must not call the filter lost or
+        // bring in rivals, which would fit it everywhere alike.
         let hits = beams
             .ranges
             .iter()
             .filter(|&&r| r < beams.max_range)
             .count();
-        // A few beams that reach something far off (or something the map lacks, a block
-        // on the floor) are too few to judge the map by.
-        let hit_any = hits as f64 >= JUDGED_SHARE * beams.len() as f64;
+        let judged = hits as f64 >= JUDGED_SHARE * beams.len() as f64;
         let weighed = match self.config.measurement.model {
             SensorModel::LikelihoodField => hits,
             SensorModel::Beam => beams.len(),
@@ -290,12 +288,11 @@ impl Mcl {
         }
         let was = self.converged;
         self.refresh_estimate();
-        let agreement = Weigher::agreement(&self.map, self.estimate.pose, &beams, AGREE_NEAR);
-        if hit_any {
-            self.agreement = agreement;
+        if judged {
+            self.agreement = Weigher::agreement(&self.map, self.estimate.pose, &beams, AGREE_NEAR);
         }
         self.judge();
-        let unexplained = hit_any && agreement.is_none_or(|a| a < AGREE_LEAST);
+        let unexplained = judged && self.agreement.is_none_or(|a| a < AGREE_LEAST);
         // The heaviest cluster is now another place than the odometry carried the estimate
         // to: the robot was not where the filter said (carried off, or it had settled on a
         // look-alike).
@@ -310,14 +307,14 @@ impl Mcl {
         if let Some(odom) = self.odom_at_update {
             self.recent.push(odom, beams.clone());
         }
-        if hit_any && !self.converged && self.searching && self.updates > 0 && self.rivals_due() {
+        if judged && !self.converged && self.searching && self.updates > 0 && self.rivals_due() {
             // Still looking: the places that fit the scan as well as the estimate or
             // better, taken in as hypotheses, so that a truth the first particles missed
             // is weighed again (a correlative scan matcher's global search).
             self.has_rivals(&beams);
             self.refresh_estimate();
         }
-        if self.converged && !was && self.searching && (!hit_any || self.has_rivals(&beams)) {
+        if self.converged && !was && self.searching && (!judged || self.has_rivals(&beams)) {
             // The rivals now show among the hypotheses; the filter is not localised.
             self.refresh_estimate();
             self.converged = false;

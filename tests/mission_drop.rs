@@ -110,6 +110,27 @@ fn a_block_neither_the_lidar_nor_the_camera_finds_where_it_was_let_go_is_not_cou
         rig.log
     );
     assert_eq!(rig.mission.delivered(), 0);
+    // With nothing else to explore, the robot goes back to look for it where it let go.
+    let look = (rig.plans.iter()).find(|p| p.2.starts_with("unexplained object"));
+    let goal = look.expect("a look where it was let go").1;
+    assert!(goal.distance(Point2::new(-0.8, 1.0)) < 0.6, "{goal:?}");
+    assert!(!rig.logged("Exploration complete"), "{:?}", rig.log);
+}
+
+#[test]
+fn a_block_the_newest_scan_shows_where_it_was_let_go_counts_before_the_map_has_it() {
+    let mut rig = Rig::new(config(4), all_free());
+    heading_for_the_gate(&mut rig);
+    rig.until(400, |_, r| r.mission.state_label().starts_with("back off"));
+    // The map has not folded in a scan since, and the block's markers face away; the
+    // lidar's newest scan shows it where the jaws let it go, 0.10 m ahead of them.
+    rig.occupied = vec![false; rig.map.width * rig.map.height];
+    rig.seen.retain(|&id| id != 421 && id != 422);
+    rig.blocks[0].1 = rig.pose.transform_point(Point2::new(0.10, 0.0));
+    rig.lidar = true;
+    rig.until(400, |_, r| r.logged("Delivered red block 421"));
+    assert!(!rig.logged("not delivered"), "{:?}", rig.log);
+    assert_eq!(rig.mission.delivered(), 1);
 }
 
 /// Worlds where a third, fourth, ... block of one colour goes to its gate: the mission's

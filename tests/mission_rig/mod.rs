@@ -24,6 +24,8 @@ pub struct Rig {
     pub map: Costmap,
     /// The cells of `map` a lidar found occupied (empty: no lidar).
     pub occupied: Vec<bool>,
+    /// Scan the blocks' near faces each step (a lidar outlining them), else no scan.
+    pub lidar: bool,
     /// The filter's position standard deviation the mission is told, metres.
     pub position_std: f64,
     /// Follow planned paths in straight lines at 0.2 m/s and run the gripper.
@@ -54,6 +56,7 @@ impl Rig {
             path: PathStatus::Idle,
             map,
             occupied: Vec::new(),
+            lidar: false,
             position_std: 0.0,
             auto: true,
             blocks: Vec::new(),
@@ -100,7 +103,31 @@ impl Rig {
         self.landmarks.insert(402, Point2::new(-1.0, 0.85));
     }
 
+    /// The blocks' faces that look towards the robot, every 5 mm, in its frame: what a
+    /// noiseless lidar with a 0.12 m least range returns from them.
+    fn scan(&self) -> Vec<Point2> {
+        let robot = self.pose.position();
+        let mut hits = Vec::new();
+        for &(_, c) in &self.blocks {
+            for (nx, ny) in [(1.0, 0.0), (-1.0, 0.0), (0.0, 1.0), (0.0, -1.0)] {
+                let face = Point2::new(c.x + 0.025 * nx, c.y + 0.025 * ny);
+                if (robot.x - face.x) * nx + (robot.y - face.y) * ny <= 0.0 {
+                    continue;
+                }
+                for k in -5..=5 {
+                    let along = 0.005 * f64::from(k);
+                    let p = Point2::new(face.x - along * ny, face.y + along * nx);
+                    if p.distance(robot) >= 0.12 {
+                        hits.push(self.pose.inverse_transform_point(p));
+                    }
+                }
+            }
+        }
+        hits
+    }
+
     pub fn step(&mut self) -> Outputs {
+        let scan = if self.lidar { self.scan() } else { Vec::new() };
         let inputs = Inputs {
             t: self.t,
             pose: self.pose,
@@ -111,6 +138,7 @@ impl Rig {
             path: &self.path,
             map: &self.map,
             occupied: &self.occupied,
+            scan: &scan,
             position_std: self.position_std,
             localized: false,
             arm: self.arm.as_ref().map(|a| a.1),

@@ -86,6 +86,7 @@ impl Pilot {
         let landmarks: BTreeMap<_, _> = self.ekf.landmarks().map(|l| (l.id, l.mean)).collect();
         let frame = self.exploring.frame.take();
         let path = self.path_status();
+        let scan = self.scan_here();
         let outputs = mission.step(&Inputs {
             t: self.mission_clock(t),
             pose: self.pose(),
@@ -96,6 +97,7 @@ impl Pilot {
             path: &path,
             map: self.belief.costmap(),
             occupied: self.belief.sensed_occupied(),
+            scan: &scan,
             position_std: self.position_std(),
             // The lidar places the robot without markers: MCL once it converged, lidar SLAM
             // always.

@@ -268,10 +268,21 @@ impl Mission {
                     at: p,
                     first: (robot.y - p.y).atan2(robot.x - p.x),
                     looks: 0,
+                    let_go: None,
                 });
                 self.explored.unexplained.len() - 1
             });
             if self.explored.unexplained[i].looks < OBJECT_LOOKS {
+                open.push(i);
+            }
+        }
+        // Blocks let go where they did not count, until found again.
+        let lost = |u: &Unexplained| {
+            u.let_go
+                .is_some_and(|odd| self.objects.blocks().all(|b| b.markers[0] != odd))
+        };
+        for (i, u) in self.explored.unexplained.iter().enumerate() {
+            if lost(u) && u.looks < OBJECT_LOOKS && !open.contains(&i) {
                 open.push(i);
             }
         }

@@ -47,6 +47,8 @@ pub(crate) enum DropEvent {
     Missed {
         why: String,
         slot: usize,
+        /// Where the block is, as near as the robot can tell.
+        at: Point2,
     },
     GiveUp,
 }

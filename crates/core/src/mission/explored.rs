@@ -6,13 +6,17 @@ use super::coverage::Coverage;
 use crate::geometry::Point2;
 use std::collections::BTreeMap;
 
-/// A small object the lidar mapped and no marker explains, and the looks taken at it.
+/// A small object the lidar mapped and no marker explains, or a block let go where it
+/// did not count, and the looks taken at it.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(super) struct Unexplained {
     pub at: Point2,
     /// Direction of the first look, from the object, radians; later looks turn 90° on.
     pub first: f64,
     pub looks: u32,
+    /// A block (odd marker) let go where it did not count: looked at until it is found
+    /// again, whether or not the lidar's map shows it apart from its neighbours.
+    pub let_go: Option<u32>,
 }
 
 /// Where exploration has been and what it has looked at: a goal reached is not chosen

@@ -6,7 +6,7 @@ use super::config::{LOST_SCAN_AFTER, MissionConfig, RELOCATE_STANDOFF};
 use super::delivery::{Delivery, DropEvent};
 use super::drive::Turn;
 use super::drop_places::DROP_PLACES;
-use super::explored::{Explored, GivenUp};
+use super::explored::{Explored, GivenUp, Unexplained};
 use super::leg::{Ctx, Leg, LegStep};
 use super::objects::{Colour, Objects};
 use super::phase::{Cause, Phase};
@@ -323,10 +323,18 @@ impl Mission {
                         self.phase = Phase::Choose;
                         Tick::Again
                     }
-                    DropEvent::Missed { why, slot } => {
-                        // Not at its gate: found again like a new block, and picked up again.
+                    DropEvent::Missed { why, slot, at } => {
+                        // Not at its gate: found again like a new block, and picked up again;
+                        // the place it was left is looked at from four sides till then.
                         // Whatever lies in its drop place, the next drop goes elsewhere.
                         self.drop_slots.entry(colour).or_default().insert(slot);
+                        let robot = inputs.pose.position();
+                        self.explored.unexplained.push(Unexplained {
+                            at,
+                            first: (robot.y - at.y).atan2(robot.x - at.x),
+                            looks: 0,
+                            let_go: Some(odd),
+                        });
                         log.push((
                             Level::Warn,
                             format!(

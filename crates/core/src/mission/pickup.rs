@@ -4,7 +4,7 @@
 //! arm goes above the block, descends, closes and lifts.
 
 use super::arm_moves::{ABOVE, ArmMove, ArmMoves, arrived};
-use super::block_fit::lidar_centre;
+use super::block_fit::{lidar_centre, scan_centre};
 use super::config::{BLOCK_LOST_AFTER, CAMERA_HALF_FOV, CAMERA_RANGE, FIT_SEARCH, MissionConfig};
 use super::drive::{Wait, bearing, faces, opened, steer, towards, turn_towards};
 use super::leg::{Ctx, Leg, LegStep};
@@ -35,6 +35,11 @@ enum Stage {
     ArmUp(ArmMove),
 }
 
+/// A scan's outline of the block stands this long after the block left the scan (seconds,
+/// navdeck's): from a creep at 5 cm/s, the last 10 cm before the jaws, where a lidar's least
+/// range hides it.
+const OUTLINE_KEPT: f64 = 2.0;
+
 /// The arm's carrying pose.
 const CARRY: &str = "home";
 
@@ -58,6 +63,8 @@ pub(crate) struct Pickup {
     retried: bool,
     /// When the block's markers were last seen, or last not expected in view.
     last_seen: f64,
+    /// The block's centre from the newest scan's outline of it, and when that was fitted.
+    outline: Option<(Point2, f64)>,
 }
 
 /// Where the path to a block ends: `staging_distance` from it towards where the robot was
@@ -120,7 +127,16 @@ impl Pickup {
             since: t,
             retried: false,
             last_seen: t,
+            outline: None,
         }
+    }
+
+    /// Where the lidar's live outline puts the block while the robot is near it (facing
+    /// it, creeping up to it or gripping it): from the newest scan, or from the last scan
+    /// that outlined it within `OUTLINE_KEPT` (the block may be under the lidar's least
+    /// range by then); `None` while travelling or without an outline.
+    pub fn outline(&self) -> Option<Point2> {
+        self.outline.map(|(at, _)| at)
     }
 
     /// Whether the arm is at work on the block (reaching, gripping, lifting): a pick
@@ -175,20 +191,33 @@ impl Pickup {
         let (t, pose) = (inputs.t, inputs.pose);
         // The lidar's outline of the block, where it has one, places it more finely than
         // its markers do; only the stages near the block use where it is.
+        // The newest scan outlines it in the robot's own frame, free of any error in the
+        // pose the map was built with; the map's outline stands in when no scan shows it.
         let near = !matches!(self.stage, Stage::Travel(_));
-        let fitted = near.then(|| {
+        let size = config.block_size;
+        let live = near
+            .then(|| scan_centre(inputs.scan, pose, block.position, size, FIT_SEARCH))
+            .flatten();
+        self.outline = match live {
+            Some(at) => Some((at, t)),
+            None => self
+                .outline
+                .filter(|(_, at)| near && t - at <= OUTLINE_KEPT),
+        };
+        let mapped = || {
             let robot = pose.position();
-            let size = config.block_size;
+            let occupied = inputs.occupied;
             lidar_centre(
                 inputs.map,
-                inputs.occupied,
+                occupied,
                 block.position,
                 size,
                 FIT_SEARCH,
                 robot,
             )
-        });
-        let aim = fitted.flatten().unwrap_or(block.position);
+        };
+        let fitted = near.then(|| self.outline().or_else(mapped)).flatten();
+        let aim = fitted.unwrap_or(block.position);
         let distance = pose.position().distance(aim);
         let error = bearing(pose, aim);
         let waited = t - self.since;
@@ -209,7 +238,9 @@ impl Pickup {
                 (blind..=CAMERA_RANGE).contains(&distance) && error.abs() < CAMERA_HALF_FOV;
             let spotted =
                 inputs.camera_frame && block.markers.iter().any(|m| inputs.seen.contains(m));
-            if spotted || !in_view {
+            // A scan that outlines it says it is there even when its markers, on two
+            // faces only, face away from this approach.
+            if spotted || !in_view || live.is_some() {
                 self.last_seen = t;
             } else if t - self.last_seen >= BLOCK_LOST_AFTER {
                 log.push((

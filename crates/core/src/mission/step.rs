@@ -38,6 +38,8 @@ pub struct Inputs<'a> {
     /// The cells of `map` the lidar found occupied (row-major, the same size), or empty
     /// without a lidar.
     pub occupied: &'a [bool],
+    /// The newest lidar scan's hits in the robot's frame now, or empty without one.
+    pub scan: &'a [Point2],
     /// The filter's position uncertainty: the standard deviation along its worst
     /// direction, metres.
     pub position_std: f64,

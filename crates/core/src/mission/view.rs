@@ -60,6 +60,18 @@ impl Mission {
         }
     }
 
+    /// The centre of the block being picked up as its lidar outline places it, while the
+    /// robot is near it (the point its final approach aims at), and the radius of the
+    /// circle round its corners.
+    pub fn picked_block_outline(&self) -> Option<(crate::geometry::Point2, f64)> {
+        match &self.phase {
+            Phase::Pickup(p) => p
+                .outline()
+                .map(|c| (c, self.config.block_size * std::f64::consts::FRAC_1_SQRT_2)),
+            _ => None,
+        }
+    }
+
     /// Why the mission is doing what `state_label` says, in two status rows at most,
     /// e.g. "camera has not looked there (4 left)".
     pub fn reason(&self) -> String {

@@ -23,9 +23,17 @@ const MAP_RADIUS_M: f64 = 1.0;
 /// an obstacle the robot stopped short of still holds it once it is too near to see.
 const REMEMBER_WITHIN_M: f64 = 0.35;
 const REMEMBER_FOR_S: f64 = 2.0;
-/// While a block is picked up, the lidar's hits this near its marker's estimate are the
-/// block (a 5 cm block seen from any side, and the estimate's error), metres.
+/// While a block is picked up and the lidar does not outline it, the hits this near its
+/// marker's estimate are the block (a 5 cm block seen from any side, and the estimate's
+/// error), metres.
 const PICKED_BLOCK_M: f64 = 0.1;
+/// While a block is picked up and the lidar outlines it, the hits within its corners'
+/// circle widened by `OUTLINE_MARGIN_M` are the block, and only while it lies in the
+/// gripper's open mouth (this far either side of the robot's axis: a TurtleBot3 gripper's
+/// jaws are 7 cm apart, less the outline's error): the creep takes it between the jaws.
+/// Off the axis its face would meet a jaw, and it stops the creep like any obstacle.
+const MOUTH_HALF_WIDTH_M: f64 = 0.025;
+const OUTLINE_MARGIN_M: f64 = 0.02;
 /// While a block is held, hits in the gripper's jaws (`map::contact::JAWS`) widened by this
 /// are the block, metres.
 const HELD_MARGIN_M: f64 = 0.03;
@@ -66,10 +74,26 @@ impl Pilot {
         self.behaviours.collision.scan_at = Some((t, self.odometry.pose()));
     }
 
+    /// The newest scan's hits in the robot's frame now (moved by odometry since it was
+    /// taken); empty without a scan, or with the lidar lost.
+    pub(crate) fn scan_here(&self) -> Vec<Point2> {
+        let scan_at = (self.behaviours.collision.scan_at)
+            .filter(|_| !self.sensor_lost(navdeck_core::health::Sensor::Lidar));
+        match (scan_at, self.newest_scan()) {
+            (Some((_, then)), Some((_, scan))) => shifted(
+                &points_from_scan(scan, Pose2::default()),
+                self.odometry.pose(),
+                then,
+            ),
+            _ => Vec::new(),
+        }
+    }
+
     /// The monitor's proposal at `t` against the task's `twist`, when it changes it. With
     /// `handling` (pick-and-place: a block is being picked up or carried), the block itself
-    /// is touched by design: the hits near the picked block's marker, or in the jaws that
-    /// hold it, are not obstacles, and only the stop zones act.
+    /// is touched by design: the hits of the picked block (its live outline in the jaws'
+    /// mouth, else near its marker) or in the jaws that hold it are not obstacles, and
+    /// only the stop zones act.
     pub(crate) fn collision_proposal(
         &mut self,
         t: f64,
@@ -86,6 +110,8 @@ impl Pilot {
         let (mut points, age, source) = match (scan_at, self.newest_scan()) {
             (Some((at, then)), Some((_, scan))) => {
                 let hits = points_from_scan(scan, Pose2::default());
+                // From the robot's frame then to its frame now.
+                let mut points = shifted(&hits, odom, then);
                 let watch = &mut self.behaviours.collision;
                 watch
                     .remembered
@@ -97,10 +123,6 @@ impl Pilot {
                         .collect();
                     watch.remembered.push((at, near));
                 }
-                // From the robot's frame then to its frame now.
-                let shift = odom.inverse().compose(then);
-                let mut points: Vec<Point2> =
-                    hits.iter().map(|&p| shift.transform_point(p)).collect();
                 let older = watch
                     .remembered
                     .iter()
@@ -116,13 +138,17 @@ impl Pilot {
         points.extend(self.keepout_points(MAP_RADIUS_M));
         if handling {
             let block = self.picked_block_here();
+            let outline = self.picked_outline_here();
             let held = self.hand.state == Some(GripperState::Holding);
             let jaws = HeldZone {
                 ahead: JAWS.ahead + HELD_MARGIN_M,
                 half_width: JAWS.half_width + HELD_MARGIN_M,
             };
             points.retain(|&p| {
-                let is_block = block.is_some_and(|b| b.distance(p) <= PICKED_BLOCK_M);
+                let is_block = match outline {
+                    Some((c, r)) => in_mouth(c) && c.distance(p) <= r + OUTLINE_MARGIN_M,
+                    None => block.is_some_and(|b| b.distance(p) <= PICKED_BLOCK_M),
+                };
                 let in_jaws = held && jaws.contains(Pose2::default(), p);
                 !(is_block || in_jaws)
             });
@@ -161,6 +187,13 @@ impl Pilot {
         Some(self.pose().inverse_transform_point(at))
     }
 
+    /// The centre of the block being picked up as the lidar's live outline places it, in
+    /// the robot's frame, and its corners' radius.
+    fn picked_outline_here(&self) -> Option<(Point2, f64)> {
+        let (centre, radius) = self.exploring.mission.as_ref()?.picked_block_outline()?;
+        Some((self.pose().inverse_transform_point(centre), radius))
+    }
+
     /// The planning map's occupied cells round the robot, in its frame. With the lidar
     /// lost, cells the map does not know count as occupied too: blind, the robot drives
     /// only where the map has seen free space.
@@ -183,4 +216,15 @@ impl Pilot {
         let grid = &watch.map_grid.as_ref().expect("just made").1;
         points_from_grid(grid, pose, MAP_RADIUS_M)
     }
+}
+
+/// Points seen in the robot's frame when odometry read `then`, in its frame at `now`.
+fn shifted(points: &[Point2], now: Pose2, then: Pose2) -> Vec<Point2> {
+    let shift = now.inverse().compose(then);
+    points.iter().map(|&p| shift.transform_point(p)).collect()
+}
+
+/// Whether a block centred at `at` (robot frame) lies ahead in the gripper's open mouth.
+fn in_mouth(at: Point2) -> bool {
+    at.x > 0.0 && at.y.abs() <= MOUTH_HALF_WIDTH_M
 }

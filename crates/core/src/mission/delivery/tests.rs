@@ -64,6 +64,7 @@ fn once_every_drop_place_had_no_path_each_retry_goes_to_another() {
             path: &no_path,
             map: &map,
             occupied: &[],
+            scan: &[],
             position_std: 0.01,
             localized: false,
             arm: None,

@@ -264,12 +264,7 @@ impl Mission {
             let known =
                 (self.explored.unexplained.iter()).position(|u| u.at.distance(p) < 2.0 * GATHER);
             let i = known.unwrap_or_else(|| {
-                self.explored.unexplained.push(Unexplained {
-                    at: p,
-                    first: (robot.y - p.y).atan2(robot.x - p.x),
-                    looks: 0,
-                    let_go: None,
-                });
+                (self.explored.unexplained).push(Unexplained::new(p, robot, None));
                 self.explored.unexplained.len() - 1
             });
             if self.explored.unexplained[i].looks < OBJECT_LOOKS {

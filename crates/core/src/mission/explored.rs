@@ -19,6 +19,18 @@ pub(super) struct Unexplained {
     pub let_go: Option<u32>,
 }
 
+impl Unexplained {
+    /// One not looked at yet, at `at`, the first look from the side of `robot`.
+    pub fn new(at: Point2, robot: Point2, let_go: Option<u32>) -> Self {
+        Self {
+            at,
+            first: (robot.y - at.y).atan2(robot.x - at.x),
+            looks: 0,
+            let_go,
+        }
+    }
+}
+
 /// Where exploration has been and what it has looked at: a goal reached is not chosen
 /// again.
 #[derive(Clone, Debug, Default)]

@@ -329,12 +329,7 @@ impl Mission {
                         // Whatever lies in its drop place, the next drop goes elsewhere.
                         self.drop_slots.entry(colour).or_default().insert(slot);
                         let robot = inputs.pose.position();
-                        self.explored.unexplained.push(Unexplained {
-                            at,
-                            first: (robot.y - at.y).atan2(robot.x - at.x),
-                            looks: 0,
-                            let_go: Some(odd),
-                        });
+                        (self.explored.unexplained).push(Unexplained::new(at, robot, Some(odd)));
                         log.push((
                             Level::Warn,
                             format!(

@@ -190,31 +190,21 @@ impl Pickup {
         };
         let (t, pose) = (inputs.t, inputs.pose);
         // The lidar's outline of the block, where it has one, places it more finely than
-        // its markers do; only the stages near the block use where it is.
-        // The newest scan outlines it in the robot's own frame, free of any error in the
-        // pose the map was built with; the map's outline stands in when no scan shows it.
+        // its markers do; only the stages near the block use where it is. The newest scan
+        // outlines it in the robot's own frame, free of any error in the pose the map was
+        // built with; the map's outline stands in when no scan shows it.
         let near = !matches!(self.stage, Stage::Travel(_));
         let size = config.block_size;
         let live = near
             .then(|| scan_centre(inputs.scan, pose, block.position, size, FIT_SEARCH))
             .flatten();
         self.outline = match live {
-            Some(at) => Some((at, t)),
-            None => self
-                .outline
-                .filter(|(_, at)| near && t - at <= OUTLINE_KEPT),
+            Some(centre) => Some((centre, t)),
+            None => (self.outline).filter(|(_, fitted)| near && t - fitted <= OUTLINE_KEPT),
         };
         let mapped = || {
-            let robot = pose.position();
-            let occupied = inputs.occupied;
-            lidar_centre(
-                inputs.map,
-                occupied,
-                block.position,
-                size,
-                FIT_SEARCH,
-                robot,
-            )
+            let (map, occupied, robot) = (inputs.map, inputs.occupied, pose.position());
+            lidar_centre(map, occupied, block.position, size, FIT_SEARCH, robot)
         };
         let fitted = near.then(|| self.outline().or_else(mapped)).flatten();
         let aim = fitted.unwrap_or(block.position);

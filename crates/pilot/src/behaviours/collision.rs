@@ -74,19 +74,22 @@ impl Pilot {
         self.behaviours.collision.scan_at = Some((t, self.odometry.pose()));
     }
 
+    /// The newest scan: when it arrived, the odometry pose then, and its hits in the
+    /// robot's frame then; `None` without a scan, or with the lidar lost (its last scan
+    /// grows stale).
+    fn newest_hits(&self) -> Option<(f64, Pose2, Vec<Point2>)> {
+        let (at, then) = (self.behaviours.collision.scan_at)
+            .filter(|_| !self.sensor_lost(navdeck_core::health::Sensor::Lidar))?;
+        let (_, scan) = self.newest_scan()?;
+        Some((at, then, points_from_scan(scan, Pose2::default())))
+    }
+
     /// The newest scan's hits in the robot's frame now (moved by odometry since it was
     /// taken); empty without a scan, or with the lidar lost.
     pub(crate) fn scan_here(&self) -> Vec<Point2> {
-        let scan_at = (self.behaviours.collision.scan_at)
-            .filter(|_| !self.sensor_lost(navdeck_core::health::Sensor::Lidar));
-        match (scan_at, self.newest_scan()) {
-            (Some((_, then)), Some((_, scan))) => shifted(
-                &points_from_scan(scan, Pose2::default()),
-                self.odometry.pose(),
-                then,
-            ),
-            _ => Vec::new(),
-        }
+        self.newest_hits()
+            .map(|(_, then, hits)| shifted(&hits, self.odometry.pose(), then))
+            .unwrap_or_default()
     }
 
     /// The monitor's proposal at `t` against the task's `twist`, when it changes it. With
@@ -104,12 +107,9 @@ impl Pilot {
             return None;
         }
         let odom = self.odometry.pose();
-        // With the lidar lost, its last scan grows stale: the map is the source then.
-        let scan_at = (self.behaviours.collision.scan_at)
-            .filter(|_| !self.sensor_lost(navdeck_core::health::Sensor::Lidar));
-        let (mut points, age, source) = match (scan_at, self.newest_scan()) {
-            (Some((at, then)), Some((_, scan))) => {
-                let hits = points_from_scan(scan, Pose2::default());
+        // Without a fresh scan (the lidar lost), the map is the source.
+        let (mut points, age, source) = match self.newest_hits() {
+            Some((at, then, hits)) => {
                 // From the robot's frame then to its frame now.
                 let mut points = shifted(&hits, odom, then);
                 let watch = &mut self.behaviours.collision;
@@ -132,7 +132,7 @@ impl Pilot {
                 points.extend(older.map(|&p| odom.inverse_transform_point(p)));
                 (points, Some(t - at), SourceKind::Scan)
             }
-            _ => (self.map_points(), Some(0.0), SourceKind::Map),
+            None => (self.map_points(), Some(0.0), SourceKind::Map),
         };
         // Keepout zones' edges are obstacles too (zones.rs).
         points.extend(self.keepout_points(MAP_RADIUS_M));

@@ -142,7 +142,8 @@ fn log_paged_back_during_the_mission_80x24() {
 /// Only warnings and worse, then only lines about the gripper.
 #[test]
 fn log_filtered_by_level_and_by_text_120x40() {
-    let mut steps = vec![press('e'), Step::Wait(60.0), press('m'), press('f')];
+    // 75 s into the mission the log has warnings (a path blocked, an obstacle seen).
+    let mut steps = vec![press('e'), Step::Wait(75.0), press('m'), press('f')];
     steps.push(Step::Wait(0.1));
     let mut by_text = vec![press('e'), Step::Wait(60.0), press('m'), press('/')];
     by_text.extend(typed("gripper"));
@@ -284,7 +285,7 @@ fn log_paged_back_during_the_mission_120x40() {
 fn log_filtered_by_level_80x24() {
     let steps = vec![
         press('e'),
-        Step::Wait(60.0),
+        Step::Wait(75.0),
         press('m'),
         press('f'),
         Step::Wait(0.1),

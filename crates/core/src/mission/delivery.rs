@@ -3,23 +3,23 @@
 //! lowered to the floor before it opens, and raised again after.
 
 use super::arm_moves::{ArmMove, ArmMoves, arrived};
-use super::clearance::clear_ahead;
 use super::config::{BACK_OFF_SPEED, MissionConfig};
-use super::drive::{Wait, faces, opened, steer, turn_towards};
-use super::drop_places::{AT_GATE, at_gate, open, shifted, standable};
+use super::drive::{Wait, faces, opened, turn_towards};
+use super::drop_places::{open, shifted, standable};
 use super::leg::{Ctx, Leg, LegStep};
 use super::objects::{Colour, Gate};
 use super::pickup::name;
 use super::step::{Inputs, Level, Motion};
 use crate::data::GripperCommand;
-use crate::geometry::{Point2, Pose2, Twist, wrap_angle};
+use crate::geometry::{Point2, Twist, wrap_angle};
 use crate::map::costmap::Costmap;
 
 #[derive(Clone, Debug)]
 enum Stage {
     Travel(Leg),
     Face,
-    Forward,
+    /// Creeping in; the nearest the robot has come to the drop place, and when.
+    Forward(Progress),
     /// The arm puts the block on the floor below where it carries it.
     Lower(ArmMove),
     Open,
@@ -51,6 +51,8 @@ pub(crate) enum DropEvent {
         at: Point2,
     },
     GiveUp,
+    /// No drop place left where the block would surely count: it stays held.
+    Full,
 }
 
 /// A delivery under way.
@@ -79,11 +81,6 @@ pub(crate) struct Delivery {
     let_go: Option<Point2>,
 }
 
-/// How far ahead of the robot's centre a carried block's centre lies, metres.
-const CARRIED_AHEAD: f64 = 0.10;
-/// The creep stops when the lidar's map has something this near ahead of the robot's
-/// centre: the carried block's far face (0.14 m, clearance.rs) and 0.05 m to spare.
-const STOP_AHEAD: f64 = 0.19;
 /// A gate estimate that moved or turned this much gets a new drop place (metres, radians).
 const REFRESH_MOVE: f64 = 0.05;
 const REFRESH_TURN: f64 = 20.0 * std::f64::consts::PI / 180.0;
@@ -259,7 +256,7 @@ impl Delivery {
             }
             Stage::Travel(_) => format!("deliver {block} to {gate} gate"),
             Stage::Face => format!("face {gate} gate with {block}"),
-            Stage::Forward => format!("drive {block} into {gate} gate"),
+            Stage::Forward(_) => format!("drive {block} into {gate} gate"),
             Stage::Lower(_) => format!("lower {block}"),
             Stage::Open => format!("drop {block}"),
             Stage::Raise(_) => "raise the arm".to_string(),
@@ -285,10 +282,8 @@ impl Delivery {
         let (t, pose) = (inputs.t, inputs.pose);
         let waited = t - self.since;
         let error = wrap_angle(self.place.facing() - pose.theta);
-        let stop = DropEvent::Go(Motion::Stop, None);
+        let (stop, open, back_off) = (stopped(), opening(), backing_off());
         let joints = inputs.arm;
-        let open = DropEvent::Go(Motion::Stop, Some(GripperCommand::Open));
-        let back_off = DropEvent::Go(Motion::Drive(Twist::new(-BACK_OFF_SPEED, 0.0)), None);
         if matches!(self.stage, Stage::Travel(_))
             && let Some(slot) = self.other_side(inputs.map, config)
         {
@@ -304,10 +299,11 @@ impl Delivery {
             self.tried.clear();
             self.travel_to(slot, config);
         }
+        let map = inputs.map;
         if matches!(self.stage, Stage::Travel(_))
-            && !self.standable(self.slot, inputs.map, config)
-            && let Some(next) = (self.next_slot(inputs.map, config))
-                .filter(|&s| self.standable(s, inputs.map, config))
+            && !self.standable(self.slot, map, config)
+            && let Some(next) =
+                (self.next_slot(map, config)).filter(|&s| self.standable(s, map, config))
         {
             log.push((
                 Level::Warn,
@@ -368,62 +364,18 @@ impl Delivery {
             },
             Stage::Face => {
                 if faces(error) {
-                    self.enter(Stage::Forward, t);
+                    self.enter(Stage::Forward(Progress::new(t)), t);
                     return stop;
                 }
                 DropEvent::Go(Motion::Drive(turn_towards(error, config)), None)
             }
-            Stage::Forward => {
-                let distance = pose.position().distance(self.place.center);
-                let creep = (config.drop_staging - config.drop_distance) / config.approach_speed;
-                let stop_at = config.drop_distance + self.depth;
-                // The wall (or a block delivered earlier) as the lidar mapped it stops the
-                // creep too, wherever the markers put the gate.
-                // Only what the carried block would touch counts: a block delivered in the
-                // row nearer the wall stands further ahead and is passed beside.
-                let blocked =
-                    clear_ahead(inputs.map, inputs.occupied, pose, STOP_AHEAD.min(stop_at))
-                        .is_some();
-                if distance <= stop_at || blocked || waited >= 2.0 * creep + 2.0 {
-                    let carried = carried_at(pose);
-                    if distance > stop_at
-                        && !at_gate(&self.gate, carried)
-                        && let Some(next) = self.next_slot(inputs.map, config)
-                    {
-                        log.push((
-                            Level::Warn,
-                            format!(
-                                "Stopped {:.2} m from the {} gate's centre, short of its {AT_GATE} m - trying drop place {}",
-                                carried.distance(self.gate.center),
-                                self.colour.label(),
-                                next + 1
-                            ),
-                        ));
-                        self.enter(Stage::Withdraw(next), t);
-                        return back_off;
-                    }
-                    let lower = arm.map(|a| a.lower_to(config.block_size / 2.0, joints));
-                    match lower {
-                        Some(Ok(m)) => {
-                            let block = name(self.colour, self.block);
-                            log.push((Level::Info, format!("Lowering {block}")));
-                            self.enter(Stage::Lower(m), t);
-                        }
-                        Some(Err(why)) => {
-                            // Dropped from where it is carried rather than not at all.
-                            log.push((Level::Warn, format!("The arm cannot lower: {why}")));
-                            self.enter(Stage::Open, t);
-                            return open;
-                        }
-                        None => {
-                            self.enter(Stage::Open, t);
-                            return open;
-                        }
-                    }
-                    return stop;
+            Stage::Forward(progress) => {
+                let mut progress = *progress;
+                let event = self.creep(&mut progress, inputs, config, arm, log);
+                if let Stage::Forward(p) = &mut self.stage {
+                    *p = progress;
                 }
-                let twist = Twist::new(config.approach_speed, steer(error));
-                DropEvent::Go(Motion::Drive(twist), None)
+                event
             }
             Stage::Open => match opened(inputs.gripper, waited, config) {
                 Wait::Waiting => stop,
@@ -474,11 +426,21 @@ impl Delivery {
     }
 }
 
-/// Where the carried block's centre is with the robot at `pose`.
-fn carried_at(pose: Pose2) -> Point2 {
-    pose.transform_point(Point2::new(CARRIED_AHEAD, 0.0))
+/// Standing still, opening the gripper there, backing straight away.
+fn stopped() -> DropEvent {
+    DropEvent::Go(Motion::Stop, None)
+}
+
+fn opening() -> DropEvent {
+    DropEvent::Go(Motion::Stop, Some(GripperCommand::Open))
+}
+
+fn backing_off() -> DropEvent {
+    DropEvent::Go(Motion::Drive(Twist::new(-BACK_OFF_SPEED, 0.0)), None)
 }
 
 mod check;
+mod creep;
+use creep::{Progress, carried_at};
 #[cfg(test)]
 mod tests;

@@ -343,6 +343,7 @@ impl Mission {
                         Tick::Again
                     }
                     DropEvent::GiveUp => self.manual(Cause::Delivery),
+                    DropEvent::Full => self.manual(Cause::GateFull),
                 }
             }
             Phase::BackOff(since) => {

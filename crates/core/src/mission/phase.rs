@@ -61,7 +61,8 @@ pub(super) enum Cause {
     Delivery,
     /// Exploration was complete with found blocks left (their gate never seen).
     BlocksLeft,
-    /// A block was picked up for a gate whose every drop place is taken.
+    /// A block was picked up for a gate whose every drop place is taken, or where none
+    /// left would surely count.
     GateFull,
 }
 

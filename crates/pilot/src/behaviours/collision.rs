@@ -28,10 +28,13 @@ const REMEMBER_FOR_S: f64 = 2.0;
 /// error), metres.
 const PICKED_BLOCK_M: f64 = 0.1;
 /// While a block is picked up and the lidar outlines it, the hits within its corners'
-/// circle widened by `OUTLINE_MARGIN_M` are the block, and only while it lies in the
-/// gripper's open mouth (this far either side of the robot's axis: a TurtleBot3 gripper's
-/// jaws are 7 cm apart, less the outline's error): the creep takes it between the jaws.
-/// Off the axis its face would meet a jaw, and it stops the creep like any obstacle.
+/// circle widened by `OUTLINE_MARGIN_M`, or in that circle's width between it and the
+/// robot, are the block, and only while it lies in the gripper's open mouth (this far
+/// either side of the robot's axis: a TurtleBot3 gripper's jaws are 7 cm apart, less the
+/// outline's error): the creep takes it between the jaws. A block whose near face sinks
+/// under the lidar's least range is outlined by its sides and far face, centimetres too
+/// far; its near face, remembered from earlier scans, is still the block. Off the axis
+/// its face would meet a jaw, and it stops the creep like any obstacle.
 const MOUTH_HALF_WIDTH_M: f64 = 0.025;
 const OUTLINE_MARGIN_M: f64 = 0.02;
 /// While a block is held, hits in the gripper's jaws (`map::contact::JAWS`) widened by this
@@ -146,7 +149,7 @@ impl Pilot {
             };
             points.retain(|&p| {
                 let is_block = match outline {
-                    Some((c, r)) => in_mouth(c) && c.distance(p) <= r + OUTLINE_MARGIN_M,
+                    Some((c, r)) => in_mouth(c) && outlined(c, r + OUTLINE_MARGIN_M, p),
                     None => block.is_some_and(|b| b.distance(p) <= PICKED_BLOCK_M),
                 };
                 let in_jaws = held && jaws.contains(Pose2::default(), p);
@@ -227,4 +230,11 @@ fn shifted(points: &[Point2], now: Pose2, then: Pose2) -> Vec<Point2> {
 /// Whether a block centred at `at` (robot frame) lies ahead in the gripper's open mouth.
 fn in_mouth(at: Point2) -> bool {
     at.x > 0.0 && at.y.abs() <= MOUTH_HALF_WIDTH_M
+}
+
+/// Whether `p` (robot frame) lies within `radius` of a block outlined at `at`, or between
+/// it and the robot in the circle's width.
+fn outlined(at: Point2, radius: f64, p: Point2) -> bool {
+    let nearer = p.x > 0.0 && p.x <= at.x && (p.y - at.y).abs() <= radius;
+    nearer || at.distance(p) <= radius
 }

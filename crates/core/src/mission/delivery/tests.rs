@@ -92,3 +92,133 @@ fn once_every_drop_place_had_no_path_each_retry_goes_to_another() {
         .count();
     assert_eq!(distinct, DROP_PLACES.len(), "{retried_to:?}");
 }
+
+/// A delivery to the first of drop places `free` of the gate at (0, 2) facing -y.
+fn delivering(free: Vec<usize>) -> Delivery {
+    let config = MissionConfig::default();
+    Delivery::new(421, Colour::Red, gate((0.0, -1.0)), free, &config, 0.0).unwrap()
+}
+
+/// A delivery to drop place `slot` of the gate at (0, 2) facing -y, creeping in since
+/// `t`; the robot stands `distance` short of the drop place's centre, facing it.
+fn creeping(slot: usize, t: f64) -> Delivery {
+    let mut d = delivering(vec![slot]);
+    d.enter(Stage::Forward(Progress::new(t)), t);
+    d
+}
+
+/// The robot `distance` from `d`'s drop place centre, on its normal, facing the gate.
+fn short_of(d: &Delivery, distance: f64) -> crate::geometry::Pose2 {
+    let at = d.place.in_front(distance);
+    crate::geometry::Pose2::new(at.x, at.y, d.place.facing())
+}
+
+/// One step of `d` at `t` with the robot at `pose` on a free map whose `occupied` cells
+/// the lidar found.
+fn creep_step(
+    d: &mut Delivery,
+    t: f64,
+    pose: crate::geometry::Pose2,
+    occupied: &[(f64, f64)],
+) -> (DropEvent, Vec<(Level, String)>) {
+    use crate::map::costmap::{Costmap, FREE};
+    use crate::mission::step::PathStatus;
+    use std::collections::BTreeMap;
+    let map = Costmap::new(300, 300, 0.01, Point2::new(-1.5, 0.5), FREE);
+    let mut cells = vec![false; 300 * 300];
+    for &(x, y) in occupied {
+        let (cx, cy) = map.cell_of(Point2::new(x, y)).unwrap();
+        cells[map.index(cx, cy)] = true;
+    }
+    let (landmarks, path) = (BTreeMap::new(), PathStatus::Idle);
+    let inputs = Inputs {
+        t,
+        pose,
+        landmarks: &landmarks,
+        seen: &[],
+        camera_frame: false,
+        gripper: None,
+        path: &path,
+        map: &map,
+        occupied: &cells,
+        scan: &[],
+        position_std: 0.01,
+        localized: false,
+        arm: None,
+        can_pick: true,
+    };
+    let (mut ctx, mut log) = (Ctx::default(), Vec::new());
+    let event = d.step(&inputs, &MissionConfig::default(), &mut ctx, None, &mut log);
+    (event, log)
+}
+
+fn opens(event: &DropEvent) -> bool {
+    matches!(event, DropEvent::Go(_, Some(GripperCommand::Open)))
+}
+
+#[test]
+fn a_creep_held_a_centimetre_short_lets_go_once_it_stalls_not_when_its_timer_runs_out() {
+    let mut d = creeping(0, 0.0);
+    let pose = short_of(&d, 0.19);
+    let mut t = 0.0;
+    while t < 12.0 && !opens(&creep_step(&mut d, t, pose, &[]).0) {
+        t += 0.1;
+    }
+    assert!((2.0..2.2).contains(&t), "let go at {t:.1} s");
+}
+
+#[test]
+fn a_creep_stopped_where_the_block_would_sit_near_the_regions_edge_tries_another_place() {
+    // Drop place 1 stands 0.12 m along the gate: stopped 0.24 m short of it, the block
+    // would sit 0.28 m from the gate's centre, inside the 0.3 m but not by the margin.
+    let mut d = creeping(0, 0.0);
+    d.free = vec![0, 1];
+    let pose = short_of(&d, 0.38);
+    let mut t = 0.0;
+    let mut said = Vec::new();
+    while t < 3.0 {
+        let (event, log) = creep_step(&mut d, t, pose, &[]);
+        assert!(!opens(&event), "let go {:.2} m out", 0.38 - 0.1);
+        said.extend(log);
+        t += 0.1;
+    }
+    assert!(
+        said.iter()
+            .any(|(_, l)| l.contains("not well inside its 0.3 m - trying drop place 2")),
+        "{said:?}"
+    );
+    // With no other drop place to try, the block is kept rather than let go where
+    // neither "delivered" nor "not delivered" would be sure.
+    let mut d = creeping(0, 0.0);
+    let pose = short_of(&d, 0.38);
+    let ends = (0..30).any(|i| {
+        let (event, _) = creep_step(&mut d, i as f64 * 0.1, pose, &[]);
+        assert!(!opens(&event));
+        event == DropEvent::Full
+    });
+    assert!(ends);
+    // Stopped where the block is well inside, it lets go.
+    let mut d = creeping(0, 0.0);
+    let pose = short_of(&d, 0.30);
+    let opened = (0..30).any(|i| opens(&creep_step(&mut d, i as f64 * 0.1, pose, &[]).0));
+    assert!(opened);
+}
+
+#[test]
+fn a_creep_into_the_second_row_passes_a_first_row_block_its_load_would_not_reach() {
+    // Drop place 6 (0.06 m along, a row out); a block delivered in the first row, 2 cm
+    // deeper than its place, has its near face 0.185 m ahead of the robot 0.29 m out.
+    let mut d = creeping(6, 0.0);
+    let pose = short_of(&d, 0.29);
+    let ahead = pose.transform_point(Point2::new(0.185, 0.03));
+    let (event, _) = creep_step(&mut d, 0.0, pose, &[(ahead.x, ahead.y)]);
+    assert!(
+        matches!(event, DropEvent::Go(Motion::Drive(tw), None) if tw.linear > 0.0),
+        "{event:?}"
+    );
+    // The same block 0.16 m ahead, 2 cm from the load, stops the creep.
+    let mut d = creeping(6, 0.0);
+    let ahead = pose.transform_point(Point2::new(0.16, 0.03));
+    let (event, _) = creep_step(&mut d, 0.0, pose, &[(ahead.x, ahead.y)]);
+    assert!(!matches!(event, DropEvent::Go(Motion::Drive(tw), None) if tw.linear > 0.0));
+}

@@ -1,0 +1,147 @@
+//! The creep into a drop place (seed 001 section 8 "Delivery Sequence": drive forward,
+//! release): straight along the gate's normal until the drop place's depth, something the
+//! carried block would reach, or a stall.
+
+use super::{Delivery, DropEvent, Stage, backing_off, opening, stopped};
+use crate::geometry::{Point2, Pose2, Twist, wrap_angle};
+use crate::mission::arm_moves::ArmMoves;
+use crate::mission::clearance::clear_ahead;
+use crate::mission::config::MissionConfig;
+use crate::mission::drive::steer;
+use crate::mission::drop_places::AT_GATE;
+use crate::mission::pickup::name;
+use crate::mission::step::{Inputs, Level, Motion};
+
+/// How far ahead of the robot's centre a carried block's centre lies, metres.
+const CARRIED_AHEAD: f64 = 0.10;
+/// The creep stops when the lidar's map has something this near ahead of the robot's
+/// centre: the carried block's far face (0.14 m, clearance.rs) and 0.05 m to spare.
+const STOP_AHEAD: f64 = 0.19;
+/// A creep into a drop place further in than the first row looks only this far ahead: a
+/// block delivered in the row nearer the wall, a few centimetres from its place, stops
+/// the carried block's far face (0.14 m ahead, clearance.rs) 0.02 m before it touches,
+/// where the wall's 0.05 m would stop the block a row out (metres).
+const LOOK_FROM_ROW_OUT: f64 = 0.16;
+/// A creep stopped short lets the block go only where its centre lies this much inside
+/// the gate's region, else tries another drop place: the estimate of the block against
+/// the gate's is good to a few centimetres, and a block at the region's edge may be on
+/// either side of it (metres; every drop place lies 0.04 m inside, drop_places.rs).
+const STOPPED_SHORT_INSIDE: f64 = 0.03;
+
+impl Delivery {
+    /// One step of the creep, `progress` its headway so far.
+    pub(super) fn creep(
+        &mut self,
+        progress: &mut Progress,
+        inputs: &Inputs,
+        config: &MissionConfig,
+        arm: Option<&mut ArmMoves>,
+        log: &mut Vec<(Level, String)>,
+    ) -> DropEvent {
+        let (t, pose) = (inputs.t, inputs.pose);
+        let distance = pose.position().distance(self.place.center);
+        let stalled = progress.stalled(distance, t);
+        let creep = (config.drop_staging - config.drop_distance) / config.approach_speed;
+        let stop_at = config.drop_distance + self.depth;
+        // The wall (or a block delivered earlier) as the lidar mapped it stops the creep
+        // too, wherever the markers put the gate. Only what the carried block would touch
+        // counts: a block delivered in the row nearer the wall is passed beside.
+        let look = match self.depth > 0.0 {
+            true => LOOK_FROM_ROW_OUT,
+            false => STOP_AHEAD.min(stop_at),
+        };
+        let blocked = clear_ahead(inputs.map, inputs.occupied, pose, look).is_some();
+        let timed_out = t - self.since >= 2.0 * creep + 2.0;
+        if distance <= stop_at || blocked || stalled || timed_out {
+            let carried = carried_at(pose);
+            let inside = carried.distance(self.gate.center) < AT_GATE - STOPPED_SHORT_INSIDE;
+            let next = self.next_slot(inputs.map, config);
+            if distance > stop_at && !inside && next.is_none() {
+                // Let go here, the block might lie on either side of the region's edge:
+                // neither "delivered" nor "not delivered" would be sure. It stays held.
+                let gate = self.colour.label();
+                log.push((
+                    Level::Warn,
+                    format!(
+                        "No drop place left at the {gate} gate where the block would surely count - keeping it"
+                    ),
+                ));
+                return DropEvent::Full;
+            }
+            if distance > stop_at
+                && !inside
+                && let Some(next) = next
+            {
+                let off = carried.distance(self.gate.center);
+                let gate = self.colour.label();
+                log.push((
+                    Level::Warn,
+                    format!(
+                        "Stopped {off:.2} m from the {gate} gate's centre, not well inside its {AT_GATE} m - trying drop place {}",
+                        next + 1
+                    ),
+                ));
+                self.enter(Stage::Withdraw(next), t);
+                return backing_off();
+            }
+            let lower = arm.map(|a| a.lower_to(config.block_size / 2.0, inputs.arm));
+            match lower {
+                Some(Ok(m)) => {
+                    let block = name(self.colour, self.block);
+                    log.push((Level::Info, format!("Lowering {block}")));
+                    self.enter(Stage::Lower(m), t);
+                }
+                Some(Err(why)) => {
+                    // Dropped from where it is carried rather than not at all.
+                    log.push((Level::Warn, format!("The arm cannot lower: {why}")));
+                    self.enter(Stage::Open, t);
+                    return opening();
+                }
+                None => {
+                    self.enter(Stage::Open, t);
+                    return opening();
+                }
+            }
+            return stopped();
+        }
+        let error = wrap_angle(self.place.facing() - pose.theta);
+        let twist = Twist::new(config.approach_speed, steer(error));
+        DropEvent::Go(Motion::Drive(twist), None)
+    }
+}
+
+/// How far a creep gets, and when it last got nearer: the pilot's contact guard may hold
+/// it a centimetre short of its stop, beside a block delivered earlier.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Progress {
+    nearest: f64,
+    at: f64,
+}
+
+/// A creep that came no nearer than this in `STALL_TIME` has stopped (metres, seconds):
+/// at `approach_speed` (0.05 m/s) it would have come 10 cm nearer, and the collision
+/// monitor's stop holds it for a second at a time.
+const STALL_MOVE: f64 = 0.005;
+const STALL_TIME: f64 = 2.0;
+
+impl Progress {
+    pub(super) fn new(t: f64) -> Self {
+        Self {
+            nearest: f64::INFINITY,
+            at: t,
+        }
+    }
+
+    /// Notes the distance left at `t`; whether the creep has stopped getting nearer.
+    fn stalled(&mut self, distance: f64, t: f64) -> bool {
+        if distance < self.nearest - STALL_MOVE {
+            (self.nearest, self.at) = (distance, t);
+        }
+        t - self.at >= STALL_TIME
+    }
+}
+
+/// Where the carried block's centre is with the robot at `pose`.
+pub(super) fn carried_at(pose: Pose2) -> Point2 {
+    pose.transform_point(Point2::new(CARRIED_AHEAD, 0.0))
+}

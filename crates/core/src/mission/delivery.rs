@@ -369,14 +369,7 @@ impl Delivery {
                 }
                 DropEvent::Go(Motion::Drive(turn_towards(error, config)), None)
             }
-            Stage::Forward(progress) => {
-                let mut progress = *progress;
-                let event = self.creep(&mut progress, inputs, config, arm, log);
-                if let Stage::Forward(p) = &mut self.stage {
-                    *p = progress;
-                }
-                event
-            }
+            Stage::Forward(_) => self.creep(inputs, config, arm, log),
             Stage::Open => match opened(inputs.gripper, waited, config) {
                 Wait::Waiting => stop,
                 outcome => {

@@ -29,10 +29,9 @@ const LOOK_FROM_ROW_OUT: f64 = 0.16;
 const STOPPED_SHORT_INSIDE: f64 = 0.03;
 
 impl Delivery {
-    /// One step of the creep, `progress` its headway so far.
+    /// One step of the creep (in `Stage::Forward`, which keeps its headway).
     pub(super) fn creep(
         &mut self,
-        progress: &mut Progress,
         inputs: &Inputs,
         config: &MissionConfig,
         arm: Option<&mut ArmMoves>,
@@ -40,7 +39,10 @@ impl Delivery {
     ) -> DropEvent {
         let (t, pose) = (inputs.t, inputs.pose);
         let distance = pose.position().distance(self.place.center);
-        let stalled = progress.stalled(distance, t);
+        let stalled = match &mut self.stage {
+            Stage::Forward(progress) => progress.stalled(distance, t),
+            _ => false,
+        };
         let creep = (config.drop_staging - config.drop_distance) / config.approach_speed;
         let stop_at = config.drop_distance + self.depth;
         // The wall (or a block delivered earlier) as the lidar mapped it stops the creep
@@ -53,27 +55,21 @@ impl Delivery {
         let blocked = clear_ahead(inputs.map, inputs.occupied, pose, look).is_some();
         let timed_out = t - self.since >= 2.0 * creep + 2.0;
         if distance <= stop_at || blocked || stalled || timed_out {
-            let carried = carried_at(pose);
-            let inside = carried.distance(self.gate.center) < AT_GATE - STOPPED_SHORT_INSIDE;
-            let next = self.next_slot(inputs.map, config);
-            if distance > stop_at && !inside && next.is_none() {
-                // Let go here, the block might lie on either side of the region's edge:
-                // neither "delivered" nor "not delivered" would be sure. It stays held.
+            let off = carried_at(pose).distance(self.gate.center);
+            if distance > stop_at && off >= AT_GATE - STOPPED_SHORT_INSIDE {
                 let gate = self.colour.label();
-                log.push((
-                    Level::Warn,
-                    format!(
-                        "No drop place left at the {gate} gate where the block would surely count - keeping it"
-                    ),
-                ));
-                return DropEvent::Full;
-            }
-            if distance > stop_at
-                && !inside
-                && let Some(next) = next
-            {
-                let off = carried.distance(self.gate.center);
-                let gate = self.colour.label();
+                let Some(next) = self.next_slot(inputs.map, config) else {
+                    // Let go here, the block might lie on either side of the region's
+                    // edge: neither "delivered" nor "not delivered" would be sure. It stays
+                    // held.
+                    log.push((
+                        Level::Warn,
+                        format!(
+                            "No drop place left at the {gate} gate where the block would surely count - keeping it"
+                        ),
+                    ));
+                    return DropEvent::Full;
+                };
                 log.push((
                     Level::Warn,
                     format!(

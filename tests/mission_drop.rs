@@ -134,11 +134,23 @@ fn a_block_the_newest_scan_shows_where_it_was_let_go_counts_before_the_map_has_i
 }
 
 /// Worlds where a third, fourth, ... block of one colour goes to its gate: the mission's
-/// count is the twin's, and every block is at its gate.
+/// count is the twin's, and every block is at its gate. Boxes seed 52's eight blocks of
+/// one colour filled its gate's places only once each creep ended on its place's line.
 #[test]
 fn with_many_blocks_of_one_colour_every_delivery_counted_is_at_its_gate() {
+    let eight = [
+        "--colours",
+        "one",
+        "--blocks",
+        "8",
+        "--size",
+        "5.8,4.9",
+        "--marker-spacing",
+        "0.94",
+    ];
     for (style, seed, extra) in [
         ("boxes", "3", &["--colours", "one", "--blocks", "6"][..]),
+        ("boxes", "52", &eight[..]),
         ("boxes", "8", &["--colours", "random", "--blocks", "8"][..]),
         (
             "rooms",

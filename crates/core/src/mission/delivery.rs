@@ -228,6 +228,11 @@ impl Delivery {
     /// moved more than 5 cm or turned more than 20° is planned to afresh (navdeck's).
     pub fn follow_gate(&mut self, gate: Gate, config: &MissionConfig) {
         let gate = self.oriented(gate);
+        if matches!(self.stage, Stage::Face | Stage::Forward(_)) {
+            // The markers seen from close up place the gate best: the creep steers onto the
+            // drop place's line as it is now (its first sightings were centimetres off).
+            (self.place, self.depth) = shifted(gate, self.slot);
+        }
         if !matches!(self.stage, Stage::Travel(_)) {
             self.gate = gate;
             return;

@@ -15,13 +15,12 @@ use crate::mission::step::{Inputs, Level, Motion};
 /// How far ahead of the robot's centre a carried block's centre lies, metres.
 const CARRIED_AHEAD: f64 = 0.10;
 /// The creep stops when the lidar's map has something this near ahead of the robot's
-/// centre: the carried block's far face (0.14 m, clearance.rs) and 0.05 m to spare.
-const STOP_AHEAD: f64 = 0.19;
-/// A creep into a drop place further in than the first row looks only this far ahead: a
-/// block delivered in the row nearer the wall, a few centimetres from its place, stops
-/// the carried block's far face (0.14 m ahead, clearance.rs) 0.02 m before it touches,
-/// where the wall's 0.05 m would stop the block a row out (metres).
-const LOOK_FROM_ROW_OUT: f64 = 0.16;
+/// centre (metres): the carried block's far face (0.14 m ahead, clearance.rs) 2 cm from
+/// it, the nearest the look starts (clearance.rs HELD_ZONE). Scans folded in from poses a
+/// centimetre or two apart map a wall a few centimetres in front of where it is; a look
+/// further out stopped first-row drops 2-4 cm short, and a block delivered in the row
+/// nearer the wall stops a second-row creep before the loads touch.
+const LOOK_AHEAD: f64 = 0.16;
 /// A creep stopped short lets the block go only where its centre lies this much inside
 /// the gate's region, else tries another drop place: the estimate of the block against
 /// the gate's is good to a few centimetres, and a block at the region's edge may be on
@@ -48,11 +47,7 @@ impl Delivery {
         // The wall (or a block delivered earlier) as the lidar mapped it stops the creep
         // too, wherever the markers put the gate. Only what the carried block would touch
         // counts: a block delivered in the row nearer the wall is passed beside.
-        let look = match self.depth > 0.0 {
-            true => LOOK_FROM_ROW_OUT,
-            false => STOP_AHEAD.min(stop_at),
-        };
-        let blocked = clear_ahead(inputs.map, inputs.occupied, pose, look).is_some();
+        let blocked = clear_ahead(inputs.map, inputs.occupied, pose, LOOK_AHEAD).is_some();
         let timed_out = t - self.since >= 2.0 * creep + 2.0;
         if distance <= stop_at || blocked || stalled || timed_out {
             let off = carried_at(pose).distance(self.gate.center);
@@ -100,7 +95,7 @@ impl Delivery {
             }
             return stopped();
         }
-        let error = wrap_angle(self.place.facing() - pose.theta);
+        let error = wrap_angle(onto_line(self.place.center, self.place.normal, pose) - pose.theta);
         let twist = Twist::new(config.approach_speed, steer(error));
         DropEvent::Go(Motion::Drive(twist), None)
     }
@@ -135,6 +130,25 @@ impl Progress {
         }
         t - self.at >= STALL_TIME
     }
+}
+
+/// The creep aims at the point this far ahead on the drop place's line (metres): a robot
+/// that arrived at its staging point a few centimetres to one side is back on the line
+/// within a few times this (seed 003 §1.2.4: α = atan2(−lateral, L)).
+const LINE_AHEAD: f64 = 0.10;
+
+/// The heading that brings a robot at `pose` onto the line through `center` along
+/// `normal`, driving towards `center`: at the point `LINE_AHEAD` along the line from the
+/// robot's foot on it.
+fn onto_line(center: Point2, normal: (f64, f64), pose: Pose2) -> f64 {
+    let along = (-normal.1, normal.0);
+    let (dx, dy) = (pose.x - center.x, pose.y - center.y);
+    let off = dx * along.0 + dy * along.1;
+    let (x, y) = (
+        -LINE_AHEAD * normal.0 - off * along.0,
+        -LINE_AHEAD * normal.1 - off * along.1,
+    );
+    y.atan2(x)
 }
 
 /// Where the carried block's centre is with the robot at `pose`.

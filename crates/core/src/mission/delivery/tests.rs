@@ -222,3 +222,74 @@ fn a_creep_into_the_second_row_passes_a_first_row_block_its_load_would_not_reach
     let (event, _) = creep_step(&mut d, 0.0, pose, &[(ahead.x, ahead.y)]);
     assert!(!matches!(event, DropEvent::Go(Motion::Drive(tw), None) if tw.linear > 0.0));
 }
+
+/// Drives `d`'s creep from `pose` (a unicycle, 0.1 s steps) until it opens the gripper,
+/// with `refined` given to it as the gate's new estimate from 1 s on; where it let go.
+fn creep_to_the_end(
+    d: &mut Delivery,
+    mut pose: crate::geometry::Pose2,
+    refined: Gate,
+) -> crate::geometry::Pose2 {
+    let config = MissionConfig::default();
+    for i in 0..200 {
+        let t = i as f64 * 0.1;
+        if t >= 1.0 {
+            d.follow_gate(refined, &config);
+        }
+        match creep_step(d, t, pose, &[]).0 {
+            event if opens(&event) => return pose,
+            DropEvent::Go(Motion::Drive(tw), None) => {
+                let (s, c) = pose.theta.sin_cos();
+                pose = crate::geometry::Pose2::new(
+                    pose.x + tw.linear * c * 0.1,
+                    pose.y + tw.linear * s * 0.1,
+                    pose.theta + tw.angular * 0.1,
+                );
+            }
+            other => panic!("{other:?} at {t:.1} s"),
+        }
+    }
+    panic!("never let go")
+}
+
+#[test]
+fn a_creep_started_beside_its_drop_place_ends_on_its_line() {
+    // The path ended 4 cm to the side of the staging point, the robot facing the gate.
+    let mut d = creeping(0, 0.0);
+    let start = short_of(&d, MissionConfig::default().drop_staging);
+    let beside = crate::geometry::Pose2::new(start.x + 0.04, start.y, start.theta);
+    let end = creep_to_the_end(&mut d, beside, gate((0.0, -1.0)));
+    assert!(end.x.abs() < 0.01, "let go {:.3} m aside", end.x);
+    assert!(end.y > 2.0 - 0.2 && end.y < 2.0 - 0.17, "{end:?}");
+}
+
+#[test]
+fn a_creep_steers_onto_the_drop_place_of_the_gate_seen_anew_from_close_up() {
+    // The markers seen from close up put the gate 3 cm along from its first estimate.
+    let mut d = creeping(0, 0.0);
+    let start = short_of(&d, MissionConfig::default().drop_staging);
+    let seen = Gate {
+        center: Point2::new(-0.03, 2.0),
+        ..gate((0.0, -1.0))
+    };
+    let end = creep_to_the_end(&mut d, start, seen);
+    assert!((end.x + 0.03).abs() < 0.01, "let go at x {:.3}", end.x);
+}
+
+#[test]
+fn a_first_row_creep_goes_on_until_its_load_is_2_cm_from_the_wall_as_mapped() {
+    // The wall as the lidar mapped it, 0.17 m ahead of a robot still 0.3 m from its drop
+    // place: the carried block's far face is 3 cm from it, and the creep goes on.
+    let drives = |ahead: f64| {
+        let mut d = creeping(0, 0.0);
+        let pose = short_of(&d, 0.30);
+        let wall: Vec<(f64, f64)> = (-5..=5)
+            .map(|i| pose.transform_point(Point2::new(ahead, i as f64 * 0.01)))
+            .map(|p| (p.x, p.y))
+            .collect();
+        let (event, _) = creep_step(&mut d, 0.0, pose, &wall);
+        matches!(event, DropEvent::Go(Motion::Drive(tw), None) if tw.linear > 0.0)
+    };
+    assert!(drives(0.17));
+    assert!(!drives(0.16));
+}

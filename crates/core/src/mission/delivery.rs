@@ -226,22 +226,25 @@ impl Delivery {
 
     /// On the way, follows the gate as markers and map refine it: a drop place that
     /// moved more than 5 cm or turned more than 20° is planned to afresh (navdeck's).
+    /// Facing the gate and creeping in, the drop place follows the smaller refinements:
+    /// the markers seen from close up place the gate best, its first sightings were
+    /// centimetres off, and the creep steers onto the drop place's line as it is now. A
+    /// larger jump is not driven sideways into: the block is let go and checked.
     pub fn follow_gate(&mut self, gate: Gate, config: &MissionConfig) {
         let gate = self.oriented(gate);
-        if matches!(self.stage, Stage::Face | Stage::Forward(_)) {
-            // The markers seen from close up place the gate best: the creep steers onto the
-            // drop place's line as it is now (its first sightings were centimetres off).
-            (self.place, self.depth) = shifted(gate, self.slot);
+        let (place, depth) = shifted(gate, self.slot);
+        let (a, b) = (place.normal, self.place.normal);
+        let turned = a.0 * b.0 + a.1 * b.1 < REFRESH_TURN.cos();
+        let moved = turned || place.center.distance(self.place.center) > REFRESH_MOVE;
+        if matches!(self.stage, Stage::Face | Stage::Forward(_)) && !moved {
+            (self.place, self.depth) = (place, depth);
         }
         if !matches!(self.stage, Stage::Travel(_)) {
             self.gate = gate;
             return;
         }
-        let (place, _) = shifted(gate, self.slot);
-        let (a, b) = (place.normal, self.place.normal);
-        let turned = a.0 * b.0 + a.1 * b.1 < REFRESH_TURN.cos();
         self.gate = gate;
-        if turned || place.center.distance(self.place.center) > REFRESH_MOVE {
+        if moved {
             self.tried.retain(|&s| s != self.slot);
             self.travel_to(self.slot, config);
         }

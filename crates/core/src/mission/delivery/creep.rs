@@ -1,14 +1,15 @@
 //! The creep into a drop place (seed 001 section 8 "Delivery Sequence": drive forward,
-//! release): straight along the gate's normal until the drop place's depth, something the
-//! carried block would reach, or a stall.
+//! release): along the drop place's line, the gate's normal through it, until the drop
+//! place's depth, something the carried block would reach, or a stall.
 
 use super::{Delivery, DropEvent, Stage, backing_off, opening, stopped};
-use crate::geometry::{Point2, Pose2, Twist, wrap_angle};
+use crate::geometry::{Point2, Pose2, Twist};
 use crate::mission::arm_moves::ArmMoves;
 use crate::mission::clearance::clear_ahead;
 use crate::mission::config::MissionConfig;
-use crate::mission::drive::steer;
+use crate::mission::drive::{bearing, steer};
 use crate::mission::drop_places::AT_GATE;
+use crate::mission::objects::Gate;
 use crate::mission::pickup::name;
 use crate::mission::step::{Inputs, Level, Motion};
 
@@ -95,7 +96,7 @@ impl Delivery {
             }
             return stopped();
         }
-        let error = wrap_angle(onto_line(self.place.center, self.place.normal, pose) - pose.theta);
+        let error = bearing(pose, onto_line(&self.place, pose.position()));
         let twist = Twist::new(config.approach_speed, steer(error));
         DropEvent::Go(Motion::Drive(twist), None)
     }
@@ -137,18 +138,11 @@ impl Progress {
 /// within a few times this (seed 003 §1.2.4: α = atan2(−lateral, L)).
 const LINE_AHEAD: f64 = 0.10;
 
-/// The heading that brings a robot at `pose` onto the line through `center` along
-/// `normal`, driving towards `center`: at the point `LINE_AHEAD` along the line from the
-/// robot's foot on it.
-fn onto_line(center: Point2, normal: (f64, f64), pose: Pose2) -> f64 {
-    let along = (-normal.1, normal.0);
-    let (dx, dy) = (pose.x - center.x, pose.y - center.y);
-    let off = dx * along.0 + dy * along.1;
-    let (x, y) = (
-        -LINE_AHEAD * normal.0 - off * along.0,
-        -LINE_AHEAD * normal.1 - off * along.1,
-    );
-    y.atan2(x)
+/// The point a robot at `at` aims at to come onto `place`'s line (its normal through its
+/// centre) on the way in: `LINE_AHEAD` nearer the gate than the robot's foot on the line.
+fn onto_line(place: &Gate, at: Point2) -> Point2 {
+    let (dx, dy) = (at.x - place.center.x, at.y - place.center.y);
+    place.in_front(dx * place.normal.0 + dy * place.normal.1 - LINE_AHEAD)
 }
 
 /// Where the carried block's centre is with the robot at `pose`.

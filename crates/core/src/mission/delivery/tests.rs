@@ -239,12 +239,8 @@ fn creep_to_the_end(
         match creep_step(d, t, pose, &[]).0 {
             event if opens(&event) => return pose,
             DropEvent::Go(Motion::Drive(tw), None) => {
-                let (s, c) = pose.theta.sin_cos();
-                pose = crate::geometry::Pose2::new(
-                    pose.x + tw.linear * c * 0.1,
-                    pose.y + tw.linear * s * 0.1,
-                    pose.theta + tw.angular * 0.1,
-                );
+                let step = crate::geometry::Pose2::new(tw.linear * 0.1, 0.0, tw.angular * 0.1);
+                pose = pose.compose(step);
             }
             other => panic!("{other:?} at {t:.1} s"),
         }

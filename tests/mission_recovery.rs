@@ -6,6 +6,7 @@ use crate::mission_rig;
 use mission_rig::{DT, Rig, all_free, config, half_known, plan_to};
 use navdeck::data::GripperCommand;
 use navdeck::geometry::Point2;
+use navdeck::mission::MissionConfig;
 use navdeck::mission::step::{Motion, PathStatus};
 
 #[test]
@@ -91,7 +92,13 @@ fn the_creep_aims_where_the_lidar_outlines_the_block_not_at_its_markers() {
 
 #[test]
 fn a_block_unseen_in_view_for_3_s_during_the_approach_is_demoted() {
-    let mut rig = Rig::new(config(4), all_free());
+    // Staged 0.5 m out, the approach takes longer than the 3 s (from 0.3 m it is over in
+    // under 3 s, the block picked whether seen or not).
+    let staged_further = MissionConfig {
+        staging_distance: 0.5,
+        ..config(4)
+    };
+    let mut rig = Rig::new(staged_further, all_free());
     rig.add_block(421, 1.0, 0.0);
     rig.add_red_gate();
     rig.until(600, |_, r| r.mission.state_label() == "face red block 421");

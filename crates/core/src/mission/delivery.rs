@@ -5,7 +5,7 @@
 use super::arm_moves::{ArmMove, ArmMoves, arrived};
 use super::config::{BACK_OFF_SPEED, MissionConfig};
 use super::drive::{Wait, faces, opened, turn_towards};
-use super::drop_places::{open, shifted, standable};
+use super::drop_places::{in_lane_of, open, shifted, standable};
 use super::leg::{Ctx, Leg, LegStep};
 use super::objects::{Colour, Gate};
 use super::pickup::name;
@@ -168,6 +168,13 @@ impl Delivery {
         (!here).then(|| self.free.iter().copied().find(|&s| on(turned, s)))?
     }
 
+    /// Whether a block in drop place `slot` would stand in the way of a creep into a free
+    /// place nearer the wall: while the map settles, a place behind may look unusable for
+    /// a moment, and filling the row in front first would lose it for good.
+    fn in_lane_of_free(&self, slot: usize) -> bool {
+        self.free.iter().any(|&behind| in_lane_of(slot, behind))
+    }
+
     /// The first free drop place not tried yet that the robot could stand at, else the
     /// first not tried at all.
     fn next_slot(&self, map: &Costmap, config: &MissionConfig) -> Option<usize> {
@@ -310,8 +317,8 @@ impl Delivery {
         let map = inputs.map;
         if matches!(self.stage, Stage::Travel(_))
             && !self.standable(self.slot, map, config)
-            && let Some(next) =
-                (self.next_slot(map, config)).filter(|&s| self.standable(s, map, config))
+            && let Some(next) = (self.next_slot(map, config))
+                .filter(|&s| self.standable(s, map, config) && !self.in_lane_of_free(s))
         {
             log.push((
                 Level::Warn,

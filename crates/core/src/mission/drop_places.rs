@@ -69,6 +69,19 @@ pub const DROP_PLACES: [DropPlace; 9] = [
     },
 ];
 
+/// How near across the gate a block may stand to a creep's line and be in its way, metres:
+/// half a block's width and the creep's 0.05 m look either side of its line
+/// (clearance.rs BAND).
+const LANE: f64 = 0.025 + 0.05;
+
+/// Whether a block in drop place `front` would stand in the way of a later creep into
+/// drop place `behind`, nearer the wall: a second-row place is in the lanes of the two
+/// first-row places beside it.
+pub fn in_lane_of(front: usize, behind: usize) -> bool {
+    let (f, b) = (DROP_PLACES[front], DROP_PLACES[behind]);
+    f.extra > b.extra && (f.across - b.across).abs() < LANE
+}
+
 /// The gate moved along its width to drop place `slot`, and the slot's extra depth.
 pub fn shifted(gate: Gate, slot: usize) -> (Gate, f64) {
     let place = DROP_PLACES[slot % DROP_PLACES.len()];
@@ -148,6 +161,23 @@ mod tests {
             for b in &places[..i] {
                 assert!(a.distance(*b) >= 0.1 - 1e-9, "{a:?} {b:?}");
                 assert!(robot.distance(*b) >= 0.155, "{i}: {robot:?} {b:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn each_second_row_place_stands_in_the_lanes_of_the_two_first_row_places_beside_it() {
+        let first_row = |s: usize| DROP_PLACES[s].extra == 0.0;
+        for front in 0..DROP_PLACES.len() {
+            let lanes: Vec<usize> = (0..DROP_PLACES.len())
+                .filter(|&b| in_lane_of(front, b))
+                .collect();
+            match first_row(front) {
+                true => assert!(lanes.is_empty(), "{front}: {lanes:?}"),
+                false => {
+                    assert_eq!(lanes.len(), 2, "{front}: {lanes:?}");
+                    assert!(lanes.iter().all(|&b| first_row(b)));
+                }
             }
         }
     }

@@ -6,7 +6,7 @@
 use super::arm_moves::{ABOVE, ArmMove, ArmMoves, arrived};
 use super::block_fit::{lidar_centre, scan_centre};
 use super::config::{BLOCK_LOST_AFTER, CAMERA_HALF_FOV, CAMERA_RANGE, FIT_SEARCH, MissionConfig};
-use super::drive::{Wait, bearing, faces, opened, steer, towards, turn_towards};
+use super::drive::{Pace, Wait, bearing, creep_twist, faces, opened, towards, turn_towards};
 use super::leg::{Ctx, Leg, LegStep};
 use super::objects::{Block, Colour, Objects};
 use super::step::{Inputs, Level, Motion};
@@ -20,7 +20,8 @@ enum Stage {
     Travel(Leg),
     Open,
     Face,
-    Approach,
+    /// Creeping in at a pace that only ever slows.
+    Approach(Pace),
     Close,
     /// After an empty close: open again before the retry.
     Reopen,
@@ -36,8 +37,8 @@ enum Stage {
 }
 
 /// A scan's outline of the block stands this long after the block left the scan (seconds,
-/// navdeck's): from a creep at 5 cm/s, the last 10 cm before the jaws, where a lidar's least
-/// range hides it.
+/// navdeck's): more than a creep takes over the last 10 cm before the jaws (5 cm at each
+/// of its speeds), where a lidar's least range hides it.
 const OUTLINE_KEPT: f64 = 2.0;
 
 /// The arm's carrying pose.
@@ -65,6 +66,10 @@ pub(crate) struct Pickup {
     last_seen: f64,
     /// The block's centre from the newest scan's outline of it, and when that was fitted.
     outline: Option<(Point2, f64)>,
+    /// Where an outline (the scan's or the map's) last put the block near it: the map's
+    /// outline is looked for round it, not round the markers' estimate, which may lie at
+    /// the edge of the search, a few centimetres away.
+    last_fit: Option<Point2>,
 }
 
 /// Where the path to a block ends: `staging_distance` from it towards where the robot was
@@ -128,6 +133,7 @@ impl Pickup {
             retried: false,
             last_seen: t,
             outline: None,
+            last_fit: None,
         }
     }
 
@@ -158,7 +164,7 @@ impl Pickup {
             Stage::Travel(_) => "travel to",
             Stage::Open => "open gripper for",
             Stage::Face => "face",
-            Stage::Approach => "approach",
+            Stage::Approach(_) => "approach",
             Stage::Close => "grip",
             Stage::Reopen => "reopen for",
             Stage::BackUp => "back up from",
@@ -202,11 +208,13 @@ impl Pickup {
             Some(centre) => Some((centre, t)),
             None => (self.outline).filter(|(_, fitted)| near && t - fitted <= OUTLINE_KEPT),
         };
+        let around = self.last_fit.unwrap_or(block.position);
         let mapped = || {
             let (map, occupied, robot) = (inputs.map, inputs.occupied, pose.position());
-            lidar_centre(map, occupied, block.position, size, FIT_SEARCH, robot)
+            lidar_centre(map, occupied, around, size, FIT_SEARCH, robot)
         };
         let fitted = near.then(|| self.outline().or_else(mapped)).flatten();
+        self.last_fit = fitted.or(self.last_fit.filter(|_| near));
         let aim = fitted.unwrap_or(block.position);
         let distance = pose.position().distance(aim);
         let error = bearing(pose, aim);
@@ -219,7 +227,7 @@ impl Pickup {
             a.reach_from_centre(config.arm_standoff, mid)
         });
         let joints = inputs.arm;
-        if matches!(self.stage, Stage::Face | Stage::Approach) {
+        if matches!(self.stage, Stage::Face | Stage::Approach(_)) {
             // Seed 001 "Block Lost During Approach": in view but unseen for 3 s (navdeck's
             // figure; the seed gives none). Nearer than the camera's blind distance the
             // block is under its view, not lost.
@@ -269,12 +277,12 @@ impl Pickup {
             },
             Stage::Face => {
                 if faces(error) {
-                    self.enter(Stage::Approach, t);
+                    self.enter(Stage::Approach(Pace::new()), t);
                     return stop;
                 }
                 PickEvent::Go(Motion::Drive(turn_towards(error, config)), None)
             }
-            Stage::Approach => {
+            Stage::Approach(pace) => {
                 let creep = (config.staging_distance - grip_at).abs() / config.approach_speed;
                 if distance <= grip_at || waited >= 2.0 * creep + 2.0 {
                     let Some(arm) = arm else {
@@ -295,8 +303,8 @@ impl Pickup {
                         }
                     };
                 }
-                let twist = Twist::new(config.approach_speed, steer(error));
-                PickEvent::Go(Motion::Drive(twist), None)
+                let speed = pace.speed(distance - grip_at, config);
+                PickEvent::Go(Motion::Drive(creep_twist(speed, error, config)), None)
             }
             Stage::ArmAbove(m) => {
                 if !arrived(m, joints, waited) {
@@ -390,41 +398,4 @@ pub(crate) fn name(colour: Colour, odd: u32) -> String {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::map::costmap::{FREE, LETHAL};
-
-    #[test]
-    fn the_approach_comes_from_where_a_marker_was_read() {
-        let map = Costmap::new(200, 200, 0.01, Point2::new(0.0, 0.0), FREE);
-        let config = MissionConfig::default();
-        let centre = Point2::new(1.0, 1.0);
-        let robot = Point2::new(1.8, 1.0);
-        // Read from the west; the robot is now east: the camera would see blank faces.
-        let read = Some(Point2::new(0.2, 1.0));
-        let p = staging_point(centre, read, robot, &map, &config);
-        assert!(
-            (p.x - 0.7).abs() < 1e-9 && (p.y - 1.0).abs() < 1e-9,
-            "{p:?}"
-        );
-        // Never read (a potential block from the lidar): from the robot's side.
-        let p = staging_point(centre, None, robot, &map, &config);
-        assert!((p.x - 1.3).abs() < 1e-9, "{p:?}");
-    }
-
-    #[test]
-    fn a_blocked_side_turns_the_approach_in_thirty_degree_steps() {
-        let mut map = Costmap::new(200, 200, 0.01, Point2::new(0.0, 0.0), FREE);
-        // A wall 0.2 m west of the block.
-        for y in 0..200 {
-            map.set(80, y, LETHAL);
-        }
-        let config = MissionConfig::default();
-        let (centre, read) = (Point2::new(1.0, 1.0), Some(Point2::new(0.2, 1.0)));
-        let p = staging_point(centre, read, Point2::new(1.8, 1.0), &map, &config);
-        assert!(p.x > 0.82, "clear of the wall: {p:?}");
-        // 30 degrees off west still ends 0.26 m out, behind the wall; 60 degrees does not.
-        let bearing = (p.y - 1.0).atan2(p.x - 1.0).to_degrees().abs();
-        assert!((bearing - 120.0).abs() < 1e-6, "{bearing}");
-    }
-}
+mod tests;

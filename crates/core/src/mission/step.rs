@@ -98,3 +98,30 @@ impl Outputs {
         }
     }
 }
+
+#[cfg(test)]
+impl<'a> Inputs<'a> {
+    /// A step at `t` with the robot at `pose` on `map` (the lidar's `occupied` cells of
+    /// it), nothing in view, no landmarks and no path asked for: where the mission's unit
+    /// tests start from.
+    pub(crate) fn quiet(t: f64, pose: Pose2, map: &'a Costmap, occupied: &'a [bool]) -> Self {
+        static NO_LANDMARKS: BTreeMap<u32, Point2> = BTreeMap::new();
+        static IDLE: PathStatus = PathStatus::Idle;
+        Self {
+            t,
+            pose,
+            landmarks: &NO_LANDMARKS,
+            seen: &[],
+            camera_frame: false,
+            gripper: None,
+            path: &IDLE,
+            map,
+            occupied,
+            scan: &[],
+            position_std: 0.01,
+            localized: false,
+            arm: None,
+            can_pick: true,
+        }
+    }
+}

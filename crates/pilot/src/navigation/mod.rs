@@ -380,7 +380,14 @@ impl Pilot {
         if revision != self.nav.checked_revision {
             self.nav.checked_revision = revision;
             let map = self.belief.costmap();
-            if let Some(p) = ahead.iter().find(|p| is_lethal(map.at(p.position))) {
+            // Where the footprint stands now is no block to the path: what the lidar mapped
+            // under it (a block just picked up, its face mapped a few centimetres towards the
+            // robot) is the robot's own place, as Nav2's footprint clearing treats it.
+            let (robot, body) = (self.pose().position(), self.settings.robot.footprint_radius);
+            let beyond = |p: Point2| p.distance(robot) > body;
+            if let Some(p) =
+                (ahead.iter()).find(|p| beyond(p.position) && is_lethal(map.at(p.position)))
+            {
                 let at = p.position;
                 reason = Some(format!("path blocked at ({:.2}, {:.2})", at.x, at.y));
             }

@@ -3,11 +3,11 @@
 //! place's depth, something the carried block would reach, or a stall.
 
 use super::{Delivery, DropEvent, Stage, backing_off, opening, stopped};
-use crate::geometry::{Point2, Pose2, Twist};
+use crate::geometry::{Point2, Pose2};
 use crate::mission::arm_moves::ArmMoves;
 use crate::mission::clearance::clear_ahead;
 use crate::mission::config::MissionConfig;
-use crate::mission::drive::{bearing, steer};
+use crate::mission::drive::{Pace, SLOW_FOR, bearing, creep_twist};
 use crate::mission::drop_places::AT_GATE;
 use crate::mission::objects::Gate;
 use crate::mission::pickup::name;
@@ -22,6 +22,9 @@ const CARRIED_AHEAD: f64 = 0.10;
 /// further out stopped first-row drops 2-4 cm short, and a block delivered in the row
 /// nearer the wall stops a second-row creep before the loads touch.
 const LOOK_AHEAD: f64 = 0.16;
+/// The creep looks this much further than `LOOK_AHEAD`, so it is slow before what it
+/// would stop at: its slow last `SLOW_FOR`, the centimetre braking onto it, and a step.
+const SLOW_LOOK: f64 = SLOW_FOR + 0.03;
 /// A creep stopped short lets the block go only where its centre lies this much inside
 /// the gate's region, else tries another drop place: the estimate of the block against
 /// the gate's is good to a few centimetres, and a block at the region's edge may be on
@@ -48,7 +51,11 @@ impl Delivery {
         // The wall (or a block delivered earlier) as the lidar mapped it stops the creep
         // too, wherever the markers put the gate. Only what the carried block would touch
         // counts: a block delivered in the row nearer the wall is passed beside.
-        let blocked = clear_ahead(inputs.map, inputs.occupied, pose, LOOK_AHEAD).is_some();
+        // Looked along the drop place's line, where the creep takes the load, rather than
+        // along a heading that swings a few degrees as it steers onto that line.
+        let along = Pose2::new(pose.x, pose.y, self.place.facing());
+        let ahead = clear_ahead(inputs.map, inputs.occupied, along, LOOK_AHEAD + SLOW_LOOK);
+        let blocked = ahead.is_some_and(|d| d <= LOOK_AHEAD + 1e-9);
         let timed_out = t - self.since >= 2.0 * creep + 2.0;
         if distance <= stop_at || blocked || stalled || timed_out {
             let off = carried_at(pose).distance(self.gate.center);
@@ -97,17 +104,23 @@ impl Delivery {
             return stopped();
         }
         let error = bearing(pose, onto_line(&self.place, pose.position()));
-        let twist = Twist::new(config.approach_speed, steer(error));
+        let remaining = (distance - stop_at).min(ahead.map_or(f64::INFINITY, |d| d - LOOK_AHEAD));
+        let speed = match &mut self.stage {
+            Stage::Forward(progress) => progress.pace.speed(remaining, config),
+            _ => config.approach_speed,
+        };
+        let twist = creep_twist(speed, error, config);
         DropEvent::Go(Motion::Drive(twist), None)
     }
 }
 
-/// How far a creep gets, and when it last got nearer: the pilot's contact guard may hold
+/// How far a creep gets, when it last got nearer, and its pace: the contact guard may hold
 /// it a centimetre short of its stop, beside a block delivered earlier.
 #[derive(Clone, Copy, Debug)]
 pub(super) struct Progress {
     nearest: f64,
     at: f64,
+    pace: Pace,
 }
 
 /// A creep that came no nearer than this in `STALL_TIME` has stopped (metres, seconds):
@@ -121,6 +134,7 @@ impl Progress {
         Self {
             nearest: f64::INFINITY,
             at: t,
+            pace: Pace::new(),
         }
     }
 

@@ -8,7 +8,7 @@ use crate::map::costmap::Costmap;
 
 /// Half the width of the band looked along, metres: narrower than the body, so a block
 /// already delivered in the next drop place (0.12 m along) is not in the way.
-const BAND: f64 = 0.05;
+pub(crate) const BAND: f64 = 0.05;
 /// Nearer than this to the robot centre, the held block may be mapped: not looked at,
 /// metres (the jaws hold a block's far face 0.14 m ahead).
 const HELD_ZONE: f64 = 0.16;

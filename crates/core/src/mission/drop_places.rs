@@ -6,6 +6,7 @@
 //! the way of the next one (the body passes it at least 0.156 m off), and every place lies
 //! well inside the region that counts as delivered (navdeck's).
 
+use super::clearance::BAND;
 use super::objects::Gate;
 use crate::geometry::Point2;
 use crate::map::costmap::{Costmap, NO_INFORMATION, is_lethal};
@@ -70,9 +71,8 @@ pub const DROP_PLACES: [DropPlace; 9] = [
 ];
 
 /// How near across the gate a block may stand to a creep's line and be in its way, metres:
-/// half a block's width and the creep's 0.05 m look either side of its line
-/// (clearance.rs BAND).
-const LANE: f64 = 0.025 + 0.05;
+/// half a block's width and the band the creep looks along either side of its line.
+const LANE: f64 = 0.025 + BAND;
 
 /// Whether a block in drop place `front` would stand in the way of a later creep into
 /// drop place `behind`, nearer the wall: a second-row place is in the lanes of the two

@@ -42,10 +42,6 @@ impl Delivery {
     ) -> DropEvent {
         let (t, pose) = (inputs.t, inputs.pose);
         let distance = pose.position().distance(self.place.center);
-        let stalled = match &mut self.stage {
-            Stage::Forward(progress) => progress.stalled(distance, t),
-            _ => false,
-        };
         let creep = (config.drop_staging - config.drop_distance) / config.approach_speed;
         let stop_at = config.drop_distance + self.depth;
         // The wall (or a block delivered earlier) as the lidar mapped it stops the creep
@@ -56,6 +52,14 @@ impl Delivery {
         let along = Pose2::new(pose.x, pose.y, self.place.facing());
         let ahead = clear_ahead(inputs.map, inputs.occupied, along, LOOK_AHEAD + SLOW_LOOK);
         let blocked = ahead.is_some_and(|d| d <= LOOK_AHEAD + 1e-9);
+        let remaining = (distance - stop_at).min(ahead.map_or(f64::INFINITY, |d| d - LOOK_AHEAD));
+        let (stalled, speed) = match &mut self.stage {
+            Stage::Forward(progress) => (
+                progress.stalled(distance, t),
+                progress.pace.speed(remaining, config),
+            ),
+            _ => (false, config.approach_speed),
+        };
         let timed_out = t - self.since >= 2.0 * creep + 2.0;
         if distance <= stop_at || blocked || stalled || timed_out {
             let off = carried_at(pose).distance(self.gate.center);
@@ -104,11 +108,6 @@ impl Delivery {
             return stopped();
         }
         let error = bearing(pose, onto_line(&self.place, pose.position()));
-        let remaining = (distance - stop_at).min(ahead.map_or(f64::INFINITY, |d| d - LOOK_AHEAD));
-        let speed = match &mut self.stage {
-            Stage::Forward(progress) => progress.pace.speed(remaining, config),
-            _ => config.approach_speed,
-        };
         let twist = creep_twist(speed, error, config);
         DropEvent::Go(Motion::Drive(twist), None)
     }

@@ -12,11 +12,13 @@ pub mod bit_check;
 pub mod blank;
 #[cfg(feature = "vision")]
 pub mod calibration;
+pub mod colour;
 pub mod config;
 #[cfg(feature = "vision")]
 pub mod edge_fit;
 pub mod frame;
 pub mod intrinsics;
+pub mod lane_camera;
 pub mod markers;
 pub mod mount;
 #[cfg(feature = "vision")]

@@ -59,6 +59,7 @@ pub fn build(file: WorldFile, text: &str, path: &Path) -> Result<World, WorldErr
         blocks: Vec::new(),
         gates: Vec::new(),
         obstacles: Vec::new(),
+        track: None,
     };
     for (i, wall) in file.walls.iter().enumerate() {
         let line = ck.line(wall.span());
@@ -97,6 +98,22 @@ pub fn build(file: WorldFile, text: &str, path: &Path) -> Result<World, WorldErr
     if let Some(why) = world.start_conflict(START_CLEARANCE) {
         let reason = format!("the robot's centre {why}");
         return Err(ck.err(start_line, "start", fmt_numbers(&[sx, sy, sdeg]), reason));
+    }
+    if let Some(spec) = &file.track {
+        let line = ck.line(spec.span());
+        let scene = spec.get_ref().build().map_err(|e| {
+            ck.err(
+                line,
+                &format!("track.{}", e.field),
+                &e.value,
+                e.reason.clone(),
+            )
+        })?;
+        if let Some(p) = (scene.track.points().iter()).find(|p| !world.contains(**p)) {
+            let at = format!("[{:.2}, {:.2}]", p.x, p.y);
+            return Err(ck.err(line, "track.points", at, "the lane leaves the world"));
+        }
+        world.track = Some(scene);
     }
     check_blocks_apart(&ck, &world, &file.blocks)?;
     check_gates_on_walls(&ck, &world, &file.gates)?;

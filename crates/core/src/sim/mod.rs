@@ -43,6 +43,7 @@ pub mod rendered_camera;
 pub mod shapes;
 #[cfg(feature = "vision")]
 mod sheet_paint;
+pub mod track;
 mod truth;
 mod twin;
 mod world;

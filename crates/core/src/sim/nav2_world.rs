@@ -86,6 +86,7 @@ pub fn from_grid(
         blocks: Vec::new(),
         gates: Vec::new(),
         obstacles: Vec::new(),
+        track: None,
     })
 }
 

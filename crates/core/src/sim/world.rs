@@ -77,6 +77,8 @@ pub struct World {
     pub gates: Vec<Gate>,
     /// The box obstacles whose outlines are also in `walls`.
     pub obstacles: Vec<Obstacle>,
+    /// A lane track on the floor, with its lights and barriers.
+    pub track: Option<super::track::TrackScene>,
 }
 
 impl World {

@@ -30,6 +30,9 @@ pub struct WorldFile {
     pub gates: Vec<Spanned<GateSpec>>,
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub blocks: Vec<Spanned<BlockSpec>>,
+    /// A lane track on the floor (`sim::track`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub track: Option<Spanned<super::track::TrackSpec>>,
 }
 
 /// A polyline wall; `closed` joins the last point back to the first.

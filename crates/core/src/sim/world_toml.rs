@@ -116,6 +116,7 @@ fn to_file(world: &World) -> WorldFile {
         markers,
         gates,
         blocks,
+        track: world.track.as_ref().map(|t| spanned(t.spec.clone())),
     }
 }
 
@@ -202,6 +203,7 @@ mod tests {
             assert!(wrap_angle(p.normal - q.normal).abs() < 1e-9, "{p:?} {q:?}");
         }
         assert_eq!(a.gates, b.gates);
+        assert_eq!(a.track, b.track);
         assert_eq!(a.obstacles.len(), b.obstacles.len());
         assert_eq!(a.blocks.len(), b.blocks.len());
         for (p, q) in a.blocks.iter().zip(&b.blocks) {
@@ -216,6 +218,7 @@ mod tests {
         for file in [
             "maps/arena.toml",
             "maps/warehouse.toml",
+            "maps/track.toml",
             "tests/worlds/hidden_box.toml",
             "tests/worlds/walled_garden.toml",
         ] {

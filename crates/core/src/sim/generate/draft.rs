@@ -60,6 +60,7 @@ impl Draft {
                 blocks: Vec::new(),
                 gates: Vec::new(),
                 obstacles: Vec::new(),
+                track: None,
             },
             walls: Vec::new(),
             boundary_walls: 4,

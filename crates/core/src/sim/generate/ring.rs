@@ -125,6 +125,7 @@ mod tests {
         let mut ring = World {
             walls: world.walls[..4].to_vec(),
             obstacles: Vec::new(),
+            track: None,
             ..world.clone()
         };
         let p = |x, y| Point2::new(x, y);

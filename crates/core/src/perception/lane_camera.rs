@@ -96,8 +96,8 @@ mod tests {
         let c = LaneCameraConfig::default();
         let (k, m) = (c.intrinsics(), c.mount());
         assert!((k.fx - 381.36).abs() < 0.01, "{}", k.fx);
-        // A floor point 0.5 m ahead on the centre line is below the image centre.
-        let p = m.to_camera(Vector3::new(0.5, 0.0, 0.0));
+        // A floor point 0.3 m ahead on the centre line is below the image centre.
+        let p = m.to_camera(Vector3::new(0.3, 0.0, 0.0));
         let (u, v) = k.project(p.x, p.y, p.z);
         assert!((u - k.cx).abs() < 1e-6 && v > k.cy && v < 480.0, "{u} {v}");
         // A lamp 0.22 m up, 0.6 m ahead and 0.35 m right is in frame.

@@ -68,6 +68,8 @@ pub struct Config {
     pub record: crate::record::RecordConfig,
     /// The collision monitor's zones around the robot and its data's age limit.
     pub safety: crate::control::collision_monitor::SafetyConfig,
+    /// Lane mode: the lane camera, its pipeline and lane following.
+    pub lane: crate::control::lane::LaneConfig,
 }
 
 impl Config {
@@ -86,6 +88,7 @@ impl Config {
             lidar_slam: self.lidar_slam.clone(),
             arm: self.arm.clone(),
             safety: self.safety.clone(),
+            lane: self.lane.drive.clone(),
         }
     }
 
@@ -136,6 +139,7 @@ impl Config {
             ("map", self.map.validate()),
             ("plan", self.plan.validate()),
             ("follow", self.follow.validate()),
+            ("lane", self.lane.validate()),
             ("mission", self.mission.validate()),
             ("localization", self.localization.validate()),
             ("lidar_slam", self.lidar_slam.validate()),

@@ -227,6 +227,7 @@ impl RobotLink for SerialLink {
             initial_pose: None,
             goal: None,
             arm: None,
+            lane: None,
         };
         Ok(frame)
     }

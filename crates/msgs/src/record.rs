@@ -223,6 +223,7 @@ impl FrameMsg {
             arm: self.has_arm.then_some(ArmState {
                 joints: self.arm_joints,
             }),
+            lane: None,
         })
     }
 }

@@ -127,12 +127,12 @@ impl ArmPilot {
 impl Pilot {
     /// The arm, when the config has one.
     pub fn arm(&self) -> Option<&ArmPilot> {
-        self.arm.as_ref()
+        self.hand.arm.as_ref()
     }
 
     /// Stops the arm where it is (stop key, emergency stop, link in doubt).
     pub(super) fn halt_arm(&mut self) {
-        if let Some(arm) = self.arm.as_mut() {
+        if let Some(arm) = self.hand.arm.as_mut() {
             arm.halt();
         }
     }
@@ -140,7 +140,7 @@ impl Pilot {
     /// A held arm key, pressed or auto-repeated at `t`.
     pub(super) fn arm_key(&mut self, axis: ArmAxis, sign: f64) {
         let now = self.now;
-        let Some(arm) = self.arm.as_mut() else {
+        let Some(arm) = self.hand.arm.as_mut() else {
             self.log(Level::Warn, "no arm: add an [arm] section to the config");
             return;
         };
@@ -153,7 +153,7 @@ impl Pilot {
 
     /// The arm to a named pose, its joints together at their speed limits.
     pub(super) fn arm_pose(&mut self, pose: ArmPose) {
-        let Some(arm) = self.arm.as_mut() else {
+        let Some(arm) = self.hand.arm.as_mut() else {
             self.log(Level::Warn, "no arm: add an [arm] section to the config");
             return;
         };
@@ -169,7 +169,7 @@ impl Pilot {
 
     /// Jog speed up or down by 10 %, within bounds.
     pub(super) fn arm_speed(&mut self, faster: bool) {
-        let Some(arm) = self.arm.as_mut() else {
+        let Some(arm) = self.hand.arm.as_mut() else {
             return;
         };
         let factor = if faster { 1.1 } else { 1.0 / 1.1 };
@@ -181,7 +181,7 @@ impl Pilot {
 
     /// Folds in the joints the robot reported.
     pub(super) fn arm_measured(&mut self, joints: [f64; 4]) {
-        if let Some(arm) = self.arm.as_mut()
+        if let Some(arm) = self.hand.arm.as_mut()
             && joints.iter().all(|j| j.is_finite())
         {
             arm.measured = Some(Joints(joints));
@@ -195,7 +195,7 @@ impl Pilot {
         let period = self.settings.robot.control_period;
         let in_doubt = self.behaviours.gate.in_doubt();
         let gripper_mode = self.mode == Mode::Gripper && !in_doubt;
-        let arm = self.arm.as_mut()?;
+        let arm = self.hand.arm.as_mut()?;
         if in_doubt {
             // Control is lost or the robot e-stopped: the arm holds where it is.
             arm.halt();
@@ -219,7 +219,7 @@ impl Pilot {
                 Err(_) => {}
             }
         }
-        let arm = self.arm.as_mut()?;
+        let arm = self.hand.arm.as_mut()?;
         arm.pending.take().map(|within| ArmTarget {
             joints: arm.target.0,
             within,

@@ -28,6 +28,8 @@ pub struct Settings {
     pub arm: Option<navdeck_core::arm::ArmConfig>,
     /// The collision monitor's zones (`[safety]`).
     pub safety: navdeck_core::control::collision_monitor::SafetyConfig,
+    /// Lane following's gains and stops (`[lane.drive]`).
+    pub lane: navdeck_core::control::lane::LaneDriveConfig,
 }
 
 /// Race mode (seed 001: "High-speed mode (reduced SLAM updates)").

@@ -66,6 +66,9 @@ impl Pilot {
             self.map_sightings(s);
             self.note_frame(s.iter().map(|m| m.id).collect());
         }
+        if let Some(lane) = &frame.lane {
+            self.sense_lane(lane);
+        }
         if let Some(scan) = &frame.scan {
             self.note_scan_for_monitor(t);
             self.localize_scan(scan);

@@ -103,7 +103,7 @@ impl Pilot {
             // always.
             localized: self.mcl().is_some_and(|m| m.status().converged)
                 || self.lidar_slam().is_some(),
-            arm: self.arm.as_ref().and_then(|a| a.measured).map(|j| j.0),
+            arm: self.hand.arm.as_ref().and_then(|a| a.measured).map(|j| j.0),
             can_pick: !self.sensor_lost(navdeck_core::health::Sensor::Arm),
         });
         self.exploring.mission = Some(mission);
@@ -114,7 +114,7 @@ impl Pilot {
         if let Some(cmd) = outputs.gripper {
             self.hand.pending = Some(cmd);
         }
-        if let (Some(joints), Some(arm)) = (outputs.arm, self.arm.as_mut()) {
+        if let (Some(joints), Some(arm)) = (outputs.arm, self.hand.arm.as_mut()) {
             arm.move_to(navdeck_core::arm::Joints(joints));
         }
         if outputs.to_manual {

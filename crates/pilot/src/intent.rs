@@ -220,7 +220,7 @@ impl Pilot {
             self.log(Level::Error, text);
             return false;
         }
-        if mode == Mode::Gripper && self.arm.is_none() {
+        if mode == Mode::Gripper && self.hand.arm.is_none() {
             self.log(
                 Level::Error,
                 "gripper mode needs an arm: add an [arm] section to the config (see README)",
@@ -244,6 +244,9 @@ impl Pilot {
         self.log(Level::Info, format!("mode {}", mode.label()));
         if mode == Mode::Exploration {
             self.enter_mission();
+        }
+        if mode == Mode::Lane {
+            self.enter_lane(self.now);
         }
         true
     }

@@ -16,6 +16,7 @@ mod control;
 pub mod estimate;
 mod exploration;
 mod intent;
+pub mod lane;
 pub mod lidar_slam;
 pub mod localize;
 mod map_load;
@@ -66,11 +67,13 @@ pub struct Output {
     pub log: Vec<LogLine>,
 }
 
-/// The gripper as last reported, and the command waiting for the next send.
-#[derive(Clone, Copy, Debug, Default)]
+/// The gripper as last reported, the command waiting for the next send, and the arm
+/// that carries it when the config has one.
+#[derive(Clone, Debug, Default)]
 struct Hand {
     state: Option<GripperState>,
     pending: Option<GripperCommand>,
+    arm: Option<arm::ArmPilot>,
 }
 
 /// The autonomy core; see the module comment.
@@ -96,8 +99,8 @@ pub struct Pilot {
     behaviours: behaviours::Behaviours,
     measuring: control::Measuring,
     hand: Hand,
-    /// The arm, when the config has one.
-    arm: Option<arm::ArmPilot>,
+    /// Lane mode: the lane driver and the newest lane sighting.
+    lane: lane::Lane,
     /// A monotonic clock, installed by the runner, to time planning for the log only.
     stopwatch: Option<Arc<dyn Clock>>,
     log: Vec<LogLine>,
@@ -135,8 +138,11 @@ impl Pilot {
             exploring: exploration::Exploring::default(),
             behaviours: behaviours::Behaviours::new(&settings),
             measuring: control::Measuring::default(),
-            hand: Hand::default(),
-            arm: settings.arm.clone().map(arm::ArmPilot::new),
+            hand: Hand {
+                arm: settings.arm.clone().map(arm::ArmPilot::new),
+                ..Hand::default()
+            },
+            lane: lane::Lane::new(settings.lane.clone()),
             stopwatch: None,
             log: Vec::new(),
             settings,

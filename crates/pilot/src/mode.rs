@@ -1,5 +1,5 @@
 //! The operating modes of seed 001 ("Operating Modes": m e t p r l), and gripper mode
-//! (h) for an arm.
+//! (h) for an arm, and lane mode (k) of seed 000.
 
 /// What the console is doing with the robot.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -12,10 +12,12 @@ pub enum Mode {
     Load,
     /// Jogging an arm's tool by keys (an `[arm]` in the config).
     Gripper,
+    /// Following a lane by camera, stopping at lights and barriers (seed 000 §2-§3).
+    Lane,
 }
 
 impl Mode {
-    pub const ALL: [Mode; 7] = [
+    pub const ALL: [Mode; 8] = [
         Mode::Manual,
         Mode::Exploration,
         Mode::Thinking,
@@ -23,6 +25,7 @@ impl Mode {
         Mode::Race,
         Mode::Load,
         Mode::Gripper,
+        Mode::Lane,
     ];
 
     /// The keymap section that holds this mode's bindings.
@@ -35,6 +38,7 @@ impl Mode {
             Mode::Race => "race",
             Mode::Load => "load",
             Mode::Gripper => "gripper",
+            Mode::Lane => "lane",
         }
     }
 
@@ -52,6 +56,7 @@ impl Mode {
             Mode::Race => "RACE",
             Mode::Load => "LOAD",
             Mode::Gripper => "GRIPPER",
+            Mode::Lane => "LANE",
         }
     }
 
@@ -71,6 +76,7 @@ impl Mode {
                 | Mode::Exploration
                 | Mode::Load
                 | Mode::Gripper
+                | Mode::Lane
         )
     }
 }

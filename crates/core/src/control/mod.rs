@@ -7,6 +7,7 @@ pub mod config;
 pub mod controller;
 pub mod follower;
 pub mod hybrid;
+pub mod lane;
 pub mod pid;
 pub mod pid_follower;
 pub mod pure_pursuit;

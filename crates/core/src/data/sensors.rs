@@ -95,4 +95,6 @@ pub struct SensorFrame {
     pub goal: Option<crate::geometry::Pose2>,
     /// An arm's joints, when the robot has one and reported them.
     pub arm: Option<super::ArmState>,
+    /// What the lane camera's pipeline made of its newest frame.
+    pub lane: Option<super::LaneSighting>,
 }

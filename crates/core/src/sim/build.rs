@@ -113,6 +113,7 @@ pub fn build(file: WorldFile, text: &str, path: &Path) -> Result<World, WorldErr
             let at = format!("[{:.2}, {:.2}]", p.x, p.y);
             return Err(ck.err(line, "track.points", at, "the lane leaves the world"));
         }
+        world.walls.extend(scene.post_outlines());
         world.track = Some(scene);
     }
     check_blocks_apart(&ck, &world, &file.blocks)?;

@@ -1,6 +1,7 @@
 //! The twin itself: a differential-drive robot with encoders, camera, lidar and gripper in a
 //! world, advanced only by `step(dt)` and driven by one seeded random generator.
 
+mod arms;
 mod grasp;
 mod sensors;
 
@@ -89,6 +90,8 @@ struct Contacts {
     discs: Vec<Disc>,
     in_contact: bool,
     collisions: u32,
+    /// Contacts with a barrier's arm (`arms.rs`), also counted in `collisions`.
+    barrier_hits: u32,
 }
 
 impl Twin {
@@ -124,6 +127,7 @@ impl Twin {
                 discs: Vec::new(),
                 in_contact: false,
                 collisions: 0,
+                barrier_hits: 0,
             },
             distance: 0.0,
             free_blocks: FreeBlocks {
@@ -249,6 +253,7 @@ impl Twin {
             arm: (self.arm.as_ref())
                 .filter(|_| !arm_silent)
                 .map(|a| a.state()),
+            lane: self.sensors.take_lane(),
         }
     }
 
@@ -382,7 +387,11 @@ impl Twin {
             next.position(),
             self.contacts.in_contact,
         );
-        if verdict.blocked {
+        let under_arm = self.arm_in_the_way(self.pose.position(), next.position());
+        if under_arm && !self.contacts.in_contact {
+            self.contacts.barrier_hits += 1;
+        }
+        if verdict.blocked || under_arm {
             self.drive = Twist::ZERO;
             if !self.contacts.in_contact {
                 self.contacts.collisions += 1;

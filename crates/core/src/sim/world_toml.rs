@@ -120,11 +120,13 @@ fn to_file(world: &World) -> WorldFile {
     }
 }
 
-/// The wall segments that are not an obstacle's outline.
+/// The wall segments that are not an obstacle's or a track post's outline.
 fn plain_walls(world: &World) -> Vec<Segment> {
     let mut walls = world.walls.clone();
-    for o in &world.obstacles {
-        for edge in rect_edges(o.pose, o.width, o.height) {
+    let posts = world.track.iter().flat_map(|t| t.post_outlines());
+    let outlines = (world.obstacles.iter()).flat_map(|o| rect_edges(o.pose, o.width, o.height));
+    for edge in outlines.chain(posts) {
+        {
             if let Some(k) = walls
                 .iter()
                 .position(|w| w.a.distance(edge.a) < SAME && w.b.distance(edge.b) < SAME)

@@ -249,6 +249,7 @@ impl RobotLink for Ros2Link {
             initial_pose: self.presence.take_initial_pose(),
             goal: self.presence.take_goal(),
             arm: self.arm.as_mut().and_then(arm::Arm::take_state),
+            lane: None,
         })
     }
 

@@ -26,7 +26,7 @@ impl Pilot {
                 Some(Proposal::new(Behaviour::SensorHealth, Twist::ZERO, why))
             }
             (None, response) => {
-                if let Some(task) = self.task_proposal(t, keys) {
+                if let Some(task) = self.task_proposal(t, keys, &mut proposals) {
                     let mut twist = task.twist;
                     if let Response::Slow(linear, angular) = response
                         && let Some(slow) = Self::slow_proposal(twist, linear, angular)
@@ -86,8 +86,14 @@ impl Pilot {
     }
 
     /// What the mode's task behaviour asks for at `t` (`keys`: the held drive keys'
-    /// twist); none in the modes that do not drive.
-    fn task_proposal(&mut self, t: f64, keys: Twist) -> Option<Proposal> {
+    /// twist); none in the modes that do not drive. Lane mode's traffic compliance adds
+    /// its hold to `others`.
+    fn task_proposal(
+        &mut self,
+        t: f64,
+        keys: Twist,
+        others: &mut Vec<Proposal>,
+    ) -> Option<Proposal> {
         let proposal = match self.mode {
             Mode::Manual => Proposal::new(Behaviour::Teleop, keys, "driving by keys"),
             Mode::Race => Proposal::new(Behaviour::Race, keys, "racing by keys"),
@@ -107,6 +113,11 @@ impl Pilot {
             }
             // Jogging the arm's tool holds the base still.
             Mode::Gripper => Proposal::new(Behaviour::GripperJog, Twist::ZERO, "jogging the arm"),
+            Mode::Lane => {
+                let (follow, hold) = self.lane_proposals(t);
+                others.extend(hold);
+                follow
+            }
             Mode::Thinking | Mode::Load => return None,
         };
         Some(proposal)

@@ -20,7 +20,7 @@ impl Pilot {
             Some(GripperState::Closed | GripperState::Closing)
         );
         let holding = self.hand.state == Some(GripperState::Holding);
-        (holding || (approaching && !shut && self.arm.is_none())).then_some(JAWS)
+        (holding || (approaching && !shut && self.hand.arm.is_none())).then_some(JAWS)
     }
 
     /// The first mapped obstacle `twist` would bring the footprint onto, if any.

@@ -10,12 +10,14 @@
 mod file;
 pub mod lighting;
 mod line;
+mod score;
 mod signals;
 
 pub use file::{TrackError, TrackSpec, closed_bspline};
 pub use lighting::{Lighting, LightingLevel};
 pub use line::{Track, TrackPoint};
-pub use signals::{Barrier, BarrierCycle, LightCycle, TrafficLight};
+pub use score::{LaneFigures, LaneScore};
+pub use signals::{Barrier, BarrierCycle, LIGHT_BEYOND, LightCycle, TrafficLight};
 
 use crate::geometry::Point2;
 
@@ -45,6 +47,17 @@ impl TrackScene {
         let lights = self.lights.iter().map(|l| l.position);
         let barriers = self.barriers.iter().map(|b| b.pivot);
         lights.chain(barriers).collect()
+    }
+}
+
+impl TrackScene {
+    /// The posts' outlines, as walls: the lidar sees them and the robot cannot drive
+    /// through them.
+    pub fn post_outlines(&self) -> Vec<crate::geometry::Segment> {
+        use crate::geometry::Pose2;
+        (self.posts().into_iter())
+            .flat_map(|p| super::shapes::rect_edges(Pose2::new(p.x, p.y, 0.0), POST, POST))
+            .collect()
     }
 }
 

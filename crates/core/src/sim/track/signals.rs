@@ -54,10 +54,15 @@ impl LightCycle {
     }
 }
 
-/// A traffic light on a post beside the lane, its lamps facing the oncoming robot.
+/// How far past its stop line a light's post stands, metres: as a road's signal stands
+/// across the junction, so a robot waiting at the line still has it in view.
+pub const LIGHT_BEYOND: f64 = 0.6;
+
+/// A traffic light on a post beside the lane, `LIGHT_BEYOND` past its stop line, its lamps
+/// facing the oncoming robot.
 #[derive(Clone, Debug, PartialEq)]
 pub struct TrafficLight {
-    /// Arc length along the lane of the line the robot must stop before, metres.
+    /// Arc length along the lane of the stop line the robot must stop before, metres.
     pub along: f64,
     /// The post's centre.
     pub position: Point2,
@@ -67,9 +72,10 @@ pub struct TrafficLight {
 }
 
 impl TrafficLight {
-    /// The light `side` metres left of the lane (negative: right) at `along`.
+    /// The light whose stop line is `along` metres along the lane, its post `side` metres
+    /// left of the lane (negative: right), `LIGHT_BEYOND` further on.
     pub fn beside(track: &Track, along: f64, side: f64, cycle: LightCycle) -> Self {
-        let (p, heading) = track.at(along);
+        let (p, heading) = track.at(along + LIGHT_BEYOND);
         let (s, c) = heading.sin_cos();
         Self {
             along,

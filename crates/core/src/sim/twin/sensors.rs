@@ -26,6 +26,8 @@ pub(super) struct Sensors {
     #[cfg(feature = "vision")]
     rendered: Option<Box<crate::sim::rendered_camera::RenderedCamera>>,
     scan: Option<LaserScan>,
+    /// The lane camera's newest sighting not yet taken.
+    lane: Option<crate::data::LaneSighting>,
 }
 
 impl Sensors {
@@ -44,6 +46,7 @@ impl Sensors {
             #[cfg(feature = "vision")]
             rendered: None,
             scan: None,
+            lane: None,
         }
     }
 
@@ -100,6 +103,10 @@ impl Sensors {
 
     pub(super) fn take_scan(&mut self) -> Option<LaserScan> {
         self.scan.take()
+    }
+
+    pub(super) fn take_lane(&mut self) -> Option<crate::data::LaneSighting> {
+        self.lane.take()
     }
 
     pub(super) fn take_camera_status(&mut self) -> Option<CameraStatus> {

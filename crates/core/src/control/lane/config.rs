@@ -1,0 +1,110 @@
+//! `[lane.drive]`: lane following's gains and speeds (seed 000 §2.4), and where it stops
+//! for a light or a barrier.
+
+use crate::data::check::Invalid;
+use serde::{Deserialize, Serialize};
+
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct LaneDriveConfig {
+    /// Proportional gain on the lane error, rad/s per bird's-eye pixel (seed 000 §2.4.1:
+    /// Kp = 0.0025).
+    pub kp: f64,
+    /// Derivative gain on the error's change from one frame to the next (seed 000 §2.4.1:
+    /// Kd = 0.007).
+    pub kd: f64,
+    /// Top speed on a centred lane, m/s (seed 000 §2.4.2's v_max).
+    pub max_speed: f64,
+    /// The speed the gains are scheduled about (seed 000 §2.4.1's nominal_speed), m/s.
+    pub nominal_speed: f64,
+    /// The error at which the speed law reaches zero, bird's-eye pixels (seed 000 §2.4.2's
+    /// e_max; TurtleBot3's AutoRace divides by 500, half its 1000-pixel view).
+    pub max_error: f64,
+    /// The speed law's exponent (seed 000 §2.4.2: alpha = 2.2).
+    pub alpha: f64,
+    /// Most turn rate lane following asks for, rad/s.
+    pub max_angular: f64,
+    /// A red or yellow light this near (metres from the camera) stops the robot: with the
+    /// post 0.6 m past its stop line and 0.35-0.45 m aside, 0.85 m stops the robot
+    /// 0.15-0.2 m before the line.
+    pub light_stop_range: f64,
+    /// A barrier down or moving this near stops the robot.
+    pub barrier_stop_range: f64,
+    /// Seconds without a lane line before lane following stops the robot.
+    pub lost_after: f64,
+}
+
+impl Default for LaneDriveConfig {
+    fn default() -> Self {
+        Self {
+            kp: 0.0025,
+            kd: 0.007,
+            max_speed: 0.15,
+            nominal_speed: 0.15,
+            max_error: 500.0,
+            alpha: 2.2,
+            max_angular: 2.0,
+            light_stop_range: 0.85,
+            barrier_stop_range: 0.55,
+            lost_after: 1.0,
+        }
+    }
+}
+
+impl LaneDriveConfig {
+    /// Checks signs and ranges a parser cannot.
+    pub fn validate(&self) -> Result<(), Invalid> {
+        crate::data::check::within(&[
+            ("kp", self.kp, 0.0, 1.0),
+            ("kd", self.kd, 0.0, 1.0),
+            ("max_speed", self.max_speed, 0.01, 2.0),
+            ("nominal_speed", self.nominal_speed, 0.01, 2.0),
+            ("max_error", self.max_error, 1.0, 10_000.0),
+            ("alpha", self.alpha, 0.1, 10.0),
+            ("max_angular", self.max_angular, 0.01, 20.0),
+            ("light_stop_range", self.light_stop_range, 0.1, 10.0),
+            ("barrier_stop_range", self.barrier_stop_range, 0.1, 10.0),
+            ("lost_after", self.lost_after, 0.05, 60.0),
+        ])
+    }
+}
+
+/// `[lane]`: the lane camera (`[lane.camera]`), its pipeline's thresholds
+/// (`[lane.vision]`) and lane following (`[lane.drive]`).
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct LaneConfig {
+    pub camera: crate::perception::lane_camera::LaneCameraConfig,
+    pub drive: LaneDriveConfig,
+}
+
+impl LaneConfig {
+    /// The first bad field, named within `[lane]`.
+    pub fn validate(&self) -> Result<(), Invalid> {
+        if let Some((field, value, reason)) = self.camera.invalid() {
+            let field = match field {
+                "width" => "camera.width",
+                "height" => "camera.height",
+                "hfov_deg" => "camera.hfov_deg",
+                "rate_hz" => "camera.rate_hz",
+                _ => "camera.mount",
+            };
+            return Err((field, value, reason.into()));
+        }
+        self.drive.validate().map_err(|(field, value, reason)| {
+            let field = match field {
+                "kp" => "drive.kp",
+                "kd" => "drive.kd",
+                "max_speed" => "drive.max_speed",
+                "nominal_speed" => "drive.nominal_speed",
+                "max_error" => "drive.max_error",
+                "alpha" => "drive.alpha",
+                "max_angular" => "drive.max_angular",
+                "light_stop_range" => "drive.light_stop_range",
+                "barrier_stop_range" => "drive.barrier_stop_range",
+                _ => "drive.lost_after",
+            };
+            (field, value, reason)
+        })
+    }
+}

@@ -1,0 +1,275 @@
+//! The lane driver: one step per control period from the newest lane sighting.
+
+use super::LaneDriveConfig;
+use crate::data::{BarrierState, LaneSighting, LightColour};
+use crate::geometry::Twist;
+
+/// What holds the robot.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Wait {
+    /// A red or yellow light ahead: go at green.
+    Light(LightColour),
+    /// A barrier down or moving ahead: go when it is up.
+    Barrier(BarrierState),
+    /// No lane line seen for `lost_after` seconds.
+    LaneLost,
+}
+
+impl Wait {
+    /// What the status line says.
+    pub fn text(self) -> String {
+        match self {
+            Wait::Light(c) => format!("waiting at a {} light", c.label()),
+            Wait::Barrier(BarrierState::Up) => "waiting for the barrier's next opening".into(),
+            Wait::Barrier(s) => format!("waiting at a barrier ({})", s.label()),
+            Wait::LaneLost => "lane lost: stopped".into(),
+        }
+    }
+}
+
+/// One step's decision: lane following's twist, and what traffic compliance holds the
+/// robot for (the arbiter lets the hold win).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LaneStep {
+    pub twist: Twist,
+    pub wait: Option<Wait>,
+}
+
+/// See the module comment.
+#[derive(Clone, Debug)]
+pub struct LaneDriver {
+    cfg: LaneDriveConfig,
+    /// The error of the last frame that had one, for the derivative.
+    last_error: Option<f64>,
+    /// When a lane line was last seen.
+    seen_at: Option<f64>,
+    /// The hold for a light or barrier, kept until it clears.
+    hold: Option<Wait>,
+    /// Whether the robot saw the barrier ahead open while it waited, and may pass.
+    opened: bool,
+    /// Frames since a barrier was last seen in range.
+    unseen: u32,
+}
+
+/// Frames without a barrier in range after which it is behind the robot.
+const BARRIER_GONE: u32 = 10;
+
+impl LaneDriver {
+    pub fn new(cfg: LaneDriveConfig) -> Self {
+        Self {
+            cfg,
+            last_error: None,
+            seen_at: None,
+            hold: None,
+            opened: false,
+            unseen: 0,
+        }
+    }
+
+    pub fn config(&self) -> &LaneDriveConfig {
+        &self.cfg
+    }
+
+    /// Forgets the lane and any hold (lane mode entered anew).
+    pub fn reset(&mut self, t: f64) {
+        self.last_error = None;
+        self.seen_at = Some(t);
+        self.hold = None;
+        self.opened = false;
+    }
+
+    /// The step at `t` from `fresh`, a sighting taken since the last step (none: no new
+    /// frame), with the robot's measured forward speed `speed`.
+    pub fn step(&mut self, t: f64, fresh: Option<&LaneSighting>, speed: f64) -> LaneStep {
+        if let Some(s) = fresh {
+            self.comply(s);
+        }
+        let twist = match fresh.and_then(|s| s.error_px.map(|e| (e, s.curvature))) {
+            Some((e, curvature)) => {
+                self.seen_at = Some(t);
+                self.follow(e, curvature.unwrap_or(0.0), speed)
+            }
+            // Between frames, and briefly after losing the lines, keep the last command's
+            // shape from the last error; past `lost_after` stop.
+            None => match (self.seen_at, self.last_error) {
+                (Some(seen), Some(e)) if t - seen < self.cfg.lost_after => {
+                    let (v, _) = self.speed_law(e);
+                    Twist::new(v, self.turn(e, 0.0, 0.0, speed))
+                }
+                _ => Twist::ZERO,
+            },
+        };
+        let lost = self.seen_at.is_none_or(|s| t - s >= self.cfg.lost_after);
+        let wait = self.hold.or(lost.then_some(Wait::LaneLost));
+        LaneStep { twist, wait }
+    }
+
+    /// Holds for a stopping light or a closed barrier in range; clears the hold on green
+    /// or up (seed 000 §3's traffic compliance).
+    fn comply(&mut self, s: &LaneSighting) {
+        if let Some(light) = s.light {
+            if light.colour.stops() && light.range <= self.cfg.light_stop_range {
+                self.hold = Some(Wait::Light(light.colour));
+            } else if matches!(self.hold, Some(Wait::Light(_))) && !light.colour.stops() {
+                self.hold = None;
+            }
+        }
+        match s.barrier {
+            Some(b) if b.range <= self.cfg.barrier_stop_range => {
+                self.unseen = 0;
+                let waiting = matches!(self.hold, Some(Wait::Barrier(_)));
+                if b.state != BarrierState::Up {
+                    self.hold = Some(Wait::Barrier(b.state));
+                    self.opened = false;
+                } else if waiting {
+                    // Seen rising while waiting: this opening is the robot's to pass.
+                    self.hold = None;
+                    self.opened = true;
+                } else if !self.opened {
+                    // Up when first met near: how long it stays up is unknown, so the
+                    // robot waits for an opening it sees begin.
+                    self.hold = Some(Wait::Barrier(BarrierState::Up));
+                }
+            }
+            _ => {
+                // Past the barrier (or out of its range) for a second: the next one is met
+                // afresh.
+                self.unseen += 1;
+                if self.unseen >= BARRIER_GONE {
+                    self.opened = false;
+                }
+            }
+        }
+    }
+
+    /// Lane following's twist for error `e` (bird's-eye pixels, + when the lane centre is
+    /// to the right) on a lane of `curvature` (1/m, + left).
+    fn follow(&mut self, e: f64, curvature: f64, speed: f64) -> Twist {
+        let de = self.last_error.map_or(0.0, |last| e - last);
+        self.last_error = Some(e);
+        let (v, _) = self.speed_law(e);
+        Twist::new(v, self.turn(e, de, curvature * v, speed))
+    }
+
+    /// Seed 000 §2.4.2: v(e) = v_max (max(0, 1 - |e| / e_max))^alpha.
+    fn speed_law(&self, e: f64) -> (f64, f64) {
+        let f = (1.0 - e.abs() / self.cfg.max_error).max(0.0).powf(self.cfg.alpha);
+        (self.cfg.max_speed * f, f)
+    }
+
+    /// Seed 000 §2.4.1: (Kp e + Kd de) / speed_factor, speed_factor = clamp(v / v_nom,
+    /// 0.5, 1.5), saturated; the error turns the robot towards the lane centre (AutoRace's
+    /// sign: angular = -output). `feed`: the curvature feed-forward, v kappa (a unicycle on
+    /// a curve of curvature kappa turns at v kappa; the seed's Kf has no value).
+    fn turn(&self, e: f64, de: f64, feed: f64, speed: f64) -> f64 {
+        let factor = (speed.abs() / self.cfg.nominal_speed).clamp(0.5, 1.5);
+        let output = (self.cfg.kp * e + self.cfg.kd * de) / factor;
+        (feed - output).clamp(-self.cfg.max_angular, self.cfg.max_angular)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::data::{BarrierSeen, LightSeen};
+
+    fn seen(e: f64) -> LaneSighting {
+        LaneSighting {
+            error_px: Some(e),
+            curvature: Some(0.0),
+            ..LaneSighting::default()
+        }
+    }
+
+    #[test]
+    fn a_lane_to_the_right_turns_right_and_slows_by_the_speed_law() {
+        let mut d = LaneDriver::new(LaneDriveConfig::default());
+        d.reset(0.0);
+        let s = d.step(0.1, Some(&seen(100.0)), 0.15);
+        // Kp e = 0.0025 * 100 = 0.25 rad/s, speed factor 1; v = 0.15 * 0.8^2.2 = 0.0917.
+        assert!((s.twist.angular + 0.25).abs() < 1e-9, "{:?}", s.twist);
+        assert!((s.twist.linear - 0.15 * 0.8f64.powf(2.2)).abs() < 1e-9);
+        // The error grows by 10 px: Kd adds 0.007 * 10 = 0.07 rad/s.
+        let s = d.step(0.2, Some(&seen(110.0)), 0.15);
+        assert!((s.twist.angular + 0.275 + 0.07).abs() < 1e-9, "{:?}", s.twist);
+        assert_eq!(s.wait, None);
+    }
+
+    #[test]
+    fn slow_driving_doubles_the_gain_at_most() {
+        let mut d = LaneDriver::new(LaneDriveConfig::default());
+        d.reset(0.0);
+        let s = d.step(0.1, Some(&seen(-40.0)), 0.0);
+        // Speed factor clamps at 0.5: 0.0025 * 40 / 0.5 = 0.2 rad/s, to the left.
+        assert!((s.twist.angular - 0.2).abs() < 1e-9, "{:?}", s.twist);
+    }
+
+    #[test]
+    fn a_red_light_near_holds_until_green() {
+        let mut d = LaneDriver::new(LaneDriveConfig::default());
+        d.reset(0.0);
+        let light = |colour, range| LaneSighting {
+            light: Some(LightSeen {
+                colour,
+                range,
+                confidence: 0.9,
+            }),
+            ..seen(0.0)
+        };
+        assert_eq!(d.step(0.1, Some(&light(LightColour::Red, 1.5)), 0.1).wait, None);
+        let near = d.step(0.2, Some(&light(LightColour::Red, 0.7)), 0.1);
+        assert_eq!(near.wait, Some(Wait::Light(LightColour::Red)));
+        // Nothing seen in a frame does not lift the hold.
+        assert!(d.step(0.3, Some(&seen(0.0)), 0.0).wait.is_some());
+        assert_eq!(d.step(0.4, Some(&light(LightColour::Green, 0.7)), 0.0).wait, None);
+    }
+
+    #[test]
+    fn a_barrier_down_or_moving_holds_until_up() {
+        let mut d = LaneDriver::new(LaneDriveConfig::default());
+        d.reset(0.0);
+        let barrier = |state| LaneSighting {
+            barrier: Some(BarrierSeen {
+                state,
+                angle_deg: 0.0,
+                range: 0.5,
+                belief: [1.0, 0.0, 0.0],
+            }),
+            ..seen(0.0)
+        };
+        let s = d.step(0.1, Some(&barrier(BarrierState::Moving)), 0.1);
+        assert_eq!(s.wait, Some(Wait::Barrier(BarrierState::Moving)));
+        assert_eq!(d.step(0.2, Some(&barrier(BarrierState::Up)), 0.0).wait, None);
+        assert_eq!(d.step(0.3, Some(&barrier(BarrierState::Up)), 0.1).wait, None);
+    }
+
+    #[test]
+    fn a_barrier_already_up_when_met_is_passed_only_on_an_opening_seen_to_begin() {
+        let mut d = LaneDriver::new(LaneDriveConfig::default());
+        d.reset(0.0);
+        let barrier = |state| LaneSighting {
+            barrier: Some(BarrierSeen {
+                state,
+                angle_deg: 90.0,
+                range: 0.5,
+                belief: [0.0, 0.0, 1.0],
+            }),
+            ..seen(0.0)
+        };
+        let up = d.step(0.1, Some(&barrier(BarrierState::Up)), 0.1);
+        assert_eq!(up.wait, Some(Wait::Barrier(BarrierState::Up)));
+        d.step(0.2, Some(&barrier(BarrierState::Moving)), 0.0);
+        d.step(0.3, Some(&barrier(BarrierState::Down)), 0.0);
+        assert_eq!(d.step(0.4, Some(&barrier(BarrierState::Up)), 0.0).wait, None);
+    }
+
+    #[test]
+    fn losing_the_lane_stops_after_the_timeout() {
+        let mut d = LaneDriver::new(LaneDriveConfig::default());
+        d.reset(0.0);
+        d.step(0.1, Some(&seen(0.0)), 0.1);
+        assert!(d.step(0.5, None, 0.1).twist.linear > 0.0);
+        let s = d.step(1.2, Some(&LaneSighting::default()), 0.1);
+        assert_eq!((s.twist, s.wait), (Twist::ZERO, Some(Wait::LaneLost)));
+    }
+}

@@ -114,6 +114,9 @@ enum Subcommand {
     /// Drive the twin from goal to goal on simulated time and score the estimate against
     /// the truth (tracking, global localisation, a kidnapped robot).
     Tour(TourArgs),
+    /// Follow a track's lane in the twin on simulated time (seed 000: lane lines, traffic
+    /// lights, barriers) and score the run against the truth.
+    Lane(commands::lane::LaneArgs),
     /// Look at a saved map (Nav2 map_server YAML + PGM).
     #[command(subcommand)]
     Map(MapCommand),
@@ -190,6 +193,7 @@ fn real_main(cli: Cli) -> Result<ExitCode> {
                 Subcommand::Plan(_) => "plan",
                 Subcommand::Mission(_) => "mission",
                 Subcommand::Tour(_) => "tour",
+                Subcommand::Lane(_) => "lane",
                 Subcommand::Map(_) => "map",
                 Subcommand::World(_) => "world",
                 Subcommand::Arm(_) => "arm",
@@ -205,6 +209,7 @@ fn real_main(cli: Cli) -> Result<ExitCode> {
         Some(Subcommand::Plan(args)) => return commands::plan::run(args),
         Some(Subcommand::Mission(args)) => return commands::mission::run(args),
         Some(Subcommand::Tour(args)) => return commands::tour::run(args),
+        Some(Subcommand::Lane(args)) => return commands::lane::run(args),
         Some(Subcommand::Map(command)) => return commands::map::run(command),
         Some(Subcommand::World(command)) => return commands::world::run(command),
         Some(Subcommand::Arm(command)) => return commands::arm::run(command),

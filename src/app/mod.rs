@@ -141,6 +141,11 @@ impl App {
         self.refresh_revision();
     }
 
+    /// Why lane mode cannot run on this robot (no lane camera), or None when it can.
+    pub fn set_lane_unavailable(&mut self, why: Option<String>) {
+        self.runtime.pilot_mut().set_lane_unavailable(why);
+    }
+
     /// A warning from outside the core (the console's own set-up) into the log.
     pub fn warn(&mut self, text: impl Into<String>) {
         self.log(Level::Warn, text);

@@ -47,6 +47,8 @@ pub(crate) fn run(cli: &Cli) -> Result<ExitCode> {
     if cli.twin.sim_camera {
         session.use_sim_camera(Some(stopwatch.clone()), CameraFrames::Whole)?;
     }
+    // A track in the twin's world: lane mode (k) drives it through the lane camera.
+    session.offer_lane_camera(spec.seed, Some(stopwatch.clone()));
     if let Some(source) = &cli.camera {
         session = session.with_camera(source, stopwatch.clone())?;
     }

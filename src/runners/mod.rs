@@ -4,6 +4,7 @@
 pub mod arm_pick;
 pub mod faults;
 pub mod headless;
+pub mod lane;
 pub mod map_report;
 pub mod mission;
 pub mod plan_report;

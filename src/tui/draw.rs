@@ -82,7 +82,10 @@ pub fn draw_in(frame: &mut Frame, size: Rect, app: &App, theme: Theme) {
     if app.view().landmarks {
         draw_landmarks(frame, app, theme, inner);
     }
-    if app.view().camera != crate::app::view::CameraPanel::Off {
+    let lane_mode = app.pilot().mode() == crate::app::mode::Mode::Lane;
+    if lane_mode && app.view().camera != crate::app::view::CameraPanel::Off {
+        draw_lane(frame, app, theme, inner);
+    } else if app.view().camera != crate::app::view::CameraPanel::Off {
         draw_camera(frame, app, theme, inner);
     }
     if app.pilot().mode() == crate::app::mode::Mode::Gripper && app.pilot().arm().is_some() {
@@ -240,6 +243,32 @@ fn draw_camera(frame: &mut Frame, app: &App, theme: Theme, map: Rect) {
             thumb_area,
             frame.buffer_mut(),
         );
+    }
+}
+
+/// Lane mode's panel over the map's top left, in the camera panel's place (`v`).
+fn draw_lane(frame: &mut Frame, app: &App, theme: Theme, map: Rect) {
+    let width = 36.min(map.width);
+    let thumb = app.pilot().lane().last().and_then(|s| s.thumbnail.as_ref());
+    let thumb_rows = if thumb.is_some() { 9 } else { 0 };
+    let text = super::widgets::lane::lines(app, theme);
+    let height = (text.len() as u16 + thumb_rows + 2).min(map.height);
+    let area = Rect::new(map.x, map.y, width, height);
+    let block = Block::bordered()
+        .title(" Lane (v) ")
+        .border_style(theme.border());
+    let inner = block.inner(area);
+    let text_rows = (text.len() as u16).min(inner.height);
+    frame.render_widget(Clear, area);
+    frame.render_widget(Paragraph::new(text).block(block), area);
+    if let Some(thumb) = thumb {
+        let thumb_area = Rect::new(
+            inner.x,
+            inner.y + text_rows,
+            inner.width,
+            inner.height - text_rows,
+        );
+        super::widgets::lane::thumbnail(thumb, theme, thumb_area, frame.buffer_mut());
     }
 }
 

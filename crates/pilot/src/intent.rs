@@ -227,6 +227,11 @@ impl Pilot {
             );
             return false;
         }
+        if let (Mode::Lane, Some(why)) = (mode, self.lane_refusal()) {
+            let text = format!("lane mode cannot start: {why}");
+            self.log(Level::Error, text);
+            return false;
+        }
         if mode == Mode::PathFollowing && !self.start_following() {
             return false;
         }

@@ -19,6 +19,8 @@ pub struct Lane {
     fresh: Option<LaneSighting>,
     /// What holds the robot now, if anything.
     wait: Option<Wait>,
+    /// Why lane mode cannot run (no lane camera on this robot), if it cannot.
+    unavailable: Option<String>,
 }
 
 impl Lane {
@@ -28,6 +30,7 @@ impl Lane {
             last: None,
             fresh: None,
             wait: None,
+            unavailable: None,
         }
     }
 
@@ -46,6 +49,17 @@ impl Pilot {
     /// Lane mode's view: the newest sighting and the hold.
     pub fn lane(&self) -> &Lane {
         &self.lane
+    }
+
+    /// Says why lane mode cannot run on this robot (None: it can): set by whoever built
+    /// the robot's sensors.
+    pub fn set_lane_unavailable(&mut self, why: Option<String>) {
+        self.lane.unavailable = why;
+    }
+
+    /// Why lane mode cannot start, if it cannot.
+    pub(crate) fn lane_refusal(&self) -> Option<&str> {
+        self.lane.unavailable.as_deref()
     }
 
     /// Takes in a lane sighting from the newest frame.

@@ -8,6 +8,7 @@ pub mod filter_zones;
 pub mod graph;
 pub mod help;
 pub mod landmarks;
+pub mod lane;
 pub mod log;
 pub mod map;
 pub mod particles;

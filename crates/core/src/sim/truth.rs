@@ -25,6 +25,10 @@ pub trait GroundTruth {
     fn collisions(&self) -> u32;
     /// True path length of the robot centre, metres.
     fn distance_driven(&self) -> f64;
+    /// Contacts with a barrier's arm (a track's), also counted in `collisions`.
+    fn barrier_hits(&self) -> u32 {
+        0
+    }
 }
 
 impl GroundTruth for Twin {
@@ -51,6 +55,9 @@ impl GroundTruth for Twin {
     }
     fn distance_driven(&self) -> f64 {
         Twin::distance_driven(self)
+    }
+    fn barrier_hits(&self) -> u32 {
+        Twin::barrier_hits(self)
     }
 }
 

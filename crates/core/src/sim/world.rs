@@ -9,6 +9,8 @@ use std::path::Path;
 
 /// The built-in arena of seed 001, compiled into the binary.
 const ARENA_TOML: &str = include_str!("../../../../maps/arena.toml");
+/// The built-in lane course of seed 000, compiled into the binary.
+const TRACK_TOML: &str = include_str!("../../../../maps/track.toml");
 
 /// Colour of a block and of the gate it belongs to (seed 001 section 1).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
@@ -107,6 +109,12 @@ impl World {
     pub fn default_arena() -> World {
         Self::from_toml(ARENA_TOML, Path::new("maps/arena.toml"))
             .expect("the embedded maps/arena.toml is valid (checked by a test)")
+    }
+
+    /// The AutoRace-style lane course (`maps/track.toml`, embedded at build time).
+    pub fn default_track() -> World {
+        Self::from_toml(TRACK_TOML, Path::new("maps/track.toml"))
+            .expect("the embedded maps/track.toml is valid (checked by a test)")
     }
 
     /// Static geometry as an occupancy grid: walls and obstacles occupied, the rest free.

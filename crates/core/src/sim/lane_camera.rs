@@ -1,0 +1,85 @@
+//! The twin's lane camera (feature `vision`): colour frames of the track drawn by
+//! `track_render::TrackRenderer`, read by the OpenCV lane pipeline like a real camera's.
+
+use super::World;
+use super::track::Lighting;
+use super::track_render::TrackRenderer;
+use crate::clock::Clock;
+use crate::data::LaneSighting;
+use crate::geometry::Pose2;
+use crate::perception::colour::BgrFrame;
+use crate::perception::lane::{LanePipeline, LaneVisionConfig, LaneVisionError};
+use crate::perception::lane_camera::LaneCameraConfig;
+use rand_chacha::ChaCha8Rng;
+use std::sync::Arc;
+
+/// The renderer and the pipeline behind it.
+#[derive(Clone)]
+pub struct LaneCamera {
+    renderer: TrackRenderer,
+    pipeline: LanePipeline,
+    stopwatch: Option<Arc<dyn Clock>>,
+    /// The newest frame, for a caller that wants the picture itself.
+    last: Option<BgrFrame>,
+    keep_frames: bool,
+}
+
+impl std::fmt::Debug for LaneCamera {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("LaneCamera").finish_non_exhaustive()
+    }
+}
+
+impl LaneCamera {
+    /// The lane camera of `camera` in `world` (which must have a track) under
+    /// `lighting`, its shadows and lamps placed by `seed`.
+    pub fn new(
+        world: &World,
+        camera: &LaneCameraConfig,
+        vision: &LaneVisionConfig,
+        lighting: Lighting,
+        seed: u64,
+        stopwatch: Option<Arc<dyn Clock>>,
+    ) -> Result<Self, LaneVisionError> {
+        let scene = world.track.as_ref().ok_or_else(|| {
+            LaneVisionError::Setup(format!("world {} has no [track]", world.name))
+        })?;
+        let boxes: Vec<(Pose2, f64, f64)> =
+            (world.obstacles.iter()).map(|o| (o.pose, o.width, o.height)).collect();
+        Ok(Self {
+            renderer: TrackRenderer::new(scene, &world.walls, &boxes, camera, lighting, seed),
+            pipeline: LanePipeline::new(vision, camera)?,
+            stopwatch,
+            last: None,
+            keep_frames: false,
+        })
+    }
+
+    /// Keeps each frame drawn, for `last_frame`.
+    pub fn keep_frames(&mut self, keep: bool) {
+        self.keep_frames = keep;
+    }
+
+    /// The newest frame, when frames are kept.
+    pub fn last_frame(&self) -> Option<&BgrFrame> {
+        self.last.as_ref()
+    }
+
+    pub fn renderer(&self) -> &TrackRenderer {
+        &self.renderer
+    }
+
+    pub fn pipeline_mut(&mut self) -> &mut LanePipeline {
+        &mut self.pipeline
+    }
+
+    /// Draws the frame seen from `pose` at twin time `t` and reads it.
+    pub fn capture(&mut self, pose: Pose2, t: f64, rng: &mut ChaCha8Rng) -> LaneSighting {
+        let frame = self.renderer.render(pose, t, rng);
+        let sighting = self.pipeline.read(&frame, self.stopwatch.as_deref());
+        if self.keep_frames {
+            self.last = Some(frame);
+        }
+        sighting
+    }
+}

@@ -31,9 +31,10 @@ impl RobotLink for WithCamera {
 
     fn poll(&mut self, now: f64) -> Result<SensorFrame, LinkError> {
         let mut frame = self.inner.poll(now)?;
-        if let Some((sightings, status)) = self.pipeline.take_latest() {
+        if let Some((sightings, status, lane)) = self.pipeline.take_latest() {
             frame.sightings = Some(sightings);
             frame.camera = Some(status);
+            frame.lane = lane;
         }
         Ok(frame)
     }

@@ -132,3 +132,61 @@ mod tests {
         assert!(e.to_string().contains("got 7"), "{e}");
     }
 }
+
+/// A frame as a camera source hands it over: grey (mono8) or colour.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum CameraImage {
+    Gray(super::frame::GrayFrame),
+    Colour(BgrFrame),
+}
+
+impl From<super::frame::GrayFrame> for CameraImage {
+    fn from(f: super::frame::GrayFrame) -> Self {
+        Self::Gray(f)
+    }
+}
+
+impl From<BgrFrame> for CameraImage {
+    fn from(f: BgrFrame) -> Self {
+        Self::Colour(f)
+    }
+}
+
+impl CameraImage {
+    /// The grey frame the marker detector reads (ITU-R BT.601 luma of a colour one).
+    pub fn into_gray(self) -> super::frame::GrayFrame {
+        match self {
+            Self::Gray(g) => g,
+            Self::Colour(c) => c.to_gray(),
+        }
+    }
+
+    /// The colour frame the lane pipeline reads (a grey one has three equal channels).
+    pub fn to_colour(&self) -> BgrFrame {
+        match self {
+            Self::Gray(g) => BgrFrame {
+                width: g.width,
+                height: g.height,
+                data: g.data.iter().flat_map(|&v| [v, v, v]).collect(),
+            },
+            Self::Colour(c) => c.clone(),
+        }
+    }
+}
+
+impl BgrFrame {
+    /// The frame in grey: ITU-R BT.601 luma, as OpenCV's cvtColor.
+    pub fn to_gray(&self) -> super::frame::GrayFrame {
+        let data = (self.data.chunks_exact(3))
+            .map(|p| {
+                let y = 114 * u32::from(p[0]) + 587 * u32::from(p[1]) + 299 * u32::from(p[2]);
+                ((y + 500) / 1000) as u8
+            })
+            .collect();
+        super::frame::GrayFrame {
+            width: self.width,
+            height: self.height,
+            data,
+        }
+    }
+}

@@ -4,7 +4,10 @@
 //! A frame not yet detected when a newer one arrives is dropped: latest frame wins.
 
 use super::aruco::Detector;
-use super::frame::{CameraStatus, GrayFrame};
+use super::colour::CameraImage;
+use super::frame::CameraStatus;
+use super::lane::LanePipeline;
+use crate::data::LaneSighting;
 use crate::clock::Clock;
 use crate::data::MarkerSighting;
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
@@ -18,7 +21,7 @@ const WAIT: Duration = Duration::from_millis(100);
 /// Where frames come from: a V4L2 device, a ROS 2 image topic, a test.
 pub trait FrameSource: Send + 'static {
     /// The next frame; `Ok(None)` when none came within the source's own timeout.
-    fn grab(&mut self) -> Result<Option<GrayFrame>, String>;
+    fn grab(&mut self) -> Result<Option<CameraImage>, String>;
 }
 
 /// A one-value mailbox: putting replaces what was not yet taken.
@@ -65,7 +68,9 @@ pub struct PipelineCounts {
     pub detected: AtomicU64,
 }
 
-type Result_ = (Vec<MarkerSighting>, CameraStatus);
+/// What one frame gave: the markers and the camera's status, and the lane pipeline's
+/// sighting when lane mode reads the same camera.
+type Result_ = (Vec<MarkerSighting>, CameraStatus, Option<LaneSighting>);
 
 pub struct CameraPipeline {
     results: Arc<Slot<Result_>>,
@@ -78,9 +83,10 @@ impl CameraPipeline {
     pub fn start(
         mut source: Box<dyn FrameSource>,
         detector: Detector,
+        mut lane: Option<LanePipeline>,
         stopwatch: Option<Arc<dyn Clock>>,
     ) -> Self {
-        let frames = Arc::new(Slot::<GrayFrame>::new());
+        let frames = Arc::new(Slot::<CameraImage>::new());
         let results = Arc::new(Slot::new());
         let counts = Arc::new(PipelineCounts::default());
         let stop = Arc::new(AtomicBool::new(false));
@@ -102,7 +108,8 @@ impl CameraPipeline {
                         }
                         Ok(None) => {}
                         Err(e) => {
-                            results.put((Vec::new(), CameraStatus::failed(e)));
+                            let lane = Some(LaneSighting::failed(e.clone()));
+                            results.put((Vec::new(), CameraStatus::failed(e), lane));
                             // A camera that fails is asked again, not hammered.
                             std::thread::sleep(Duration::from_millis(500));
                         }
@@ -118,9 +125,11 @@ impl CameraPipeline {
                     let Some(frame) = frames.take_waiting(WAIT) else {
                         continue;
                     };
-                    let result = detector.read(&frame, stopwatch.as_deref());
+                    let watch = stopwatch.as_deref();
+                    let sighting = lane.as_mut().map(|l| l.read(&frame.to_colour(), watch));
+                    let (markers, status) = detector.read(&frame.into_gray(), watch);
                     counts.detected.fetch_add(1, Ordering::SeqCst);
-                    results.put(result);
+                    results.put((markers, status, sighting));
                 }
             })
         };
@@ -133,7 +142,7 @@ impl CameraPipeline {
     }
 
     /// The newest detection not yet taken.
-    pub fn take_latest(&self) -> Option<(Vec<MarkerSighting>, CameraStatus)> {
+    pub fn take_latest(&self) -> Option<(Vec<MarkerSighting>, CameraStatus, Option<LaneSighting>)> {
         self.results.take()
     }
 
@@ -155,7 +164,6 @@ impl Drop for CameraPipeline {
 pub struct V4l2Source {
     capture: opencv::videoio::VideoCapture,
     bgr: opencv::core::Mat,
-    gray: opencv::core::Mat,
 }
 
 impl V4l2Source {
@@ -183,26 +191,26 @@ impl V4l2Source {
         Ok(Self {
             capture,
             bgr: opencv::core::Mat::default(),
-            gray: opencv::core::Mat::default(),
         })
     }
 }
 
 impl FrameSource for V4l2Source {
-    fn grab(&mut self) -> Result<Option<GrayFrame>, String> {
+    fn grab(&mut self) -> Result<Option<CameraImage>, String> {
         use opencv::prelude::*;
         let e = |e: opencv::Error| e.to_string();
         if !self.capture.read(&mut self.bgr).map_err(e)? {
             return Err("the camera returned no frame".into());
         }
-        opencv::imgproc::cvt_color_def(&self.bgr, &mut self.gray, opencv::imgproc::COLOR_BGR2GRAY)
-            .map_err(e)?;
-        let (w, h) = (self.gray.cols() as usize, self.gray.rows() as usize);
-        let data = self.gray.data_bytes().map_err(e)?.to_vec();
-        Ok(Some(GrayFrame {
+        let (w, h) = (self.bgr.cols() as usize, self.bgr.rows() as usize);
+        if self.bgr.channels() != 3 {
+            return Err(format!("the camera gave {} channels, not 3", self.bgr.channels()));
+        }
+        let data = self.bgr.data_bytes().map_err(e)?.to_vec();
+        Ok(Some(CameraImage::Colour(super::colour::BgrFrame {
             width: w,
             height: h,
             data,
-        }))
+        })))
     }
 }

@@ -1,9 +1,12 @@
-//! Camera frames from a ROS 2 image topic (sensor_msgs/Image, mono8, rgb8 or bgr8) as a
-//! source for the camera pipeline, on a DDS participant of its own.
+//! Camera frames from a ROS 2 image topic as a source for the camera pipeline, on a DDS
+//! participant of its own: sensor_msgs/Image (mono8, rgb8 or bgr8), or, for a topic
+//! ending in `/compressed` (image_transport's name, as a TurtleBot3 camera publishes),
+//! sensor_msgs/CompressedImage (JPEG or PNG), decoded by OpenCV.
 
 use super::config::Ros2Config;
 use super::participant::{Factory, Joined, join, qos_profile, take_all};
 use crate::LinkError;
+use navdeck_core::perception::colour::{BgrFrame, CameraImage};
 use navdeck_core::perception::frame::GrayFrame;
 use navdeck_core::perception::pipeline::FrameSource;
 use navdeck_msgs::ros as msgs;
@@ -13,8 +16,14 @@ use std::time::{Duration, Instant};
 /// How long one `grab` waits for a frame.
 const GRAB_WAIT: Duration = Duration::from_millis(100);
 
+/// The topic's messages: raw or compressed.
+enum Images {
+    Raw(Subscription<msgs::Image>),
+    Compressed(Subscription<msgs::CompressedImage>),
+}
+
 pub struct Ros2ImageSource {
-    images: Subscription<msgs::Image>,
+    images: Images,
     _node: Node,
     _context: Context,
 }
@@ -28,18 +37,18 @@ impl Ros2ImageSource {
             mut node,
             ..
         } = join(config, domain, "navdeck_camera")?;
-        let images = Factory {
+        let mut factory = Factory {
             node: &mut node,
             config,
             namespace: &namespace,
-        }
-        .subscription(
-            "camera",
-            topic,
-            "sensor_msgs",
-            "Image",
-            qos_profile(config.scan_qos, false),
-        )?;
+        };
+        let qos = qos_profile(config.scan_qos, false);
+        let images = if topic.ends_with("/compressed") {
+            let kind = "CompressedImage";
+            Images::Compressed(factory.subscription("camera", topic, "sensor_msgs", kind, qos)?)
+        } else {
+            Images::Raw(factory.subscription("camera", topic, "sensor_msgs", "Image", qos)?)
+        };
         Ok(Self {
             images,
             _node: node,
@@ -49,26 +58,22 @@ impl Ros2ImageSource {
 }
 
 impl FrameSource for Ros2ImageSource {
-    fn grab(&mut self) -> Result<Option<GrayFrame>, String> {
+    fn grab(&mut self) -> Result<Option<CameraImage>, String> {
         let give_up = Instant::now() + GRAB_WAIT;
         loop {
             let mut notes = Vec::new();
-            let newest = take_all(&self.images, "image", &mut notes).pop();
+            let newest = match &self.images {
+                Images::Raw(sub) => take_all(sub, "image", &mut notes).pop().map(raw),
+                Images::Compressed(sub) => (take_all(sub, "image", &mut notes).pop())
+                    .map(|m| decode(&m.format, &m.data)),
+            };
             if newest.is_none()
                 && let Some(e) = notes.pop()
             {
                 return Err(e.text);
             }
-            if let Some(m) = newest {
-                return GrayFrame::from_raw(
-                    m.width as usize,
-                    m.height as usize,
-                    &m.encoding,
-                    m.step as usize,
-                    &m.data,
-                )
-                .map(Some)
-                .map_err(|e| format!("image: {e}"));
+            if let Some(frame) = newest {
+                return frame.map(Some);
             }
             if Instant::now() >= give_up {
                 return Ok(None);
@@ -76,5 +81,65 @@ impl FrameSource for Ros2ImageSource {
             // Edge of the system: the subscription has no blocking take.
             std::thread::sleep(Duration::from_millis(5));
         }
+    }
+}
+
+/// A sensor_msgs/Image as a frame: grey for mono8, colour otherwise.
+fn raw(m: msgs::Image) -> Result<CameraImage, String> {
+    let (w, h, step) = (m.width as usize, m.height as usize, m.step as usize);
+    let frame = if m.encoding == "mono8" {
+        GrayFrame::from_raw(w, h, &m.encoding, step, &m.data).map(CameraImage::Gray)
+    } else {
+        BgrFrame::from_raw(w, h, &m.encoding, step, &m.data).map(CameraImage::Colour)
+    };
+    frame.map_err(|e| format!("image: {e}"))
+}
+
+/// A sensor_msgs/CompressedImage's bytes decoded as colour (OpenCV's imdecode reads JPEG
+/// and PNG); `format` names the encoding in errors ("jpeg", "rgb8; jpeg compressed bgr8").
+pub fn decode(format: &str, bytes: &[u8]) -> Result<CameraImage, String> {
+    use opencv::prelude::*;
+    let fail = |e: opencv::Error| format!("compressed image ({format}): {e}");
+    if bytes.is_empty() {
+        return Err(format!("compressed image ({format}): no bytes"));
+    }
+    let buffer = opencv::core::Vector::<u8>::from_slice(bytes);
+    let mat = opencv::imgcodecs::imdecode(&buffer, opencv::imgcodecs::IMREAD_COLOR).map_err(fail)?;
+    if mat.empty() || mat.channels() != 3 {
+        return Err(format!("compressed image ({format}): not a picture OpenCV reads"));
+    }
+    let (w, h) = (mat.cols() as usize, mat.rows() as usize);
+    let max = navdeck_core::perception::frame::MAX_SIDE;
+    if w > max || h > max {
+        return Err(format!("compressed image ({format}): {w}x{h} is over {max} pixels a side"));
+    }
+    let data = mat.data_bytes().map_err(fail)?.to_vec();
+    Ok(CameraImage::Colour(BgrFrame {
+        width: w,
+        height: h,
+        data,
+    }))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_png_decodes_to_its_colours_and_garbage_is_named() {
+        use opencv::prelude::*;
+        // A 2x1 picture: a red pixel then a green one, written as PNG by OpenCV.
+        let bgr = [0u8, 0, 255, 0, 255, 0];
+        let mat = opencv::core::Mat::new_rows_cols_with_data(1, 6, &bgr).unwrap();
+        let mat = mat.reshape(3, 1).unwrap();
+        let mut png = opencv::core::Vector::<u8>::new();
+        opencv::imgcodecs::imencode_def(".png", &mat, &mut png).unwrap();
+        let CameraImage::Colour(f) = decode("png", png.as_slice()).unwrap() else {
+            panic!("a colour frame")
+        };
+        assert_eq!((f.width, f.height), (2, 1));
+        assert_eq!((f.at(0, 0), f.at(1, 0)), ([0, 0, 255], [0, 255, 0]));
+        let e = decode("jpeg", &[1, 2, 3]).unwrap_err();
+        assert!(e.contains("jpeg"), "{e}");
     }
 }

@@ -12,7 +12,9 @@ pub mod lighting;
 mod line;
 mod signals;
 
-pub use file::{TrackError, TrackSpec, closed_bspline};
+pub use file::{
+    BarrierCycleSpec, BarrierSpec, LightCycleSpec, LightSpec, TrackError, TrackSpec, closed_bspline,
+};
 pub use lighting::{Lighting, LightingLevel};
 pub use line::{Track, TrackPoint};
 pub use signals::{Barrier, BarrierCycle, LightCycle, TrafficLight};

@@ -10,8 +10,8 @@ use std::process::ExitCode;
 /// `navdeck world ...`.
 #[derive(Debug, clap::Subcommand)]
 pub enum WorldCommand {
-    /// Generate a world from a seed (rooms, boxes, corridors or loop) and write it as a world
-    /// file.
+    /// Generate a world from a seed (rooms, boxes, corridors, loop or a lane track) and write
+    /// it as a world file.
     Generate(GenerateArgs),
 }
 
@@ -39,7 +39,8 @@ const TRUE_MAP_RESOLUTION: f64 = 0.05;
 /// What a generated world holds.
 #[derive(Debug, clap::Args)]
 pub struct ShapeArgs {
-    /// Width and height in metres, W,H (default 4,4 for boxes, 5,4 for rooms and corridors).
+    /// Width and height in metres, W,H (default 4,4 for boxes, 5,4 for rooms and corridors,
+    /// 6,4 for a loop; a track's is drawn from 4-8 m a side).
     #[arg(long, value_name = "W,H", value_parser = parse_size)]
     size: Option<(f64, f64)>,
     /// Blocks (default 3), red and blue in turn unless --colours says otherwise.
@@ -48,7 +49,8 @@ pub struct ShapeArgs {
     /// Box obstacles (default 3).
     #[arg(long, value_name = "K", allow_negative_numbers = true, value_parser = super::args::whole::<usize>)]
     obstacles: Option<usize>,
-    /// rooms, boxes, corridors or loop (one corridor round an island; default boxes).
+    /// rooms, boxes, corridors, loop (one corridor round an island) or track (a closed lane
+    /// with traffic lights and barriers, no blocks or boxes); default boxes.
     #[arg(long, value_name = "STYLE")]
     style: Option<Style>,
     /// No markers on the walls and boxes (blocks and gates keep theirs); the same layout.
@@ -156,6 +158,15 @@ fn run_generate(args: &GenerateArgs) -> Result<ExitCode> {
         );
     }
     let options = args.shape.options(args.seed);
+    if options.style == Style::Track {
+        let flags = [
+            (args.shape.blocks.is_some(), "--blocks"),
+            (args.shape.obstacles.is_some(), "--obstacles"),
+        ];
+        if let Some((_, flag)) = flags.into_iter().find(|(given, _)| *given) {
+            anyhow::bail!("{flag}: track worlds have no blocks and no boxes");
+        }
+    }
     let world = generate::generate(&options).map_err(generate_error)?;
     let text = format!(
         "# {}\n# The format is described at the top of maps/arena.toml.\n{}",

@@ -9,6 +9,10 @@
 //! that fails is followed by the next drawn from the same generator, up to `ATTEMPTS`:
 //! the same options always give the same world. Without wall markers, the candidate is
 //! drawn with them and they are taken off at the end, so the layout is the same.
+//!
+//! Track worlds (`Style::Track`, `track.rs`) are drawn their own way: a walled room with
+//! a closed lane, its lights and barriers and a start on it, and no blocks, gates or
+//! markers; they are read back the same way and must pass `track_check` instead.
 
 mod blocks;
 mod boxes;
@@ -23,6 +27,11 @@ mod rooms;
 mod rules;
 #[cfg(test)]
 mod tests;
+mod track;
+pub mod track_check;
+mod track_shape;
+#[cfg(test)]
+mod track_tests;
 
 pub use options::{Colours, GenerateError, GenerateOptions, Style};
 pub use reach::check as check_reachable;
@@ -40,6 +49,9 @@ use std::path::Path;
 /// A world for `options`: the same options always give the same world.
 pub fn generate(options: &GenerateOptions) -> Result<World, GenerateError> {
     options.validate()?;
+    if options.style == Style::Track {
+        return track::generate(options);
+    }
     let mut rng = ChaCha8Rng::seed_from_u64(options.seed);
     let mut reason = String::new();
     for _ in 0..ATTEMPTS {
@@ -74,6 +86,7 @@ fn candidate(options: &GenerateOptions, rng: &mut ChaCha8Rng) -> Result<World, S
         Style::Rooms => rooms::build(&mut d, rng, options.loops, options.rooms)?,
         Style::Corridors => corridors::build(&mut d, rng, options.loops)?,
         Style::Loop => ring::build(&mut d, rng)?,
+        Style::Track => return Err("a track world is drawn by track.rs".into()),
     }
     let colours = options.colours.draw(options.blocks, rng);
     gates::place(&mut d, rng, &colours)?;
@@ -149,13 +162,29 @@ fn same(a: &World, b: &World) -> Result<(), String> {
         _ if block_moved => Err("a block moved".into()),
         _ if start_moved => Err("the start moved".into()),
         _ if a.gates != b.gates => Err("the gates changed".into()),
+        _ if a.track != b.track => Err("the track changed".into()),
         _ => Ok(()),
     }
 }
 
 /// One line on a world's contents: size, boxes, interior walls, blocks, gates, wall
-/// markers, and a ring corridor's length round its centreline.
+/// markers, and a ring corridor's length round its centreline; or a track world's lane.
 pub fn describe(world: &World) -> String {
+    if let Some(scene) = &world.track {
+        return format!(
+            "{}, {} m x {} m, a lane {:.1} m round, {} m wide, tightest bend {:.2} m, {} lights and {} barriers, start ({}, {})",
+            world.name,
+            world.width,
+            world.height,
+            scene.track.length(),
+            scene.track.lane_width,
+            scene.track.min_radius(track_check::RADIUS_WINDOW),
+            scene.lights.len(),
+            scene.barriers.len(),
+            world.start.x,
+            world.start.y,
+        );
+    }
     let count = |c: BlockColor| world.blocks.iter().filter(|b| b.color == c).count();
     let outlines = 4 * world.obstacles.len();
     // Boundary: the four sides of the rectangle; the rest are interior walls.

@@ -95,10 +95,22 @@ pub enum Style {
     Corridors,
     /// One corridor all the way round a walled island.
     Loop,
+    /// A closed lane with traffic lights and barriers in a walled room, for lane
+    /// following (seed 000): no blocks, gates, boxes or markers.
+    Track,
 }
 
 impl Style {
+    /// The styles of mission worlds, with blocks and gates.
     pub const ALL: [Style; 4] = [Style::Boxes, Style::Rooms, Style::Corridors, Style::Loop];
+    /// Every style a user can name: the mission worlds' and the lane track.
+    pub const NAMED: [Style; 5] = [
+        Style::Boxes,
+        Style::Rooms,
+        Style::Corridors,
+        Style::Loop,
+        Style::Track,
+    ];
 
     pub fn label(self) -> &'static str {
         match self {
@@ -106,29 +118,33 @@ impl Style {
             Style::Rooms => "rooms",
             Style::Corridors => "corridors",
             Style::Loop => "loop",
+            Style::Track => "track",
         }
     }
 
     /// Width and height when none is asked for, metres: seed 001's 4 m x 4 m arena for
     /// boxes; rooms and corridors need a little more to leave space for blocks; a loop
-    /// needs its corridor on all four sides of an island.
+    /// needs its corridor on all four sides of an island; a track is drawn from 4-8 m a
+    /// side when none is asked for, about seed 000's 6 m x 4 m course.
     pub fn default_size(self) -> (f64, f64) {
         match self {
             Style::Boxes => (4.0, 4.0),
             Style::Rooms | Style::Corridors => (5.0, 4.0),
-            Style::Loop => (6.0, 4.0),
+            Style::Loop | Style::Track => (6.0, 4.0),
         }
     }
 
     /// Smallest (longer side, shorter side) the style can be built in, metres: two rooms
     /// of 1.2 m, two corridors of 1 m beside a wall that leaves a 0.8 m turn, or a loop's
-    /// 1 m corridor either side of a 0.5 m island (ring.rs).
+    /// 1 m corridor either side of a 0.5 m island (ring.rs), or a lane whose bends, start
+    /// straight and spaced lights and barriers fit 0.3 m inside the walls (track.rs).
     fn min_size(self) -> (f64, f64) {
         match self {
             Style::Boxes => (2.0, 2.0),
             Style::Rooms => (2.5, 2.0),
             Style::Corridors => (3.0, 2.0),
             Style::Loop => (2.5, 2.5),
+            Style::Track => (4.0, 3.5),
         }
     }
 
@@ -147,10 +163,12 @@ impl fmt::Display for Style {
 impl FromStr for Style {
     type Err = String;
     fn from_str(s: &str) -> Result<Self, String> {
-        Style::ALL
+        Style::NAMED
             .into_iter()
             .find(|style| style.label() == s)
-            .ok_or_else(|| format!("unknown style `{s}`: expected rooms, boxes, corridors or loop"))
+            .ok_or_else(|| {
+                format!("unknown style `{s}`: expected rooms, boxes, corridors, loop or track")
+            })
     }
 }
 
@@ -158,10 +176,11 @@ impl FromStr for Style {
 #[derive(Clone, Debug, PartialEq)]
 pub struct GenerateOptions {
     pub seed: u64,
-    /// (width, height) in metres; `None`: the style's default.
+    /// (width, height) in metres; `None`: the style's default (a track's is drawn).
     pub size: Option<(f64, f64)>,
+    /// Blocks, in every style but the track, which has none.
     pub blocks: usize,
-    /// Free-standing boxes, in every style.
+    /// Free-standing boxes, in every style but the track, which has none.
     pub obstacles: usize,
     pub style: Style,
     /// Markers on the boundary, the interior walls and the boxes; without them only the
@@ -287,6 +306,9 @@ impl GenerateOptions {
             let value = format!("with {} worlds", self.style.label());
             return bad("loops", value, reason.into());
         }
+        if self.style == Style::Track {
+            return self.validate_track();
+        }
         let max_blocks = self.colours.max_blocks();
         if self.blocks == 0 || self.blocks > max_blocks {
             let reason = format!(
@@ -357,6 +379,16 @@ impl GenerateOptions {
 
     /// The command that makes this world, for a file's first line.
     pub fn command(&self) -> String {
+        if self.style == Style::Track {
+            // A track's size is drawn from the seed unless one is asked for.
+            let size = self.size.map_or(String::new(), |(w, h)| {
+                format!(" --size {},{}", short(w), short(h))
+            });
+            return format!(
+                "navdeck world generate --seed {} --style track{size}",
+                self.seed
+            );
+        }
         let (w, h) = self.size();
         format!(
             "navdeck world generate --seed {} --style {} --size {w},{h} --blocks {} --obstacles {}{}",

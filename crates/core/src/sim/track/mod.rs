@@ -13,7 +13,9 @@ mod line;
 mod score;
 mod signals;
 
-pub use file::{TrackError, TrackSpec, closed_bspline};
+pub use file::{
+    BarrierCycleSpec, BarrierSpec, LightCycleSpec, LightSpec, TrackError, TrackSpec, closed_bspline,
+};
 pub use lighting::{Lighting, LightingLevel};
 pub use line::{Track, TrackPoint};
 pub use score::{LaneFigures, LaneScore};

@@ -162,7 +162,10 @@ pub fn run(
         crate::runners::mission::take_log(&mut log, stepped);
         let pilot = robot.pilot();
         if t == 0.0 && pilot.mode() != Mode::Lane {
-            let why = log.iter().rev().find(|l| l.level >= crate::data::Level::Warn);
+            let why = log
+                .iter()
+                .rev()
+                .find(|l| l.level >= crate::data::Level::Warn);
             return Err(why.map_or("lane mode did not start".into(), |l| l.text.clone()));
         }
         let now_wait = pilot.lane().wait();

@@ -30,7 +30,12 @@ pub fn lines(app: &App, theme: Theme) -> Vec<Line<'static>> {
         None => "light -".into(),
     };
     let barrier = match s.barrier {
-        Some(b) => format!("barrier {} {:.0}° {:.2} m", b.state.label(), b.angle_deg, b.range),
+        Some(b) => format!(
+            "barrier {} {:.0}° {:.2} m",
+            b.state.label(),
+            b.angle_deg,
+            b.range
+        ),
         None => "barrier -".into(),
     };
     out.push(Line::styled(light, theme.value()));
@@ -60,7 +65,10 @@ pub fn thumbnail(thumb: &ColourThumbnail, theme: Theme, area: Rect, buf: &mut Bu
     }
     let (cols, rows) = (usize::from(area.width), usize::from(area.height));
     let sample = |x: usize, y: usize| {
-        thumb.at(x * thumb.width / cols.max(1), y * thumb.height / (2 * rows).max(1))
+        thumb.at(
+            x * thumb.width / cols.max(1),
+            y * thumb.height / (2 * rows).max(1),
+        )
     };
     for row in 0..rows {
         for col in 0..cols {

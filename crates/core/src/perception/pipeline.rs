@@ -7,8 +7,8 @@ use super::aruco::Detector;
 use super::colour::CameraImage;
 use super::frame::CameraStatus;
 use super::lane::LanePipeline;
-use crate::data::LaneSighting;
 use crate::clock::Clock;
+use crate::data::LaneSighting;
 use crate::data::MarkerSighting;
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::sync::{Arc, Condvar, Mutex};
@@ -204,7 +204,10 @@ impl FrameSource for V4l2Source {
         }
         let (w, h) = (self.bgr.cols() as usize, self.bgr.rows() as usize);
         if self.bgr.channels() != 3 {
-            return Err(format!("the camera gave {} channels, not 3", self.bgr.channels()));
+            return Err(format!(
+                "the camera gave {} channels, not 3",
+                self.bgr.channels()
+            ));
         }
         let data = self.bgr.data_bytes().map_err(e)?.to_vec();
         Ok(Some(CameraImage::Colour(super::colour::BgrFrame {

@@ -64,8 +64,9 @@ impl FrameSource for Ros2ImageSource {
             let mut notes = Vec::new();
             let newest = match &self.images {
                 Images::Raw(sub) => take_all(sub, "image", &mut notes).pop().map(raw),
-                Images::Compressed(sub) => (take_all(sub, "image", &mut notes).pop())
-                    .map(|m| decode(&m.format, &m.data)),
+                Images::Compressed(sub) => {
+                    (take_all(sub, "image", &mut notes).pop()).map(|m| decode(&m.format, &m.data))
+                }
             };
             if newest.is_none()
                 && let Some(e) = notes.pop()
@@ -104,14 +105,19 @@ pub fn decode(format: &str, bytes: &[u8]) -> Result<CameraImage, String> {
         return Err(format!("compressed image ({format}): no bytes"));
     }
     let buffer = opencv::core::Vector::<u8>::from_slice(bytes);
-    let mat = opencv::imgcodecs::imdecode(&buffer, opencv::imgcodecs::IMREAD_COLOR).map_err(fail)?;
+    let mat =
+        opencv::imgcodecs::imdecode(&buffer, opencv::imgcodecs::IMREAD_COLOR).map_err(fail)?;
     if mat.empty() || mat.channels() != 3 {
-        return Err(format!("compressed image ({format}): not a picture OpenCV reads"));
+        return Err(format!(
+            "compressed image ({format}): not a picture OpenCV reads"
+        ));
     }
     let (w, h) = (mat.cols() as usize, mat.rows() as usize);
     let max = navdeck_core::perception::frame::MAX_SIDE;
     if w > max || h > max {
-        return Err(format!("compressed image ({format}): {w}x{h} is over {max} pixels a side"));
+        return Err(format!(
+            "compressed image ({format}): {w}x{h} is over {max} pixels a side"
+        ));
     }
     let data = mat.data_bytes().map_err(fail)?.to_vec();
     Ok(CameraImage::Colour(BgrFrame {

@@ -153,7 +153,9 @@ impl LaneDriver {
 
     /// Seed 000 §2.4.2: v(e) = v_max (max(0, 1 - |e| / e_max))^alpha.
     fn speed_law(&self, e: f64) -> (f64, f64) {
-        let f = (1.0 - e.abs() / self.cfg.max_error).max(0.0).powf(self.cfg.alpha);
+        let f = (1.0 - e.abs() / self.cfg.max_error)
+            .max(0.0)
+            .powf(self.cfg.alpha);
         (self.cfg.max_speed * f, f)
     }
 
@@ -191,7 +193,11 @@ mod tests {
         assert!((s.twist.linear - 0.15 * 0.8f64.powf(2.2)).abs() < 1e-9);
         // The error grows by 10 px: Kd adds 0.007 * 10 = 0.07 rad/s.
         let s = d.step(0.2, Some(&seen(110.0)), 0.15);
-        assert!((s.twist.angular + 0.275 + 0.07).abs() < 1e-9, "{:?}", s.twist);
+        assert!(
+            (s.twist.angular + 0.275 + 0.07).abs() < 1e-9,
+            "{:?}",
+            s.twist
+        );
         assert_eq!(s.wait, None);
     }
 
@@ -216,12 +222,18 @@ mod tests {
             }),
             ..seen(0.0)
         };
-        assert_eq!(d.step(0.1, Some(&light(LightColour::Red, 1.5)), 0.1).wait, None);
+        assert_eq!(
+            d.step(0.1, Some(&light(LightColour::Red, 1.5)), 0.1).wait,
+            None
+        );
         let near = d.step(0.2, Some(&light(LightColour::Red, 0.7)), 0.1);
         assert_eq!(near.wait, Some(Wait::Light(LightColour::Red)));
         // Nothing seen in a frame does not lift the hold.
         assert!(d.step(0.3, Some(&seen(0.0)), 0.0).wait.is_some());
-        assert_eq!(d.step(0.4, Some(&light(LightColour::Green, 0.7)), 0.0).wait, None);
+        assert_eq!(
+            d.step(0.4, Some(&light(LightColour::Green, 0.7)), 0.0).wait,
+            None
+        );
     }
 
     #[test]
@@ -239,8 +251,14 @@ mod tests {
         };
         let s = d.step(0.1, Some(&barrier(BarrierState::Moving)), 0.1);
         assert_eq!(s.wait, Some(Wait::Barrier(BarrierState::Moving)));
-        assert_eq!(d.step(0.2, Some(&barrier(BarrierState::Up)), 0.0).wait, None);
-        assert_eq!(d.step(0.3, Some(&barrier(BarrierState::Up)), 0.1).wait, None);
+        assert_eq!(
+            d.step(0.2, Some(&barrier(BarrierState::Up)), 0.0).wait,
+            None
+        );
+        assert_eq!(
+            d.step(0.3, Some(&barrier(BarrierState::Up)), 0.1).wait,
+            None
+        );
     }
 
     #[test]
@@ -260,7 +278,10 @@ mod tests {
         assert_eq!(up.wait, Some(Wait::Barrier(BarrierState::Up)));
         d.step(0.2, Some(&barrier(BarrierState::Moving)), 0.0);
         d.step(0.3, Some(&barrier(BarrierState::Down)), 0.0);
-        assert_eq!(d.step(0.4, Some(&barrier(BarrierState::Up)), 0.0).wait, None);
+        assert_eq!(
+            d.step(0.4, Some(&barrier(BarrierState::Up)), 0.0).wait,
+            None
+        );
     }
 
     #[test]

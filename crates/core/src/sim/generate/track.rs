@@ -21,7 +21,8 @@ use crate::geometry::Pose2;
 use crate::sim::World;
 use crate::sim::shapes::rect_edges;
 use crate::sim::track::{
-    BarrierCycleSpec, BarrierSpec, LightCycleSpec, LightSpec, Track, TrackSpec, TrafficLight,
+    BarrierCycleSpec, BarrierSpec, LIGHT_BEYOND, LightCycleSpec, LightSpec, Track, TrackSpec,
+    TrafficLight,
 };
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
@@ -159,7 +160,10 @@ fn candidate(name: &str, width: f64, height: f64, rng: &mut ChaCha8Rng) -> Resul
     let (p, heading) = track.at(start_along);
     world.start = Pose2::new(p.x, p.y, heading);
     place_signals(rng, &world, track, &radii, start_along, &mut spec)?;
-    world.track = Some(spec.build().map_err(|e| e.to_string())?);
+    let scene = spec.build().map_err(|e| e.to_string())?;
+    // The posts stand in the walls, as a world file's do (`build.rs`).
+    world.walls.extend(scene.post_outlines());
+    world.track = Some(scene);
     Ok(world)
 }
 
@@ -217,8 +221,23 @@ fn place_signals(
                 let spaced = taken
                     .iter()
                     .all(|&t| apart(t, at, length) >= SIGNAL_SPACING);
-                let post = TrafficLight::beside(track, at, side, no_cycle()).position;
-                let clear = track_check::post_clear(world, track, what, at, post).is_ok();
+                // A light's post stands LIGHT_BEYOND past its stop line, on a gentle
+                // stretch too; a barrier's at its arm.
+                let (post, post_along) = if k < lights {
+                    let post_along = (at + LIGHT_BEYOND).rem_euclid(length);
+                    (
+                        TrafficLight::beside(track, at, side, no_cycle()).position,
+                        post_along,
+                    )
+                } else {
+                    (
+                        TrafficLight::beside(track, at - LIGHT_BEYOND, side, no_cycle()).position,
+                        at,
+                    )
+                };
+                let gentle_post = gentle(track, radii, post_along, SIGNAL_RADIUS, SIGNAL_REACH);
+                let clear = gentle_post
+                    && track_check::post_clear(world, track, what, post_along, post).is_ok();
                 (spaced && clear).then_some((at, side))
             })
             .ok_or_else(|| format!("no place for a {what} on a gentle stretch"))?;

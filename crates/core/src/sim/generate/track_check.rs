@@ -96,13 +96,27 @@ fn at(p: Point2) -> String {
     format!("({:.2}, {:.2})", p.x, p.y)
 }
 
+/// The world's walls but the track's own posts (which stand in `walls` too).
+fn room_walls(world: &World) -> Vec<crate::geometry::Segment> {
+    let posts = world
+        .track
+        .as_ref()
+        .map(|t| t.post_outlines())
+        .unwrap_or_default();
+    (world.walls.iter())
+        .filter(|w| !posts.contains(w))
+        .copied()
+        .collect()
+}
+
 fn inside_walls(world: &World, track: &Track) -> Result<(), String> {
     let least = half_width(track) + WALL_MARGIN;
+    let walls = room_walls(world);
     for &p in track.points() {
         if !world.contains(p) {
             return Err(format!("the lane at {} leaves the world", at(p)));
         }
-        if let Some(d) = (world.walls.iter().map(|w| w.distance_to(p))).find(|&d| d < least) {
+        if let Some(d) = (walls.iter().map(|w| w.distance_to(p))).find(|&d| d < least) {
             return Err(format!(
                 "the lane's centre at {} is {d:.2} m from a wall, under {least:.2} m",
                 at(p)
@@ -211,11 +225,21 @@ fn signals(
 ) -> Result<(), String> {
     let track = &scene.track;
     let length = track.length();
-    let lights = scene.lights.iter().map(|l| ("light", l.along, l.position));
-    let barriers = (scene.barriers.iter()).map(|b| ("barrier", b.along, b.pivot));
-    let all: Vec<(&str, f64, Point2)> = lights.chain(barriers).collect();
-    for (k, &(what, along, post)) in all.iter().enumerate() {
-        if !gentle(track, radii, along, SIGNAL_RADIUS, SIGNAL_REACH) {
+    // A light's post stands LIGHT_BEYOND past its stop line.
+    let beyond = crate::sim::track::LIGHT_BEYOND;
+    let lights = (scene.lights.iter()).map(|l| ("light", l.along, l.along + beyond, l.position));
+    let barriers = (scene.barriers.iter()).map(|b| ("barrier", b.along, b.along, b.pivot));
+    let all: Vec<(&str, f64, f64, Point2)> = lights.chain(barriers).collect();
+    for (k, &(what, along, post_along, post)) in all.iter().enumerate() {
+        let middle = (along + post_along) / 2.0;
+        let reach = SIGNAL_REACH + (post_along - along) / 2.0;
+        if !gentle(
+            track,
+            radii,
+            middle.rem_euclid(length),
+            SIGNAL_RADIUS,
+            reach,
+        ) {
             return Err(format!(
                 "the {what} at {along:.2} m stands where the lane bends tighter than {SIGNAL_RADIUS} m"
             ));
@@ -226,14 +250,14 @@ fn signals(
                 "the {what} at {along:.2} m is {from_start:.2} m from the start, under {SIGNAL_FROM_START} m"
             ));
         }
-        if let Some(&(other, at_other, _)) = (all[k + 1..].iter())
-            .find(|&&(_, other_along, _)| apart(along, other_along, length) < SIGNAL_SPACING)
+        if let Some(&(other, at_other, _, _)) = (all[k + 1..].iter())
+            .find(|&&(_, other_along, _, _)| apart(along, other_along, length) < SIGNAL_SPACING)
         {
             return Err(format!(
                 "the {what} at {along:.2} m and the {other} at {at_other:.2} m are under {SIGNAL_SPACING} m apart"
             ));
         }
-        post_clear(world, track, what, along, post)?;
+        post_clear(world, track, what, post_along.rem_euclid(length), post)?;
     }
     Ok(())
 }
@@ -274,7 +298,7 @@ pub fn post_clear(
         }
     }
     if let Some(d) =
-        (world.walls.iter().map(|w| w.distance_to(post))).find(|&d| d < POST_WALL_MARGIN)
+        (room_walls(world).iter().map(|w| w.distance_to(post))).find(|&d| d < POST_WALL_MARGIN)
     {
         return Err(format!(
             "the {what}'s post at {} is {d:.2} m from a wall, under {POST_WALL_MARGIN} m",

@@ -34,9 +34,10 @@ fn every_seed_gives_a_drivable_track_that_reads_back() {
         assert_eq!(back, world, "seed {seed} reads back");
         assert!(back.track.is_some(), "seed {seed}");
         files.insert(text);
-        // No blocks, gates, boxes or markers: a walled room and the lane.
+        // No blocks, gates, boxes or markers: a walled room, the lane and its posts.
         assert!(world.blocks.is_empty() && world.gates.is_empty() && world.markers.is_empty());
-        assert_eq!(world.walls.len(), 4, "seed {seed}");
+        let posts = world.track.as_ref().unwrap().posts().len();
+        assert_eq!(world.walls.len(), 4 + 4 * posts, "seed {seed}");
     }
     assert_eq!(files.len(), SEEDS as usize, "every seed its own track");
 }
@@ -242,6 +243,8 @@ fn a_start_off_the_lane_or_a_light_on_a_bend_is_refused() {
     let e = track_check::check(&backwards).unwrap_err();
     assert!(e.contains("off the lane"), "{e}");
     let mut bent = world;
+    let old_posts = bent.track.as_ref().unwrap().post_outlines();
+    bent.walls.retain(|w| !old_posts.contains(w));
     let scene = bent.track.as_mut().unwrap();
     // The tightest point of the lane.
     let radii = track_check::local_radii(&scene.track, track_check::RADIUS_WINDOW);
@@ -255,6 +258,13 @@ fn a_start_off_the_lane_or_a_light_on_a_bend_is_refused() {
         -0.35,
         scene.lights[0].cycle.clone(),
     );
+    let new_posts = scene.post_outlines();
+    bent.walls.extend(new_posts);
     let e = track_check::check(&bent).unwrap_err();
     assert!(e.contains("bends tighter"), "{e}");
+}
+
+#[test]
+fn the_built_in_track_passes_the_checks_a_generated_one_does() {
+    track_check::check(&World::default_track()).unwrap();
 }

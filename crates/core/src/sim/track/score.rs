@@ -109,7 +109,10 @@ mod tests {
     use std::path::Path;
 
     fn scene() -> TrackScene {
-        let path = Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../../maps/track.toml"));
+        let path = Path::new(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../../maps/track.toml"
+        ));
         World::load(path).unwrap().track.unwrap()
     }
 

@@ -44,6 +44,7 @@ pub mod shapes;
 #[cfg(feature = "vision")]
 mod sheet_paint;
 pub mod track;
+pub mod track_render;
 mod truth;
 mod twin;
 mod world;

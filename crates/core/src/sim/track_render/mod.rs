@@ -86,7 +86,12 @@ impl TrackRenderer {
                 (near(o.a, w.a) && near(o.b, w.b)) || (near(o.a, w.b) && near(o.b, w.a))
             })
         };
-        let walls: Vec<Segment> = walls.iter().filter(|w| !on_outline(w)).copied().collect();
+        // The posts stand in a world's walls too; they are drawn as posts, not walls.
+        let posts = scene.post_outlines();
+        let walls: Vec<Segment> = (walls.iter())
+            .filter(|w| !on_outline(w) && !posts.contains(w))
+            .copied()
+            .collect();
         let occluders = truth::walls(&walls)
             .chain(outlines.iter().map(|&segment| Occluder {
                 segment,

@@ -62,9 +62,10 @@ fn the_lit_lamp_shows_the_colour_of_its_cycle() {
     }
 }
 
-/// The square course with a light 2 m round (at x = 0, 0.35 m right of the lane), red.
+/// The square course with a light whose post stands 2 m round (its stop line 1.4 m round,
+/// the post at x = 0, 0.35 m right of the lane), red.
 fn light_world(wall: bool) -> World {
-    let light = "[[track.lights]]\nat = 2.0\nside = -0.35\nsequence = [[\"red\", 100]]\n";
+    let light = "[[track.lights]]\nat = 1.4\nside = -0.35\nsequence = [[\"red\", 100]]\n";
     // A short wall right of the lane, across the line of sight from (-1, -1.5).
     let wall = if wall {
         "[[walls]]\npoints = [[-0.45, -2.2], [-0.45, -1.66]]\n"

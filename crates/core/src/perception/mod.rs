@@ -18,6 +18,7 @@ pub mod config;
 pub mod edge_fit;
 pub mod frame;
 pub mod intrinsics;
+pub mod lane;
 pub mod lane_camera;
 pub mod markers;
 pub mod mount;

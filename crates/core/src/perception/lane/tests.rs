@@ -1,0 +1,231 @@
+//! The lane pipeline on synthetic frames: what a driver would notice of it.
+
+use super::test_frames::*;
+use super::{LanePipeline, LaneVisionConfig};
+use crate::clock::Clock;
+use crate::data::{BarrierState, LightColour};
+use crate::perception::colour::BgrFrame;
+use crate::perception::lane_camera::LaneCameraConfig;
+use nalgebra::Vector3;
+use std::sync::Mutex;
+
+fn pipeline() -> LanePipeline {
+    LanePipeline::new(&LaneVisionConfig::default(), &LaneCameraConfig::default()).unwrap()
+}
+
+/// The sighting after `n` frames of the same picture.
+fn settled(p: &mut LanePipeline, frame: &BgrFrame, n: usize) -> crate::data::LaneSighting {
+    for _ in 1..n {
+        p.read(frame, None);
+    }
+    p.read(frame, None)
+}
+
+#[test]
+fn a_lane_five_centimetres_left_or_right_reads_as_fifty_millimetres_of_error() {
+    for (offset, want) in [(0.05, -50.0), (-0.05, 50.0), (0.0, 0.0)] {
+        let mut p = pipeline();
+        let s = settled(&mut p, &straight_lane(offset), 3);
+        let e = s.error_px.unwrap();
+        assert!(
+            (e - want).abs() < 4.0,
+            "lane {offset} m left: error {e} mm, {s:?}"
+        );
+        assert!(s.yellow.is_some() && s.white.is_some());
+        assert!(s.curvature.unwrap().abs() < 0.2, "{:?}", s.curvature);
+    }
+}
+
+#[test]
+fn a_bend_to_the_left_has_positive_curvature_and_to_the_right_negative() {
+    for radius in [1.5, -1.5] {
+        let mut p = pipeline();
+        let s = settled(&mut p, &curved_lane(radius), 3);
+        let k = s.curvature.unwrap();
+        // 1 / 1.5 m within a quarter: a parabola through arcs of 1.3 and 1.7 m, 0.7 m
+        // long, bends more than their mean.
+        assert!(
+            (k * radius - 1.0).abs() < 0.25,
+            "radius {radius}: curvature {k}"
+        );
+        // The robot sits on the lane's centre, tangent to it: 0.35 m ahead the centre has
+        // bent R - sqrt(R^2 - 0.35^2) = 41 mm towards the bend.
+        let e = s.error_px.unwrap();
+        assert!(
+            (e + 41.0 * radius.signum()).abs() < 10.0,
+            "radius {radius}: error {e}"
+        );
+    }
+}
+
+#[test]
+fn with_one_line_missing_the_other_gives_the_centre() {
+    for (yellow, white) in [(true, false), (false, true)] {
+        let frame = floor(|_, y| lines(yellow.then_some(0.25), white.then_some(-0.15), y));
+        let mut p = pipeline();
+        let s = settled(&mut p, &frame, 3);
+        // Lines 0.25 left and 0.15 right: the centre is 5 cm left, an error of -50 mm.
+        let e = s.error_px.unwrap();
+        assert!((e + 50.0).abs() < 5.0, "yellow {yellow} white {white}: {e}");
+        assert_eq!((s.yellow.is_some(), s.white.is_some()), (yellow, white));
+    }
+}
+
+/// A floor with a glare spot on it: V 250 unsaturated, a soft rim of 5 px to the floor.
+fn glare(frame: &BgrFrame, at: (f64, f64), radius: f64) -> BgrFrame {
+    let mut out = frame.clone();
+    for v in 0..frame.height {
+        for u in 0..frame.width {
+            let d = (u as f64 - at.0).hypot(v as f64 - at.1) - radius;
+            if d < 5.0 {
+                let t = (d / 5.0).clamp(0.0, 1.0);
+                let level = (250.0 * (1.0 - t) + 40.0 * t) as u8;
+                let i = 3 * (v * frame.width + u);
+                out.data[i..i + 3].copy_from_slice(&[level, level, level.saturating_sub(4)]);
+            }
+        }
+    }
+    out
+}
+
+#[test]
+fn a_glare_spot_is_not_taken_for_a_lane_line() {
+    // On a bare floor: nothing.
+    let bare = glare(&floor(|_, _| FLOOR), (420.0, 330.0), 50.0);
+    let mut p = pipeline();
+    let s = settled(&mut p, &bare, 10);
+    assert_eq!((s.white, s.error_px), (None, None), "{s:?}");
+    // Without growing the glare mask its rim passes for white paint.
+    let cfg = LaneVisionConfig {
+        glare_grow_px: 0,
+        ..LaneVisionConfig::default()
+    };
+    let mut unguarded = LanePipeline::new(&cfg, &LaneCameraConfig::default()).unwrap();
+    assert!(settled(&mut unguarded, &bare, 10).white.is_some());
+    // Beside the lines: the centre stays where it is.
+    let lane = glare(&straight_lane(0.0), (400.0, 330.0), 40.0);
+    let s = settled(&mut pipeline(), &lane, 5);
+    assert!(s.error_px.unwrap().abs() < 5.0, "{s:?}");
+}
+
+#[test]
+fn the_brightness_floor_falls_for_dim_lines_and_rises_for_too_much_paint() {
+    // Lines at brightness 90, as the twin's dark lighting leaves them: under the starting
+    // floor of 100.
+    let dim = floor(|_, y| match lines(Some(0.2), Some(-0.2), y) {
+        YELLOW => [10, 77, 90],
+        WHITE => [90, 90, 90],
+        c => c,
+    });
+    let mut p = pipeline();
+    let first = p.read(&dim, None);
+    assert_eq!((first.error_px, first.pixel_ratio), (None, 0.0));
+    let s = settled(&mut p, &dim, 8);
+    assert!(p.value_floor() < 90.0, "{}", p.value_floor());
+    assert!(s.error_px.unwrap().abs() < 5.0, "{s:?}");
+    // Pale yellow beyond the lines, brightening from 100 to 200 across the floor: far over
+    // 2.5 % of the image at the starting floor.
+    let loud = floor(|_, y| match lines(Some(0.2), Some(-0.2), y) {
+        FLOOR if y.abs() > 0.25 => {
+            let v = (100.0 + 200.0 * (y.abs() - 0.25)).min(200.0);
+            [(0.4 * v) as u8, (0.9 * v) as u8, v as u8]
+        }
+        c => c,
+    });
+    let mut p = pipeline();
+    let before = p.read(&loud, None).pixel_ratio;
+    let s = settled(&mut p, &loud, 15);
+    assert!(p.value_floor() > 120.0, "{}", p.value_floor());
+    let (was, now) = (before - 0.025, s.pixel_ratio - 0.025);
+    assert!(now.abs() < was.abs() / 3.0, "{before} -> {}", s.pixel_ratio);
+}
+
+/// A lamp 0.8 m ahead, 0.3 m right, at the lamp height.
+const LAMP: Vector3<f64> = Vector3::new(0.8, -0.3, 0.22);
+
+#[test]
+fn lit_lamps_are_read_as_red_yellow_and_green_at_their_range() {
+    let eye = eye();
+    let range = eye.mount().to_camera(LAMP).norm();
+    for (bgr, colour) in [
+        ([40, 40, 235], LightColour::Red),
+        ([0, 200, 240], LightColour::Yellow),
+        ([90, 230, 40], LightColour::Green),
+    ] {
+        let frame = lamp(&straight_lane(0.0), LAMP, 0.025, bgr, false);
+        let seen = pipeline().detect_objects(&frame).light.unwrap();
+        assert_eq!(seen.colour, colour);
+        assert!(
+            (seen.range - range).abs() < 0.1 * range,
+            "{} vs {range}",
+            seen.range
+        );
+        // The winning class of four, yellow's prior the smallest (colour_bayes::PRIORS).
+        assert!(seen.confidence > 0.5, "{seen:?}");
+    }
+}
+
+#[test]
+fn a_red_square_is_not_a_lamp() {
+    let frame = lamp(&straight_lane(0.0), LAMP, 0.025, [40, 40, 235], true);
+    assert_eq!(pipeline().detect_objects(&frame).light, None);
+}
+
+/// The barrier's pivot: 0.7 m ahead, 0.35 m right, at the arm's height.
+const PIVOT: Vector3<f64> = Vector3::new(0.7, -0.35, 0.1);
+
+#[test]
+fn the_arm_is_read_down_up_or_moving_from_its_angle() {
+    for (angle, state) in [
+        (0.0, BarrierState::Down),
+        (90.0, BarrierState::Up),
+        (45.0, BarrierState::Moving),
+    ] {
+        let frame = arm(&straight_lane(0.0), PIVOT, angle, 0.6);
+        let seen = pipeline().detect_objects(&frame).barrier.unwrap();
+        assert_eq!(seen.state, state, "{angle}: {seen:?}");
+        assert!((seen.angle_deg - angle).abs() < 8.0, "{angle}: {seen:?}");
+        assert!((seen.range - 0.65).abs() < 0.07, "{angle}: {seen:?}");
+    }
+}
+
+#[test]
+fn the_filtered_barrier_follows_the_arm_up_and_forgets_it() {
+    let mut p = pipeline();
+    let up = arm(&straight_lane(0.0), PIVOT, 90.0, 0.6);
+    let s = settled(&mut p, &up, 3);
+    let b = s.barrier.unwrap();
+    assert_eq!(b.state, BarrierState::Up);
+    assert!(b.belief[2] > 0.8, "{b:?}");
+    let lane = straight_lane(0.0);
+    assert!(settled(&mut p, &lane, 9).barrier.is_some());
+    assert_eq!(p.read(&lane, None).barrier, None);
+}
+
+struct Ticking(Mutex<f64>);
+
+impl Clock for Ticking {
+    fn now(&self) -> f64 {
+        let mut t = self.0.lock().unwrap();
+        *t += 0.01;
+        *t
+    }
+}
+
+#[test]
+fn every_frame_brings_a_thumbnail_and_a_latency_and_a_wrong_frame_an_error() {
+    let mut p = pipeline();
+    let s = p.read(&straight_lane(0.0), Some(&Ticking(Mutex::new(0.0))));
+    assert_eq!(s.latency, Some(0.01));
+    let t = s.thumbnail.unwrap();
+    assert_eq!((t.width, t.height), (48, 24));
+    let wrong = p.read(&BgrFrame::filled(320, 240, [0; 3]), None);
+    assert!(wrong.error.unwrap().contains("320x240"));
+    let short = BgrFrame {
+        width: 640,
+        height: 480,
+        data: vec![0; 10],
+    };
+    assert!(p.read(&short, None).error.is_some());
+    assert_eq!(p.detect_objects(&short), Default::default());
+}

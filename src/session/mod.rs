@@ -381,7 +381,16 @@ impl Session {
             };
             let blind = camera_blind_distance(&detector, &self.config);
             self.set_blind_distance(blind);
-            let pipeline = CameraPipeline::start(frames, detector, Some(stopwatch));
+            // Lane mode reads the same camera: its calibration's image and field of view,
+            // on the lane camera's mount ([lane.camera].mount).
+            let lane_camera = crate::perception::lane_camera::LaneCameraConfig::matching(
+                detector.intrinsics(),
+                &self.config.lane.camera,
+            );
+            let lane = crate::perception::lane::LanePipeline::new(&self.config.lane.vision, &lane_camera)
+                .context("cannot set up lane mode's pipeline for this camera")?;
+            self.lane_unavailable = None;
+            let pipeline = CameraPipeline::start(frames, detector, Some(lane), Some(stopwatch));
             Ok(Session {
                 robot: Robot::Link(Box::new(crate::link::camera::WithCamera::new(
                     self.robot.into_link(),

@@ -55,6 +55,18 @@ impl LaneCameraConfig {
         }
     }
 
+    /// The lane camera of a calibrated camera `k`: its image size and horizontal field of
+    /// view, 2 atan(width / 2 fx) (Hartley & Zisserman 6.1), on `base`'s mount and rate.
+    /// The principal point is taken as the centre and distortion as none.
+    pub fn matching(k: &Intrinsics, base: &LaneCameraConfig) -> Self {
+        Self {
+            width: k.width,
+            height: k.height,
+            hfov_deg: (2.0 * (f64::from(k.width) / 2.0 / k.fx).atan()).to_degrees(),
+            ..base.clone()
+        }
+    }
+
     pub fn mount(&self) -> Mount {
         Mount::new(&self.mount)
     }

@@ -13,6 +13,8 @@ pub mod blank;
 #[cfg(feature = "vision")]
 pub mod calibration;
 pub mod colour;
+#[cfg(feature = "vision")]
+pub mod compressed;
 pub mod config;
 #[cfg(feature = "vision")]
 pub mod edge_fit;

@@ -14,14 +14,31 @@ use rand_chacha::ChaCha8Rng;
 use std::sync::Arc;
 
 /// The renderer and the pipeline behind it.
-#[derive(Clone)]
 pub struct LaneCamera {
     renderer: TrackRenderer,
     pipeline: LanePipeline,
+    /// What the pipeline was built from, to build a clone's.
+    built: (LaneVisionConfig, LaneCameraConfig),
     stopwatch: Option<Arc<dyn Clock>>,
     /// The newest frame, for a caller that wants the picture itself.
     last: Option<BgrFrame>,
     keep_frames: bool,
+}
+
+impl Clone for LaneCamera {
+    /// A clone draws the same frames; its pipeline starts afresh (its temporal filters and
+    /// OpenCV buffers are not copied), as a camera restarted.
+    fn clone(&self) -> Self {
+        let (vision, camera) = &self.built;
+        Self {
+            renderer: self.renderer.clone(),
+            pipeline: LanePipeline::new(vision, camera).expect("built once from the same config"),
+            built: self.built.clone(),
+            stopwatch: self.stopwatch.clone(),
+            last: self.last.clone(),
+            keep_frames: self.keep_frames,
+        }
+    }
 }
 
 impl std::fmt::Debug for LaneCamera {
@@ -49,6 +66,7 @@ impl LaneCamera {
         Ok(Self {
             renderer: TrackRenderer::new(scene, &world.walls, &boxes, camera, lighting, seed),
             pipeline: LanePipeline::new(vision, camera)?,
+            built: (vision.clone(), camera.clone()),
             stopwatch,
             last: None,
             keep_frames: false,

@@ -31,6 +31,8 @@ pub mod faults;
 mod frame_noise;
 pub mod generate;
 mod gripper;
+#[cfg(feature = "vision")]
+pub mod lane_camera;
 mod lidar;
 pub mod nav2_world;
 mod raster;

@@ -2,6 +2,8 @@
 //! world, advanced only by `step(dt)` and driven by one seeded random generator.
 
 mod arms;
+#[cfg(feature = "vision")]
+mod lane;
 mod grasp;
 mod sensors;
 
@@ -333,6 +335,8 @@ impl Twin {
                 self.capture_camera();
             }
         }
+        #[cfg(feature = "vision")]
+        self.capture_lane(now, self.faults.is_active(FaultKind::Camera));
         // A silent lidar keeps its clock: scans resume on their own schedule.
         if self.sensors.lidar_due(now) && !self.faults.is_active(FaultKind::Lidar) {
             self.capture_scan();

@@ -75,6 +75,7 @@ impl LaneDriveConfig {
 #[serde(default, deny_unknown_fields)]
 pub struct LaneConfig {
     pub camera: crate::perception::lane_camera::LaneCameraConfig,
+    pub vision: crate::perception::lane::LaneVisionConfig,
     pub drive: LaneDriveConfig,
 }
 

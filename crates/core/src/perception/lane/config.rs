@@ -283,6 +283,8 @@ pub enum LaneVisionError {
     },
     #[error("lane vision: the camera does not see the bird's-eye view's floor: {0}")]
     View(String),
+    #[error("lane camera: {0}")]
+    Setup(String),
     #[cfg(feature = "vision")]
     #[error("OpenCV: {0}")]
     OpenCv(#[from] opencv::Error),

@@ -27,7 +27,10 @@ pub(super) struct Sensors {
     rendered: Option<Box<crate::sim::rendered_camera::RenderedCamera>>,
     scan: Option<LaserScan>,
     /// The lane camera's newest sighting not yet taken.
-    lane: Option<crate::data::LaneSighting>,
+    pub(super) lane: Option<crate::data::LaneSighting>,
+    /// The lane camera and its clock, on a world with a track.
+    #[cfg(feature = "vision")]
+    pub(super) lane_rig: Option<super::lane::LaneRig>,
 }
 
 impl Sensors {
@@ -47,6 +50,8 @@ impl Sensors {
             rendered: None,
             scan: None,
             lane: None,
+            #[cfg(feature = "vision")]
+            lane_rig: None,
         }
     }
 

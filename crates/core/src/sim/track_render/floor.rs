@@ -10,11 +10,13 @@ use nalgebra::Vector3;
 
 /// Marks a pixel whose ray never meets the floor (it looks at or above the horizon).
 const SKY: u8 = u8::MAX;
+/// Footprints under this fraction of the finest cell are sampled bilinearly.
+const MAGNIFIED: f64 = 0.5;
 /// Floor further than this from the lens is drawn as the coarsest level, metres.
 const FAR: f64 = 40.0;
 
-/// For every pixel, where its ray meets the floor in the robot frame and which level of
-/// the texture matches the floor it spans.
+/// For every pixel, where its ray meets the floor in the robot frame and how to sample
+/// the texture there (`FloorTexture::sample`'s code) for the floor it spans.
 #[derive(Clone)]
 pub struct FloorRays {
     points: Vec<[f32; 2]>,
@@ -82,13 +84,12 @@ impl FloorRays {
                     v + 1.0,
                 )));
                 // The level whose cell is nearest the footprint (mipmap selection,
-                // Williams 1983: level = log2(footprint / cell)).
-                let level = (footprint / cell)
-                    .log2()
-                    .round()
-                    .clamp(0.0, (LEVELS - 1) as f64);
+                // Williams 1983: level = log2(footprint / cell)), sampled bilinearly
+                // where a cell spans two pixels or more.
+                let ratio = footprint / cell;
+                let level = ratio.log2().round().clamp(0.0, (LEVELS - 1) as f64) as u8;
                 points.push([p[0] as f32, p[1] as f32]);
-                levels.push(level as u8);
+                levels.push(if ratio < MAGNIFIED { 0 } else { level + 1 });
             }
         }
         Self { points, levels }
@@ -123,7 +124,7 @@ impl FloorRays {
                 // The robot-frame point moved rigidly into the world.
                 let wx = px + c * rx - s * ry;
                 let wy = py + s * rx + c * ry;
-                scale(texture.sample(usize::from(level), wx, wy))
+                scale(texture.sample(level, wx, wy))
             };
             pixel.copy_from_slice(&colour);
         }

@@ -31,6 +31,7 @@ const ROUGHNESS_SPREAD: f64 = 0.012;
 const SPOT_ELONGATION: f64 = 1.4;
 /// The fraction of a spot's radius that is fully bright; it fades out beyond.
 const SPOT_CORE: f64 = 0.45;
+const CORE: f32 = SPOT_CORE as f32;
 /// Seed 000 §2.1.3: direct fluorescent reflections have V 245 +- 8.
 const GLARE_VALUE: (f64, f64) = (245.0, 8.0);
 /// The reflections' colour less than their value in blue and green: a warm white of
@@ -139,28 +140,36 @@ impl Ceiling {
             let Some((x0, y0, x1, y1)) = spot_box(view, spot, (ax, ay), along, across) else {
                 continue;
             };
+            // The axis across the line of sight.
+            let ax_across = (-ay, ax);
+            // In single precision, relative to the spot: the floor point of pixel i is
+            // pose + Rz(theta) ray, so its offset from the spot is (pose - spot) + Rz ray.
+            let (ox, oy) = ((pose.x - spot.x) as f32, (pose.y - spot.y) as f32);
+            let (sin, cos) = (s as f32, c as f32);
+            let glare = lamp.bgr.map(|v| v as f32);
+            let (ax, ay) = ((ax / along) as f32, (ay / along) as f32);
+            let (bx, by) = ((ax_across.0 / across) as f32, (ax_across.1 / across) as f32);
             for y in y0..y1 {
                 for x in x0..x1 {
                     let i = y * view.width + x;
                     let Some([rx, ry]) = rays.point(i) else {
                         continue;
                     };
-                    let (rx, ry) = (f64::from(rx), f64::from(ry));
-                    let wx = pose.x + c * rx - s * ry - spot.x;
-                    let wy = pose.y + s * rx + c * ry - spot.y;
-                    let a = (wx * ax + wy * ay) / along;
-                    let b = (wy * ax - wx * ay) / across;
-                    let d = (a * a + b * b).sqrt();
-                    if d >= 1.0 {
+                    let wx = ox + cos * rx - sin * ry;
+                    let wy = oy + sin * rx + cos * ry;
+                    let a = wx * ax + wy * ay;
+                    let b = wx * bx + wy * by;
+                    let d2 = a * a + b * b;
+                    if d2 >= 1.0 {
                         continue;
                     }
                     // Full within the core, then a smoothstep fade to the rim.
-                    let t = ((d - SPOT_CORE) / (1.0 - SPOT_CORE)).clamp(0.0, 1.0);
+                    let t = ((d2.sqrt() - CORE) / (1.0 - CORE)).clamp(0.0, 1.0);
                     let w = 1.0 - t * t * (3.0 - 2.0 * t);
                     let px = &mut out[3 * i..3 * i + 3];
-                    for (channel, glare) in px.iter_mut().zip(lamp.bgr) {
-                        let v = f64::from(*channel) * (1.0 - w) + glare * w;
-                        *channel = v.round().clamp(0.0, 255.0) as u8;
+                    for (channel, glare) in px.iter_mut().zip(glare) {
+                        let v = f32::from(*channel) * (1.0 - w) + glare * w;
+                        *channel = (v + 0.5).clamp(0.0, 255.0) as u8;
                     }
                 }
             }

@@ -21,11 +21,18 @@ fn table() -> [i16; 256] {
 /// Adds the noise to every byte of `pixels`.
 pub fn add_noise(pixels: &mut [u8], rng: &mut ChaCha8Rng) {
     let table = table();
-    for chunk in pixels.chunks_mut(8) {
-        let bits: u64 = rng.random();
-        for (k, p) in chunk.iter_mut().enumerate() {
-            let offset = table[((bits >> (8 * k)) & 0xff) as usize];
-            *p = (i16::from(*p) + offset).clamp(0, 255) as u8;
+    let mut chunks = pixels.chunks_exact_mut(8);
+    for chunk in &mut chunks {
+        let bytes = rng.random::<u64>().to_le_bytes();
+        for (p, b) in chunk.iter_mut().zip(bytes) {
+            *p = (i16::from(*p) + table[usize::from(b)]).clamp(0, 255) as u8;
+        }
+    }
+    let rest = chunks.into_remainder();
+    if !rest.is_empty() {
+        let bytes = rng.random::<u64>().to_le_bytes();
+        for (p, b) in rest.iter_mut().zip(bytes) {
+            *p = (i16::from(*p) + table[usize::from(b)]).clamp(0, 255) as u8;
         }
     }
 }

@@ -101,3 +101,25 @@ impl LaneCamera {
         sighting
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use rand::SeedableRng;
+
+    #[test]
+    fn dbg_lane() {
+        let world = World::default_track();
+        let cfg = LaneCameraConfig::default();
+        let mut cam = LaneCamera::new(&world, &cfg, &LaneVisionConfig::default(), Lighting::NORMAL, 1, None).unwrap();
+        let mut rng = ChaCha8Rng::seed_from_u64(1);
+        for dy in [-0.05, 0.0, 0.05] {
+            for k in 0..8 {
+                let s = cam.capture(Pose2::new(-0.6, -1.5 + dy, 0.0), 0.1 * k as f64, &mut rng);
+                if k >= 3 {
+                    eprintln!("dy {dy}: floor {} err {:?} curv {:?} y {:?} w {:?} ratio {}", cam.pipeline.value_floor(), s.error_px, s.curvature, s.yellow, s.white, s.pixel_ratio);
+                }
+            }
+        }
+    }
+}

@@ -22,6 +22,11 @@ pub struct LaneDriveConfig {
     pub max_error: f64,
     /// The speed law's exponent (seed 000 §2.4.2: alpha = 2.2).
     pub alpha: f64,
+    /// The curvature feed-forward's share of v kappa (seed 000 §2.4.1's Kf kappa, whose Kf
+    /// the seed leaves unset): 0 steers on the PD alone, as TurtleBot3's AutoRace does; the
+    /// lane's curvature fitted from one frame is noisy enough to pull the robot inside a
+    /// bend.
+    pub curvature_feedforward: f64,
     /// Most turn rate lane following asks for, rad/s.
     pub max_angular: f64,
     /// A red or yellow light this near (metres from the camera) stops the robot: with the
@@ -43,6 +48,7 @@ impl Default for LaneDriveConfig {
             nominal_speed: 0.15,
             max_error: 500.0,
             alpha: 2.2,
+            curvature_feedforward: 0.0,
             max_angular: 2.0,
             light_stop_range: 0.85,
             barrier_stop_range: 0.55,
@@ -61,6 +67,7 @@ impl LaneDriveConfig {
             ("nominal_speed", self.nominal_speed, 0.01, 2.0),
             ("max_error", self.max_error, 1.0, 10_000.0),
             ("alpha", self.alpha, 0.1, 10.0),
+            ("curvature_feedforward", self.curvature_feedforward, 0.0, 2.0),
             ("max_angular", self.max_angular, 0.01, 20.0),
             ("light_stop_range", self.light_stop_range, 0.1, 10.0),
             ("barrier_stop_range", self.barrier_stop_range, 0.1, 10.0),
@@ -100,6 +107,7 @@ impl LaneConfig {
                 "nominal_speed" => "drive.nominal_speed",
                 "max_error" => "drive.max_error",
                 "alpha" => "drive.alpha",
+                "curvature_feedforward" => "drive.curvature_feedforward",
                 "max_angular" => "drive.max_angular",
                 "light_stop_range" => "drive.light_stop_range",
                 "barrier_stop_range" => "drive.barrier_stop_range",

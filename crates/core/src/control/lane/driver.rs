@@ -114,10 +114,22 @@ impl LaneDriver {
                 self.hold = None;
             }
         }
+        let waiting = matches!(self.hold, Some(Wait::Barrier(_)));
         match s.barrier {
+            // Seen rising while waiting (not the arm met already up, whose next opening
+            // begins with it down), wherever the raised arm now seems to be: this opening
+            // is the robot's to pass.
+            Some(b)
+                if waiting
+                    && b.state == BarrierState::Up
+                    && self.hold != Some(Wait::Barrier(BarrierState::Up)) =>
+            {
+                self.hold = None;
+                self.opened = true;
+                self.unseen = 0;
+            }
             Some(b) if b.range <= self.cfg.barrier_stop_range => {
                 self.unseen = 0;
-                let waiting = matches!(self.hold, Some(Wait::Barrier(_)));
                 if b.state != BarrierState::Up {
                     self.hold = Some(Wait::Barrier(b.state));
                     self.opened = false;
@@ -148,7 +160,8 @@ impl LaneDriver {
         let de = self.last_error.map_or(0.0, |last| e - last);
         self.last_error = Some(e);
         let (v, _) = self.speed_law(e);
-        Twist::new(v, self.turn(e, de, curvature * v, speed))
+        let feed = self.cfg.curvature_feedforward * curvature * v;
+        Twist::new(v, self.turn(e, de, feed, speed))
     }
 
     /// Seed 000 §2.4.2: v(e) = v_max (max(0, 1 - |e| / e_max))^alpha.

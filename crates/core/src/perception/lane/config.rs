@@ -47,8 +47,12 @@ pub struct LaneVisionConfig {
     pub value_floor: f64,
     /// Bounds the PI loop keeps the brightness floor within: [lowest, highest].
     pub value_floor_bounds: [f64; 2],
-    /// Lane pixels, as a fraction of the image, the PI loop aims for.
-    pub target_pixel_ratio: f64,
+    /// Least brightness (V) paint has above the bare floor's median: the PI loop's floor
+    /// never goes lower, so the floor itself is never taken for paint under any lighting.
+    pub paint_above_floor: f64,
+    /// Lane pixels, as fractions of the image, the PI loop holds the share between:
+    /// [least, most].
+    pub pixel_ratio_band: [f64; 2],
     /// The PI loop's gains: brightness levels per unit of ratio error [Kp, Ki].
     pub pi_gains: [f64; 2],
     /// Brightness from which low-saturation light is glare.
@@ -91,8 +95,14 @@ impl Default for LaneVisionConfig {
             // lower, so a floor darker than that is never paint; up to 200, under the seed's
             // glare threshold (§2.1.3: lanes' V 180 +- 25).
             value_floor_bounds: [80.0, 200.0],
-            // seed 000 §2.1.2: the loop holds lane pixels at 2-3 % of the image.
-            target_pixel_ratio: 0.025,
+            // navdeck's margin: the twin's noise is 3 levels, tape 75 above the floor at
+            // normal light and 38 when dark.
+            paint_above_floor: 25.0,
+            // seed 000 §2.1.2: the loop holds lane pixels at 2-3 % of the image. The band
+            // reaches to 5 %: a camera seeing more of the lane than the seed's (the twin's
+            // 80 degree lens puts 3-4 % of a frame on the tape) would otherwise have the
+            // floor cut into the paint to bring its share down.
+            pixel_ratio_band: [0.02, 0.05],
             // Not given by the seed: a 1 % ratio error moves the floor 10 levels at once and
             // 2 more each frame it lasts.
             pi_gains: [1000.0, 200.0],
@@ -125,7 +135,7 @@ impl LaneVisionConfig {
         let positive = |v: f64| v > 0.0 && v.is_finite();
         let [lo, hi] = self.value_floor_bounds;
         let v = &self.view;
-        let checks: [(&'static str, f64, bool, &'static str); 22] = [
+        let checks: [(&'static str, f64, bool, &'static str); 23] = [
             (
                 "yellow_hue",
                 self.yellow_hue,
@@ -163,10 +173,18 @@ impl LaneVisionConfig {
                 "must lie within value_floor_bounds",
             ),
             (
-                "target_pixel_ratio",
-                self.target_pixel_ratio,
-                fraction(self.target_pixel_ratio),
-                "must be over 0 and under 1",
+                "paint_above_floor",
+                self.paint_above_floor,
+                level(self.paint_above_floor),
+                "must be 0 to 255",
+            ),
+            (
+                "pixel_ratio_band",
+                self.pixel_ratio_band[0],
+                fraction(self.pixel_ratio_band[0])
+                    && fraction(self.pixel_ratio_band[1])
+                    && self.pixel_ratio_band[0] <= self.pixel_ratio_band[1],
+                "must be fractions over 0 and under 1, least first",
             ),
             (
                 "pi_gains",

@@ -95,6 +95,30 @@ impl MaskMaker {
         })
     }
 
+    /// The median brightness (V) of the floor rows of `hsv`, from every 4th pixel of every
+    /// 4th row: the bare floor's level, since paint covers a few per cent of it.
+    pub fn floor_median(&self, hsv: &Mat) -> opencv::Result<f64> {
+        use opencv::prelude::*;
+        let bytes = hsv.data_bytes()?;
+        let cols = hsv.cols() as usize;
+        let mut counts = [0u32; 256];
+        let mut n = 0u32;
+        for row in (self.floor_top.max(0) as usize..hsv.rows() as usize).step_by(4) {
+            for col in (0..cols).step_by(4) {
+                counts[usize::from(bytes[3 * (row * cols + col) + 2])] += 1;
+                n += 1;
+            }
+        }
+        let mut seen = 0;
+        for (level, c) in counts.iter().enumerate() {
+            seen += c;
+            if 2 * seen >= n {
+                return Ok(level as f64);
+            }
+        }
+        Ok(0.0)
+    }
+
     /// seed 000 §2.1.3 `white_suppression_mask`: V >= 230 and S <= 60, closed with a 5x5
     /// ellipse; then grown by `glare_grow_px` so the glare's rim, no longer bright enough
     /// to be glare but still bright, goes with it.

@@ -81,7 +81,7 @@ impl LanePipeline {
             value: ValueLoop::new(
                 cfg.value_floor,
                 cfg.value_floor_bounds,
-                cfg.target_pixel_ratio,
+                cfg.pixel_ratio_band,
                 cfg.pi_gains,
             ),
             yellow: LineTrack::new(frames),
@@ -163,6 +163,9 @@ impl LanePipeline {
 
     fn try_read(&mut self, frame: &BgrFrame) -> Result<LaneSighting, String> {
         self.load_hsv(frame)?;
+        // Paint is brighter than the bare floor by a margin, whatever the lighting.
+        let floor = self.masks.floor_median(&self.hsv).map_err(|e| e.to_string())?;
+        self.value.hold_above(floor + self.cfg.paint_above_floor);
         let masks = self
             .masks
             .masks(&self.hsv, self.value.floor())

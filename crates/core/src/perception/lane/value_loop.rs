@@ -12,7 +12,8 @@
 pub struct ValueLoop {
     start: f64,
     bounds: [f64; 2],
-    target: f64,
+    /// The share of lane pixels held: [least, most].
+    band: [f64; 2],
     gains: [f64; 2],
     integral: f64,
     floor: f64,
@@ -21,11 +22,11 @@ pub struct ValueLoop {
 impl ValueLoop {
     /// A loop holding `target` (a fraction of the image) from floor `start`, within
     /// `bounds`, with gains [Kp, Ki] in brightness levels per unit of ratio.
-    pub fn new(start: f64, bounds: [f64; 2], target: f64, gains: [f64; 2]) -> Self {
+    pub fn new(start: f64, bounds: [f64; 2], band: [f64; 2], gains: [f64; 2]) -> Self {
         Self {
             start,
             bounds,
-            target,
+            band,
             gains,
             integral: 0.0,
             floor: start.clamp(bounds[0], bounds[1]),
@@ -39,8 +40,16 @@ impl ValueLoop {
 
     /// Takes the share of lane pixels the last frame had and moves the floor.
     pub fn update(&mut self, pixel_ratio: f64) -> f64 {
-        // seed 000 §2.1.2: error = target - ratio; adjustment = Kp e + Ki sum(e).
-        let error = self.target - pixel_ratio;
+        // seed 000 §2.1.2: error = target - ratio; adjustment = Kp e + Ki sum(e). Within the
+        // band the error is nought: the floor holds rather than cut into the paint.
+        let [least, most] = self.band;
+        let error = if pixel_ratio < least {
+            least - pixel_ratio
+        } else if pixel_ratio > most {
+            most - pixel_ratio
+        } else {
+            0.0
+        };
         let [kp, ki] = self.gains;
         let [lo, hi] = self.bounds;
         let trial = self.integral + error;
@@ -51,6 +60,13 @@ impl ValueLoop {
             self.integral = trial;
         }
         self.floor
+    }
+
+    /// Raises the lowest floor to `lowest` for this frame (never past the highest): paint
+    /// must stand out from the bare floor, however the loop has moved.
+    pub fn hold_above(&mut self, lowest: f64) {
+        let low = self.bounds[0].max(lowest).min(self.bounds[1]);
+        self.floor = self.floor.max(low);
     }
 
     pub fn reset(&mut self) {
@@ -65,7 +81,7 @@ mod tests {
 
     #[test]
     fn too_few_pixels_lower_the_floor_and_too_many_raise_it() {
-        let mut l = ValueLoop::new(100.0, [60.0, 200.0], 0.025, [1000.0, 200.0]);
+        let mut l = ValueLoop::new(100.0, [60.0, 200.0], [0.025, 0.025], [1000.0, 200.0]);
         // No pixels: e = 0.025, floor = 100 - (25 + 5) = 70, then 100 - (25 + 10) = 65.
         assert!((l.update(0.0) - 70.0).abs() < 1e-9);
         assert!((l.update(0.0) - 65.0).abs() < 1e-9);
@@ -77,7 +93,7 @@ mod tests {
         // The sum stopped at 0.075 (the frame that reached 60 exactly): on target the floor
         // is 100 - 200 * 0.075 = 85 at once, not held down by a wound-up sum.
         assert!((l.update(0.025) - 85.0).abs() < 1e-9, "{}", l.floor());
-        let mut up = ValueLoop::new(100.0, [60.0, 200.0], 0.025, [1000.0, 200.0]);
+        let mut up = ValueLoop::new(100.0, [60.0, 200.0], [0.025, 0.025], [1000.0, 200.0]);
         // 5 % of the image: e = -0.025, floor = 100 + 25 + 5 = 130.
         assert!((up.update(0.05) - 130.0).abs() < 1e-9);
         // On target the floor holds what the sum has learnt.

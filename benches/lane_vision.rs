@@ -41,7 +41,7 @@ fn scene(camera: &LaneCameraConfig) -> BgrFrame {
             let arm = at((0.7 - lens.x) / d.x);
             if (arm.z - 0.1).abs() < 0.015 && (-0.35..0.25).contains(&arm.y) {
                 let stripe = ((arm.y + 0.35) / 0.06) as usize;
-                colour = if stripe % 2 == 0 {
+                colour = if stripe.is_multiple_of(2) {
                     [0, 0, 210]
                 } else {
                     [215, 215, 215]

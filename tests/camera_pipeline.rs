@@ -13,6 +13,7 @@ use navdeck::link::camera::WithCamera;
 use navdeck::link::ros2::image::Ros2ImageSource;
 use navdeck::msgs::ros as msgs;
 use navdeck::perception::aruco::Detector;
+use navdeck::perception::colour::CameraImage;
 use navdeck::perception::config::VisionConfig;
 use navdeck::perception::frame::GrayFrame;
 use navdeck::perception::pipeline::{CameraPipeline, FrameSource};
@@ -40,13 +41,13 @@ fn frame_with(cfg: &VisionConfig, detector: &Detector, id: u32) -> GrayFrame {
 struct Burst(Vec<GrayFrame>);
 
 impl FrameSource for Burst {
-    fn grab(&mut self) -> Result<Option<GrayFrame>, String> {
+    fn grab(&mut self) -> Result<Option<CameraImage>, String> {
         if self.0.is_empty() {
             // A real camera blocks for its next frame; this one has none left.
             std::thread::sleep(Duration::from_millis(10));
             return Ok(None);
         }
-        Ok(Some(self.0.remove(0)))
+        Ok(Some(self.0.remove(0).into()))
     }
 }
 
@@ -55,7 +56,7 @@ fn the_newest_frame_wins_and_its_markers_reach_the_console_through_the_link() {
     let cfg = level();
     let detector = Detector::from_config(&cfg).unwrap();
     let frames: Vec<GrayFrame> = (1..=6).map(|id| frame_with(&cfg, &detector, id)).collect();
-    let pipeline = CameraPipeline::start(Box::new(Burst(frames)), detector, None);
+    let pipeline = CameraPipeline::start(Box::new(Burst(frames)), detector, None, None);
     let counts = pipeline.counts();
     until("every frame to be detected or dropped", || {
         counts.grabbed.load(Ordering::SeqCst) == 6
@@ -119,13 +120,13 @@ fn frames_from_a_ros2_image_topic_are_detected() {
     });
     let source =
         Ros2ImageSource::connect(&Default::default(), domain, "/camera/image_raw").unwrap();
-    let pipeline = CameraPipeline::start(Box::new(source), detector, None);
+    let pipeline = CameraPipeline::start(Box::new(source), detector, None, None);
     let mut seen = None;
     until("a detection from the image topic", || {
-        seen = pipeline.take_latest().filter(|(s, _)| !s.is_empty());
+        seen = pipeline.take_latest().filter(|(s, _, _)| !s.is_empty());
         seen.is_some()
     });
-    let (sightings, status) = seen.unwrap();
+    let (sightings, status, _) = seen.unwrap();
     assert_eq!(status.ids, vec![421]);
     assert_eq!(sightings[0].id, 421);
     drop(pipeline);

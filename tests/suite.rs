@@ -88,6 +88,7 @@ mod hangup;
 mod hostile;
 mod key_bytes;
 mod keymaps;
+mod lane;
 mod lidar_loop;
 mod lidar_slam;
 mod map_belief;

@@ -41,6 +41,12 @@ pub(crate) struct LaneArgs {
     /// Print one JSON object per run.
     #[arg(long)]
     json: bool,
+    /// Instead of driving: score the light and barrier detection on N frames per
+    /// lighting level (bright, normal, dark; with --lighting all also shadows and glare)
+    /// against the twin's truth, over the built-in track and generated tracks 1..10 (or
+    /// --sweep's), and time the pipeline per frame (feature `vision`).
+    #[arg(long, value_name = "N", value_parser = super::args::whole::<u32>)]
+    detection: Option<u32>,
 }
 
 fn parse_laps(s: &str) -> Result<f64, String> {
@@ -48,6 +54,9 @@ fn parse_laps(s: &str) -> Result<f64, String> {
 }
 
 pub(crate) fn run(args: &LaneArgs) -> Result<ExitCode> {
+    if let Some(frames) = args.detection {
+        return detection(args, frames);
+    }
     let lightings: Vec<Lighting> = if args.lighting == "all" {
         (Lighting::VARIANTS.iter())
             .map(|v| Lighting::parse(v).expect("the variants parse"))
@@ -114,9 +123,14 @@ pub(crate) fn run(args: &LaneArgs) -> Result<ExitCode> {
             scope.spawn(|| {
                 loop {
                     let k = next.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-                    let Some(&(seed, lighting)) = runs.get(k) else { break };
+                    let Some(&(seed, lighting)) = runs.get(k) else {
+                        break;
+                    };
                     let report = one(seed, lighting);
-                    results.lock().expect("no worker panicked").push((k, report));
+                    results
+                        .lock()
+                        .expect("no worker panicked")
+                        .push((k, report));
                 }
             });
         }
@@ -144,4 +158,57 @@ pub(crate) fn run(args: &LaneArgs) -> Result<ExitCode> {
     } else {
         ExitCode::SUCCESS
     })
+}
+
+/// `--detection N`: detection scored against the truth, and the pipeline timed.
+fn detection(args: &LaneArgs, frames: u32) -> Result<ExitCode> {
+    #[cfg(feature = "vision")]
+    {
+        let config = match &args.config {
+            Some(path) => navdeck::config::Config::load(path)?,
+            None => navdeck::config::Config::default(),
+        };
+        let seeds = match &args.sweep {
+            Some(range) => {
+                navdeck::runners::mission::parse_seeds(range).map_err(anyhow::Error::msg)?
+            }
+            None => (1..=10).collect(),
+        };
+        let mut worlds = vec![navdeck::sim::World::default_track()];
+        for seed in seeds {
+            let options = GenerateOptions {
+                seed,
+                style: Style::Track,
+                ..GenerateOptions::default()
+            };
+            worlds.push(generate::generate(&options).map_err(super::world::generate_error)?);
+        }
+        let names: &[&str] = if args.lighting == "all" {
+            &Lighting::VARIANTS
+        } else {
+            &["bright", "normal", "dark"]
+        };
+        let lightings: Vec<Lighting> = (names.iter())
+            .map(|n| Lighting::parse(n).expect("the variants parse"))
+            .collect();
+        let lane = &config.lane;
+        let report = navdeck::runners::lane_detect::run(
+            &worlds,
+            &lane.camera,
+            &lane.vision,
+            &lightings,
+            frames,
+            args.seed,
+        )
+        .map_err(anyhow::Error::msg)?;
+        sayln!("{}", serde_json::to_string(&report)?);
+        Ok(ExitCode::SUCCESS)
+    }
+    #[cfg(not(feature = "vision"))]
+    {
+        let _ = (args, frames);
+        bail!(
+            "navdeck lane --detection needs navdeck built with the `vision` feature (cargo build --release --features vision)"
+        )
+    }
 }

@@ -186,11 +186,6 @@ pub fn run(
         let truth = robot.link().ground_truth().expect("checked above").pose();
         if t > 0.0 {
             score.observe(&scene, t, period, truth);
-            if std::env::var_os("LANE_TRACE").is_some() {
-                let p = scene.track.project(truth.position());
-                let s = robot.pilot().lane().last();
-                eprintln!("TR {t:.1} along {:.2} off {:+.3} herr {:+.1} err {:?} k {:?} cmd {:?}", p.along, p.offset, crate::geometry::wrap_angle(truth.theta - p.heading).to_degrees(), s.and_then(|s| s.error_px).map(|e| e.round()), s.and_then(|s| s.curvature).map(|k| (k*100.0).round()/100.0), robot.pilot().commanded());
-            }
         }
         if score.laps(&scene) >= options.laps || t >= options.time_limit {
             break;

@@ -5,6 +5,8 @@ pub mod arm_pick;
 pub mod faults;
 pub mod headless;
 pub mod lane;
+#[cfg(feature = "vision")]
+pub mod lane_detect;
 pub mod map_report;
 pub mod mission;
 pub mod plan_report;

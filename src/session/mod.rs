@@ -387,8 +387,9 @@ impl Session {
                 detector.intrinsics(),
                 &self.config.lane.camera,
             );
-            let lane = crate::perception::lane::LanePipeline::new(&self.config.lane.vision, &lane_camera)
-                .context("cannot set up lane mode's pipeline for this camera")?;
+            let lane =
+                crate::perception::lane::LanePipeline::new(&self.config.lane.vision, &lane_camera)
+                    .context("cannot set up lane mode's pipeline for this camera")?;
             self.lane_unavailable = None;
             let pipeline = CameraPipeline::start(frames, detector, Some(lane), Some(stopwatch));
             Ok(Session {

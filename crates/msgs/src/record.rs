@@ -390,6 +390,7 @@ mod tests {
             arm: Some(ArmState {
                 joints: [0.1, 0.2, 0.3, 0.4],
             }),
+            lane: None,
         };
         let msg = FrameMsg::from_poll(3.0, Ok(&frame));
         assert_eq!(msg.to_poll(), Ok(frame));

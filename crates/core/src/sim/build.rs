@@ -114,7 +114,7 @@ pub fn build(file: WorldFile, text: &str, path: &Path) -> Result<World, WorldErr
             return Err(ck.err(line, "track.points", at, "the lane leaves the world"));
         }
         world.walls.extend(scene.post_outlines());
-        world.track = Some(scene);
+        world.track = Some(Box::new(scene));
     }
     check_blocks_apart(&ck, &world, &file.blocks)?;
     check_gates_on_walls(&ck, &world, &file.gates)?;

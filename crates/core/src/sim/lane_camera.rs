@@ -61,8 +61,9 @@ impl LaneCamera {
         let scene = world.track.as_ref().ok_or_else(|| {
             LaneVisionError::Setup(format!("world {} has no [track]", world.name))
         })?;
-        let boxes: Vec<(Pose2, f64, f64)> =
-            (world.obstacles.iter()).map(|o| (o.pose, o.width, o.height)).collect();
+        let boxes: Vec<(Pose2, f64, f64)> = (world.obstacles.iter())
+            .map(|o| (o.pose, o.width, o.height))
+            .collect();
         Ok(Self {
             renderer: TrackRenderer::new(scene, &world.walls, &boxes, camera, lighting, seed),
             pipeline: LanePipeline::new(vision, camera)?,
@@ -99,27 +100,5 @@ impl LaneCamera {
             self.last = Some(frame);
         }
         sighting
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use rand::SeedableRng;
-
-    #[test]
-    fn dbg_lane() {
-        let world = World::default_track();
-        let cfg = LaneCameraConfig::default();
-        let mut cam = LaneCamera::new(&world, &cfg, &LaneVisionConfig::default(), Lighting::NORMAL, 1, None).unwrap();
-        let mut rng = ChaCha8Rng::seed_from_u64(1);
-        for dy in [-0.05, 0.0, 0.05] {
-            for k in 0..8 {
-                let s = cam.capture(Pose2::new(-0.6, -1.5 + dy, 0.0), 0.1 * k as f64, &mut rng);
-                if k >= 3 {
-                    eprintln!("dy {dy}: floor {} err {:?} curv {:?} y {:?} w {:?} ratio {}", cam.pipeline.value_floor(), s.error_px, s.curvature, s.yellow, s.white, s.pixel_ratio);
-                }
-            }
-        }
     }
 }

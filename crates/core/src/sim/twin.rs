@@ -2,9 +2,9 @@
 //! world, advanced only by `step(dt)` and driven by one seeded random generator.
 
 mod arms;
+mod grasp;
 #[cfg(feature = "vision")]
 mod lane;
-mod grasp;
 mod sensors;
 
 use super::blocks::BlockState;

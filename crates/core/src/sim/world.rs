@@ -80,7 +80,7 @@ pub struct World {
     /// The box obstacles whose outlines are also in `walls`.
     pub obstacles: Vec<Obstacle>,
     /// A lane track on the floor, with its lights and barriers.
-    pub track: Option<super::track::TrackScene>,
+    pub track: Option<Box<super::track::TrackScene>>,
 }
 
 impl World {

@@ -65,9 +65,8 @@ impl FrameSource for Ros2ImageSource {
             let mut notes = Vec::new();
             let newest = match &self.images {
                 Images::Raw(sub) => take_all(sub, "image", &mut notes).pop().map(raw),
-                Images::Compressed(sub) => {
-                    (take_all(sub, "image", &mut notes).pop()).map(|m| decode_compressed(&m.format, &m.data))
-                }
+                Images::Compressed(sub) => (take_all(sub, "image", &mut notes).pop())
+                    .map(|m| decode_compressed(&m.format, &m.data)),
             };
             if newest.is_none()
                 && let Some(e) = notes.pop()

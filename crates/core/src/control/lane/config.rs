@@ -67,7 +67,12 @@ impl LaneDriveConfig {
             ("nominal_speed", self.nominal_speed, 0.01, 2.0),
             ("max_error", self.max_error, 1.0, 10_000.0),
             ("alpha", self.alpha, 0.1, 10.0),
-            ("curvature_feedforward", self.curvature_feedforward, 0.0, 2.0),
+            (
+                "curvature_feedforward",
+                self.curvature_feedforward,
+                0.0,
+                2.0,
+            ),
             ("max_angular", self.max_angular, 0.01, 20.0),
             ("light_stop_range", self.light_stop_range, 0.1, 10.0),
             ("barrier_stop_range", self.barrier_stop_range, 0.1, 10.0),

@@ -164,7 +164,10 @@ impl LanePipeline {
     fn try_read(&mut self, frame: &BgrFrame) -> Result<LaneSighting, String> {
         self.load_hsv(frame)?;
         // Paint is brighter than the bare floor by a margin, whatever the lighting.
-        let floor = self.masks.floor_median(&self.hsv).map_err(|e| e.to_string())?;
+        let floor = self
+            .masks
+            .floor_median(&self.hsv)
+            .map_err(|e| e.to_string())?;
         self.value.hold_above(floor + self.cfg.paint_above_floor);
         let masks = self
             .masks

@@ -163,7 +163,7 @@ fn candidate(name: &str, width: f64, height: f64, rng: &mut ChaCha8Rng) -> Resul
     let scene = spec.build().map_err(|e| e.to_string())?;
     // The posts stand in the walls, as a world file's do (`build.rs`).
     world.walls.extend(scene.post_outlines());
-    world.track = Some(scene);
+    world.track = Some(Box::new(scene));
     Ok(world)
 }
 

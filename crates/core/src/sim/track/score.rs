@@ -113,7 +113,7 @@ mod tests {
             env!("CARGO_MANIFEST_DIR"),
             "/../../maps/track.toml"
         ));
-        World::load(path).unwrap().track.unwrap()
+        *World::load(path).unwrap().track.unwrap()
     }
 
     #[test]

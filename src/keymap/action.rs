@@ -115,7 +115,7 @@ actions! {
     ModeRace: "mode_race", "race mode (fast, less SLAM)" => Pilot(Intent::Mode(Mode::Race));
     ModeLoad: "mode_load", "load a saved map" => Pilot(Intent::Mode(Mode::Load));
     ModeGripper: "mode_gripper", "gripper mode: the arm" => Pilot(Intent::Mode(Mode::Gripper));
-    ModeLane: "mode_lane", "lane mode: follow the lane, stop at lights and barriers" => Pilot(Intent::Mode(Mode::Lane));
+    ModeLane: "mode_lane", "lane mode (lane, lights)" => Pilot(Intent::Mode(Mode::Lane));
     GripperOpen: "gripper_open", "open the gripper" => Pilot(Intent::Gripper(GripperCommand::Open));
     GripperClose: "gripper_close", "close the gripper" => Pilot(Intent::Gripper(GripperCommand::Close));
     Quit: "quit", "stop and quit (also :quit)" => Console(Quit);

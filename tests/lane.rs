@@ -123,4 +123,33 @@ mod driving {
         // Stopped before the box: 1.5 m ahead of the start, less the robot and the box.
         assert!(r.distance > 0.8 && r.distance < 1.5 - 0.06, "{r:?}");
     }
+
+    #[test]
+    fn the_console_drives_the_track_in_lane_mode_and_its_panel_shows_the_lane() {
+        let mut session =
+            Session::load_with_world(&SessionSpec::twin(None), World::default_track()).unwrap();
+        session.offer_lane_camera(1, None);
+        let mut app = session.into_app(0.0);
+        app.handle_key(key("k"), KeyKind::Press, 0.05);
+        assert_eq!(app.pilot().mode(), Mode::Lane, "{}", log_text(&app));
+        let start = app.pilot().estimated_pose();
+        for k in 1..=100 {
+            app.update(0.05 + f64::from(k) * 0.1);
+        }
+        let moved = app
+            .pilot()
+            .estimated_pose()
+            .position()
+            .distance(start.position());
+        assert!(moved > 1.0, "10 s in lane mode moved {moved:.2} m");
+        // v shows the lane camera's panel in lane mode (the camera panel elsewhere).
+        app.handle_key(key("v"), KeyKind::Press, 10.1);
+        let screen = render_at(&app, 120, 40);
+        assert!(screen.contains("Lane (v)"), "{screen}");
+        assert!(screen.contains("lateral"), "{screen}");
+        assert!(screen.contains("LANE"), "{screen}");
+        // x stops lane mode, as every autonomous mode.
+        app.handle_key(key("x"), KeyKind::Press, 10.3);
+        assert_eq!(app.pilot().mode(), Mode::Manual);
+    }
 }

@@ -209,7 +209,7 @@ impl Pilot {
         if mode == self.mode {
             return false;
         }
-        if let (Mode::PathFollowing | Mode::Exploration, LinkStatus::Lost(reason)) =
+        if let (Mode::PathFollowing | Mode::Exploration | Mode::Lane, LinkStatus::Lost(reason)) =
             (mode, &self.behaviours.gate.link)
         {
             // Autonomy needs the robot's odometry to start from.
@@ -318,6 +318,7 @@ impl Pilot {
         let again = match self.mode {
             Mode::Exploration => "e resumes the mission",
             Mode::PathFollowing => "p follows the path again",
+            Mode::Lane => "k follows the lane again",
             _ => {
                 self.log(Level::Info, "stop");
                 return;

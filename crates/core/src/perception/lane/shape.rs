@@ -17,6 +17,11 @@ pub struct BlobShape {
     pub radius: f64,
 }
 
+/// The most a lamp's image is drawn out: seed 000 §3.1.3's 1.2 for a lamp seen face on,
+/// times 1 / cos 30 degrees for one seen from up to 30 degrees off its axis, as a lamp
+/// beside the lane is from a robot close to it (navdeck's figure).
+const OBLIQUE: f64 = 1.2 / 0.866;
+
 /// seed 000 §3.1.3: a lamp scores over 0.7.
 pub const PASS_SCORE: f64 = 0.7;
 /// Not in the seed: the score alone passes a square (C = pi/4 = 0.785 >= 0.75, hull
@@ -55,10 +60,11 @@ impl BlobShape {
         } else {
             1.0
         };
-        // seed 000 §3.1.3: 0.4 min(C / 0.75, 1) + 0.3 min(comp / 0.8, 1) + 0.3 [0.8 <= AR <= 1.2].
+        // seed 000 §3.1.3: 0.4 min(C / 0.75, 1) + 0.3 min(comp / 0.8, 1) + 0.3 [0.8 <= AR <= 1.2],
+        // the band widened to OBLIQUE (a lamp beside the lane is seen off its axis).
         let score = 0.4 * (circularity / 0.75).min(1.0)
             + 0.3 * (compactness / 0.8).min(1.0)
-            + 0.3 * f64::from(u8::from((0.8..=1.2).contains(&aspect)));
+            + 0.3 * f64::from(u8::from((1.0 / OBLIQUE..=OBLIQUE).contains(&aspect)));
         let mut centre = Point2f::default();
         let mut radius = 0.0f32;
         imgproc::min_enclosing_circle(contour, &mut centre, &mut radius)?;

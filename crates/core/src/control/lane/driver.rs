@@ -200,12 +200,12 @@ mod tests {
     fn a_lane_to_the_right_turns_right_and_slows_by_the_speed_law() {
         let mut d = LaneDriver::new(LaneDriveConfig::default());
         d.reset(0.0);
-        let s = d.step(0.1, Some(&seen(100.0)), 0.15);
-        // Kp e = 0.0025 * 100 = 0.25 rad/s, speed factor 1; v = 0.15 * 0.8^2.2 = 0.0917.
+        let s = d.step(0.1, Some(&seen(100.0)), 0.1);
+        // Kp e = 0.0025 * 100 = 0.25 rad/s, speed factor 1; v = 0.1 * 0.8^2.2 = 0.0612.
         assert!((s.twist.angular + 0.25).abs() < 1e-9, "{:?}", s.twist);
-        assert!((s.twist.linear - 0.15 * 0.8f64.powf(2.2)).abs() < 1e-9);
+        assert!((s.twist.linear - 0.1 * 0.8f64.powf(2.2)).abs() < 1e-9);
         // The error grows by 10 px: Kd adds 0.007 * 10 = 0.07 rad/s.
-        let s = d.step(0.2, Some(&seen(110.0)), 0.15);
+        let s = d.step(0.2, Some(&seen(110.0)), 0.1);
         assert!(
             (s.twist.angular + 0.275 + 0.07).abs() < 1e-9,
             "{:?}",

@@ -86,13 +86,16 @@ impl LaneCameraConfig {
         if !(self.rate_hz > 0.0 && self.rate_hz <= 120.0) {
             return Some(("rate_hz", self.rate_hz, "must be over 0 and at most 120"));
         }
-        let m = self
-            .mount
-            .rotation_deg
-            .iter()
-            .chain(&self.mount.translation);
-        if let Some(v) = m.copied().find(|v| !v.is_finite()) {
-            return Some(("mount", v, "must be finite"));
+        let rotation = self.mount.rotation_deg.into_iter();
+        if let Some(v) = rotation.into_iter().find(|v| !(-360.0..=360.0).contains(v)) {
+            return Some(("mount.rotation_deg", v, "must lie in -360..=360 degrees"));
+        }
+        let translation = self.mount.translation.into_iter();
+        if let Some(v) = translation
+            .into_iter()
+            .find(|v| !(-10.0..=10.0).contains(v))
+        {
+            return Some(("mount.translation", v, "must lie in -10..=10 m"));
         }
         None
     }

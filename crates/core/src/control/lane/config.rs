@@ -94,33 +94,21 @@ pub struct LaneConfig {
 }
 
 impl LaneConfig {
-    /// The first bad field, named within `[lane]`.
+    /// The first bad field, named within `[lane]` (`camera.width`, `vision.glare_value`,
+    /// `drive.kp`).
     pub fn validate(&self) -> Result<(), Invalid> {
+        // The path within `[lane]`: made once for a refused field, as the config is read.
+        let path = |part: &str, field: &str| -> &'static str {
+            Box::leak(format!("{part}.{field}").into_boxed_str())
+        };
         if let Some((field, value, reason)) = self.camera.invalid() {
-            let field = match field {
-                "width" => "camera.width",
-                "height" => "camera.height",
-                "hfov_deg" => "camera.hfov_deg",
-                "rate_hz" => "camera.rate_hz",
-                _ => "camera.mount",
-            };
-            return Err((field, value, reason.into()));
+            return Err((path("camera", field), value, reason.into()));
         }
-        self.drive.validate().map_err(|(field, value, reason)| {
-            let field = match field {
-                "kp" => "drive.kp",
-                "kd" => "drive.kd",
-                "max_speed" => "drive.max_speed",
-                "nominal_speed" => "drive.nominal_speed",
-                "max_error" => "drive.max_error",
-                "alpha" => "drive.alpha",
-                "curvature_feedforward" => "drive.curvature_feedforward",
-                "max_angular" => "drive.max_angular",
-                "light_stop_range" => "drive.light_stop_range",
-                "barrier_stop_range" => "drive.barrier_stop_range",
-                _ => "drive.lost_after",
-            };
-            (field, value, reason)
-        })
+        if let Some((field, value, reason)) = self.vision.invalid() {
+            return Err((path("vision", field), value, reason.into()));
+        }
+        self.drive
+            .validate()
+            .map_err(|(field, value, reason)| (path("drive", field), value, reason))
     }
 }

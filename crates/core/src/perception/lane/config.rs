@@ -189,8 +189,8 @@ impl LaneVisionConfig {
             (
                 "pi_gains",
                 self.pi_gains[0],
-                self.pi_gains.iter().all(|g| g.is_finite() && *g >= 0.0),
-                "must be finite and not negative",
+                self.pi_gains.iter().all(|g| (0.0..=1e6).contains(g)),
+                "must lie in 0..=1e6",
             ),
             (
                 "glare_value",
@@ -237,8 +237,8 @@ impl LaneVisionConfig {
             (
                 "window_width_mm",
                 self.window_width_mm,
-                positive(self.window_width_mm),
-                "must be over 0",
+                positive(self.window_width_mm) && self.window_width_mm <= 10000.0,
+                "must be over 0 and at most 10000",
             ),
             (
                 "lane_width",
@@ -255,14 +255,14 @@ impl LaneVisionConfig {
             (
                 "max_curvature",
                 self.max_curvature,
-                positive(self.max_curvature),
-                "must be over 0",
+                positive(self.max_curvature) && self.max_curvature <= 1000.0,
+                "must be over 0 and at most 1000",
             ),
             (
                 "max_jump",
                 self.max_jump,
-                positive(self.max_jump),
-                "must be over 0",
+                positive(self.max_jump) && self.max_jump <= 10.0,
+                "must be over 0 and at most 10",
             ),
             (
                 "filter_frames",

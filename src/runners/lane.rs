@@ -73,23 +73,31 @@ pub struct FrameTimes {
 }
 
 impl FrameTimes {
-    fn of(mut ms: Vec<f64>) -> Self {
-        if ms.is_empty() {
+    fn of(ms: Vec<f64>) -> Self {
+        let Some([mean, std, p95, max]) = spread(ms) else {
             return Self::default();
-        }
-        ms.sort_by(f64::total_cmp);
-        let n = ms.len() as f64;
-        let mean = ms.iter().sum::<f64>() / n;
-        let var = ms.iter().map(|m| (m - mean).powi(2)).sum::<f64>() / n;
-        // Nearest-rank 95th percentile.
-        let p95 = ms[((0.95 * n).ceil() as usize).clamp(1, ms.len()) - 1];
+        };
         Self {
             frame_ms_mean: Some(mean),
-            frame_ms_std: Some(var.sqrt()),
+            frame_ms_std: Some(std),
             frame_ms_p95: Some(p95),
-            frame_ms_max: ms.last().copied(),
+            frame_ms_max: Some(max),
         }
     }
+}
+
+/// The mean, standard deviation, nearest-rank 95th percentile and maximum of `values`;
+/// none when there are none.
+pub fn spread(mut values: Vec<f64>) -> Option<[f64; 4]> {
+    if values.is_empty() {
+        return None;
+    }
+    values.sort_by(f64::total_cmp);
+    let n = values.len() as f64;
+    let mean = values.iter().sum::<f64>() / n;
+    let var = values.iter().map(|m| (m - mean).powi(2)).sum::<f64>() / n;
+    let p95 = values[((0.95 * n).ceil() as usize).clamp(1, values.len()) - 1];
+    Some([mean, var.sqrt(), p95, values[values.len() - 1]])
 }
 
 /// What held the robot: how often and for how long.

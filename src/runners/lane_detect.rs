@@ -56,20 +56,13 @@ pub struct Timing {
 }
 
 impl Timing {
-    fn of(mut ms: Vec<f64>) -> Self {
-        if ms.is_empty() {
-            return Self::default();
-        }
-        ms.sort_by(f64::total_cmp);
-        let n = ms.len() as f64;
-        let mean = ms.iter().sum::<f64>() / n;
-        let var = ms.iter().map(|m| (m - mean).powi(2)).sum::<f64>() / n;
+    fn of(ms: Vec<f64>) -> Self {
+        let [mean_ms, std_ms, p95_ms, max_ms] = super::lane::spread(ms).unwrap_or_default();
         Self {
-            mean_ms: mean,
-            std_ms: var.sqrt(),
-            // Nearest-rank percentile.
-            p95_ms: ms[((0.95 * n).ceil() as usize).clamp(1, ms.len()) - 1],
-            max_ms: ms[ms.len() - 1],
+            mean_ms,
+            std_ms,
+            p95_ms,
+            max_ms,
         }
     }
 }

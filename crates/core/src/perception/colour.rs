@@ -1,7 +1,7 @@
 //! A colour camera frame, BGR bytes as OpenCV keeps them, and the small colour thumbnail
 //! the console's lane panel draws of it.
 
-use super::frame::{FrameError, MAX_SIDE};
+use super::frame::FrameError;
 use crate::data::ColourThumbnail;
 
 /// An 8-bit BGR image, rows top to bottom, `3 * width * height` bytes.
@@ -46,28 +46,7 @@ impl BgrFrame {
         step: usize,
         bytes: &[u8],
     ) -> Result<Self, FrameError> {
-        let channels = match encoding {
-            "mono8" => 1,
-            "rgb8" | "bgr8" => 3,
-            other => return Err(FrameError::Encoding(other.to_string())),
-        };
-        if !(1..=MAX_SIDE).contains(&width) || !(1..=MAX_SIDE).contains(&height) {
-            return Err(FrameError::Sides { width, height });
-        }
-        let needed = step
-            .checked_mul(height - 1)
-            .and_then(|n| n.checked_add(width * channels))
-            .unwrap_or(usize::MAX);
-        if step < width * channels || bytes.len() < needed {
-            return Err(FrameError::Size {
-                width,
-                height,
-                encoding: encoding.to_string(),
-                step,
-                needed,
-                got: bytes.len(),
-            });
-        }
+        let channels = super::frame::check_raw(width, height, encoding, step, bytes.len())?;
         let mut data = Vec::with_capacity(3 * width * height);
         for row in bytes.chunks(step).take(height) {
             let row = &row[..width * channels];

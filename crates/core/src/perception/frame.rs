@@ -34,6 +34,41 @@ pub enum FrameError {
 /// The longest side of a camera image navdeck reads, pixels: a calibration's bound.
 pub const MAX_SIDE: usize = super::intrinsics::MAX_SIDE as usize;
 
+/// The channels of a sensor_msgs/Image's `encoding` (mono8 1, rgb8 and bgr8 3), once its
+/// sides are within `MAX_SIDE` and `len` bytes hold `height` rows `step` apart.
+pub fn check_raw(
+    width: usize,
+    height: usize,
+    encoding: &str,
+    step: usize,
+    len: usize,
+) -> Result<usize, FrameError> {
+    let channels = match encoding {
+        "mono8" => 1,
+        "rgb8" | "bgr8" => 3,
+        other => return Err(FrameError::Encoding(other.to_string())),
+    };
+    if !(1..=MAX_SIDE).contains(&width) || !(1..=MAX_SIDE).contains(&height) {
+        return Err(FrameError::Sides { width, height });
+    }
+    // A step past the bytes there are cannot be right: checked so it cannot overflow.
+    let needed = step
+        .checked_mul(height - 1)
+        .and_then(|n| n.checked_add(width * channels))
+        .unwrap_or(usize::MAX);
+    if step < width * channels || len < needed {
+        return Err(FrameError::Size {
+            width,
+            height,
+            encoding: encoding.to_string(),
+            step,
+            needed,
+            got: len,
+        });
+    }
+    Ok(channels)
+}
+
 impl GrayFrame {
     /// A frame of one grey level.
     pub fn filled(width: usize, height: usize, level: u8) -> Self {
@@ -72,29 +107,7 @@ impl GrayFrame {
         step: usize,
         bytes: &[u8],
     ) -> Result<Self, FrameError> {
-        let channels = match encoding {
-            "mono8" => 1,
-            "rgb8" | "bgr8" => 3,
-            other => return Err(FrameError::Encoding(other.to_string())),
-        };
-        if !(1..=MAX_SIDE).contains(&width) || !(1..=MAX_SIDE).contains(&height) {
-            return Err(FrameError::Sides { width, height });
-        }
-        // A step past the bytes there are cannot be right: checked so it cannot overflow.
-        let needed = step
-            .checked_mul(height - 1)
-            .and_then(|n| n.checked_add(width * channels))
-            .unwrap_or(usize::MAX);
-        if step < width * channels || bytes.len() < needed {
-            return Err(FrameError::Size {
-                width,
-                height,
-                encoding: encoding.to_string(),
-                step,
-                needed,
-                got: bytes.len(),
-            });
-        }
+        let channels = check_raw(width, height, encoding, step, bytes.len())?;
         let (r, b) = if encoding == "rgb8" { (0, 2) } else { (2, 0) };
         let mut data = Vec::with_capacity(width * height);
         for row in bytes.chunks(step).take(height) {

@@ -7,7 +7,6 @@ use super::track_render::TrackRenderer;
 use crate::clock::Clock;
 use crate::data::LaneSighting;
 use crate::geometry::Pose2;
-use crate::perception::colour::BgrFrame;
 use crate::perception::lane::{LanePipeline, LaneVisionConfig, LaneVisionError};
 use crate::perception::lane_camera::LaneCameraConfig;
 use rand_chacha::ChaCha8Rng;
@@ -20,9 +19,6 @@ pub struct LaneCamera {
     /// What the pipeline was built from, to build a clone's.
     built: (LaneVisionConfig, LaneCameraConfig),
     stopwatch: Option<Arc<dyn Clock>>,
-    /// The newest frame, for a caller that wants the picture itself.
-    last: Option<BgrFrame>,
-    keep_frames: bool,
 }
 
 impl Clone for LaneCamera {
@@ -35,8 +31,6 @@ impl Clone for LaneCamera {
             pipeline: LanePipeline::new(vision, camera).expect("built once from the same config"),
             built: self.built.clone(),
             stopwatch: self.stopwatch.clone(),
-            last: self.last.clone(),
-            keep_frames: self.keep_frames,
         }
     }
 }
@@ -69,36 +63,12 @@ impl LaneCamera {
             pipeline: LanePipeline::new(vision, camera)?,
             built: (vision.clone(), camera.clone()),
             stopwatch,
-            last: None,
-            keep_frames: false,
         })
-    }
-
-    /// Keeps each frame drawn, for `last_frame`.
-    pub fn keep_frames(&mut self, keep: bool) {
-        self.keep_frames = keep;
-    }
-
-    /// The newest frame, when frames are kept.
-    pub fn last_frame(&self) -> Option<&BgrFrame> {
-        self.last.as_ref()
-    }
-
-    pub fn renderer(&self) -> &TrackRenderer {
-        &self.renderer
-    }
-
-    pub fn pipeline_mut(&mut self) -> &mut LanePipeline {
-        &mut self.pipeline
     }
 
     /// Draws the frame seen from `pose` at twin time `t` and reads it.
     pub fn capture(&mut self, pose: Pose2, t: f64, rng: &mut ChaCha8Rng) -> LaneSighting {
         let frame = self.renderer.render(pose, t, rng);
-        let sighting = self.pipeline.read(&frame, self.stopwatch.as_deref());
-        if self.keep_frames {
-            self.last = Some(frame);
-        }
-        sighting
+        self.pipeline.read(&frame, self.stopwatch.as_deref())
     }
 }

@@ -627,15 +627,25 @@ fn a_goal_pose_drives_the_twin_beside_ros2_with_rosout_both_ways_on_localhost_on
     );
     // What the peer saw: navdeck on the node list of its distribution, its log lines on
     // /rosout with their levels, and its state up to the arrival.
-    let seen = peer_lines_until(&peer, "navdeck's node, log and arrival", |seen| {
-        let node = seen.iter().any(|v| v["node"] == "/navdeck");
-        let arrived = seen.iter().any(|v| {
-            v["state"]
-                .as_str()
-                .is_some_and(|s| s.contains("\"navigation\":\"arrived\""))
-        });
-        node && arrived
-    });
+    let seen = peer_lines_until(
+        &peer,
+        "navdeck's node, its arrival and its log of it",
+        |seen| {
+            let node = seen.iter().any(|v| v["node"] == "/navdeck");
+            let arrived = seen.iter().any(|v| {
+                v["state"]
+                    .as_str()
+                    .is_some_and(|s| s.contains("\"navigation\":\"arrived\""))
+            });
+            // The arrival's /rosout line travels on its own topic: it may come after the state.
+            let arrival_logged = seen.iter().any(|v| {
+                v["rosout"]["msg"]
+                    .as_str()
+                    .is_some_and(|m| m.contains("Destination arrived"))
+            });
+            node && arrived && arrival_logged
+        },
+    );
     let navdeck_lines: Vec<&Value> = seen
         .iter()
         .filter_map(|v| v.get("rosout"))

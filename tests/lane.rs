@@ -87,7 +87,7 @@ mod driving {
     fn a_lowered_barrier_holds_the_robot_until_it_rises_and_is_never_touched() {
         let world = course(|t| {
             t.replace("at = 8.2", "at = 2.4").replace(
-                "cycle = { down = 5, moving = 2, up = 6, offset = 3 }",
+                "cycle = { down = 5, moving = 2, up = 9, offset = 3 }",
                 "cycle = { down = 25, moving = 2, up = 30, offset = 0 }",
             )
         });

@@ -49,10 +49,48 @@ pub struct LaneDriver {
     opened: bool,
     /// Frames since a barrier was last seen in range.
     unseen: u32,
+    /// How the arm ahead moved while the robot waited before it.
+    arm: ArmWatch,
+}
+
+/// The arm's angles while the robot waits before it closed: whether it is rising.
+#[derive(Clone, Debug, Default)]
+struct ArmWatch {
+    /// The lowest and the last angle seen, degrees above level.
+    lowest: Option<f64>,
+    last: Option<f64>,
+    rising: bool,
+}
+
+impl ArmWatch {
+    /// Takes this frame's arm angle (none: no arm seen) while `watching` (the robot waits
+    /// before the arm closed); whether an opening has begun.
+    fn opening(&mut self, angle: Option<f64>, watching: bool) -> bool {
+        if !watching {
+            *self = Self::default();
+            return false;
+        }
+        let Some(a) = angle else {
+            // Lost from view while rising: it rose out of the picture.
+            return self.rising;
+        };
+        let lowest = self.lowest.map_or(a, |l| l.min(a));
+        // A repeated angle (the filter holding the arm between sightings) keeps the rise.
+        let climbing = self.last.is_none_or(|l| a >= l - 1.0);
+        self.rising = climbing && a >= lowest + RISE_DEG;
+        self.lowest = Some(lowest);
+        self.last = Some(a);
+        self.rising && a >= RISEN_DEG
+    }
 }
 
 /// Frames without a barrier in range after which it is behind the robot.
 const BARRIER_GONE: u32 = 10;
+/// An arm seen rising past this angle, degrees, is opening: from a stop before it, the
+/// camera loses a rising arm past about 15-50 degrees, before it is UP.
+const RISEN_DEG: f64 = 45.0;
+/// Degrees above the lowest angle seen that make an arm rising, past the finder's noise.
+const RISE_DEG: f64 = 8.0;
 
 impl LaneDriver {
     pub fn new(cfg: LaneDriveConfig) -> Self {
@@ -63,6 +101,7 @@ impl LaneDriver {
             hold: None,
             opened: false,
             unseen: 0,
+            arm: ArmWatch::default(),
         }
     }
 
@@ -115,6 +154,19 @@ impl LaneDriver {
             }
         }
         let waiting = matches!(self.hold, Some(Wait::Barrier(_)));
+        let closed_ahead = waiting && self.hold != Some(Wait::Barrier(BarrierState::Up));
+        if self
+            .arm
+            .opening(s.barrier.map(|b| b.angle_deg.abs()), closed_ahead)
+        {
+            // Seen rising from where it lay while the robot waited, and now past RISEN_DEG
+            // or gone from the view above it: the opening has begun, and the arm clears the
+            // robot's height before the robot reaches it.
+            self.hold = None;
+            self.opened = true;
+            self.unseen = 0;
+            return;
+        }
         match s.barrier {
             // Seen rising while waiting (not the arm met already up, whose next opening
             // begins with it down), wherever the raised arm now seems to be: this opening
@@ -133,7 +185,7 @@ impl LaneDriver {
                 if b.state != BarrierState::Up {
                     self.hold = Some(Wait::Barrier(b.state));
                     self.opened = false;
-                } else if waiting {
+                } else if closed_ahead {
                     // Seen rising while waiting: this opening is the robot's to pass.
                     self.hold = None;
                     self.opened = true;
@@ -289,12 +341,44 @@ mod tests {
         };
         let up = d.step(0.1, Some(&barrier(BarrierState::Up)), 0.1);
         assert_eq!(up.wait, Some(Wait::Barrier(BarrierState::Up)));
+        // Still up a frame later: how long it stays up is still unknown.
+        let still = d.step(0.15, Some(&barrier(BarrierState::Up)), 0.0);
+        assert_eq!(still.wait, Some(Wait::Barrier(BarrierState::Up)));
         d.step(0.2, Some(&barrier(BarrierState::Moving)), 0.0);
         d.step(0.3, Some(&barrier(BarrierState::Down)), 0.0);
         assert_eq!(
             d.step(0.4, Some(&barrier(BarrierState::Up)), 0.0).wait,
             None
         );
+    }
+
+    #[test]
+    fn an_arm_seen_rising_out_of_the_picture_is_an_opening_and_one_lowering_is_not() {
+        let arm = |angle_deg: f64| LaneSighting {
+            barrier: Some(BarrierSeen {
+                state: BarrierState::of_angle(angle_deg),
+                angle_deg,
+                range: 0.5,
+                belief: [1.0, 0.0, 0.0],
+            }),
+            ..seen(0.0)
+        };
+        let mut d = LaneDriver::new(LaneDriveConfig::default());
+        d.reset(0.0);
+        for (i, a) in [2.0, 3.0, 7.0, 12.0, 14.0].into_iter().enumerate() {
+            let s = d.step(0.1 * (i + 1) as f64, Some(&arm(a)), 0.0);
+            assert!(matches!(s.wait, Some(Wait::Barrier(_))), "{a}: {s:?}");
+        }
+        // Gone from view above the picture's top while rising.
+        assert_eq!(d.step(0.6, Some(&seen(0.0)), 0.0).wait, None);
+        // Lowering from 30 degrees to level, then gone: still closed.
+        let mut d = LaneDriver::new(LaneDriveConfig::default());
+        d.reset(0.0);
+        for (i, a) in [30.0, 25.0, 18.0, 10.0, 2.0].into_iter().enumerate() {
+            d.step(0.1 * (i + 1) as f64, Some(&arm(a)), 0.0);
+        }
+        let s = d.step(0.6, Some(&seen(0.0)), 0.0);
+        assert_eq!(s.wait, Some(Wait::Barrier(BarrierState::Down)));
     }
 
     #[test]

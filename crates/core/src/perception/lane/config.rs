@@ -47,18 +47,21 @@ pub struct LaneVisionConfig {
     pub value_floor: f64,
     /// Bounds the PI loop keeps the brightness floor within: [lowest, highest].
     pub value_floor_bounds: [f64; 2],
-    /// Least brightness (V) paint has above the bare floor's median: the PI loop's floor
-    /// never goes lower, so the floor itself is never taken for paint under any lighting.
+    /// Least brightness (V) paint has above the floor around it: above the bird's-eye
+    /// view's opening by a square `paint_width_max` wide.
     pub paint_above_floor: f64,
-    /// Lane pixels, as fractions of the image, the PI loop holds the share between:
-    /// [least, most].
+    /// The widest paint, metres: anything bright and wider (a wall seen above the floor,
+    /// lit floor between shadows) is floor to the lane masks.
+    pub paint_width_max: f64,
+    /// Lane cells, as fractions of the bird's-eye view, the PI loop holds the share
+    /// between: [least, most].
     pub pixel_ratio_band: [f64; 2],
     /// The PI loop's gains: brightness levels per unit of ratio error [Kp, Ki].
     pub pi_gains: [f64; 2],
     /// Brightness from which low-saturation light is glare.
     pub glare_value: f64,
-    /// Pixels the glare mask is grown by, to take the glare's soft rim with it.
-    pub glare_grow_px: u32,
+    /// Bird's-eye cells the glare mask is grown by, to take the glare's soft rim with it.
+    pub glare_grow_cells: u32,
     pub view: BirdsEyeView,
     /// Sliding windows stacked up the bird's-eye view.
     pub windows: u32,
@@ -90,25 +93,30 @@ impl Default for LaneVisionConfig {
             yellow_saturation_floor: 80.0,
             // seed 000 §2.1.3: WHITE_SATURATION_MAX = 60.
             white_saturation_ceiling: 60.0,
-            value_floor: 100.0,
-            // Down to 80 so lines dimmed to half (the twin's dark lighting) are kept, no
-            // lower, so a floor darker than that is never paint; up to 200, under the seed's
-            // glare threshold (§2.1.3: lanes' V 180 +- 25).
-            value_floor_bounds: [80.0, 200.0],
-            // navdeck's margin: the twin's noise is 3 levels, tape 75 above the floor at
-            // normal light and 38 when dark.
-            paint_above_floor: 25.0,
-            // seed 000 §2.1.2: the loop holds lane pixels at 2-3 % of the image. The band
-            // reaches to 5 %: a camera seeing more of the lane than the seed's (the twin's
-            // 80 degree lens puts 3-4 % of a frame on the tape) would otherwise have the
-            // floor cut into the paint to bring its share down.
-            pixel_ratio_band: [0.02, 0.05],
-            // Not given by the seed: a 1 % ratio error moves the floor 10 levels at once and
-            // 2 more each frame it lasts.
-            pi_gains: [1000.0, 200.0],
+            // navdeck's: the seed starts at 100, but tape under a hard shadow is darker, and
+            // the floor is kept out by paint_above_floor; the loop raises the floor only
+            // when more than the band passes.
+            value_floor: 50.0,
+            // Down to 30 so tape under a hard shadow at the dark level (x0.5 x0.45 of V 180)
+            // is kept; the floor is kept out by paint_above_floor, not by this bound. Up to
+            // 200, under the seed's glare threshold (§2.1.3: lanes' V 180 +- 25).
+            value_floor_bounds: [30.0, 200.0],
+            // navdeck's margin over the floor around the paint: the twin's tape stands 75
+            // above the floor at normal light, 34 under a shadow, 17 under a shadow when
+            // dark; its noise, after the 3x3 mean, 1.
+            paint_above_floor: 12.0,
+            // Twice the twin's 25 mm tape and TurtleBot3 AutoRace's 20-30 mm.
+            paint_width_max: 0.05,
+            // seed 000 §2.1.2: the loop holds lane pixels at 2-3 % of the image. navdeck
+            // counts them on the bird's-eye view, where the two lines of 25 mm tape (one
+            // dashed) across a 1 m view cover 3.75 %, one line alone 1.25-2.5 %.
+            pixel_ratio_band: [0.01, 0.05],
+            // Not given by the seed: a 1 % ratio error moves the floor 1 level at once and 2
+            // more each frame it lasts, so the integral, not a kick, holds the floor.
+            pi_gains: [100.0, 200.0],
             // seed 000 §2.1.3: WHITE_VALUE_THRESHOLD = 230.
             glare_value: 230.0,
-            glare_grow_px: 5,
+            glare_grow_cells: 3,
             view: BirdsEyeView::default(),
             windows: 10,
             // seed 000 §2.2.2: base_window_width = 100 (pixels of a ~1 m wide view).
@@ -135,7 +143,7 @@ impl LaneVisionConfig {
         let positive = |v: f64| v > 0.0 && v.is_finite();
         let [lo, hi] = self.value_floor_bounds;
         let v = &self.view;
-        let checks: [(&'static str, f64, bool, &'static str); 23] = [
+        let checks: [(&'static str, f64, bool, &'static str); 24] = [
             (
                 "yellow_hue",
                 self.yellow_hue,
@@ -179,6 +187,12 @@ impl LaneVisionConfig {
                 "must be 0 to 255",
             ),
             (
+                "paint_width_max",
+                self.paint_width_max,
+                self.paint_width_max >= 2.0 * v.cell && self.paint_width_max <= 0.5,
+                "must be two view cells to 0.5 m",
+            ),
+            (
                 "pixel_ratio_band",
                 self.pixel_ratio_band[0],
                 fraction(self.pixel_ratio_band[0])
@@ -199,9 +213,9 @@ impl LaneVisionConfig {
                 "must be 0 to 255",
             ),
             (
-                "glare_grow_px",
-                self.glare_grow_px.into(),
-                self.glare_grow_px <= 50,
+                "glare_grow_cells",
+                self.glare_grow_cells.into(),
+                self.glare_grow_cells <= 50,
                 "must be at most 50",
             ),
             (

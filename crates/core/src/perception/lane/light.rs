@@ -48,11 +48,20 @@ impl LightFinder {
             imgproc::CHAIN_APPROX_NONE,
         )?;
         let mut best: Option<(f64, LightSeen)> = None;
+        let (cols, rows) = (roi.cols(), roi.rows());
         for contour in &contours {
-            let Some(shape) = BlobShape::of(&contour)? else {
+            let Some(whole) = BlobShape::of(&contour)? else {
                 continue;
             };
-            if shape.area < MIN_AREA || !shape.is_lamp() {
+            let shape = if whole.is_lamp() {
+                whole
+            } else {
+                match cut_lamp(&contour, cols, rows, whole.area) {
+                    Some(cut) => cut,
+                    None => continue,
+                }
+            };
+            if shape.area < MIN_AREA {
                 continue;
             }
             let hue = mean_hue(&roi, &lit, &contour)?;
@@ -89,6 +98,71 @@ impl LightFinder {
         );
         depth * (1.0 + x * x + y * y).sqrt()
     }
+}
+
+/// Least share of its disc a lamp cut by the picture's edge must show.
+const CUT_VISIBLE: f64 = 0.3;
+/// Most RMS distance of a cut lamp's rim from its fitted circle, as a share of its radius.
+const CUT_ROUNDNESS: f64 = 0.05;
+/// Least arc of its rim, degrees, a cut lamp must show.
+const CUT_ARC_DEG: f64 = 150.0;
+
+/// A lamp cut by the picture's edge (a light beside the lane in a bend): its rim off the
+/// edge must lie on a circle (Kasa's algebraic fit, Kasa 1976), and the blob must fill
+/// the part of that circle inside the picture; none otherwise.
+fn cut_lamp(contour: &Vector<Point>, cols: i32, rows: i32, area: f64) -> Option<BlobShape> {
+    let on_edge = |p: &Point| p.x <= 0 || p.y <= 0 || p.x >= cols - 1 || p.y >= rows - 1;
+    if !contour.iter().any(|p| on_edge(&p)) {
+        return None;
+    }
+    let rim: Vec<(f64, f64)> = (contour.iter())
+        .filter(|p| !on_edge(p))
+        .map(|p| (f64::from(p.x), f64::from(p.y)))
+        .collect();
+    if rim.len() < 8 {
+        return None;
+    }
+    // x^2 + y^2 + D x + E y + F = 0 by least squares: centre (-D/2, -E/2).
+    let mut normal = nalgebra::Matrix3::<f64>::zeros();
+    let mut rhs = nalgebra::Vector3::<f64>::zeros();
+    for &(x, y) in &rim {
+        let row = nalgebra::Vector3::new(x, y, 1.0);
+        normal += row * row.transpose();
+        rhs -= (x * x + y * y) * row;
+    }
+    let p = normal.lu().solve(&rhs)?;
+    let centre = (-p[0] / 2.0, -p[1] / 2.0);
+    let radius = (centre.0 * centre.0 + centre.1 * centre.1 - p[2]).sqrt();
+    if !radius.is_finite() || !(2.0..=80.0).contains(&radius) {
+        return None;
+    }
+    let miss = rim
+        .iter()
+        .map(|&(x, y)| ((x - centre.0).hypot(y - centre.1) - radius).powi(2))
+        .sum::<f64>()
+        / rim.len() as f64;
+    let visible = area / (std::f64::consts::PI * radius * radius);
+    // The rim's angular span about the centre: its bearings sorted, less the widest gap.
+    let mut bearings: Vec<f64> = (rim.iter())
+        .map(|&(x, y)| (y - centre.1).atan2(x - centre.0).to_degrees())
+        .collect();
+    bearings.sort_by(f64::total_cmp);
+    let wrap = 360.0 - (bearings[bearings.len() - 1] - bearings[0]);
+    let widest = (bearings.windows(2))
+        .map(|w| w[1] - w[0])
+        .fold(wrap, f64::max);
+    if 360.0 - widest < CUT_ARC_DEG {
+        return None;
+    }
+    (miss.sqrt() <= CUT_ROUNDNESS * radius && (CUT_VISIBLE..=1.1).contains(&visible)).then_some(
+        BlobShape {
+            area,
+            score: super::shape::PASS_SCORE,
+            fill: visible,
+            centre,
+            radius,
+        },
+    )
 }
 
 /// The circular mean hue (OpenCV 0-180 units) of the lit pixels in `contour`'s box: red's

@@ -163,17 +163,12 @@ impl LanePipeline {
 
     fn try_read(&mut self, frame: &BgrFrame) -> Result<LaneSighting, String> {
         self.load_hsv(frame)?;
-        // Paint is brighter than the bare floor by a margin, whatever the lighting.
-        let floor = self
-            .masks
-            .floor_median(&self.hsv)
-            .map_err(|e| e.to_string())?;
-        self.value.hold_above(floor + self.cfg.paint_above_floor);
         let masks = self
             .masks
             .masks(&self.hsv, self.value.floor())
             .map_err(|e| e.to_string())?;
-        let pixel_ratio = masks.lane_pixels as f64 / (frame.width * frame.height) as f64;
+        let cells = self.eye.cols() * self.eye.rows();
+        let pixel_ratio = masks.lane_cells as f64 / cells as f64;
         self.value.update(pixel_ratio);
         let yellow_found = self.line(&masks.yellow)?;
         let white_found = self.line(&masks.white)?;
@@ -229,6 +224,13 @@ impl LanePipeline {
         let y = self.eye.row_mm_of_ahead(self.cfg.look_ahead);
         let half = self.cfg.lane_width * 1000.0 / 2.0;
         let axis = self.eye.width_mm() / 2.0;
+        // Two lines closer than half a lane, or farther than a lane and a half, are not
+        // this lane's: the white mask is the one walls, arms and glare fool, so the yellow
+        // line alone is taken.
+        let apart = |l: &[f64; 3], r: &[f64; 3]| x_at(r, y) - x_at(l, y);
+        let white = white.filter(|r| {
+            yellow.is_none_or(|l| (0.5 * 2.0 * half..=1.5 * 2.0 * half).contains(&apart(&l, r)))
+        });
         let (x, fit) = match (yellow, white) {
             (Some(l), Some(r)) => (
                 (x_at(&l, y) + x_at(&r, y)) / 2.0,

@@ -62,13 +62,6 @@ impl ValueLoop {
         self.floor
     }
 
-    /// Raises the lowest floor to `lowest` for this frame (never past the highest): paint
-    /// must stand out from the bare floor, however the loop has moved.
-    pub fn hold_above(&mut self, lowest: f64) {
-        let low = self.bounds[0].max(lowest).min(self.bounds[1]);
-        self.floor = self.floor.max(low);
-    }
-
     pub fn reset(&mut self) {
         self.integral = 0.0;
         self.floor = self.start.clamp(self.bounds[0], self.bounds[1]);

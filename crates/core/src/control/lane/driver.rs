@@ -51,6 +51,8 @@ pub struct LaneDriver {
     unseen: u32,
     /// How the arm ahead moved while the robot waited before it.
     arm: ArmWatch,
+    /// The arm's angle in the last frame that showed one, degrees above level.
+    last_arm: Option<f64>,
 }
 
 /// The arm's angles while the robot waits before it closed: whether it is rising.
@@ -89,6 +91,8 @@ const BARRIER_GONE: u32 = 10;
 /// An arm seen rising past this angle, degrees, is opening: from a stop before it, the
 /// camera loses a rising arm past about 15-50 degrees, before it is UP.
 const RISEN_DEG: f64 = 45.0;
+/// seed 000 §3.2.3: an arm within this of level is DOWN.
+const DOWN_DEG: f64 = 20.0;
 /// Degrees above the lowest angle seen that make an arm rising, past the finder's noise.
 const RISE_DEG: f64 = 8.0;
 
@@ -102,6 +106,7 @@ impl LaneDriver {
             opened: false,
             unseen: 0,
             arm: ArmWatch::default(),
+            last_arm: None,
         }
     }
 
@@ -153,6 +158,7 @@ impl LaneDriver {
                 self.hold = None;
             }
         }
+        let last_arm = std::mem::replace(&mut self.last_arm, s.barrier.map(|b| b.angle_deg.abs()));
         let waiting = matches!(self.hold, Some(Wait::Barrier(_)));
         let closed_ahead = waiting && self.hold != Some(Wait::Barrier(BarrierState::Up));
         if self
@@ -182,9 +188,15 @@ impl LaneDriver {
             }
             Some(b) if b.range <= self.cfg.barrier_stop_range => {
                 self.unseen = 0;
-                if b.state != BarrierState::Up {
+                // After an opening seen to begin, only an arm seen down or coming down
+                // closes the way again (the filter's state lags a rising arm).
+                let closing = b.angle_deg.abs() <= DOWN_DEG
+                    || last_arm.is_some_and(|a| b.angle_deg.abs() < a - 1.0);
+                if b.state != BarrierState::Up && (!self.opened || closing) {
                     self.hold = Some(Wait::Barrier(b.state));
                     self.opened = false;
+                } else if b.state != BarrierState::Up {
+                    // The rise it saw begin: carry on.
                 } else if closed_ahead {
                     // Seen rising while waiting: this opening is the robot's to pass.
                     self.hold = None;
@@ -379,6 +391,30 @@ mod tests {
         }
         let s = d.step(0.6, Some(&seen(0.0)), 0.0);
         assert_eq!(s.wait, Some(Wait::Barrier(BarrierState::Down)));
+    }
+
+    #[test]
+    fn once_an_opening_is_seen_the_rising_arm_does_not_stop_the_robot_but_a_lowering_one_does() {
+        let arm = |angle_deg: f64| LaneSighting {
+            barrier: Some(BarrierSeen {
+                state: BarrierState::of_angle(angle_deg),
+                angle_deg,
+                range: 0.5,
+                belief: [0.0, 1.0, 0.0],
+            }),
+            ..seen(0.0)
+        };
+        let mut d = LaneDriver::new(LaneDriveConfig::default());
+        d.reset(0.0);
+        for (i, a) in [0.0, 10.0, 30.0, 46.0].into_iter().enumerate() {
+            d.step(0.1 * (i + 1) as f64, Some(&arm(a)), 0.0);
+        }
+        // Open at 46 degrees and rising; still moving at 50 and 50 again (a held frame).
+        assert_eq!(d.step(0.5, Some(&arm(50.0)), 0.0).wait, None);
+        assert_eq!(d.step(0.6, Some(&arm(50.0)), 0.0).wait, None);
+        // Coming down again: held.
+        let s = d.step(0.7, Some(&arm(40.0)), 0.1);
+        assert_eq!(s.wait, Some(Wait::Barrier(BarrierState::Moving)));
     }
 
     #[test]

@@ -40,6 +40,8 @@ const RED_SATURATION: f64 = 100.0;
 const RED_VALUE: f64 = 60.0;
 /// Hough votes for a segment (the seed's adaptive threshold is not given).
 const VOTES: i32 = 20;
+/// Least ratio of an arm's length to its thickness in the image.
+const ARM_SLENDER: f64 = 3.0;
 /// Least area of a red blob taken as a stripe, pixels.
 const MIN_STRIPE_AREA: f64 = 30.0;
 
@@ -92,7 +94,12 @@ impl ArmFinder {
         };
         let [a, b] = band.ends;
         // An arm is longer than the least Hough segment twice over; a lone red scrap is not.
-        if (b.0 - a.0).hypot(b.1 - a.1) < 2.0 * min_length {
+        let length = (b.0 - a.0).hypot(b.1 - a.1);
+        if length < 2.0 * min_length {
+            return Ok(None);
+        }
+        // An arm is slender (0.03 m thick, half a metre long); a box's red face is not.
+        if length < ARM_SLENDER * band.thickness_px {
             return Ok(None);
         }
         let image_angle_deg = (a.1 - b.1).abs().atan2((a.0 - b.0).abs()).to_degrees();

@@ -224,6 +224,13 @@ fn a_red_square_is_not_a_lamp() {
     assert_eq!(pipeline().detect_objects(&frame).light, None);
 }
 
+#[test]
+fn a_red_box_on_the_floor_is_no_barrier_arm() {
+    let box_face = Vector3::new(0.6, 0.0, 0.07);
+    let frame = lamp(&straight_lane(0.0), box_face, 0.07, [30, 40, 160], true);
+    assert_eq!(pipeline().detect_objects(&frame).barrier, None);
+}
+
 /// The barrier's pivot: 0.7 m ahead, 0.35 m right, at the arm's height.
 const PIVOT: Vector3<f64> = Vector3::new(0.7, -0.35, 0.1);
 

@@ -1,6 +1,7 @@
 //! The lane driver: one step per control period from the newest lane sighting.
 
 use super::LaneDriveConfig;
+use super::arm_watch::ArmWatch;
 use crate::data::{BarrierState, LaneSighting, LightColour};
 use crate::geometry::Twist;
 
@@ -53,48 +54,18 @@ pub struct LaneDriver {
     arm: ArmWatch,
     /// The arm's angle in the last frame that showed one, degrees above level.
     last_arm: Option<f64>,
-}
-
-/// The arm's angles while the robot waits before it closed: whether it is rising.
-#[derive(Clone, Debug, Default)]
-struct ArmWatch {
-    /// The lowest and the last angle seen, degrees above level.
-    lowest: Option<f64>,
-    last: Option<f64>,
-    rising: bool,
-}
-
-impl ArmWatch {
-    /// Takes this frame's arm angle (none: no arm seen) while `watching` (the robot waits
-    /// before the arm closed); whether an opening has begun.
-    fn opening(&mut self, angle: Option<f64>, watching: bool) -> bool {
-        if !watching {
-            *self = Self::default();
-            return false;
-        }
-        let Some(a) = angle else {
-            // Lost from view while rising: it rose out of the picture.
-            return self.rising;
-        };
-        let lowest = self.lowest.map_or(a, |l| l.min(a));
-        // A repeated angle (the filter holding the arm between sightings) keeps the rise.
-        let climbing = self.last.is_none_or(|l| a >= l - 1.0);
-        self.rising = climbing && a >= lowest + RISE_DEG;
-        self.lowest = Some(lowest);
-        self.last = Some(a);
-        self.rising && a >= RISEN_DEG
-    }
+    /// The light ahead as last seen, its range since shortened by the distance driven.
+    light_ahead: Option<(LightColour, f64)>,
+    /// When the last step was taken.
+    last_t: Option<f64>,
 }
 
 /// Frames without a barrier in range after which it is behind the robot.
 const BARRIER_GONE: u32 = 10;
-/// An arm seen rising past this angle, degrees, is opening: from a stop before it, the
-/// camera loses a rising arm past about 15-50 degrees, before it is UP.
-const RISEN_DEG: f64 = 45.0;
+/// Lights seen within this many stopping ranges are remembered as the light ahead.
+const LIGHT_AHEAD: f64 = 2.0;
 /// seed 000 §3.2.3: an arm within this of level is DOWN.
 const DOWN_DEG: f64 = 20.0;
-/// Degrees above the lowest angle seen that make an arm rising, past the finder's noise.
-const RISE_DEG: f64 = 8.0;
 
 impl LaneDriver {
     pub fn new(cfg: LaneDriveConfig) -> Self {
@@ -107,6 +78,8 @@ impl LaneDriver {
             unseen: 0,
             arm: ArmWatch::default(),
             last_arm: None,
+            light_ahead: None,
+            last_t: None,
         }
     }
 
@@ -125,6 +98,14 @@ impl LaneDriver {
     /// The step at `t` from `fresh`, a sighting taken since the last step (none: no new
     /// frame), with the robot's measured forward speed `speed`.
     pub fn step(&mut self, t: f64, fresh: Option<&LaneSighting>, speed: f64) -> LaneStep {
+        let dt = self.last_t.map_or(0.0, |last| (t - last).max(0.0));
+        self.last_t = Some(t);
+        if let Some((_, range)) = &mut self.light_ahead {
+            *range -= speed.max(0.0) * dt;
+        }
+        if self.light_ahead.is_some_and(|(_, range)| range < 0.0) {
+            self.light_ahead = None;
+        }
         if let Some(s) = fresh {
             self.comply(s);
         }
@@ -152,11 +133,22 @@ impl LaneDriver {
     /// or up (seed 000 §3's traffic compliance).
     fn comply(&mut self, s: &LaneSighting) {
         if let Some(light) = s.light {
-            if light.colour.stops() && light.range <= self.cfg.light_stop_range {
-                self.hold = Some(Wait::Light(light.colour));
-            } else if matches!(self.hold, Some(Wait::Light(_))) && !light.colour.stops() {
+            // A light farther off than twice the stopping range may be another stretch's.
+            if light.range <= LIGHT_AHEAD * self.cfg.light_stop_range {
+                self.light_ahead = Some((light.colour, light.range));
+            }
+            if matches!(self.hold, Some(Wait::Light(_))) && !light.colour.stops() {
                 self.hold = None;
             }
+        }
+        // A red or yellow seen farther off, then lost from view (a lamp seen only now and
+        // then, or leaving the picture in a bend), still stops the robot where it would
+        // have stopped had it stayed in view.
+        if let Some((colour, range)) = self.light_ahead
+            && colour.stops()
+            && range <= self.cfg.light_stop_range
+        {
+            self.hold = Some(Wait::Light(colour));
         }
         let last_arm = std::mem::replace(&mut self.last_arm, s.barrier.map(|b| b.angle_deg.abs()));
         let waiting = matches!(self.hold, Some(Wait::Barrier(_)));
@@ -415,6 +407,41 @@ mod tests {
         // Coming down again: held.
         let s = d.step(0.7, Some(&arm(40.0)), 0.1);
         assert_eq!(s.wait, Some(Wait::Barrier(BarrierState::Moving)));
+    }
+
+    #[test]
+    fn a_red_light_seen_far_off_and_then_lost_stops_the_robot_where_it_would_have() {
+        let mut d = LaneDriver::new(LaneDriveConfig::default());
+        d.reset(0.0);
+        let red = LaneSighting {
+            light: Some(LightSeen {
+                colour: LightColour::Red,
+                range: 1.2,
+                confidence: 0.9,
+            }),
+            ..seen(0.0)
+        };
+        assert_eq!(d.step(0.1, Some(&red), 0.1).wait, None);
+        // Driving on at 0.1 m/s without seeing it: 0.35 m on, it would be 0.85 m off.
+        let mut t = 0.1;
+        let mut held_at = None;
+        while t < 5.0 && held_at.is_none() {
+            t += 0.1;
+            if d.step(t, Some(&seen(0.0)), 0.1).wait.is_some() {
+                held_at = Some(t);
+            }
+        }
+        let held_at = held_at.expect("held");
+        assert!((held_at - 3.6).abs() < 0.15, "{held_at}");
+        let green = LaneSighting {
+            light: Some(LightSeen {
+                colour: LightColour::Green,
+                range: 0.85,
+                confidence: 0.9,
+            }),
+            ..seen(0.0)
+        };
+        assert_eq!(d.step(t + 0.1, Some(&green), 0.0).wait, None);
     }
 
     #[test]

@@ -3,6 +3,7 @@
 //! and a barrier down or moving near ahead hold it until green and up. Pure: each step
 //! takes the time and the newest sighting.
 
+mod arm_watch;
 mod config;
 mod driver;
 

@@ -2,9 +2,10 @@
 //! horizon, kept when round (§3.1.3), coloured by the Bayesian classifier (§3.1.2), ranged
 //! from their size.
 
+use super::birdseye::BirdsEye;
 use super::colour_bayes;
 use super::shape::BlobShape;
-use crate::data::LightSeen;
+use crate::data::{LightColour, LightSeen};
 use crate::perception::intrinsics::Intrinsics;
 use opencv::core::{self, Mat, Point, Rect, Scalar, Vector};
 use opencv::imgproc;
@@ -20,9 +21,10 @@ const MIN_AREA: f64 = 10.0;
 pub struct LightFinder {
     /// Rows searched: from the top down to this one (the horizon plus a margin).
     pub bottom: i32,
-    /// The camera, and the lamp's radius in metres, for the range.
-    pub intrinsics: Intrinsics,
+    /// The camera, the lamp's radius in metres and each lamp's height, for the range.
+    pub eye: BirdsEye,
     pub lamp_radius: f64,
+    pub lamp_height: fn(LightColour) -> f64,
 }
 
 impl LightFinder {
@@ -68,7 +70,7 @@ impl LightFinder {
             let Some((colour, confidence)) = colour_bayes::classify(hue) else {
                 continue;
             };
-            let range = self.range(&shape);
+            let range = self.range(&shape, colour);
             let rank = shape.score * confidence;
             if best.as_ref().is_none_or(|b| rank > b.0) {
                 best = Some((
@@ -86,16 +88,21 @@ impl LightFinder {
 }
 
 impl LightFinder {
-    /// Metres from the lens to a lamp seen as `shape`. Pinhole: a disc of radius R at depth
-    /// Z spans r = f R / Z pixels (the contour runs through the rim pixels' centres, half a
-    /// pixel inside the rim); the range is Z times the length of the ray of unit depth.
-    fn range(&self, shape: &BlobShape) -> f64 {
-        let k = &self.intrinsics;
+    /// Metres from the lens to a lamp of `colour` seen as `shape`: where the ray through
+    /// its centre meets that lamp's height (the lamp's row is sharper than its size, which a lamp seen
+    /// off its axis or cut by the picture's edge shrinks), else from its size. Pinhole: a
+    /// disc of radius R at depth Z spans r = f R / Z pixels (the contour runs through the
+    /// rim pixels' centres, half a pixel inside the rim), and the range is Z times the
+    /// length of the ray of unit depth.
+    fn range(&self, shape: &BlobShape, colour: LightColour) -> f64 {
+        let (u, v) = shape.centre;
+        let lens = self.eye.mount().to_robot(nalgebra::Vector3::zeros());
+        if let Some(p) = self.eye.meet_height(u, v, (self.lamp_height)(colour)) {
+            return (p - lens).norm();
+        }
+        let k: &Intrinsics = self.eye.intrinsics();
         let depth = k.fx * self.lamp_radius / (shape.radius + 0.5);
-        let (x, y) = (
-            (shape.centre.0 - k.cx) / k.fx,
-            (shape.centre.1 - k.cy) / k.fy,
-        );
+        let (x, y) = ((u - k.cx) / k.fx, (v - k.cy) / k.fy);
         depth * (1.0 + x * x + y * y).sqrt()
     }
 }

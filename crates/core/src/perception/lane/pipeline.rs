@@ -14,7 +14,7 @@ use crate::clock::Clock;
 use crate::data::{BarrierSeen, LaneSighting, LightSeen};
 use crate::perception::colour::BgrFrame;
 use crate::perception::lane_camera::LaneCameraConfig;
-use crate::sim::track::{ARM_HEIGHT, ARM_THICKNESS, LAMP_RADIUS};
+use crate::sim::track::{ARM_HEIGHT, ARM_THICKNESS, LAMP_RADIUS, lamp_height};
 use opencv::core::Mat;
 use opencv::imgproc;
 use opencv::prelude::*;
@@ -70,8 +70,9 @@ impl LanePipeline {
             masks: MaskMaker::new(cfg, &eye)?,
             lights: LightFinder {
                 bottom: horizon,
-                intrinsics: eye.intrinsics().clone(),
+                eye: eye.clone(),
                 lamp_radius: LAMP_RADIUS,
+                lamp_height: lamp_height,
             },
             arm: ArmFinder {
                 eye: eye.clone(),

@@ -6,6 +6,7 @@ use crate::clock::Clock;
 use crate::data::{BarrierState, LightColour};
 use crate::perception::colour::BgrFrame;
 use crate::perception::lane_camera::LaneCameraConfig;
+use crate::sim::track::lamp_height;
 use nalgebra::Vector3;
 use std::sync::Mutex;
 
@@ -171,13 +172,15 @@ const LAMP: Vector3<f64> = Vector3::new(0.8, -0.3, 0.22);
 #[test]
 fn lit_lamps_are_read_as_red_yellow_and_green_at_their_range() {
     let eye = eye();
-    let range = eye.mount().to_camera(LAMP).norm();
     for (bgr, colour) in [
         ([40, 40, 235], LightColour::Red),
         ([0, 200, 240], LightColour::Yellow),
         ([90, 230, 40], LightColour::Green),
     ] {
-        let frame = lamp(&straight_lane(0.0), LAMP, 0.025, bgr, false);
+        // Each lamp at its own height on the light (red on top).
+        let at = Vector3::new(LAMP.x, LAMP.y, lamp_height(colour));
+        let range = eye.mount().to_camera(at).norm();
+        let frame = lamp(&straight_lane(0.0), at, 0.025, bgr, false);
         let seen = pipeline().detect_objects(&frame).light.unwrap();
         assert_eq!(seen.colour, colour);
         assert!(
@@ -194,16 +197,17 @@ fn lit_lamps_are_read_as_red_yellow_and_green_at_their_range() {
 fn a_lamp_cut_by_the_pictures_edge_is_still_read_and_ranged() {
     let eye = eye();
     // Beside the lane in a bend: the lamp's centre a few pixels inside the right edge.
-    let right = |y: f64| Vector3::new(0.8, y, 0.22);
-    let at = (300..800)
+    let right = |y: f64| Vector3::new(0.8, y, LAMP.z);
+    let beside = (300..800)
         .map(|mm| right(-f64::from(mm) / 1000.0))
         .find(|&p| eye.pixel_of(p).unwrap().0 >= 632.0)
         .unwrap();
-    let range = eye.mount().to_camera(at).norm();
     for (bgr, colour) in [
         ([40, 40, 235], LightColour::Red),
         ([90, 230, 40], LightColour::Green),
     ] {
+        let at = Vector3::new(beside.x, beside.y, lamp_height(colour));
+        let range = eye.mount().to_camera(at).norm();
         let frame = lamp(&straight_lane(0.0), at, 0.025, bgr, false);
         let seen = pipeline().detect_objects(&frame).light.unwrap();
         assert_eq!(seen.colour, colour);
@@ -214,7 +218,7 @@ fn a_lamp_cut_by_the_pictures_edge_is_still_read_and_ranged() {
         );
     }
     // A square cut by the edge is still no lamp.
-    let frame = lamp(&straight_lane(0.0), at, 0.025, [40, 40, 235], true);
+    let frame = lamp(&straight_lane(0.0), beside, 0.025, [40, 40, 235], true);
     assert_eq!(pipeline().detect_objects(&frame).light, None);
 }
 

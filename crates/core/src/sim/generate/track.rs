@@ -237,6 +237,7 @@ fn place_signals(
                 };
                 let gentle_post = gentle(track, radii, post_along, SIGNAL_RADIUS, SIGNAL_REACH);
                 let clear = gentle_post
+                    && (k >= lights || track_check::seen_on_approach(track, at, post))
                     && track_check::post_clear(world, track, what, post_along, post).is_ok();
                 (spaced && clear).then_some((at, side))
             })

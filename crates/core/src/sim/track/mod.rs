@@ -25,6 +25,19 @@ use crate::geometry::Point2;
 
 /// Height of a traffic light's lamps' centre above the floor, metres.
 pub const LAMP_HEIGHT: f64 = 0.22;
+/// Metres between a light's lamps, red above yellow above green.
+pub const LAMP_PITCH: f64 = 0.05;
+
+/// Height of the lamp of `colour` above the floor, metres.
+pub fn lamp_height(colour: crate::data::LightColour) -> f64 {
+    use crate::data::LightColour;
+    match colour {
+        LightColour::Red => LAMP_HEIGHT + LAMP_PITCH,
+        LightColour::Yellow => LAMP_HEIGHT,
+        LightColour::Green => LAMP_HEIGHT - LAMP_PITCH,
+    }
+}
+
 /// Radius of a lit lamp, metres.
 pub const LAMP_RADIUS: f64 = 0.025;
 /// Height of a barrier's arm above the floor at its pivot, metres.

@@ -8,6 +8,7 @@ use crate::data::LightColour;
 use crate::geometry::{Pose2, Segment};
 use crate::sim::track::{
     ARM_HEIGHT, ARM_THICKNESS, Barrier, LAMP_HEIGHT, LAMP_RADIUS, POST, TrackScene, TrafficLight,
+    lamp_height,
 };
 use nalgebra::Vector3;
 
@@ -17,8 +18,6 @@ pub const WALL_HEIGHT: f64 = 0.3;
 pub const BOX_HEIGHT: f64 = 0.15;
 /// A light's housing: depth, width and height, metres.
 const HOUSING: [f64; 3] = [0.04, 0.06, 0.16];
-/// Height between the lamps' centres, metres: red above yellow above green.
-pub const LAMP_PITCH: f64 = 0.05;
 /// Length of each red or white stripe of a barrier's arm, metres.
 const STRIPE: f64 = 0.1;
 /// Sides of the polygon a lamp is drawn as.
@@ -141,17 +140,12 @@ pub fn lamp_hue(colour: LightColour) -> f64 {
 
 /// The centre of `light`'s lamp of `colour`, on its housing's face.
 pub fn lamp_centre(light: &TrafficLight, colour: LightColour) -> Vector3<f64> {
-    let rise = match colour {
-        LightColour::Red => LAMP_PITCH,
-        LightColour::Yellow => 0.0,
-        LightColour::Green => -LAMP_PITCH,
-    };
     let (s, c) = light.facing.sin_cos();
     let front = HOUSING[0] / 2.0 + PROUD;
     Vector3::new(
         light.position.x + c * front,
         light.position.y + s * front,
-        LAMP_HEIGHT + rise,
+        lamp_height(colour),
     )
 }
 

@@ -70,7 +70,9 @@ impl LightFinder {
             let Some((colour, confidence)) = colour_bayes::classify(hue) else {
                 continue;
             };
-            let range = self.range(&shape, colour);
+            let Some(range) = self.range(&shape, colour) else {
+                continue;
+            };
             let rank = shape.score * confidence;
             if best.as_ref().is_none_or(|b| rank > b.0) {
                 best = Some((
@@ -89,21 +91,24 @@ impl LightFinder {
 
 impl LightFinder {
     /// Metres from the lens to a lamp of `colour` seen as `shape`: where the ray through
-    /// its centre meets that lamp's height (the lamp's row is sharper than its size, which a lamp seen
-    /// off its axis or cut by the picture's edge shrinks), else from its size. Pinhole: a
-    /// disc of radius R at depth Z spans r = f R / Z pixels (the contour runs through the
-    /// rim pixels' centres, half a pixel inside the rim), and the range is Z times the
-    /// length of the ray of unit depth.
-    fn range(&self, shape: &BlobShape, colour: LightColour) -> f64 {
+    /// its centre meets that lamp's height (the lamp's row is sharper than its size, which
+    /// a lamp seen off its axis or cut by the picture's edge shrinks). None when the ray
+    /// never reaches that height ahead: a lamp above the lens is seen above the horizon,
+    /// and a red blob below it (a barrier's stripe) is no lamp. A lamp below the lens is
+    /// ranged by its size instead. Pinhole: a disc of radius R at depth Z spans
+    /// r = f R / Z pixels (the contour runs through the rim pixels' centres, half a pixel
+    /// inside the rim), and the range is Z times the length of the ray of unit depth.
+    fn range(&self, shape: &BlobShape, colour: LightColour) -> Option<f64> {
         let (u, v) = shape.centre;
         let lens = self.eye.mount().to_robot(nalgebra::Vector3::zeros());
-        if let Some(p) = self.eye.meet_height(u, v, (self.lamp_height)(colour)) {
-            return (p - lens).norm();
+        let height = (self.lamp_height)(colour);
+        if height > lens.z {
+            return (self.eye.meet_height(u, v, height)).map(|p| (p - lens).norm());
         }
         let k: &Intrinsics = self.eye.intrinsics();
         let depth = k.fx * self.lamp_radius / (shape.radius + 0.5);
         let (x, y) = ((u - k.cx) / k.fx, (v - k.cy) / k.fy);
-        depth * (1.0 + x * x + y * y).sqrt()
+        Some(depth * (1.0 + x * x + y * y).sqrt())
     }
 }
 
@@ -111,6 +116,10 @@ impl LightFinder {
 const CUT_VISIBLE: f64 = 0.3;
 /// Most RMS distance of a cut lamp's rim from its fitted circle, as a share of its radius.
 const CUT_ROUNDNESS: f64 = 0.05;
+/// Least radius, pixels, and rim points off the edge of a cut lamp: a smaller blob's
+/// outline is too coarse to tell a disc from the end of a barrier's stripe.
+const CUT_RADIUS_PX: f64 = 6.0;
+const CUT_RIM_POINTS: usize = 16;
 /// Least arc of its rim, degrees, a cut lamp must show.
 const CUT_ARC_DEG: f64 = 150.0;
 
@@ -126,7 +135,7 @@ fn cut_lamp(contour: &Vector<Point>, cols: i32, rows: i32, area: f64) -> Option<
         .filter(|p| !on_edge(p))
         .map(|p| (f64::from(p.x), f64::from(p.y)))
         .collect();
-    if rim.len() < 8 {
+    if rim.len() < CUT_RIM_POINTS {
         return None;
     }
     // x^2 + y^2 + D x + E y + F = 0 by least squares: centre (-D/2, -E/2).
@@ -140,7 +149,7 @@ fn cut_lamp(contour: &Vector<Point>, cols: i32, rows: i32, area: f64) -> Option<
     let p = normal.lu().solve(&rhs)?;
     let centre = (-p[0] / 2.0, -p[1] / 2.0);
     let radius = (centre.0 * centre.0 + centre.1 * centre.1 - p[2]).sqrt();
-    if !radius.is_finite() || !(2.0..=80.0).contains(&radius) {
+    if !radius.is_finite() || !(CUT_RADIUS_PX..=80.0).contains(&radius) {
         return None;
     }
     let miss = rim

@@ -223,6 +223,14 @@ fn a_lamp_cut_by_the_pictures_edge_is_still_read_and_ranged() {
 }
 
 #[test]
+fn a_red_disc_lower_than_the_lamps_hang_is_no_lamp() {
+    // Round and red, but at a barrier arm's height: below the horizon, where no lamp is.
+    let low = Vector3::new(LAMP.x, LAMP.y, 0.1);
+    let frame = lamp(&straight_lane(0.0), low, 0.025, [40, 40, 235], false);
+    assert_eq!(pipeline().detect_objects(&frame).light, None);
+}
+
+#[test]
 fn a_red_square_is_not_a_lamp() {
     let frame = lamp(&straight_lane(0.0), LAMP, 0.025, [40, 40, 235], true);
     assert_eq!(pipeline().detect_objects(&frame).light, None);

@@ -72,7 +72,7 @@ impl LanePipeline {
                 bottom: horizon,
                 eye: eye.clone(),
                 lamp_radius: LAMP_RADIUS,
-                lamp_height: lamp_height,
+                lamp_height,
             },
             arm: ArmFinder {
                 eye: eye.clone(),

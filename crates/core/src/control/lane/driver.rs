@@ -150,13 +150,11 @@ impl LaneDriver {
         {
             self.hold = Some(Wait::Light(colour));
         }
-        let last_arm = std::mem::replace(&mut self.last_arm, s.barrier.map(|b| b.angle_deg.abs()));
+        let angle = s.barrier.map(|b| b.angle_deg.abs());
+        let last_arm = std::mem::replace(&mut self.last_arm, angle);
         let waiting = matches!(self.hold, Some(Wait::Barrier(_)));
         let closed_ahead = waiting && self.hold != Some(Wait::Barrier(BarrierState::Up));
-        if self
-            .arm
-            .opening(s.barrier.map(|b| b.angle_deg.abs()), closed_ahead)
-        {
+        if self.arm.opening(angle, closed_ahead) {
             // Seen rising from where it lay while the robot waited, and now past RISEN_DEG
             // or gone from the view above it: the opening has begun, and the arm clears the
             // robot's height before the robot reaches it.
@@ -184,11 +182,12 @@ impl LaneDriver {
                 // closes the way again (the filter's state lags a rising arm).
                 let closing = b.angle_deg.abs() <= DOWN_DEG
                     || last_arm.is_some_and(|a| b.angle_deg.abs() < a - 1.0);
-                if b.state != BarrierState::Up && (!self.opened || closing) {
-                    self.hold = Some(Wait::Barrier(b.state));
-                    self.opened = false;
-                } else if b.state != BarrierState::Up {
-                    // The rise it saw begin: carry on.
+                if b.state != BarrierState::Up {
+                    // Otherwise the rise it saw begin: carry on.
+                    if !self.opened || closing {
+                        self.hold = Some(Wait::Barrier(b.state));
+                        self.opened = false;
+                    }
                 } else if closed_ahead {
                     // Seen rising while waiting: this opening is the robot's to pass.
                     self.hold = None;
@@ -356,9 +355,9 @@ mod tests {
         );
     }
 
-    #[test]
-    fn an_arm_seen_rising_out_of_the_picture_is_an_opening_and_one_lowering_is_not() {
-        let arm = |angle_deg: f64| LaneSighting {
+    /// A centred lane with an arm at `angle_deg` 0.5 m ahead, in the state of its angle.
+    fn arm(angle_deg: f64) -> LaneSighting {
+        LaneSighting {
             barrier: Some(BarrierSeen {
                 state: BarrierState::of_angle(angle_deg),
                 angle_deg,
@@ -366,7 +365,11 @@ mod tests {
                 belief: [1.0, 0.0, 0.0],
             }),
             ..seen(0.0)
-        };
+        }
+    }
+
+    #[test]
+    fn an_arm_seen_rising_out_of_the_picture_is_an_opening_and_one_lowering_is_not() {
         let mut d = LaneDriver::new(LaneDriveConfig::default());
         d.reset(0.0);
         for (i, a) in [2.0, 3.0, 7.0, 12.0, 14.0].into_iter().enumerate() {
@@ -387,15 +390,6 @@ mod tests {
 
     #[test]
     fn once_an_opening_is_seen_the_rising_arm_does_not_stop_the_robot_but_a_lowering_one_does() {
-        let arm = |angle_deg: f64| LaneSighting {
-            barrier: Some(BarrierSeen {
-                state: BarrierState::of_angle(angle_deg),
-                angle_deg,
-                range: 0.5,
-                belief: [0.0, 1.0, 0.0],
-            }),
-            ..seen(0.0)
-        };
         let mut d = LaneDriver::new(LaneDriveConfig::default());
         d.reset(0.0);
         for (i, a) in [0.0, 10.0, 30.0, 46.0].into_iter().enumerate() {

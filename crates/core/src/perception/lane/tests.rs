@@ -3,7 +3,7 @@
 use super::test_frames::*;
 use super::{LanePipeline, LaneVisionConfig};
 use crate::clock::Clock;
-use crate::data::{BarrierState, LightColour};
+use crate::data::{BarrierState, LightColour, LightSeen};
 use crate::perception::colour::BgrFrame;
 use crate::perception::lane_camera::LaneCameraConfig;
 use crate::sim::track::lamp_height;
@@ -169,25 +169,30 @@ fn a_hard_shadow_over_most_of_the_floor_leaves_the_lines_readable() {
 /// A lamp 0.8 m ahead, 0.3 m right, at the lamp height.
 const LAMP: Vector3<f64> = Vector3::new(0.8, -0.3, 0.22);
 
+/// The light read from a lamp of `bgr` at `(x, y)` ahead, at the height of `colour`'s lamp
+/// (red on top), checked to be `colour` at its range within `share` of it.
+fn lamp_read((x, y): (f64, f64), bgr: [u8; 3], colour: LightColour, share: f64) -> LightSeen {
+    let at = Vector3::new(x, y, lamp_height(colour));
+    let range = eye().mount().to_camera(at).norm();
+    let frame = lamp(&straight_lane(0.0), at, 0.025, bgr, false);
+    let seen = pipeline().detect_objects(&frame).light.unwrap();
+    assert_eq!(seen.colour, colour);
+    assert!(
+        (seen.range - range).abs() < share * range,
+        "{} vs {range}",
+        seen.range
+    );
+    seen
+}
+
 #[test]
 fn lit_lamps_are_read_as_red_yellow_and_green_at_their_range() {
-    let eye = eye();
     for (bgr, colour) in [
         ([40, 40, 235], LightColour::Red),
         ([0, 200, 240], LightColour::Yellow),
         ([90, 230, 40], LightColour::Green),
     ] {
-        // Each lamp at its own height on the light (red on top).
-        let at = Vector3::new(LAMP.x, LAMP.y, lamp_height(colour));
-        let range = eye.mount().to_camera(at).norm();
-        let frame = lamp(&straight_lane(0.0), at, 0.025, bgr, false);
-        let seen = pipeline().detect_objects(&frame).light.unwrap();
-        assert_eq!(seen.colour, colour);
-        assert!(
-            (seen.range - range).abs() < 0.1 * range,
-            "{} vs {range}",
-            seen.range
-        );
+        let seen = lamp_read((LAMP.x, LAMP.y), bgr, colour, 0.1);
         // The winning class of four, yellow's prior the smallest (colour_bayes::PRIORS).
         assert!(seen.confidence > 0.5, "{seen:?}");
     }
@@ -206,16 +211,7 @@ fn a_lamp_cut_by_the_pictures_edge_is_still_read_and_ranged() {
         ([40, 40, 235], LightColour::Red),
         ([90, 230, 40], LightColour::Green),
     ] {
-        let at = Vector3::new(beside.x, beside.y, lamp_height(colour));
-        let range = eye.mount().to_camera(at).norm();
-        let frame = lamp(&straight_lane(0.0), at, 0.025, bgr, false);
-        let seen = pipeline().detect_objects(&frame).light.unwrap();
-        assert_eq!(seen.colour, colour);
-        assert!(
-            (seen.range - range).abs() < 0.15 * range,
-            "{} vs {range}",
-            seen.range
-        );
+        lamp_read((beside.x, beside.y), bgr, colour, 0.15);
     }
     // A square cut by the edge is still no lamp.
     let frame = lamp(&straight_lane(0.0), beside, 0.025, [40, 40, 235], true);

@@ -93,6 +93,11 @@ impl LaneDriver {
         self.seen_at = Some(t);
         self.hold = None;
         self.opened = false;
+        // What was seen before the pause is not ahead any more: the robot may have moved.
+        self.light_ahead = None;
+        self.arm = ArmWatch::default();
+        self.last_arm = None;
+        self.last_t = None;
     }
 
     /// The step at `t` from `fresh`, a sighting taken since the last step (none: no new
@@ -436,6 +441,27 @@ mod tests {
             ..seen(0.0)
         };
         assert_eq!(d.step(t + 0.1, Some(&green), 0.0).wait, None);
+    }
+
+    #[test]
+    fn a_light_remembered_before_lane_mode_is_left_does_not_stop_the_robot_after() {
+        let mut d = LaneDriver::new(LaneDriveConfig::default());
+        d.reset(0.0);
+        let red = LaneSighting {
+            light: Some(LightSeen {
+                colour: LightColour::Red,
+                range: 1.2,
+                confidence: 0.9,
+            }),
+            ..seen(0.0)
+        };
+        d.step(0.1, Some(&red), 0.1);
+        // Lane mode entered anew, elsewhere: driving on 0.5 m sees no light to stop for.
+        d.reset(10.0);
+        for k in 1..=50 {
+            let s = d.step(10.0 + 0.1 * f64::from(k), Some(&seen(0.0)), 0.1);
+            assert_eq!(s.wait, None, "{k}");
+        }
     }
 
     #[test]

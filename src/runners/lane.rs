@@ -182,7 +182,11 @@ pub fn run(
         }
         if now_wait != wait {
             match now_wait {
-                Some(Wait::Light(_)) => holds.light_stops += 1,
+                Some(Wait::Light(_) | Wait::LookingForLight)
+                    if !matches!(wait, Some(Wait::Light(_) | Wait::LookingForLight)) =>
+                {
+                    holds.light_stops += 1
+                }
                 Some(Wait::Barrier(_)) if !matches!(wait, Some(Wait::Barrier(_))) => {
                     holds.barrier_stops += 1
                 }

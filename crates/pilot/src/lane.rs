@@ -94,11 +94,13 @@ impl Pilot {
         };
         let follow = Proposal::new(Behaviour::LaneFollowing, step.twist, reason);
         let hold = match step.wait {
-            Some(w @ (Wait::Light(_) | Wait::Barrier(_))) => Some(Proposal::new(
-                Behaviour::TrafficCompliance,
-                navdeck_core::geometry::Twist::ZERO,
-                w.text(),
-            )),
+            Some(w @ (Wait::Light(_) | Wait::LookingForLight | Wait::Barrier(_))) => {
+                Some(Proposal::new(
+                    Behaviour::TrafficCompliance,
+                    navdeck_core::geometry::Twist::ZERO,
+                    w.text(),
+                ))
+            }
             _ => None,
         };
         (follow, hold)

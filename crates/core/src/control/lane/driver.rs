@@ -2,6 +2,7 @@
 
 use super::LaneDriveConfig;
 use super::arm_watch::ArmWatch;
+use super::light_watch::{LightCall, LightWatch};
 use crate::data::{BarrierState, LaneSighting, LightColour};
 use crate::geometry::Twist;
 
@@ -10,6 +11,8 @@ use crate::geometry::Twist;
 pub enum Wait {
     /// A red or yellow light ahead: go at green.
     Light(LightColour),
+    /// At the stop line with the light's green seen too long ago: look again.
+    LookingForLight,
     /// A barrier down or moving ahead: go when it is up.
     Barrier(BarrierState),
     /// No lane line seen for `lost_after` seconds.
@@ -21,6 +24,7 @@ impl Wait {
     pub fn text(self) -> String {
         match self {
             Wait::Light(c) => format!("waiting at a {} light", c.label()),
+            Wait::LookingForLight => "at the stop line: looking for the light again".into(),
             Wait::Barrier(BarrierState::Up) => "waiting for the barrier's next opening".into(),
             Wait::Barrier(s) => format!("waiting at a barrier ({})", s.label()),
             Wait::LaneLost => "lane lost: stopped".into(),
@@ -44,7 +48,7 @@ pub struct LaneDriver {
     last_error: Option<f64>,
     /// When a lane line was last seen.
     seen_at: Option<f64>,
-    /// The hold for a light or barrier, kept until it clears.
+    /// The hold for a barrier, kept until it clears.
     hold: Option<Wait>,
     /// Whether the robot saw the barrier ahead open while it waited, and may pass.
     opened: bool,
@@ -55,7 +59,7 @@ pub struct LaneDriver {
     /// The arm's angle in the last frame that showed one, degrees above level.
     last_arm: Option<f64>,
     /// The light ahead as last seen, its range since shortened by the distance driven.
-    light_ahead: Option<(LightColour, f64)>,
+    light: LightWatch,
     /// When the last step was taken.
     last_t: Option<f64>,
 }
@@ -78,7 +82,7 @@ impl LaneDriver {
             unseen: 0,
             arm: ArmWatch::default(),
             last_arm: None,
-            light_ahead: None,
+            light: LightWatch::default(),
             last_t: None,
         }
     }
@@ -94,7 +98,7 @@ impl LaneDriver {
         self.hold = None;
         self.opened = false;
         // What was seen before the pause is not ahead any more: the robot may have moved.
-        self.light_ahead = None;
+        self.light = LightWatch::default();
         self.arm = ArmWatch::default();
         self.last_arm = None;
         self.last_t = None;
@@ -105,15 +109,22 @@ impl LaneDriver {
     pub fn step(&mut self, t: f64, fresh: Option<&LaneSighting>, speed: f64) -> LaneStep {
         let dt = self.last_t.map_or(0.0, |last| (t - last).max(0.0));
         self.last_t = Some(t);
-        if let Some((_, range)) = &mut self.light_ahead {
-            *range -= speed.max(0.0) * dt;
-        }
-        if self.light_ahead.is_some_and(|(_, range)| range < 0.0) {
-            self.light_ahead = None;
-        }
+        self.light.drive(speed * dt);
         if let Some(s) = fresh {
+            if let Some(light) = &s.light {
+                let reach = LIGHT_AHEAD * self.cfg.light_stop_range;
+                self.light.see(t, light, reach);
+            }
             self.comply(s);
         }
+        // A red or yellow seen near, or seen farther off and then lost from view (a lamp
+        // seen only now and then, or leaving the picture in a bend), stops the robot where
+        // it would have stopped had it stayed in view.
+        let light_wait = match self.light.call(t, self.cfg.light_stop_range) {
+            LightCall::Go => None,
+            LightCall::Stop(colour) => Some(Wait::Light(colour)),
+            LightCall::Look => Some(Wait::LookingForLight),
+        };
         let twist = match fresh.and_then(|s| s.error_px.map(|e| (e, s.curvature))) {
             Some((e, curvature)) => {
                 self.seen_at = Some(t);
@@ -130,31 +141,13 @@ impl LaneDriver {
             },
         };
         let lost = self.seen_at.is_none_or(|s| t - s >= self.cfg.lost_after);
-        let wait = self.hold.or(lost.then_some(Wait::LaneLost));
+        let wait = (light_wait.or(self.hold)).or(lost.then_some(Wait::LaneLost));
         LaneStep { twist, wait }
     }
 
-    /// Holds for a stopping light or a closed barrier in range; clears the hold on green
-    /// or up (seed 000 §3's traffic compliance).
+    /// Holds for a closed barrier in range; clears the hold when it opens (seed 000 §3's
+    /// traffic compliance).
     fn comply(&mut self, s: &LaneSighting) {
-        if let Some(light) = s.light {
-            // A light farther off than twice the stopping range may be another stretch's.
-            if light.range <= LIGHT_AHEAD * self.cfg.light_stop_range {
-                self.light_ahead = Some((light.colour, light.range));
-            }
-            if matches!(self.hold, Some(Wait::Light(_))) && !light.colour.stops() {
-                self.hold = None;
-            }
-        }
-        // A red or yellow seen farther off, then lost from view (a lamp seen only now and
-        // then, or leaving the picture in a bend), still stops the robot where it would
-        // have stopped had it stayed in view.
-        if let Some((colour, range)) = self.light_ahead
-            && colour.stops()
-            && range <= self.cfg.light_stop_range
-        {
-            self.hold = Some(Wait::Light(colour));
-        }
         let angle = s.barrier.map(|b| b.angle_deg.abs());
         let last_arm = std::mem::replace(&mut self.last_arm, angle);
         let waiting = matches!(self.hold, Some(Wait::Barrier(_)));
@@ -283,30 +276,35 @@ mod tests {
         assert!((s.twist.angular - 0.2).abs() < 1e-9, "{:?}", s.twist);
     }
 
-    #[test]
-    fn a_red_light_near_holds_until_green() {
-        let mut d = LaneDriver::new(LaneDriveConfig::default());
-        d.reset(0.0);
-        let light = |colour, range| LaneSighting {
+    /// A centred lane with a lamp of `colour` `range` metres off.
+    fn lamp(colour: LightColour, range: f64) -> LaneSighting {
+        LaneSighting {
             light: Some(LightSeen {
                 colour,
                 range,
                 confidence: 0.9,
             }),
             ..seen(0.0)
-        };
+        }
+    }
+
+    #[test]
+    fn a_red_light_near_holds_until_a_green_seen_twice() {
+        let mut d = LaneDriver::new(LaneDriveConfig::default());
+        d.reset(0.0);
         assert_eq!(
-            d.step(0.1, Some(&light(LightColour::Red, 1.5)), 0.1).wait,
+            d.step(0.1, Some(&lamp(LightColour::Red, 0.8)), 0.1).wait,
             None
         );
-        let near = d.step(0.2, Some(&light(LightColour::Red, 0.7)), 0.1);
+        // The second frame that agrees on the lamp (1 cm nearer): held.
+        let near = d.step(0.2, Some(&lamp(LightColour::Red, 0.79)), 0.1);
         assert_eq!(near.wait, Some(Wait::Light(LightColour::Red)));
-        // Nothing seen in a frame does not lift the hold.
+        // Nothing seen in a frame does not lift the hold, nor does one green frame.
         assert!(d.step(0.3, Some(&seen(0.0)), 0.0).wait.is_some());
-        assert_eq!(
-            d.step(0.4, Some(&light(LightColour::Green, 0.7)), 0.0).wait,
-            None
-        );
+        let once = d.step(0.4, Some(&lamp(LightColour::Green, 0.78)), 0.0);
+        assert!(once.wait.is_some());
+        let twice = d.step(0.5, Some(&lamp(LightColour::Green, 0.78)), 0.0);
+        assert_eq!(twice.wait, None);
     }
 
     #[test]
@@ -412,17 +410,16 @@ mod tests {
     fn a_red_light_seen_far_off_and_then_lost_stops_the_robot_where_it_would_have() {
         let mut d = LaneDriver::new(LaneDriveConfig::default());
         d.reset(0.0);
-        let red = LaneSighting {
-            light: Some(LightSeen {
-                colour: LightColour::Red,
-                range: 1.2,
-                confidence: 0.9,
-            }),
-            ..seen(0.0)
-        };
-        assert_eq!(d.step(0.1, Some(&red), 0.1).wait, None);
-        // Driving on at 0.1 m/s without seeing it: 0.35 m on, it would be 0.85 m off.
-        let mut t = 0.1;
+        assert_eq!(
+            d.step(0.1, Some(&lamp(LightColour::Red, 1.2)), 0.1).wait,
+            None
+        );
+        assert_eq!(
+            d.step(0.2, Some(&lamp(LightColour::Red, 1.19)), 0.1).wait,
+            None
+        );
+        // Driving on at 0.1 m/s without seeing it: 0.34 m on, it would be 0.85 m off.
+        let mut t = 0.2;
         let mut held_at = None;
         while t < 5.0 && held_at.is_none() {
             t += 0.1;
@@ -432,30 +429,39 @@ mod tests {
         }
         let held_at = held_at.expect("held");
         assert!((held_at - 3.6).abs() < 0.15, "{held_at}");
-        let green = LaneSighting {
-            light: Some(LightSeen {
-                colour: LightColour::Green,
-                range: 0.85,
-                confidence: 0.9,
-            }),
-            ..seen(0.0)
-        };
-        assert_eq!(d.step(t + 0.1, Some(&green), 0.0).wait, None);
+        for k in 1..=2 {
+            let green = lamp(LightColour::Green, 0.85);
+            let s = d.step(t + 0.1 * f64::from(k), Some(&green), 0.0);
+            assert_eq!(s.wait.is_none(), k == 2, "{k}: {s:?}");
+        }
+    }
+
+    #[test]
+    fn a_green_seen_far_off_is_looked_at_again_before_the_stop_line() {
+        let mut d = LaneDriver::new(LaneDriveConfig::default());
+        d.reset(0.0);
+        d.step(0.1, Some(&lamp(LightColour::Green, 1.6)), 0.1);
+        d.step(0.2, Some(&lamp(LightColour::Green, 1.59)), 0.1);
+        // Out of view from there on: at the stop point the green is 7 s old.
+        let mut t = 0.2;
+        let mut looked = None;
+        while t < 10.0 && looked.is_none() {
+            t += 0.1;
+            looked = d.step(t, Some(&seen(0.0)), 0.1).wait;
+        }
+        assert_eq!(looked, Some(Wait::LookingForLight));
+        // Seen red now: held; the light's colour decides.
+        d.step(t + 0.1, Some(&lamp(LightColour::Red, 0.84)), 0.0);
+        let s = d.step(t + 0.2, Some(&lamp(LightColour::Red, 0.84)), 0.0);
+        assert_eq!(s.wait, Some(Wait::Light(LightColour::Red)));
     }
 
     #[test]
     fn a_light_remembered_before_lane_mode_is_left_does_not_stop_the_robot_after() {
         let mut d = LaneDriver::new(LaneDriveConfig::default());
         d.reset(0.0);
-        let red = LaneSighting {
-            light: Some(LightSeen {
-                colour: LightColour::Red,
-                range: 1.2,
-                confidence: 0.9,
-            }),
-            ..seen(0.0)
-        };
-        d.step(0.1, Some(&red), 0.1);
+        d.step(0.1, Some(&lamp(LightColour::Red, 1.2)), 0.1);
+        d.step(0.2, Some(&lamp(LightColour::Red, 1.19)), 0.1);
         // Lane mode entered anew, elsewhere: driving on 0.5 m sees no light to stop for.
         d.reset(10.0);
         for k in 1..=50 {

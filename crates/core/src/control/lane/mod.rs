@@ -6,6 +6,7 @@
 mod arm_watch;
 mod config;
 mod driver;
+mod light_watch;
 
 pub use config::{LaneConfig, LaneDriveConfig};
 pub use driver::{LaneDriver, LaneStep, Wait};

@@ -28,7 +28,7 @@ pub struct LightFinder {
 }
 
 impl LightFinder {
-    /// The most probable lit lamp in `hsv` (the whole frame in HSV), if any.
+    /// The nearest lit lamp in `hsv` (the whole frame in HSV), if any.
     pub fn find(&self, hsv: &Mat) -> opencv::Result<Option<LightSeen>> {
         let rows = self.bottom.clamp(0, hsv.rows());
         if rows == 0 {
@@ -73,10 +73,11 @@ impl LightFinder {
             let Some(range) = self.range(&shape, colour) else {
                 continue;
             };
-            let rank = shape.score * confidence;
-            if best.as_ref().is_none_or(|b| rank > b.0) {
+            // The nearest lamp is the light ahead: a farther one (the next light down
+            // the track, seen past this one) does not govern the robot yet.
+            if best.as_ref().is_none_or(|b| range < b.0) {
                 best = Some((
-                    rank,
+                    range,
                     LightSeen {
                         colour,
                         range,

@@ -219,6 +219,21 @@ fn a_lamp_cut_by_the_pictures_edge_is_still_read_and_ranged() {
 }
 
 #[test]
+fn of_two_lights_in_view_the_nearer_is_read() {
+    // This stretch's light turned yellow 0.9 m off; the next one shows red 2.1 m off.
+    let near = Vector3::new(0.8, -0.35, lamp_height(LightColour::Yellow));
+    let far = Vector3::new(2.0, 0.4, lamp_height(LightColour::Red));
+    let frame = lamp(&straight_lane(0.0), far, 0.025, [40, 40, 235], false);
+    let frame = lamp(&frame, near, 0.025, [0, 200, 240], false);
+    let seen = pipeline().detect_objects(&frame).light.unwrap();
+    assert_eq!(seen.colour, LightColour::Yellow, "{seen:?}");
+    assert!(
+        (seen.range - eye().mount().to_camera(near).norm()).abs() < 0.1,
+        "{seen:?}"
+    );
+}
+
+#[test]
 fn a_red_disc_lower_than_the_lamps_hang_is_no_lamp() {
     // Round and red, but at a barrier arm's height: below the horizon, where no lamp is.
     let low = Vector3::new(LAMP.x, LAMP.y, 0.1);

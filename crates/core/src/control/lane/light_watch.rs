@@ -1,0 +1,180 @@
+//! The traffic light ahead as the robot approaches it: a colour believed only once two
+//! frames agree on it and on where the lamp stands, its range carried on by the distance
+//! driven while it is out of view, and the stop line passed only on a green seen lately.
+
+use crate::data::{LightColour, LightSeen};
+
+/// Most seconds between the two sightings that confirm a light.
+const CONFIRM_GAP: f64 = 1.0;
+/// How far apart, metres plus a share of the range, two sightings of one lamp may put it
+/// once the distance driven between them is taken off: a lamp's range from its row is
+/// good to a few per cent, and a red blob whose range jumps (a barrier's stripe cut by the
+/// picture's edge) is not a lamp standing still.
+const CONFIRM_METRES: f64 = 0.05;
+const CONFIRM_SHARE: f64 = 0.05;
+/// A green seen longer ago than this, seconds, is stale at the stop point: the light may
+/// have turned (a yellow lasts a few seconds), so the robot stops and looks again.
+pub const GREEN_FRESH: f64 = 1.0;
+
+/// One lamp as seen at `seen_at`, its range since shortened by the distance driven.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Sighting {
+    colour: LightColour,
+    range: f64,
+    seen_at: f64,
+}
+
+/// What the light ahead asks of the robot now.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(super) enum LightCall {
+    /// Nothing: no light near, or a green passed on.
+    Go,
+    /// A red or yellow at the stop point.
+    Stop(LightColour),
+    /// At the stop point with only a stale green: look again before crossing.
+    Look,
+}
+
+/// See the module comment.
+#[derive(Clone, Debug, Default)]
+pub(super) struct LightWatch {
+    /// A sighting not yet confirmed by a second one.
+    pending: Option<Sighting>,
+    /// The confirmed light ahead.
+    ahead: Option<Sighting>,
+    /// Past the stop point on a fresh green: the light is no longer looked for.
+    committed: bool,
+}
+
+impl LightWatch {
+    /// The robot drove `metres` since the last step: every lamp is that much nearer, and
+    /// one driven past is forgotten.
+    pub(super) fn drive(&mut self, metres: f64) {
+        for s in [&mut self.pending, &mut self.ahead] {
+            if let Some(seen) = s {
+                seen.range -= metres.max(0.0);
+            }
+            if s.is_some_and(|seen| seen.range < 0.0) {
+                *s = None;
+            }
+        }
+        if self.ahead.is_none() {
+            self.committed = false;
+        }
+    }
+
+    /// Takes a lamp seen at `t`; a light farther off than `reach` may be another
+    /// stretch's and is not taken.
+    pub(super) fn see(&mut self, t: f64, light: &LightSeen, reach: f64) {
+        if light.range > reach {
+            return;
+        }
+        let now = Sighting {
+            colour: light.colour,
+            range: light.range,
+            seen_at: t,
+        };
+        let agrees = |before: &Sighting| {
+            before.colour == now.colour
+                && t - before.seen_at <= CONFIRM_GAP
+                && (now.range - before.range).abs() <= CONFIRM_METRES + CONFIRM_SHARE * now.range
+        };
+        // A confirmed light seen again as it was needs no second look.
+        if self.pending.as_ref().is_some_and(agrees) || self.ahead.as_ref().is_some_and(agrees) {
+            if self.ahead.is_some_and(|a| a.colour != now.colour) {
+                self.committed = false;
+            }
+            self.ahead = Some(now);
+        }
+        self.pending = Some(now);
+    }
+
+    /// What the light asks of the robot at `t` with the stop point `stop_range` from the
+    /// lamp.
+    pub(super) fn call(&mut self, t: f64, stop_range: f64) -> LightCall {
+        let Some(ahead) = self.ahead.filter(|a| a.range <= stop_range) else {
+            return LightCall::Go;
+        };
+        if ahead.colour.stops() {
+            return LightCall::Stop(ahead.colour);
+        }
+        if self.committed || t - ahead.seen_at <= GREEN_FRESH {
+            self.committed = true;
+            return LightCall::Go;
+        }
+        LightCall::Look
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn lamp(colour: LightColour, range: f64) -> LightSeen {
+        LightSeen {
+            colour,
+            range,
+            confidence: 0.9,
+        }
+    }
+
+    #[test]
+    fn one_frame_is_not_believed_and_two_that_agree_are() {
+        let mut w = LightWatch::default();
+        w.see(0.0, &lamp(LightColour::Red, 0.8), 1.7);
+        assert_eq!(w.call(0.0, 0.85), LightCall::Go);
+        w.drive(0.01);
+        w.see(0.1, &lamp(LightColour::Red, 0.8), 1.7);
+        assert_eq!(w.call(0.1, 0.85), LightCall::Stop(LightColour::Red));
+    }
+
+    #[test]
+    fn a_red_blob_whose_range_jumps_is_not_a_lamp() {
+        let mut w = LightWatch::default();
+        // A barrier's stripe leaving the picture: 1.23 m, 1.39, 1.59, 1.89 while the
+        // robot creeps 1 cm a frame.
+        for (k, r) in [1.23, 1.39, 1.59, 1.89].into_iter().enumerate() {
+            w.drive(0.01);
+            w.see(0.1 * k as f64, &lamp(LightColour::Red, r), 1.7);
+        }
+        w.drive(1.5);
+        assert_eq!(w.call(0.5, 0.85), LightCall::Go);
+    }
+
+    #[test]
+    fn a_green_seen_far_off_is_looked_at_again_at_the_stop_point_and_then_passed() {
+        let mut w = LightWatch::default();
+        w.see(0.0, &lamp(LightColour::Green, 1.6), 1.7);
+        w.drive(0.01);
+        w.see(0.1, &lamp(LightColour::Green, 1.59), 1.7);
+        // Out of view for 7.5 s at 0.1 m/s: at the stop point the green is stale.
+        let mut t = 0.1;
+        while t < 7.7 {
+            t += 0.1;
+            w.drive(0.01);
+        }
+        assert_eq!(w.call(t, 0.85), LightCall::Look);
+        // One frame of it is not yet believed; two are.
+        w.see(t + 0.1, &lamp(LightColour::Green, 0.83), 1.7);
+        assert_eq!(w.call(t + 0.1, 0.85), LightCall::Look);
+        w.see(t + 0.2, &lamp(LightColour::Green, 0.83), 1.7);
+        assert_eq!(w.call(t + 0.2, 0.85), LightCall::Go);
+        // Past the stop point on that green, losing the lamp from view stops nothing.
+        w.drive(0.3);
+        assert_eq!(w.call(t + 3.0, 0.85), LightCall::Go);
+        // The same light seen red before the line is still obeyed.
+        w.see(t + 3.1, &lamp(LightColour::Red, 0.5), 1.7);
+        w.drive(0.0);
+        w.see(t + 3.2, &lamp(LightColour::Red, 0.5), 1.7);
+        assert_eq!(w.call(t + 3.2, 0.85), LightCall::Stop(LightColour::Red));
+    }
+
+    #[test]
+    fn a_light_driven_past_is_forgotten() {
+        let mut w = LightWatch::default();
+        w.see(0.0, &lamp(LightColour::Red, 1.0), 1.7);
+        w.see(0.1, &lamp(LightColour::Red, 1.0), 1.7);
+        w.drive(1.1);
+        assert_eq!(w.call(0.2, 0.85), LightCall::Go);
+    }
+}

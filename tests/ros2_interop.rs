@@ -16,6 +16,9 @@ mod common {
     pub use scratch::*;
 }
 mod cyclone_peer;
+#[cfg(feature = "vision")]
+#[path = "interop_lane_camera.rs"]
+mod lane_camera;
 mod python_support;
 
 use common::scratch;

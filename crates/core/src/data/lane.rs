@@ -66,8 +66,11 @@ impl BarrierState {
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct LightSeen {
     pub colour: LightColour,
-    /// Distance from the camera, metres, from the lamp's size in the image.
+    /// Distance from the camera, metres.
     pub range: f64,
+    /// How far ahead of the camera along the robot's heading, metres: the lamp stands
+    /// `range` off, this much of it ahead and the rest aside.
+    pub ahead: f64,
     /// Posterior probability of `colour` (seed 000 §3.1.2's classifier).
     pub confidence: f64,
 }

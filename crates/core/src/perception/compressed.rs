@@ -1,5 +1,5 @@
 //! sensor_msgs/CompressedImage (feature `vision`): a JPEG or PNG camera frame, as a
-//! TurtleBot3's camera publishes it on `.../compressed`, decoded by OpenCV.
+//! TurtleBot3's camera publishes it on `.../compressed`, decoded (and encoded) by OpenCV.
 
 use super::colour::{BgrFrame, CameraImage};
 
@@ -34,6 +34,22 @@ pub fn decode_compressed(format: &str, bytes: &[u8]) -> Result<CameraImage, Stri
     }))
 }
 
+/// `frame` as JPEG bytes of `quality` (1-100), as a camera driver compresses its frames.
+pub fn encode_jpeg(frame: &BgrFrame, quality: i32) -> Result<Vec<u8>, String> {
+    use opencv::prelude::*;
+    let fail = |e: opencv::Error| format!("JPEG of a {}x{} frame: {e}", frame.width, frame.height);
+    let rows = opencv::core::Mat::from_slice(&frame.data).map_err(fail)?;
+    let image = rows.reshape(3, frame.height as i32).map_err(fail)?;
+    let mut out = opencv::core::Vector::<u8>::new();
+    let params = [
+        opencv::imgcodecs::IMWRITE_JPEG_QUALITY,
+        quality.clamp(1, 100),
+    ];
+    let params = opencv::core::Vector::from_slice(&params);
+    opencv::imgcodecs::imencode(".jpg", &image, &mut out, &params).map_err(fail)?;
+    Ok(out.to_vec())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -54,5 +70,35 @@ mod tests {
         assert_eq!((f.at(0, 0), f.at(1, 0)), ([0, 0, 255], [0, 255, 0]));
         let e = decode_compressed("jpeg", &[1, 2, 3]).unwrap_err();
         assert!(e.contains("jpeg"), "{e}");
+    }
+
+    #[test]
+    fn a_frame_survives_jpeg_within_a_few_levels() {
+        // A 16x8 frame: left half a yellow, right half a grey.
+        let data = (0..16 * 8)
+            .flat_map(|i| {
+                if i % 16 < 8 {
+                    [30, 200, 220]
+                } else {
+                    [90, 90, 90]
+                }
+            })
+            .collect();
+        let frame = BgrFrame {
+            width: 16,
+            height: 8,
+            data,
+        };
+        let jpeg = encode_jpeg(&frame, 95).unwrap();
+        assert_eq!(&jpeg[..2], &[0xFF, 0xD8], "a JPEG's start-of-image marker");
+        let CameraImage::Colour(back) = decode_compressed("jpeg", &jpeg).unwrap() else {
+            panic!("a colour frame")
+        };
+        assert_eq!((back.width, back.height), (16, 8));
+        for (x, want) in [(2, [30u8, 200, 220]), (13, [90, 90, 90])] {
+            let got = back.at(x, 4);
+            let off = (0..3).map(|k| got[k].abs_diff(want[k])).max().unwrap();
+            assert!(off <= 12, "{got:?} for {want:?}");
+        }
     }
 }

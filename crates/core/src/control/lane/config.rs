@@ -35,6 +35,10 @@ pub struct LaneDriveConfig {
     /// post 0.6 m past its stop line and 0.35-0.45 m aside, 0.85 m stops the robot
     /// 0.15-0.2 m before the line.
     pub light_stop_range: f64,
+    /// How far before a light's lamp its stop line lies along the lane, metres (the twin
+    /// stands a light's post 0.6 m past its line, across the junction): once the lamp is
+    /// nearer than this and 5 cm more, the robot no longer stops for it turning.
+    pub light_line_ahead: f64,
     /// A barrier down or moving this near stops the robot.
     pub barrier_stop_range: f64,
     /// Seconds without a lane line before lane following stops the robot.
@@ -53,6 +57,7 @@ impl Default for LaneDriveConfig {
             curvature_feedforward: 0.0,
             max_angular: 2.0,
             light_stop_range: 0.85,
+            light_line_ahead: 0.6,
             barrier_stop_range: 0.55,
             lost_after: 1.0,
         }
@@ -77,6 +82,7 @@ impl LaneDriveConfig {
             ),
             ("max_angular", self.max_angular, 0.01, 20.0),
             ("light_stop_range", self.light_stop_range, 0.1, 10.0),
+            ("light_line_ahead", self.light_line_ahead, 0.0, 10.0),
             ("barrier_stop_range", self.barrier_stop_range, 0.1, 10.0),
             ("lost_after", self.lost_after, 0.05, 60.0),
         ])

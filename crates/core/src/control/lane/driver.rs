@@ -60,6 +60,9 @@ pub struct LaneDriver {
     last_arm: Option<f64>,
     /// The light ahead as last seen, its range since shortened by the distance driven.
     light: LightWatch,
+    /// The range of an arm seen up ahead and not seen to open, shortened likewise: a
+    /// raised arm leaves the picture's top before the robot reaches its stopping range.
+    up_ahead: Option<f64>,
     /// When the last step was taken.
     last_t: Option<f64>,
 }
@@ -68,6 +71,8 @@ pub struct LaneDriver {
 const BARRIER_GONE: u32 = 10;
 /// Lights seen within this many stopping ranges are remembered as the light ahead.
 const LIGHT_AHEAD: f64 = 2.0;
+/// Arms seen up within this many stopping ranges are remembered as the barrier ahead.
+const BARRIER_AHEAD: f64 = 2.0;
 /// seed 000 §3.2.3: an arm within this of level is DOWN.
 const DOWN_DEG: f64 = 20.0;
 
@@ -83,6 +88,7 @@ impl LaneDriver {
             arm: ArmWatch::default(),
             last_arm: None,
             light: LightWatch::default(),
+            up_ahead: None,
             last_t: None,
         }
     }
@@ -99,6 +105,7 @@ impl LaneDriver {
         self.opened = false;
         // What was seen before the pause is not ahead any more: the robot may have moved.
         self.light = LightWatch::default();
+        self.up_ahead = None;
         self.arm = ArmWatch::default();
         self.last_arm = None;
         self.last_t = None;
@@ -110,17 +117,31 @@ impl LaneDriver {
         let dt = self.last_t.map_or(0.0, |last| (t - last).max(0.0));
         self.last_t = Some(t);
         self.light.drive(speed * dt);
+        if let Some(range) = &mut self.up_ahead {
+            *range -= speed.max(0.0) * dt;
+        }
         if let Some(s) = fresh {
             if let Some(light) = &s.light {
                 let reach = LIGHT_AHEAD * self.cfg.light_stop_range;
-                self.light.see(t, light, reach);
+                self.light.see(t, light, reach, self.cfg.light_line_ahead);
             }
             self.comply(s);
+        }
+        // An arm seen up ahead and then lost from view above the picture holds the robot at
+        // the stopping range all the same: how long it stays up is unknown.
+        if let Some(range) = self.up_ahead
+            && range <= self.cfg.barrier_stop_range
+        {
+            self.up_ahead = None;
+            if self.hold.is_none() && !self.opened && range >= 0.0 {
+                self.hold = Some(Wait::Barrier(BarrierState::Up));
+            }
         }
         // A red or yellow seen near, or seen farther off and then lost from view (a lamp
         // seen only now and then, or leaving the picture in a bend), stops the robot where
         // it would have stopped had it stayed in view.
-        let light_wait = match self.light.call(t, self.cfg.light_stop_range) {
+        let (stop, line) = (self.cfg.light_stop_range, self.cfg.light_line_ahead);
+        let light_wait = match self.light.call(t, stop, line) {
             LightCall::Go => None,
             LightCall::Stop(colour) => Some(Wait::Light(colour)),
             LightCall::Look => Some(Wait::LookingForLight),
@@ -148,9 +169,13 @@ impl LaneDriver {
     /// Holds for a closed barrier in range; clears the hold when it opens (seed 000 §3's
     /// traffic compliance).
     fn comply(&mut self, s: &LaneSighting) {
-        let angle = s.barrier.map(|b| b.angle_deg.abs());
-        let last_arm = std::mem::replace(&mut self.last_arm, angle);
         let waiting = matches!(self.hold, Some(Wait::Barrier(_)));
+        // While the robot waits before an arm, one seen farther off is another barrier
+        // down the track (this one has risen out of the picture), not this one.
+        let reach = BARRIER_AHEAD * self.cfg.barrier_stop_range;
+        let barrier = s.barrier.filter(|b| !waiting || b.range <= reach);
+        let angle = barrier.map(|b| b.angle_deg.abs());
+        let last_arm = std::mem::replace(&mut self.last_arm, angle);
         let closed_ahead = waiting && self.hold != Some(Wait::Barrier(BarrierState::Up));
         if self.arm.opening(angle, closed_ahead) {
             // Seen rising from where it lay while the robot waited, and now past RISEN_DEG
@@ -161,7 +186,12 @@ impl LaneDriver {
             self.unseen = 0;
             return;
         }
-        match s.barrier {
+        if let Some(b) = barrier {
+            let near = b.range <= reach;
+            let up = b.state == BarrierState::Up && !self.opened && self.hold.is_none();
+            self.up_ahead = (near && up).then_some(b.range);
+        }
+        match barrier {
             // Seen rising while waiting (not the arm met already up, whose next opening
             // begins with it down), wherever the raised arm now seems to be: this opening
             // is the robot's to pass.
@@ -172,6 +202,16 @@ impl LaneDriver {
             {
                 self.hold = None;
                 self.opened = true;
+                self.unseen = 0;
+            }
+            // Waiting for the next opening of an arm met up: seen down or moving, wherever
+            // its range reads (an arm's range reads short while it is raised), it is that
+            // arm closing, and its rise will be the robot's opening.
+            Some(b)
+                if self.hold == Some(Wait::Barrier(BarrierState::Up))
+                    && b.state != BarrierState::Up =>
+            {
+                self.hold = Some(Wait::Barrier(b.state));
                 self.unseen = 0;
             }
             Some(b) if b.range <= self.cfg.barrier_stop_range => {
@@ -237,246 +277,5 @@ impl LaneDriver {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::data::{BarrierSeen, LightSeen};
-
-    fn seen(e: f64) -> LaneSighting {
-        LaneSighting {
-            error_px: Some(e),
-            curvature: Some(0.0),
-            ..LaneSighting::default()
-        }
-    }
-
-    #[test]
-    fn a_lane_to_the_right_turns_right_and_slows_by_the_speed_law() {
-        let mut d = LaneDriver::new(LaneDriveConfig::default());
-        d.reset(0.0);
-        let s = d.step(0.1, Some(&seen(100.0)), 0.1);
-        // Kp e = 0.0025 * 100 = 0.25 rad/s, speed factor 1; v = 0.1 * 0.8^2.2 = 0.0612.
-        assert!((s.twist.angular + 0.25).abs() < 1e-9, "{:?}", s.twist);
-        assert!((s.twist.linear - 0.1 * 0.8f64.powf(2.2)).abs() < 1e-9);
-        // The error grows by 10 px: Kd adds 0.007 * 10 = 0.07 rad/s.
-        let s = d.step(0.2, Some(&seen(110.0)), 0.1);
-        assert!(
-            (s.twist.angular + 0.275 + 0.07).abs() < 1e-9,
-            "{:?}",
-            s.twist
-        );
-        assert_eq!(s.wait, None);
-    }
-
-    #[test]
-    fn slow_driving_doubles_the_gain_at_most() {
-        let mut d = LaneDriver::new(LaneDriveConfig::default());
-        d.reset(0.0);
-        let s = d.step(0.1, Some(&seen(-40.0)), 0.0);
-        // Speed factor clamps at 0.5: 0.0025 * 40 / 0.5 = 0.2 rad/s, to the left.
-        assert!((s.twist.angular - 0.2).abs() < 1e-9, "{:?}", s.twist);
-    }
-
-    /// A centred lane with a lamp of `colour` `range` metres off.
-    fn lamp(colour: LightColour, range: f64) -> LaneSighting {
-        LaneSighting {
-            light: Some(LightSeen {
-                colour,
-                range,
-                confidence: 0.9,
-            }),
-            ..seen(0.0)
-        }
-    }
-
-    #[test]
-    fn a_red_light_near_holds_until_a_green_seen_twice() {
-        let mut d = LaneDriver::new(LaneDriveConfig::default());
-        d.reset(0.0);
-        assert_eq!(
-            d.step(0.1, Some(&lamp(LightColour::Red, 0.8)), 0.1).wait,
-            None
-        );
-        // The second frame that agrees on the lamp (1 cm nearer): held.
-        let near = d.step(0.2, Some(&lamp(LightColour::Red, 0.79)), 0.1);
-        assert_eq!(near.wait, Some(Wait::Light(LightColour::Red)));
-        // Nothing seen in a frame does not lift the hold, nor does one green frame.
-        assert!(d.step(0.3, Some(&seen(0.0)), 0.0).wait.is_some());
-        let once = d.step(0.4, Some(&lamp(LightColour::Green, 0.78)), 0.0);
-        assert!(once.wait.is_some());
-        let twice = d.step(0.5, Some(&lamp(LightColour::Green, 0.78)), 0.0);
-        assert_eq!(twice.wait, None);
-    }
-
-    #[test]
-    fn a_barrier_down_or_moving_holds_until_up() {
-        let mut d = LaneDriver::new(LaneDriveConfig::default());
-        d.reset(0.0);
-        let barrier = |state| LaneSighting {
-            barrier: Some(BarrierSeen {
-                state,
-                angle_deg: 0.0,
-                range: 0.5,
-                belief: [1.0, 0.0, 0.0],
-            }),
-            ..seen(0.0)
-        };
-        let s = d.step(0.1, Some(&barrier(BarrierState::Moving)), 0.1);
-        assert_eq!(s.wait, Some(Wait::Barrier(BarrierState::Moving)));
-        assert_eq!(
-            d.step(0.2, Some(&barrier(BarrierState::Up)), 0.0).wait,
-            None
-        );
-        assert_eq!(
-            d.step(0.3, Some(&barrier(BarrierState::Up)), 0.1).wait,
-            None
-        );
-    }
-
-    #[test]
-    fn a_barrier_already_up_when_met_is_passed_only_on_an_opening_seen_to_begin() {
-        let mut d = LaneDriver::new(LaneDriveConfig::default());
-        d.reset(0.0);
-        let barrier = |state| LaneSighting {
-            barrier: Some(BarrierSeen {
-                state,
-                angle_deg: 90.0,
-                range: 0.5,
-                belief: [0.0, 0.0, 1.0],
-            }),
-            ..seen(0.0)
-        };
-        let up = d.step(0.1, Some(&barrier(BarrierState::Up)), 0.1);
-        assert_eq!(up.wait, Some(Wait::Barrier(BarrierState::Up)));
-        // Still up a frame later: how long it stays up is still unknown.
-        let still = d.step(0.15, Some(&barrier(BarrierState::Up)), 0.0);
-        assert_eq!(still.wait, Some(Wait::Barrier(BarrierState::Up)));
-        d.step(0.2, Some(&barrier(BarrierState::Moving)), 0.0);
-        d.step(0.3, Some(&barrier(BarrierState::Down)), 0.0);
-        assert_eq!(
-            d.step(0.4, Some(&barrier(BarrierState::Up)), 0.0).wait,
-            None
-        );
-    }
-
-    /// A centred lane with an arm at `angle_deg` 0.5 m ahead, in the state of its angle.
-    fn arm(angle_deg: f64) -> LaneSighting {
-        LaneSighting {
-            barrier: Some(BarrierSeen {
-                state: BarrierState::of_angle(angle_deg),
-                angle_deg,
-                range: 0.5,
-                belief: [1.0, 0.0, 0.0],
-            }),
-            ..seen(0.0)
-        }
-    }
-
-    #[test]
-    fn an_arm_seen_rising_out_of_the_picture_is_an_opening_and_one_lowering_is_not() {
-        let mut d = LaneDriver::new(LaneDriveConfig::default());
-        d.reset(0.0);
-        for (i, a) in [2.0, 3.0, 7.0, 12.0, 14.0].into_iter().enumerate() {
-            let s = d.step(0.1 * (i + 1) as f64, Some(&arm(a)), 0.0);
-            assert!(matches!(s.wait, Some(Wait::Barrier(_))), "{a}: {s:?}");
-        }
-        // Gone from view above the picture's top while rising.
-        assert_eq!(d.step(0.6, Some(&seen(0.0)), 0.0).wait, None);
-        // Lowering from 30 degrees to level, then gone: still closed.
-        let mut d = LaneDriver::new(LaneDriveConfig::default());
-        d.reset(0.0);
-        for (i, a) in [30.0, 25.0, 18.0, 10.0, 2.0].into_iter().enumerate() {
-            d.step(0.1 * (i + 1) as f64, Some(&arm(a)), 0.0);
-        }
-        let s = d.step(0.6, Some(&seen(0.0)), 0.0);
-        assert_eq!(s.wait, Some(Wait::Barrier(BarrierState::Down)));
-    }
-
-    #[test]
-    fn once_an_opening_is_seen_the_rising_arm_does_not_stop_the_robot_but_a_lowering_one_does() {
-        let mut d = LaneDriver::new(LaneDriveConfig::default());
-        d.reset(0.0);
-        for (i, a) in [0.0, 10.0, 30.0, 46.0].into_iter().enumerate() {
-            d.step(0.1 * (i + 1) as f64, Some(&arm(a)), 0.0);
-        }
-        // Open at 46 degrees and rising; still moving at 50 and 50 again (a held frame).
-        assert_eq!(d.step(0.5, Some(&arm(50.0)), 0.0).wait, None);
-        assert_eq!(d.step(0.6, Some(&arm(50.0)), 0.0).wait, None);
-        // Coming down again: held.
-        let s = d.step(0.7, Some(&arm(40.0)), 0.1);
-        assert_eq!(s.wait, Some(Wait::Barrier(BarrierState::Moving)));
-    }
-
-    #[test]
-    fn a_red_light_seen_far_off_and_then_lost_stops_the_robot_where_it_would_have() {
-        let mut d = LaneDriver::new(LaneDriveConfig::default());
-        d.reset(0.0);
-        assert_eq!(
-            d.step(0.1, Some(&lamp(LightColour::Red, 1.2)), 0.1).wait,
-            None
-        );
-        assert_eq!(
-            d.step(0.2, Some(&lamp(LightColour::Red, 1.19)), 0.1).wait,
-            None
-        );
-        // Driving on at 0.1 m/s without seeing it: 0.34 m on, it would be 0.85 m off.
-        let mut t = 0.2;
-        let mut held_at = None;
-        while t < 5.0 && held_at.is_none() {
-            t += 0.1;
-            if d.step(t, Some(&seen(0.0)), 0.1).wait.is_some() {
-                held_at = Some(t);
-            }
-        }
-        let held_at = held_at.expect("held");
-        assert!((held_at - 3.6).abs() < 0.15, "{held_at}");
-        for k in 1..=2 {
-            let green = lamp(LightColour::Green, 0.85);
-            let s = d.step(t + 0.1 * f64::from(k), Some(&green), 0.0);
-            assert_eq!(s.wait.is_none(), k == 2, "{k}: {s:?}");
-        }
-    }
-
-    #[test]
-    fn a_green_seen_far_off_is_looked_at_again_before_the_stop_line() {
-        let mut d = LaneDriver::new(LaneDriveConfig::default());
-        d.reset(0.0);
-        d.step(0.1, Some(&lamp(LightColour::Green, 1.6)), 0.1);
-        d.step(0.2, Some(&lamp(LightColour::Green, 1.59)), 0.1);
-        // Out of view from there on: at the stop point the green is 7 s old.
-        let mut t = 0.2;
-        let mut looked = None;
-        while t < 10.0 && looked.is_none() {
-            t += 0.1;
-            looked = d.step(t, Some(&seen(0.0)), 0.1).wait;
-        }
-        assert_eq!(looked, Some(Wait::LookingForLight));
-        // Seen red now: held; the light's colour decides.
-        d.step(t + 0.1, Some(&lamp(LightColour::Red, 0.84)), 0.0);
-        let s = d.step(t + 0.2, Some(&lamp(LightColour::Red, 0.84)), 0.0);
-        assert_eq!(s.wait, Some(Wait::Light(LightColour::Red)));
-    }
-
-    #[test]
-    fn a_light_remembered_before_lane_mode_is_left_does_not_stop_the_robot_after() {
-        let mut d = LaneDriver::new(LaneDriveConfig::default());
-        d.reset(0.0);
-        d.step(0.1, Some(&lamp(LightColour::Red, 1.2)), 0.1);
-        d.step(0.2, Some(&lamp(LightColour::Red, 1.19)), 0.1);
-        // Lane mode entered anew, elsewhere: driving on 0.5 m sees no light to stop for.
-        d.reset(10.0);
-        for k in 1..=50 {
-            let s = d.step(10.0 + 0.1 * f64::from(k), Some(&seen(0.0)), 0.1);
-            assert_eq!(s.wait, None, "{k}");
-        }
-    }
-
-    #[test]
-    fn losing_the_lane_stops_after_the_timeout() {
-        let mut d = LaneDriver::new(LaneDriveConfig::default());
-        d.reset(0.0);
-        d.step(0.1, Some(&seen(0.0)), 0.1);
-        assert!(d.step(0.5, None, 0.1).twist.linear > 0.0);
-        let s = d.step(1.2, Some(&LaneSighting::default()), 0.1);
-        assert_eq!((s.twist, s.wait), (Twist::ZERO, Some(Wait::LaneLost)));
-    }
-}
+#[path = "driver_tests.rs"]
+mod tests;

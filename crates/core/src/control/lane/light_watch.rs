@@ -1,6 +1,8 @@
 //! The traffic light ahead as the robot approaches it: a colour believed only once two
 //! frames agree on it and on where the lamp stands, its range carried on by the distance
-//! driven while it is out of view, and the stop line passed only on a green seen lately.
+//! driven while it is out of view, and the stop line passed only on a green seen lately;
+//! once the robot can no longer stop before the line, the light no longer stops it until
+//! it has driven by.
 
 use crate::data::{LightColour, LightSeen};
 
@@ -15,12 +17,27 @@ const CONFIRM_SHARE: f64 = 0.05;
 /// A green seen longer ago than this, seconds, is stale at the stop point: the light may
 /// have turned (a yellow lasts a few seconds), so the robot stops and looks again.
 pub const GREEN_FRESH: f64 = 1.0;
+/// Metres before the stop line within which a light that turns no longer stops the
+/// robot: it would stop on the line, so it drives through, as a driver does at a late
+/// yellow (at 0.1 m/s it clears the line in a second, inside the shortest yellow).
+const LINE_MARGIN: f64 = 0.05;
+/// Metres past the lamp, measured from the stop point, after which the light is behind.
+const PASS_MARGIN: f64 = 0.3;
+
+/// A green the robot went on at: how far ahead the lamp now is, and how far the robot
+/// has still to drive to be past the light.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Commit {
+    ahead: f64,
+    left: f64,
+}
 
 /// One lamp as seen at `seen_at`, its range since shortened by the distance driven.
 #[derive(Clone, Copy, Debug, PartialEq)]
 struct Sighting {
     colour: LightColour,
     range: f64,
+    ahead: f64,
     seen_at: f64,
 }
 
@@ -43,35 +60,42 @@ pub(super) struct LightWatch {
     /// The confirmed light ahead.
     ahead: Option<Sighting>,
     /// Past the stop point on a fresh green: the light is no longer looked for.
-    committed: bool,
+    committed: Option<Commit>,
 }
 
 impl LightWatch {
     /// The robot drove `metres` since the last step: every lamp is that much nearer, and
     /// one driven past is forgotten.
     pub(super) fn drive(&mut self, metres: f64) {
+        let metres = metres.max(0.0);
         for s in [&mut self.pending, &mut self.ahead] {
             if let Some(seen) = s {
-                seen.range -= metres.max(0.0);
+                seen.range -= metres;
+                seen.ahead -= metres;
             }
             if s.is_some_and(|seen| seen.range < 0.0) {
                 *s = None;
             }
         }
-        if self.ahead.is_none() {
-            self.committed = false;
+        if let Some(c) = &mut self.committed {
+            c.ahead -= metres;
+            c.left -= metres;
+        }
+        if self.committed.is_some_and(|c| c.left < 0.0) {
+            self.committed = None;
         }
     }
 
     /// Takes a lamp seen at `t`; a light farther off than `reach` may be another
     /// stretch's and is not taken.
-    pub(super) fn see(&mut self, t: f64, light: &LightSeen, reach: f64) {
+    pub(super) fn see(&mut self, t: f64, light: &LightSeen, reach: f64, line: f64) {
         if light.range > reach {
             return;
         }
         let now = Sighting {
             colour: light.colour,
             range: light.range,
+            ahead: light.ahead,
             seen_at: t,
         };
         let agrees = |before: &Sighting| {
@@ -81,8 +105,10 @@ impl LightWatch {
         };
         // A confirmed light seen again as it was needs no second look.
         if self.pending.as_ref().is_some_and(agrees) || self.ahead.as_ref().is_some_and(agrees) {
-            if self.ahead.is_some_and(|a| a.colour != now.colour) {
-                self.committed = false;
+            // A light that turns before the robot is well on its way is obeyed afresh.
+            let turned = self.ahead.is_some_and(|a| a.colour != now.colour);
+            if turned && self.committed.is_some_and(|c| c.ahead > line + LINE_MARGIN) {
+                self.committed = None;
             }
             self.ahead = Some(now);
         }
@@ -90,16 +116,25 @@ impl LightWatch {
     }
 
     /// What the light asks of the robot at `t` with the stop point `stop_range` from the
-    /// lamp.
-    pub(super) fn call(&mut self, t: f64, stop_range: f64) -> LightCall {
+    /// lamp and the stop line `line` before the lamp (along the robot's heading).
+    pub(super) fn call(&mut self, t: f64, stop_range: f64, line: f64) -> LightCall {
+        if self
+            .committed
+            .is_some_and(|c| c.ahead <= line + LINE_MARGIN)
+        {
+            return LightCall::Go;
+        }
         let Some(ahead) = self.ahead.filter(|a| a.range <= stop_range) else {
             return LightCall::Go;
         };
         if ahead.colour.stops() {
             return LightCall::Stop(ahead.colour);
         }
-        if self.committed || t - ahead.seen_at <= GREEN_FRESH {
-            self.committed = true;
+        if self.committed.is_some() || t - ahead.seen_at <= GREEN_FRESH {
+            self.committed.get_or_insert(Commit {
+                ahead: ahead.ahead,
+                left: ahead.range + PASS_MARGIN,
+            });
             return LightCall::Go;
         }
         LightCall::Look
@@ -110,10 +145,15 @@ impl LightWatch {
 mod tests {
     use super::*;
 
+    /// The stop line 0.6 m before the lamp.
+    const LINE: f64 = 0.6;
+
+    /// The lamp `range` off, 0.4 m aside.
     fn lamp(colour: LightColour, range: f64) -> LightSeen {
         LightSeen {
             colour,
             range,
+            ahead: (range * range - 0.16).max(0.0).sqrt(),
             confidence: 0.9,
         }
     }
@@ -121,11 +161,11 @@ mod tests {
     #[test]
     fn one_frame_is_not_believed_and_two_that_agree_are() {
         let mut w = LightWatch::default();
-        w.see(0.0, &lamp(LightColour::Red, 0.8), 1.7);
-        assert_eq!(w.call(0.0, 0.85), LightCall::Go);
+        w.see(0.0, &lamp(LightColour::Red, 0.8), 1.7, LINE);
+        assert_eq!(w.call(0.0, 0.85, LINE), LightCall::Go);
         w.drive(0.01);
-        w.see(0.1, &lamp(LightColour::Red, 0.8), 1.7);
-        assert_eq!(w.call(0.1, 0.85), LightCall::Stop(LightColour::Red));
+        w.see(0.1, &lamp(LightColour::Red, 0.8), 1.7, LINE);
+        assert_eq!(w.call(0.1, 0.85, LINE), LightCall::Stop(LightColour::Red));
     }
 
     #[test]
@@ -135,46 +175,74 @@ mod tests {
         // robot creeps 1 cm a frame.
         for (k, r) in [1.23, 1.39, 1.59, 1.89].into_iter().enumerate() {
             w.drive(0.01);
-            w.see(0.1 * k as f64, &lamp(LightColour::Red, r), 1.7);
+            w.see(0.1 * k as f64, &lamp(LightColour::Red, r), 1.7, LINE);
         }
         w.drive(1.5);
-        assert_eq!(w.call(0.5, 0.85), LightCall::Go);
+        assert_eq!(w.call(0.5, 0.85, LINE), LightCall::Go);
     }
 
     #[test]
     fn a_green_seen_far_off_is_looked_at_again_at_the_stop_point_and_then_passed() {
         let mut w = LightWatch::default();
-        w.see(0.0, &lamp(LightColour::Green, 1.6), 1.7);
+        w.see(0.0, &lamp(LightColour::Green, 1.6), 1.7, LINE);
         w.drive(0.01);
-        w.see(0.1, &lamp(LightColour::Green, 1.59), 1.7);
+        w.see(0.1, &lamp(LightColour::Green, 1.59), 1.7, LINE);
         // Out of view for 7.5 s at 0.1 m/s: at the stop point the green is stale.
         let mut t = 0.1;
         while t < 7.7 {
             t += 0.1;
             w.drive(0.01);
         }
-        assert_eq!(w.call(t, 0.85), LightCall::Look);
+        assert_eq!(w.call(t, 0.85, LINE), LightCall::Look);
         // One frame of it is not yet believed; two are.
-        w.see(t + 0.1, &lamp(LightColour::Green, 0.83), 1.7);
-        assert_eq!(w.call(t + 0.1, 0.85), LightCall::Look);
-        w.see(t + 0.2, &lamp(LightColour::Green, 0.83), 1.7);
-        assert_eq!(w.call(t + 0.2, 0.85), LightCall::Go);
-        // Past the stop point on that green, losing the lamp from view stops nothing.
-        w.drive(0.3);
-        assert_eq!(w.call(t + 3.0, 0.85), LightCall::Go);
-        // The same light seen red before the line is still obeyed.
-        w.see(t + 3.1, &lamp(LightColour::Red, 0.5), 1.7);
-        w.drive(0.0);
-        w.see(t + 3.2, &lamp(LightColour::Red, 0.5), 1.7);
-        assert_eq!(w.call(t + 3.2, 0.85), LightCall::Stop(LightColour::Red));
+        w.see(t + 0.1, &lamp(LightColour::Green, 0.83), 1.7, LINE);
+        assert_eq!(w.call(t + 0.1, 0.85, LINE), LightCall::Look);
+        w.see(t + 0.2, &lamp(LightColour::Green, 0.83), 1.7, LINE);
+        assert_eq!(w.call(t + 0.2, 0.85, LINE), LightCall::Go);
+        // Just past the stop point on that green, the light seen turning is still obeyed.
+        w.drive(0.05);
+        w.see(t + 0.7, &lamp(LightColour::Yellow, 0.78), 1.7, LINE);
+        w.see(t + 0.8, &lamp(LightColour::Yellow, 0.78), 1.7, LINE);
+        assert_eq!(
+            w.call(t + 0.8, 0.85, LINE),
+            LightCall::Stop(LightColour::Yellow)
+        );
+    }
+
+    #[test]
+    fn a_light_that_turns_once_the_robot_is_past_its_line_does_not_stop_it_there() {
+        let mut w = LightWatch::default();
+        w.see(0.0, &lamp(LightColour::Green, 0.84), 1.7, LINE);
+        w.see(0.1, &lamp(LightColour::Green, 0.84), 1.7, LINE);
+        assert_eq!(w.call(0.1, 0.85, LINE), LightCall::Go);
+        // 0.25 m on, beside the post: it turns yellow, then red, and leaves the view.
+        w.drive(0.25);
+        for k in 0..4 {
+            let colour = if k < 2 {
+                LightColour::Yellow
+            } else {
+                LightColour::Red
+            };
+            w.see(2.6 + 0.1 * f64::from(k), &lamp(colour, 0.6), 1.7, LINE);
+            assert_eq!(
+                w.call(2.6 + 0.1 * f64::from(k), 0.85, LINE),
+                LightCall::Go,
+                "{k}"
+            );
+        }
+        // Driven by it, the next light is obeyed as ever.
+        w.drive(1.0);
+        w.see(13.0, &lamp(LightColour::Red, 0.8), 1.7, LINE);
+        w.see(13.1, &lamp(LightColour::Red, 0.8), 1.7, LINE);
+        assert_eq!(w.call(13.1, 0.85, LINE), LightCall::Stop(LightColour::Red));
     }
 
     #[test]
     fn a_light_driven_past_is_forgotten() {
         let mut w = LightWatch::default();
-        w.see(0.0, &lamp(LightColour::Red, 1.0), 1.7);
-        w.see(0.1, &lamp(LightColour::Red, 1.0), 1.7);
+        w.see(0.0, &lamp(LightColour::Red, 1.0), 1.7, LINE);
+        w.see(0.1, &lamp(LightColour::Red, 1.0), 1.7, LINE);
         w.drive(1.1);
-        assert_eq!(w.call(0.2, 0.85), LightCall::Go);
+        assert_eq!(w.call(0.2, 0.85, LINE), LightCall::Go);
     }
 }

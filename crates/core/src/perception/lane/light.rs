@@ -70,7 +70,7 @@ impl LightFinder {
             let Some((colour, confidence)) = colour_bayes::classify(hue) else {
                 continue;
             };
-            let Some(range) = self.range(&shape, colour) else {
+            let Some((range, ahead)) = self.range(&shape, colour) else {
                 continue;
             };
             // The nearest lamp is the light ahead: a farther one (the next light down
@@ -81,6 +81,7 @@ impl LightFinder {
                     LightSeen {
                         colour,
                         range,
+                        ahead,
                         confidence,
                     },
                 ));
@@ -98,18 +99,22 @@ impl LightFinder {
     /// and a red blob below it (a barrier's stripe) is no lamp. A lamp below the lens is
     /// ranged by its size instead. Pinhole: a disc of radius R at depth Z spans
     /// r = f R / Z pixels (the contour runs through the rim pixels' centres, half a pixel
-    /// inside the rim), and the range is Z times the length of the ray of unit depth.
-    fn range(&self, shape: &BlobShape, colour: LightColour) -> Option<f64> {
+    /// inside the rim), and the lamp lies Z along the ray of unit depth. With the range,
+    /// how far of it lies ahead along the robot's heading.
+    fn range(&self, shape: &BlobShape, colour: LightColour) -> Option<(f64, f64)> {
         let (u, v) = shape.centre;
-        let lens = self.eye.mount().to_robot(nalgebra::Vector3::zeros());
+        let mount = self.eye.mount();
+        let lens = mount.to_robot(nalgebra::Vector3::zeros());
         let height = (self.lamp_height)(colour);
-        if height > lens.z {
-            return (self.eye.meet_height(u, v, height)).map(|p| (p - lens).norm());
-        }
-        let k: &Intrinsics = self.eye.intrinsics();
-        let depth = k.fx * self.lamp_radius / (shape.radius + 0.5);
-        let (x, y) = ((u - k.cx) / k.fx, (v - k.cy) / k.fy);
-        Some(depth * (1.0 + x * x + y * y).sqrt())
+        let lamp = if height > lens.z {
+            self.eye.meet_height(u, v, height)?
+        } else {
+            let k: &Intrinsics = self.eye.intrinsics();
+            let depth = k.fx * self.lamp_radius / (shape.radius + 0.5);
+            let ray = nalgebra::Vector3::new((u - k.cx) / k.fx, (v - k.cy) / k.fy, 1.0);
+            lens + depth * mount.rotate_to_robot(ray)
+        };
+        Some(((lamp - lens).norm(), lamp.x - lens.x))
     }
 }
 

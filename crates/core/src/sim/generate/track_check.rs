@@ -207,16 +207,18 @@ pub fn straight_run(track: &Track, radii: &[f64], along: f64, radius: f64) -> f6
 }
 
 /// A light's post stands within this bearing of the lane's heading, radians, seen from the lane's
-/// centre anywhere from 0.3 m to 1 m before its stop line: inside an 80-degree camera's
-/// view with room for the robot's heading error.
+/// centre anywhere from its stop line to 1 m before it: inside an 80-degree camera's
+/// view (the lens 5 cm ahead of the centre sees it within 38.4 degrees at the line) with
+/// room for the robot's heading error.
 pub const APPROACH_BEARING: f64 = 36.0 * std::f64::consts::PI / 180.0;
 
-/// Whether `post` is ahead within `APPROACH_BEARING` from every point of the lane 0.3-1 m
-/// before `at`: a robot stopping for the light there can see it (seed 000's camera-only
-/// compliance needs the light in view while the robot waits; a barrier's arm spans the
-/// lane, so it always is).
+/// Whether `post` is ahead within `APPROACH_BEARING` from every point of the lane up to
+/// 1 m before `at`: a robot stopping for the light there can see it, and one driving on
+/// at green sees it turn until it reaches the line (seed 000's camera-only compliance
+/// needs the light in view while the robot waits and while it may still stop; a
+/// barrier's arm spans the lane, so it always is).
 pub fn seen_on_approach(track: &Track, at: f64, post: Point2) -> bool {
-    (3..=10).all(|k| {
+    (0..=10).all(|k| {
         let (p, heading) = track.at((at - 0.1 * f64::from(k)).rem_euclid(track.length()));
         wrap_angle((post.y - p.y).atan2(post.x - p.x) - heading).abs() <= APPROACH_BEARING
     })

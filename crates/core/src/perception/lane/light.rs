@@ -55,7 +55,7 @@ impl LightFinder {
             let Some(whole) = BlobShape::of(&contour)? else {
                 continue;
             };
-            let shape = if whole.is_lamp() {
+            let shape = if whole.is_lamp_aside() {
                 whole
             } else {
                 match cut_lamp(&contour, cols, rows, whole.area) {
@@ -63,7 +63,7 @@ impl LightFinder {
                     None => continue,
                 }
             };
-            if shape.area < MIN_AREA {
+            if shape.area < MIN_AREA || !in_housing(&roi, &lit, &shape)? {
                 continue;
             }
             let hue = mean_hue(&roi, &lit, &contour)?;
@@ -180,11 +180,63 @@ fn cut_lamp(contour: &Vector<Point>, cols: i32, rows: i32, area: f64) -> Option<
         BlobShape {
             area,
             score: super::shape::PASS_SCORE,
-            fill: visible,
+            // A disc's share of its box: the cut disc was checked round above.
+            fill: std::f64::consts::FRAC_PI_4,
+            aspect: 1.0,
             centre,
             radius,
         },
     )
+}
+
+/// Least share of the unlit pixels just around a lamp that are dark (a quarter: a lamp seen
+/// from the side of a bend shows the wall past its housing's thin rim): a lamp sits in its
+/// housing (and beside its unlit neighbours), where the red end of a barrier's arm lies
+/// between white stripes and the wall behind.
+const HOUSING_DARK_SHARE: f64 = 0.25;
+/// Around a lamp a pixel is dark under this share of the lamp's own mean brightness: the
+/// lamp glows whatever the room's light, its housing does not.
+const HOUSING_DARK: f64 = 0.4;
+
+/// Whether the unlit pixels within a quarter radius (at least 2) of `shape`'s rim are
+/// mostly dark, as a traffic light's housing is.
+fn in_housing(hsv: &impl MatTraitConst, lit: &Mat, shape: &BlobShape) -> opencv::Result<bool> {
+    let ((cx, cy), r) = (shape.centre, shape.radius);
+    let outer = r + (0.25 * r).max(2.0);
+    let (cols, rows) = (hsv.cols(), hsv.rows());
+    let (x0, x1) = (
+        (cx - outer).floor().max(0.0) as i32,
+        (cx + outer).ceil() as i32,
+    );
+    let (y0, y1) = (
+        (cy - outer).floor().max(0.0) as i32,
+        (cy + outer).ceil() as i32,
+    );
+    let (mut glow, mut lamp) = (0.0, 0usize);
+    let mut ring = Vec::new();
+    for y in y0..y1.min(rows) {
+        for x in x0..x1.min(cols) {
+            let d = (f64::from(x) - cx).hypot(f64::from(y) - cy);
+            if d > outer {
+                continue;
+            }
+            let v = f64::from(hsv.at_2d::<core::Vec3b>(y, x)?[2]);
+            if *lit.at_2d::<u8>(y, x)? != 0 {
+                if d <= r {
+                    glow += v;
+                    lamp += 1;
+                }
+            } else if d > r {
+                ring.push(v);
+            }
+        }
+    }
+    if lamp == 0 || ring.is_empty() {
+        return Ok(false);
+    }
+    let dark = HOUSING_DARK * glow / lamp as f64;
+    let share = ring.iter().filter(|&&v| v < dark).count() as f64 / ring.len() as f64;
+    Ok(share >= HOUSING_DARK_SHARE)
 }
 
 /// The circular mean hue (OpenCV 0-180 units) of the lit pixels in `contour`'s box: red's

@@ -8,6 +8,7 @@ use crate::perception::colour::BgrFrame;
 use crate::perception::lane_camera::LaneCameraConfig;
 use crate::sim::track::lamp_height;
 use nalgebra::Vector3;
+use opencv::imgproc;
 use std::sync::Mutex;
 
 fn pipeline() -> LanePipeline {
@@ -220,6 +221,71 @@ fn a_lamp_cut_by_the_pictures_edge_is_still_read_and_ranged() {
     }
     // A square cut by the edge is still no lamp.
     let frame = lamp(&straight_lane(0.0), beside, 0.025, [40, 40, 235], true);
+    assert_eq!(pipeline().detect_objects(&frame).light, None);
+}
+
+#[test]
+fn a_lamp_seen_45_degrees_off_its_axis_is_still_a_lamp() {
+    use opencv::core::{Point, Size};
+    // From the side of a bend: the disc drawn out to an upright ellipse, 1 : 0.7, with the
+    // pixel a polygon's vertex leaves on top of it.
+    let eye = eye();
+    let at = Vector3::new(0.8, -0.3, lamp_height(LightColour::Green));
+    let (u, v) = eye.pixel_of(at).unwrap();
+    let r = eye.intrinsics().fx * 0.025 / eye.mount().to_camera(at).z;
+    let frame = drawn(&straight_lane(0.0), |m| {
+        let centre = Point::new(u.round() as i32, v.round() as i32);
+        let axes = Size::new((0.7 * r).round() as i32, r.round() as i32);
+        let green = opencv::core::Scalar::new(90.0, 230.0, 40.0, 0.0);
+        imgproc::ellipse(
+            m,
+            centre,
+            axes,
+            0.0,
+            0.0,
+            360.0,
+            green,
+            -1,
+            imgproc::LINE_8,
+            0,
+        )
+        .unwrap();
+        let top = Point::new(centre.x, centre.y - axes.height);
+        let tip = Point::new(centre.x, top.y - 2);
+        imgproc::line(m, top, tip, green, 1, imgproc::LINE_8, 0).unwrap();
+    });
+    let seen = pipeline().detect_objects(&frame).light;
+    assert_eq!(seen.map(|l| l.colour), Some(LightColour::Green), "{seen:?}");
+}
+
+#[test]
+fn a_round_red_end_between_white_stripes_is_no_lamp() {
+    use opencv::core::{Point, Rect, Scalar};
+    // Where a lamp would hang, against the room's pale wall, a raised arm's rounded red end
+    // under a white stripe.
+    let eye = eye();
+    let (u, v) = eye.pixel_of(LAMP).unwrap();
+    let r = (eye.intrinsics().fx * 0.025 / eye.mount().to_camera(LAMP).z).round() as i32;
+    let (u, v) = (u.round() as i32, v.round() as i32);
+    let frame = drawn(&straight_lane(0.0), |m| {
+        let wall = Rect::new(u - 5 * r, v - 8 * r, 10 * r, 10 * r);
+        let pale = Scalar::new(190.0, 195.0, 200.0, 0.0);
+        imgproc::rectangle(m, wall, pale, imgproc::FILLED, imgproc::LINE_8, 0).unwrap();
+        let white = Scalar::new(215.0, 215.0, 215.0, 0.0);
+        let stripe = Rect::new(u - r, v - 6 * r, 2 * r, 6 * r);
+        imgproc::rectangle(m, stripe, white, imgproc::FILLED, imgproc::LINE_8, 0).unwrap();
+        let red = Scalar::new(40.0, 40.0, 235.0, 0.0);
+        imgproc::circle(
+            m,
+            Point::new(u, v),
+            r,
+            red,
+            imgproc::FILLED,
+            imgproc::LINE_8,
+            0,
+        )
+        .unwrap();
+    });
     assert_eq!(pipeline().detect_objects(&frame).light, None);
 }
 

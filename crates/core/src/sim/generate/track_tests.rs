@@ -268,3 +268,25 @@ fn a_start_off_the_lane_or_a_light_on_a_bend_is_refused() {
 fn the_built_in_track_passes_the_checks_a_generated_one_does() {
     track_check::check(&World::default_track()).unwrap();
 }
+
+#[test]
+fn every_generated_light_is_in_view_from_a_metre_before_its_line_to_the_line() {
+    use crate::geometry::wrap_angle;
+    for seed in 1..=SEEDS {
+        let world = generate(&options(seed)).unwrap();
+        let scene = world.track.as_ref().unwrap();
+        for light in &scene.lights {
+            for k in 0..=10 {
+                let back = (light.along - 0.1 * f64::from(k)).rem_euclid(scene.track.length());
+                let (p, heading) = scene.track.at(back);
+                let post = light.position;
+                let bearing = wrap_angle((post.y - p.y).atan2(post.x - p.x) - heading);
+                assert!(
+                    bearing.abs() <= track_check::APPROACH_BEARING + 1e-9,
+                    "seed {seed}: {:.1} degrees {k}0 cm before the line",
+                    bearing.to_degrees()
+                );
+            }
+        }
+    }
+}

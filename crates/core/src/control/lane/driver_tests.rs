@@ -73,15 +73,7 @@ fn a_red_light_near_holds_until_a_green_seen_twice() {
 fn a_barrier_down_or_moving_holds_until_up() {
     let mut d = LaneDriver::new(LaneDriveConfig::default());
     d.reset(0.0);
-    let barrier = |state| LaneSighting {
-        barrier: Some(BarrierSeen {
-            state,
-            angle_deg: 0.0,
-            range: 0.5,
-            belief: [1.0, 0.0, 0.0],
-        }),
-        ..seen(0.0)
-    };
+    let barrier = |state| barrier_at(state, 0.0, 0.5);
     let s = d.step(0.1, Some(&barrier(BarrierState::Moving)), 0.1);
     assert_eq!(s.wait, Some(Wait::Barrier(BarrierState::Moving)));
     assert_eq!(
@@ -98,15 +90,7 @@ fn a_barrier_down_or_moving_holds_until_up() {
 fn a_barrier_already_up_when_met_is_passed_only_on_an_opening_seen_to_begin() {
     let mut d = LaneDriver::new(LaneDriveConfig::default());
     d.reset(0.0);
-    let barrier = |state| LaneSighting {
-        barrier: Some(BarrierSeen {
-            state,
-            angle_deg: 90.0,
-            range: 0.5,
-            belief: [0.0, 0.0, 1.0],
-        }),
-        ..seen(0.0)
-    };
+    let barrier = |state| barrier_at(state, 90.0, 0.5);
     let up = d.step(0.1, Some(&barrier(BarrierState::Up)), 0.1);
     assert_eq!(up.wait, Some(Wait::Barrier(BarrierState::Up)));
     // Still up a frame later: how long it stays up is still unknown.
@@ -124,15 +108,7 @@ fn a_barrier_already_up_when_met_is_passed_only_on_an_opening_seen_to_begin() {
 fn an_arm_seen_up_and_then_lost_above_the_picture_holds_the_robot_at_the_stopping_range() {
     let mut d = LaneDriver::new(LaneDriveConfig::default());
     d.reset(0.0);
-    let up = LaneSighting {
-        barrier: Some(BarrierSeen {
-            state: BarrierState::Up,
-            angle_deg: 85.0,
-            range: 0.8,
-            belief: [0.0, 0.0, 1.0],
-        }),
-        ..seen(0.0)
-    };
+    let up = barrier_at(BarrierState::Up, 85.0, 0.8);
     assert_eq!(d.step(0.1, Some(&up), 0.1).wait, None);
     // Out of view from here at 0.1 m/s: 0.25 m on it is 0.55 m off.
     let mut t = 0.1;
@@ -147,8 +123,7 @@ fn an_arm_seen_up_and_then_lost_above_the_picture_holds_the_robot_at_the_stoppin
     // It comes down (read 0.6 m off, past the stopping range) and rises again: that
     // opening is the robot's.
     for (k, a) in [40.0, 10.0, 0.0, 0.0, 12.0, 30.0].into_iter().enumerate() {
-        let mut s = arm(a);
-        s.barrier.as_mut().unwrap().range = 0.6;
+        let s = barrier_at(BarrierState::of_angle(a), a, 0.6);
         let step = d.step(t + 0.1 * (k + 1) as f64, Some(&s), 0.0);
         assert!(step.wait.is_some(), "{a}: {step:?}");
     }
@@ -164,24 +139,30 @@ fn another_barrier_rising_down_the_track_is_not_the_opening_of_the_one_ahead() {
     }
     // The arm ahead is out of view; one 2.5 m on rises from level to 60 degrees.
     for (k, a) in [0.0, 0.0, 20.0, 40.0, 60.0].into_iter().enumerate() {
-        let mut far = arm(a);
-        far.barrier.as_mut().unwrap().range = 2.5;
+        let far = barrier_at(BarrierState::of_angle(a), a, 2.5);
         let s = d.step(0.4 + 0.1 * k as f64, Some(&far), 0.0);
         assert_eq!(s.wait, Some(Wait::Barrier(BarrierState::Down)), "{a}");
     }
 }
 
-/// A centred lane with an arm at `angle_deg` 0.5 m ahead, in the state of its angle.
-fn arm(angle_deg: f64) -> LaneSighting {
+/// A centred lane with an arm in `state` at `angle_deg`, `range` metres ahead.
+fn barrier_at(state: BarrierState, angle_deg: f64, range: f64) -> LaneSighting {
+    let mut belief = [0.0; 3];
+    belief[state as usize] = 1.0;
     LaneSighting {
         barrier: Some(BarrierSeen {
-            state: BarrierState::of_angle(angle_deg),
+            state,
             angle_deg,
-            range: 0.5,
-            belief: [1.0, 0.0, 0.0],
+            range,
+            belief,
         }),
         ..seen(0.0)
     }
+}
+
+/// A centred lane with an arm at `angle_deg` 0.5 m ahead, in the state of its angle.
+fn arm(angle_deg: f64) -> LaneSighting {
+    barrier_at(BarrierState::of_angle(angle_deg), angle_deg, 0.5)
 }
 
 #[test]

@@ -71,6 +71,8 @@ pub struct LightSeen {
     /// How far ahead of the camera along the robot's heading, metres: the lamp stands
     /// `range` off, this much of it ahead and the rest aside.
     pub ahead: f64,
+    /// How far left of the camera, metres (negative: right).
+    pub left: f64,
     /// Posterior probability of `colour` (seed 000 §3.1.2's classifier).
     pub confidence: f64,
 }

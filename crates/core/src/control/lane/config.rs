@@ -35,9 +35,11 @@ pub struct LaneDriveConfig {
     /// post 0.6 m past its stop line and 0.35-0.45 m aside, 0.85 m stops the robot
     /// 0.15-0.2 m before the line.
     pub light_stop_range: f64,
-    /// How far before a light's lamp its stop line lies along the lane, metres (the twin
-    /// stands a light's post 0.6 m past its line, across the junction): once the lamp is
-    /// nearer than this and 5 cm more, the robot no longer stops for it turning.
+    /// How far along the lane a light's lamps stand ahead of the camera with the robot's
+    /// centre on the stop line, metres (the twin stands a light's post 0.6 m past its
+    /// line, the lamps' face 2 cm before the post's centre, and the camera 5 cm before
+    /// the robot's centre: 0.53): once the lamp is nearer than this and 5 cm more, the
+    /// robot no longer stops for it turning.
     pub light_line_ahead: f64,
     /// A barrier down or moving this near stops the robot.
     pub barrier_stop_range: f64,
@@ -57,7 +59,7 @@ impl Default for LaneDriveConfig {
             curvature_feedforward: 0.0,
             max_angular: 2.0,
             light_stop_range: 0.85,
-            light_line_ahead: 0.6,
+            light_line_ahead: 0.53,
             barrier_stop_range: 0.55,
             lost_after: 1.0,
         }

@@ -52,7 +52,7 @@ pub struct LaneDriver {
     hold: Option<Wait>,
     /// Whether the robot saw the barrier ahead open while it waited, and may pass.
     opened: bool,
-    /// Frames since a barrier was last seen in range.
+    /// Frames since an arm was last seen ahead (within `BARRIER_AHEAD` stopping ranges).
     unseen: u32,
     /// How the arm ahead moved while the robot waited before it.
     arm: ArmWatch,
@@ -60,18 +60,19 @@ pub struct LaneDriver {
     last_arm: Option<f64>,
     /// The light ahead as last seen, its range since shortened by the distance driven.
     light: LightWatch,
-    /// The range of an arm seen up ahead and not seen to open, shortened likewise: a
-    /// raised arm leaves the picture's top before the robot reaches its stopping range.
-    up_ahead: Option<f64>,
+    /// The range of an arm seen ahead and not seen to open, shortened likewise: an arm
+    /// that rises leaves the picture's top before the robot reaches its stopping range.
+    arm_ahead: Option<f64>,
     /// When the last step was taken.
     last_t: Option<f64>,
 }
 
-/// Frames without a barrier in range after which it is behind the robot.
+/// Frames without an arm seen ahead after which the barrier is behind the robot.
 const BARRIER_GONE: u32 = 10;
 /// Lights seen within this many stopping ranges are remembered as the light ahead.
 const LIGHT_AHEAD: f64 = 2.0;
-/// Arms seen up within this many stopping ranges are remembered as the barrier ahead.
+/// Arms seen within this many stopping ranges are the barrier ahead: remembered when lost
+/// from view, and while the robot waits, the only arm that can open its way.
 const BARRIER_AHEAD: f64 = 2.0;
 /// seed 000 §3.2.3: an arm within this of level is DOWN.
 const DOWN_DEG: f64 = 20.0;
@@ -88,7 +89,7 @@ impl LaneDriver {
             arm: ArmWatch::default(),
             last_arm: None,
             light: LightWatch::default(),
-            up_ahead: None,
+            arm_ahead: None,
             last_t: None,
         }
     }
@@ -105,7 +106,7 @@ impl LaneDriver {
         self.opened = false;
         // What was seen before the pause is not ahead any more: the robot may have moved.
         self.light = LightWatch::default();
-        self.up_ahead = None;
+        self.arm_ahead = None;
         self.arm = ArmWatch::default();
         self.last_arm = None;
         self.last_t = None;
@@ -117,22 +118,24 @@ impl LaneDriver {
         let dt = self.last_t.map_or(0.0, |last| (t - last).max(0.0));
         self.last_t = Some(t);
         self.light.drive(speed * dt);
-        if let Some(range) = &mut self.up_ahead {
+        if let Some(range) = &mut self.arm_ahead {
             *range -= speed.max(0.0) * dt;
         }
         if let Some(s) = fresh {
             if let Some(light) = &s.light {
                 let reach = LIGHT_AHEAD * self.cfg.light_stop_range;
-                self.light.see(t, light, reach, self.cfg.light_line_ahead);
+                let curvature = s.curvature.unwrap_or(0.0);
+                (self.light).see(t, light, curvature, reach, self.cfg.light_line_ahead);
             }
             self.comply(s);
         }
-        // An arm seen up ahead and then lost from view above the picture holds the robot at
-        // the stopping range all the same: how long it stays up is unknown.
-        if let Some(range) = self.up_ahead
+        // An arm seen ahead and then lost from view above the picture (met up, or rising
+        // before the robot reached it) holds the robot at the stopping range all the same:
+        // how long it stays up is unknown.
+        if let Some(range) = self.arm_ahead
             && range <= self.cfg.barrier_stop_range
         {
-            self.up_ahead = None;
+            self.arm_ahead = None;
             if self.hold.is_none() && !self.opened && range >= 0.0 {
                 self.hold = Some(Wait::Barrier(BarrierState::Up));
             }
@@ -188,8 +191,7 @@ impl LaneDriver {
         }
         if let Some(b) = barrier {
             let near = b.range <= reach;
-            let up = b.state == BarrierState::Up && !self.opened && self.hold.is_none();
-            self.up_ahead = (near && up).then_some(b.range);
+            self.arm_ahead = (near && !self.opened && self.hold.is_none()).then_some(b.range);
         }
         match barrier {
             // Seen rising while waiting (not the arm met already up, whose next opening
@@ -236,8 +238,11 @@ impl LaneDriver {
                     self.hold = Some(Wait::Barrier(BarrierState::Up));
                 }
             }
+            // Seen still ahead, short of the stopping range (a raised arm's range reads
+            // long): the arm whose opening the robot saw.
+            Some(b) if b.range <= reach => self.unseen = 0,
             _ => {
-                // Past the barrier (or out of its range) for a second: the next one is met
+                // No arm ahead for a second: past the barrier, and the next one is met
                 // afresh.
                 self.unseen += 1;
                 if self.unseen >= BARRIER_GONE {

@@ -44,6 +44,7 @@ fn lamp(colour: LightColour, range: f64) -> LaneSighting {
             colour,
             range,
             ahead: (range * range - 0.16).max(0.0).sqrt(),
+            left: 0.4,
             confidence: 0.9,
         }),
         ..seen(0.0)
@@ -105,29 +106,32 @@ fn a_barrier_already_up_when_met_is_passed_only_on_an_opening_seen_to_begin() {
 }
 
 #[test]
-fn an_arm_seen_up_and_then_lost_above_the_picture_holds_the_robot_at_the_stopping_range() {
-    let mut d = LaneDriver::new(LaneDriveConfig::default());
-    d.reset(0.0);
-    let up = barrier_at(BarrierState::Up, 85.0, 0.8);
-    assert_eq!(d.step(0.1, Some(&up), 0.1).wait, None);
-    // Out of view from here at 0.1 m/s: 0.25 m on it is 0.55 m off.
-    let mut t = 0.1;
-    let mut held = None;
-    while t < 5.0 && held.is_none() {
-        t += 0.1;
-        held = d.step(t, Some(&seen(0.0)), 0.1).wait.map(|w| (w, t));
+fn an_arm_seen_ahead_and_then_lost_above_the_picture_holds_the_robot_at_the_stopping_range() {
+    // Met up, or met down and rising out of view before the robot reached it.
+    for first in [85.0, 40.0, 0.0] {
+        let mut d = LaneDriver::new(LaneDriveConfig::default());
+        d.reset(0.0);
+        let ahead = barrier_at(BarrierState::of_angle(first), first, 0.8);
+        assert_eq!(d.step(0.1, Some(&ahead), 0.1).wait, None, "{first}");
+        // Out of view from here at 0.1 m/s: 0.25 m on it is 0.55 m off.
+        let mut t = 0.1;
+        let mut held = None;
+        while t < 5.0 && held.is_none() {
+            t += 0.1;
+            held = d.step(t, Some(&seen(0.0)), 0.1).wait.map(|w| (w, t));
+        }
+        let (wait, at) = held.expect("held");
+        assert_eq!(wait, Wait::Barrier(BarrierState::Up), "{first}");
+        assert!((at - 2.6).abs() < 0.15, "{first}: {at}");
+        // It comes down (read 0.6 m off, past the stopping range) and rises again: that
+        // opening is the robot's.
+        for (k, a) in [40.0, 10.0, 0.0, 0.0, 12.0, 30.0].into_iter().enumerate() {
+            let s = barrier_at(BarrierState::of_angle(a), a, 0.6);
+            let step = d.step(t + 0.1 * (k + 1) as f64, Some(&s), 0.0);
+            assert!(step.wait.is_some(), "{first} then {a}: {step:?}");
+        }
+        assert_eq!(d.step(t + 0.7, Some(&arm(50.0)), 0.0).wait, None, "{first}");
     }
-    let (wait, at) = held.expect("held");
-    assert_eq!(wait, Wait::Barrier(BarrierState::Up));
-    assert!((at - 2.6).abs() < 0.15, "{at}");
-    // It comes down (read 0.6 m off, past the stopping range) and rises again: that
-    // opening is the robot's.
-    for (k, a) in [40.0, 10.0, 0.0, 0.0, 12.0, 30.0].into_iter().enumerate() {
-        let s = barrier_at(BarrierState::of_angle(a), a, 0.6);
-        let step = d.step(t + 0.1 * (k + 1) as f64, Some(&s), 0.0);
-        assert!(step.wait.is_some(), "{a}: {step:?}");
-    }
-    assert_eq!(d.step(t + 0.7, Some(&arm(50.0)), 0.0).wait, None);
 }
 
 #[test]
@@ -272,4 +276,26 @@ fn losing_the_lane_stops_after_the_timeout() {
     assert!(d.step(0.5, None, 0.1).twist.linear > 0.0);
     let s = d.step(1.2, Some(&LaneSighting::default()), 0.1);
     assert_eq!((s.twist, s.wait), (Twist::ZERO, Some(Wait::LaneLost)));
+}
+
+#[test]
+fn an_arm_seen_opening_and_then_standing_raised_beyond_the_stopping_range_is_passed() {
+    let mut d = LaneDriver::new(LaneDriveConfig::default());
+    d.reset(0.0);
+    for (i, a) in [0.0, 10.0, 30.0, 46.0].into_iter().enumerate() {
+        d.step(0.1 * (i + 1) as f64, Some(&arm(a)), 0.0);
+    }
+    assert_eq!(d.step(0.5, Some(&arm(50.0)), 0.0).wait, None);
+    // Raised, its range reading 0.7 m for two seconds while the robot creeps on, then out
+    // of view above the picture: the robot drives under it.
+    let mut t = 0.5;
+    for _ in 0..20 {
+        t += 0.1;
+        let raised = barrier_at(BarrierState::Up, 80.0, 0.7);
+        assert_eq!(d.step(t, Some(&raised), 0.1).wait, None, "{t}");
+    }
+    for _ in 0..40 {
+        t += 0.1;
+        assert_eq!(d.step(t, Some(&seen(0.0)), 0.1).wait, None, "{t}");
+    }
 }

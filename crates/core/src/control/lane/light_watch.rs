@@ -24,15 +24,16 @@ const LINE_MARGIN: f64 = 0.05;
 /// Metres past the lamp, measured from the stop point, after which the light is behind.
 const PASS_MARGIN: f64 = 0.3;
 
-/// A green the robot went on at: how far ahead the lamp now is, and how far the robot
-/// has still to drive to be past the light.
+/// A green the robot went on at: how far along the lane the lamp now is, and how far
+/// the robot has still to drive to be past the light.
 #[derive(Clone, Copy, Debug, PartialEq)]
 struct Commit {
     ahead: f64,
     left: f64,
 }
 
-/// One lamp as seen at `seen_at`, its range since shortened by the distance driven.
+/// One lamp as seen at `seen_at`, its range and how far along the lane it stands since
+/// shortened by the distance driven.
 #[derive(Clone, Copy, Debug, PartialEq)]
 struct Sighting {
     colour: LightColour,
@@ -86,16 +87,16 @@ impl LightWatch {
         }
     }
 
-    /// Takes a lamp seen at `t`; a light farther off than `reach` may be another
-    /// stretch's and is not taken.
-    pub(super) fn see(&mut self, t: f64, light: &LightSeen, reach: f64, line: f64) {
+    /// Takes a lamp seen at `t` beside a lane of `curvature` (1/m, + left); a light
+    /// farther off than `reach` may be another stretch's and is not taken.
+    pub(super) fn see(&mut self, t: f64, light: &LightSeen, curvature: f64, reach: f64, line: f64) {
         if light.range > reach {
             return;
         }
         let now = Sighting {
             colour: light.colour,
             range: light.range,
-            ahead: light.ahead,
+            ahead: along_lane(light.ahead, light.left, curvature),
             seen_at: t,
         };
         let agrees = |before: &Sighting| {
@@ -141,6 +142,18 @@ impl LightWatch {
     }
 }
 
+/// How far along a lane of `curvature` (1/m, + left) the robot drives to come abreast of
+/// a point `ahead` of it and `left` of it: on a circle of radius 1/k about (0, 1/k) the
+/// point lies atan2(k x, 1 - k y) round from the robot, that angle over k along the arc
+/// (and simply `ahead` on a straight). In a bend a lamp beside the lane is nearer ahead
+/// than along: 0.6 m along and 0.4 m inside a bend of radius 1 m is 0.34 m ahead.
+pub(super) fn along_lane(ahead: f64, left: f64, curvature: f64) -> f64 {
+    if curvature.abs() < 1e-6 {
+        return ahead;
+    }
+    (curvature * ahead).atan2(1.0 - curvature * left) / curvature
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -154,6 +167,7 @@ mod tests {
             colour,
             range,
             ahead: (range * range - 0.16).max(0.0).sqrt(),
+            left: 0.4,
             confidence: 0.9,
         }
     }
@@ -161,10 +175,10 @@ mod tests {
     #[test]
     fn one_frame_is_not_believed_and_two_that_agree_are() {
         let mut w = LightWatch::default();
-        w.see(0.0, &lamp(LightColour::Red, 0.8), 1.7, LINE);
+        w.see(0.0, &lamp(LightColour::Red, 0.8), 0.0, 1.7, LINE);
         assert_eq!(w.call(0.0, 0.85, LINE), LightCall::Go);
         w.drive(0.01);
-        w.see(0.1, &lamp(LightColour::Red, 0.8), 1.7, LINE);
+        w.see(0.1, &lamp(LightColour::Red, 0.8), 0.0, 1.7, LINE);
         assert_eq!(w.call(0.1, 0.85, LINE), LightCall::Stop(LightColour::Red));
     }
 
@@ -175,7 +189,7 @@ mod tests {
         // robot creeps 1 cm a frame.
         for (k, r) in [1.23, 1.39, 1.59, 1.89].into_iter().enumerate() {
             w.drive(0.01);
-            w.see(0.1 * k as f64, &lamp(LightColour::Red, r), 1.7, LINE);
+            w.see(0.1 * k as f64, &lamp(LightColour::Red, r), 0.0, 1.7, LINE);
         }
         w.drive(1.5);
         assert_eq!(w.call(0.5, 0.85, LINE), LightCall::Go);
@@ -184,9 +198,9 @@ mod tests {
     #[test]
     fn a_green_seen_far_off_is_looked_at_again_at_the_stop_point_and_then_passed() {
         let mut w = LightWatch::default();
-        w.see(0.0, &lamp(LightColour::Green, 1.6), 1.7, LINE);
+        w.see(0.0, &lamp(LightColour::Green, 1.6), 0.0, 1.7, LINE);
         w.drive(0.01);
-        w.see(0.1, &lamp(LightColour::Green, 1.59), 1.7, LINE);
+        w.see(0.1, &lamp(LightColour::Green, 1.59), 0.0, 1.7, LINE);
         // Out of view for 7.5 s at 0.1 m/s: at the stop point the green is stale.
         let mut t = 0.1;
         while t < 7.7 {
@@ -195,14 +209,14 @@ mod tests {
         }
         assert_eq!(w.call(t, 0.85, LINE), LightCall::Look);
         // One frame of it is not yet believed; two are.
-        w.see(t + 0.1, &lamp(LightColour::Green, 0.83), 1.7, LINE);
+        w.see(t + 0.1, &lamp(LightColour::Green, 0.83), 0.0, 1.7, LINE);
         assert_eq!(w.call(t + 0.1, 0.85, LINE), LightCall::Look);
-        w.see(t + 0.2, &lamp(LightColour::Green, 0.83), 1.7, LINE);
+        w.see(t + 0.2, &lamp(LightColour::Green, 0.83), 0.0, 1.7, LINE);
         assert_eq!(w.call(t + 0.2, 0.85, LINE), LightCall::Go);
         // Just past the stop point on that green, the light seen turning is still obeyed.
         w.drive(0.05);
-        w.see(t + 0.7, &lamp(LightColour::Yellow, 0.78), 1.7, LINE);
-        w.see(t + 0.8, &lamp(LightColour::Yellow, 0.78), 1.7, LINE);
+        w.see(t + 0.7, &lamp(LightColour::Yellow, 0.78), 0.0, 1.7, LINE);
+        w.see(t + 0.8, &lamp(LightColour::Yellow, 0.78), 0.0, 1.7, LINE);
         assert_eq!(
             w.call(t + 0.8, 0.85, LINE),
             LightCall::Stop(LightColour::Yellow)
@@ -212,8 +226,8 @@ mod tests {
     #[test]
     fn a_light_that_turns_once_the_robot_is_past_its_line_does_not_stop_it_there() {
         let mut w = LightWatch::default();
-        w.see(0.0, &lamp(LightColour::Green, 0.84), 1.7, LINE);
-        w.see(0.1, &lamp(LightColour::Green, 0.84), 1.7, LINE);
+        w.see(0.0, &lamp(LightColour::Green, 0.84), 0.0, 1.7, LINE);
+        w.see(0.1, &lamp(LightColour::Green, 0.84), 0.0, 1.7, LINE);
         assert_eq!(w.call(0.1, 0.85, LINE), LightCall::Go);
         // 0.25 m on, beside the post: it turns yellow, then red, and leaves the view.
         w.drive(0.25);
@@ -223,7 +237,7 @@ mod tests {
             } else {
                 LightColour::Red
             };
-            w.see(2.6 + 0.1 * f64::from(k), &lamp(colour, 0.6), 1.7, LINE);
+            w.see(2.6 + 0.1 * f64::from(k), &lamp(colour, 0.6), 0.0, 1.7, LINE);
             assert_eq!(
                 w.call(2.6 + 0.1 * f64::from(k), 0.85, LINE),
                 LightCall::Go,
@@ -232,16 +246,70 @@ mod tests {
         }
         // Driven by it, the next light is obeyed as ever.
         w.drive(1.0);
-        w.see(13.0, &lamp(LightColour::Red, 0.8), 1.7, LINE);
-        w.see(13.1, &lamp(LightColour::Red, 0.8), 1.7, LINE);
+        w.see(13.0, &lamp(LightColour::Red, 0.8), 0.0, 1.7, LINE);
+        w.see(13.1, &lamp(LightColour::Red, 0.8), 0.0, 1.7, LINE);
         assert_eq!(w.call(13.1, 0.85, LINE), LightCall::Stop(LightColour::Red));
+    }
+
+    /// A lamp `along` metres along a bend of curvature `k` (+ left), `inside` metres
+    /// towards the bend's centre, as the camera reads it.
+    fn lamp_in_bend(colour: LightColour, along: f64, inside: f64, k: f64) -> LightSeen {
+        let (r, phi) = (1.0 / k.abs() - inside, along * k.abs());
+        let (ahead, aside) = (r * phi.sin(), 1.0 / k.abs() - r * phi.cos());
+        LightSeen {
+            colour,
+            range: ahead.hypot(aside),
+            ahead,
+            left: aside * k.signum(),
+            confidence: 0.9,
+        }
+    }
+
+    #[test]
+    fn a_lamp_beside_a_bend_is_as_far_along_the_lane_as_it_stands() {
+        for k in [-2.0, -1.0, 1.0, 2.0] {
+            for inside in [-0.4, 0.0, 0.4] {
+                let seen = lamp_in_bend(LightColour::Red, 0.6, inside, k);
+                let along = along_lane(seen.ahead, seen.left, k);
+                assert!((along - 0.6).abs() < 1e-9, "{k} {inside}: {along}");
+            }
+        }
+        assert_eq!(along_lane(0.7, 0.4, 0.0), 0.7);
+    }
+
+    #[test]
+    fn a_light_turning_in_a_bend_before_the_line_stops_the_robot() {
+        // 0.15 m before the line of a lamp 0.4 m inside a bend of radius 1 m: 0.41 m
+        // ahead, 0.75 m along.
+        let mut w = LightWatch::default();
+        for (k, colour) in [LightColour::Green, LightColour::Green]
+            .into_iter()
+            .enumerate()
+        {
+            let t = 0.1 * k as f64;
+            w.see(t, &lamp_in_bend(colour, 0.75, 0.4, 1.0), 1.0, 1.7, LINE);
+            assert_eq!(w.call(t, 0.85, LINE), LightCall::Go);
+        }
+        for t in [0.2, 0.3] {
+            w.see(
+                t,
+                &lamp_in_bend(LightColour::Yellow, 0.75, 0.4, 1.0),
+                1.0,
+                1.7,
+                LINE,
+            );
+        }
+        assert_eq!(
+            w.call(0.3, 0.85, LINE),
+            LightCall::Stop(LightColour::Yellow)
+        );
     }
 
     #[test]
     fn a_light_driven_past_is_forgotten() {
         let mut w = LightWatch::default();
-        w.see(0.0, &lamp(LightColour::Red, 1.0), 1.7, LINE);
-        w.see(0.1, &lamp(LightColour::Red, 1.0), 1.7, LINE);
+        w.see(0.0, &lamp(LightColour::Red, 1.0), 0.0, 1.7, LINE);
+        w.see(0.1, &lamp(LightColour::Red, 1.0), 0.0, 1.7, LINE);
         w.drive(1.1);
         assert_eq!(w.call(0.2, 0.85, LINE), LightCall::Go);
     }

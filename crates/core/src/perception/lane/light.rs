@@ -70,7 +70,7 @@ impl LightFinder {
             let Some((colour, confidence)) = colour_bayes::classify(hue) else {
                 continue;
             };
-            let Some((range, ahead)) = self.range(&shape, colour) else {
+            let Some((range, ahead, left)) = self.range(&shape, colour) else {
                 continue;
             };
             // The nearest lamp is the light ahead: a farther one (the next light down
@@ -82,6 +82,7 @@ impl LightFinder {
                         colour,
                         range,
                         ahead,
+                        left,
                         confidence,
                     },
                 ));
@@ -100,8 +101,8 @@ impl LightFinder {
     /// ranged by its size instead. Pinhole: a disc of radius R at depth Z spans
     /// r = f R / Z pixels (the contour runs through the rim pixels' centres, half a pixel
     /// inside the rim), and the lamp lies Z along the ray of unit depth. With the range,
-    /// how far of it lies ahead along the robot's heading.
-    fn range(&self, shape: &BlobShape, colour: LightColour) -> Option<(f64, f64)> {
+    /// how far of it lies ahead along the robot's heading and how far left.
+    fn range(&self, shape: &BlobShape, colour: LightColour) -> Option<(f64, f64, f64)> {
         let (u, v) = shape.centre;
         let mount = self.eye.mount();
         let lens = mount.to_robot(nalgebra::Vector3::zeros());
@@ -114,7 +115,7 @@ impl LightFinder {
             let ray = nalgebra::Vector3::new((u - k.cx) / k.fx, (v - k.cy) / k.fy, 1.0);
             lens + depth * mount.rotate_to_robot(ray)
         };
-        Some(((lamp - lens).norm(), lamp.x - lens.x))
+        Some(((lamp - lens).norm(), lamp.x - lens.x, lamp.y - lens.y))
     }
 }
 

@@ -183,10 +183,11 @@ fn lamp_read((x, y): (f64, f64), bgr: [u8; 3], colour: LightColour, share: f64) 
         "{} vs {range}",
         seen.range
     );
-    let ahead = x - eye().mount().to_robot(Vector3::zeros()).x;
+    let lens = eye().mount().to_robot(Vector3::zeros());
+    let (ahead, left) = (x - lens.x, y - lens.y);
     assert!(
-        (seen.ahead - ahead).abs() < share * range,
-        "{seen:?} vs {ahead} ahead"
+        (seen.ahead - ahead).abs() < share * range && (seen.left - left).abs() < share * range,
+        "{seen:?} vs {ahead} ahead, {left} left"
     );
     seen
 }

@@ -74,17 +74,17 @@ impl BgrFrame {
                 let x0 = tx * self.width / w;
                 let x1 = ((tx + 1) * self.width / w).max(x0 + 1).min(self.width);
                 let mut sum = [0u32; 3];
-                let mut n = 0u32;
                 for y in y0..y1 {
-                    for x in x0..x1 {
-                        let p = self.at(x, y);
+                    let row = (self.data)
+                        .get(3 * (y * self.width + x0)..3 * (y * self.width + x1))
+                        .unwrap_or_default();
+                    for p in row.chunks_exact(3) {
                         for c in 0..3 {
                             sum[c] += u32::from(p[c]);
                         }
-                        n += 1;
                     }
                 }
-                let n = n.max(1);
+                let n = ((y1 - y0) * (x1 - x0)).max(1) as u32;
                 rgb.extend([sum[2] / n, sum[1] / n, sum[0] / n].map(|v| v as u8));
             }
         }

@@ -7,6 +7,7 @@ use crate::geometry::Pose2;
 use crate::perception::intrinsics::Intrinsics;
 use crate::perception::mount::Mount;
 use nalgebra::Vector3;
+use rayon::prelude::*;
 
 /// Marks a pixel whose ray never meets the floor (it looks at or above the horizon).
 const SKY: u8 = u8::MAX;
@@ -14,6 +15,8 @@ const SKY: u8 = u8::MAX;
 const MAGNIFIED: f64 = 0.5;
 /// Floor further than this from the lens is drawn as the coarsest level, metres.
 const FAR: f64 = 40.0;
+/// Pixels painted as one piece of work when the frame is shared among the cores.
+const BAND: usize = 640 * 16;
 
 /// For every pixel, where its ray meets the floor in the robot frame and how to sample
 /// the texture there (`FloorTexture::sample`'s code) for the floor it spans.
@@ -116,17 +119,24 @@ impl FloorRays {
         // Brightness as a fixed-point factor of 1/256ths.
         let gain = (brightness * 256.0).round().clamp(0.0, 65535.0) as u32;
         let scale = |p: [u8; 3]| p.map(|v| ((u32::from(v) * gain + 128) >> 8).min(255) as u8);
-        let pixels = out.chunks_exact_mut(3);
-        for ((pixel, &[rx, ry]), &level) in pixels.zip(&self.points).zip(&self.levels) {
-            let colour = if level == SKY {
-                room
-            } else {
-                // The robot-frame point moved rigidly into the world.
-                let wx = px + c * rx - s * ry;
-                let wy = py + s * rx + c * ry;
-                scale(texture.sample(level, wx, wy))
-            };
-            pixel.copy_from_slice(&colour);
-        }
+        let bands = out.par_chunks_mut(3 * BAND);
+        let rays = self
+            .points
+            .par_chunks(BAND)
+            .zip(self.levels.par_chunks(BAND));
+        bands.zip(rays).for_each(|(band, (points, levels))| {
+            let pixels = band.chunks_exact_mut(3);
+            for ((pixel, &[rx, ry]), &level) in pixels.zip(points).zip(levels) {
+                let colour = if level == SKY {
+                    room
+                } else {
+                    // The robot-frame point moved rigidly into the world.
+                    let wx = px + c * rx - s * ry;
+                    let wy = py + s * rx + c * ry;
+                    scale(texture.sample(level, wx, wy))
+                };
+                pixel.copy_from_slice(&colour);
+            }
+        });
     }
 }

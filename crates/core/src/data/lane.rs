@@ -88,6 +88,8 @@ pub struct BarrierSeen {
     pub range: f64,
     /// The filter's probabilities of down, moving and up.
     pub belief: [f64; 3],
+    /// Whether this frame showed the arm; if not, its angle and range are as last seen.
+    pub fresh: bool,
 }
 
 /// A small colour picture of the newest frame, RGB bytes, rows top to bottom.

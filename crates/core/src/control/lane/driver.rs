@@ -54,6 +54,9 @@ pub struct LaneDriver {
     opened: bool,
     /// Frames since an arm was last seen ahead (within `BARRIER_AHEAD` stopping ranges).
     unseen: u32,
+    /// The arm's range in the last frame that showed it, and whether that frame agreed
+    /// with the one before it (the arm is believed).
+    arm_range: Option<(f64, bool)>,
     /// How the arm ahead moved while the robot waited before it.
     arm: ArmWatch,
     /// The arm's angle in the last frame that showed one, degrees above level.
@@ -74,6 +77,11 @@ const LIGHT_AHEAD: f64 = 2.0;
 /// Arms seen within this many stopping ranges are the barrier ahead: remembered when lost
 /// from view, and while the robot waits, the only arm that can open its way.
 const BARRIER_AHEAD: f64 = 2.0;
+/// How far apart, metres plus a share of the range, two frames may put an arm for the
+/// second to confirm the first: a raised arm's range wanders by a tenth, a misread one
+/// jumps (1.6 m, then 6 cm, then 1.7 m).
+const ARM_AGREE_METRES: f64 = 0.05;
+const ARM_AGREE_SHARE: f64 = 0.15;
 /// seed 000 §3.2.3: an arm within this of level is DOWN.
 const DOWN_DEG: f64 = 20.0;
 
@@ -86,6 +94,7 @@ impl LaneDriver {
             hold: None,
             opened: false,
             unseen: 0,
+            arm_range: None,
             arm: ArmWatch::default(),
             last_arm: None,
             light: LightWatch::default(),
@@ -107,6 +116,7 @@ impl LaneDriver {
         // What was seen before the pause is not ahead any more: the robot may have moved.
         self.light = LightWatch::default();
         self.arm_ahead = None;
+        self.arm_range = None;
         self.arm = ArmWatch::default();
         self.last_arm = None;
         self.last_t = None;
@@ -176,7 +186,21 @@ impl LaneDriver {
         // While the robot waits before an arm, one seen farther off is another barrier
         // down the track (this one has risen out of the picture), not this one.
         let reach = BARRIER_AHEAD * self.cfg.barrier_stop_range;
-        let barrier = s.barrier.filter(|b| !waiting || b.range <= reach);
+        // Before it holds the robot, an arm is believed once two frames in a row agree on
+        // where it stands: one misread frame would otherwise hold the robot for an
+        // opening it never sees.
+        self.arm_range = match s.barrier {
+            Some(b) if b.fresh => {
+                let agrees = |(r, _): (f64, bool)| {
+                    (b.range - r).abs() <= ARM_AGREE_METRES + ARM_AGREE_SHARE * b.range
+                };
+                Some((b.range, self.arm_range.is_some_and(agrees)))
+            }
+            Some(_) => self.arm_range,
+            None => None,
+        };
+        let believed = self.arm_range.is_some_and(|(_, believed)| believed);
+        let barrier = (s.barrier).filter(|b| if waiting { b.range <= reach } else { believed });
         let angle = barrier.map(|b| b.angle_deg.abs());
         let last_arm = std::mem::replace(&mut self.last_arm, angle);
         let closed_ahead = waiting && self.hold != Some(Wait::Barrier(BarrierState::Up));

@@ -75,6 +75,9 @@ fn a_barrier_down_or_moving_holds_until_up() {
     let mut d = LaneDriver::new(LaneDriveConfig::default());
     d.reset(0.0);
     let barrier = |state| barrier_at(state, 0.0, 0.5);
+    // One frame is not yet believed; the second, agreeing on where it stands, is.
+    let once = d.step(0.05, Some(&barrier(BarrierState::Moving)), 0.1);
+    assert_eq!(once.wait, None);
     let s = d.step(0.1, Some(&barrier(BarrierState::Moving)), 0.1);
     assert_eq!(s.wait, Some(Wait::Barrier(BarrierState::Moving)));
     assert_eq!(
@@ -92,6 +95,7 @@ fn a_barrier_already_up_when_met_is_passed_only_on_an_opening_seen_to_begin() {
     let mut d = LaneDriver::new(LaneDriveConfig::default());
     d.reset(0.0);
     let barrier = |state| barrier_at(state, 90.0, 0.5);
+    d.step(0.05, Some(&barrier(BarrierState::Up)), 0.1);
     let up = d.step(0.1, Some(&barrier(BarrierState::Up)), 0.1);
     assert_eq!(up.wait, Some(Wait::Barrier(BarrierState::Up)));
     // Still up a frame later: how long it stays up is still unknown.
@@ -112,6 +116,7 @@ fn an_arm_seen_ahead_and_then_lost_above_the_picture_holds_the_robot_at_the_stop
         let mut d = LaneDriver::new(LaneDriveConfig::default());
         d.reset(0.0);
         let ahead = barrier_at(BarrierState::of_angle(first), first, 0.8);
+        d.step(0.05, Some(&ahead), 0.0);
         assert_eq!(d.step(0.1, Some(&ahead), 0.1).wait, None, "{first}");
         // Out of view from here at 0.1 m/s: 0.25 m on it is 0.55 m off.
         let mut t = 0.1;
@@ -159,6 +164,7 @@ fn barrier_at(state: BarrierState, angle_deg: f64, range: f64) -> LaneSighting {
             angle_deg,
             range,
             belief,
+            fresh: true,
         }),
         ..seen(0.0)
     }
@@ -173,6 +179,7 @@ fn arm(angle_deg: f64) -> LaneSighting {
 fn an_arm_seen_rising_out_of_the_picture_is_an_opening_and_one_lowering_is_not() {
     let mut d = LaneDriver::new(LaneDriveConfig::default());
     d.reset(0.0);
+    d.step(0.05, Some(&arm(2.0)), 0.0);
     for (i, a) in [2.0, 3.0, 7.0, 12.0, 14.0].into_iter().enumerate() {
         let s = d.step(0.1 * (i + 1) as f64, Some(&arm(a)), 0.0);
         assert!(matches!(s.wait, Some(Wait::Barrier(_))), "{a}: {s:?}");
@@ -297,5 +304,23 @@ fn an_arm_seen_opening_and_then_standing_raised_beyond_the_stopping_range_is_pas
     for _ in 0..40 {
         t += 0.1;
         assert_eq!(d.step(t, Some(&seen(0.0)), 0.1).wait, None, "{t}");
+    }
+}
+
+#[test]
+fn one_misread_frame_of_an_arm_at_the_robot_does_not_hold_it() {
+    let mut d = LaneDriver::new(LaneDriveConfig::default());
+    d.reset(0.0);
+    // A raised arm 1.6 m off, one frame read 6 cm off and then lost, the pipeline
+    // repeating that reading while its filter still tracks the arm.
+    for (k, (range, fresh)) in [(1.66, true), (1.65, true), (1.62, true), (0.06, true)]
+        .into_iter()
+        .chain([(0.06, false); 20])
+        .enumerate()
+    {
+        let mut s = barrier_at(BarrierState::Up, 80.0, range);
+        s.barrier.as_mut().unwrap().fresh = fresh;
+        let step = d.step(0.1 * (k + 1) as f64, Some(&s), 0.1);
+        assert_eq!(step.wait, None, "{k}: {range}");
     }
 }

@@ -156,18 +156,18 @@ impl LanePipeline {
     }
 
     fn objects(&self) -> Result<ObjectDetections, String> {
-        Ok(ObjectDetections {
-            light: self.lights.find(&self.hsv).map_err(|e| e.to_string())?,
-            barrier: self.arm.find(&self.hsv).map_err(|e| e.to_string())?,
-        })
+        objects_in(&self.lights, &self.arm, &self.hsv)
     }
 
     fn try_read(&mut self, frame: &BgrFrame) -> Result<LaneSighting, String> {
         self.load_hsv(frame)?;
-        let masks = self
-            .masks
-            .masks(&self.hsv, self.value.floor())
-            .map_err(|e| e.to_string())?;
+        // The lane's masks and the light and barrier are found from the same HSV frame
+        // at once, on two cores where there are two.
+        let (masks, objects) = rayon::join(
+            || self.masks.masks(&self.hsv, self.value.floor()),
+            || objects_in(&self.lights, &self.arm, &self.hsv),
+        );
+        let masks = masks.map_err(|e| e.to_string())?;
         let cells = self.eye.cols() * self.eye.rows();
         let pixel_ratio = masks.lane_cells as f64 / cells as f64;
         self.value.update(pixel_ratio);
@@ -176,7 +176,7 @@ impl LanePipeline {
         let yellow = self.yellow.offer(yellow_found, &self.limits);
         let white = self.white.offer(white_found, &self.limits);
         let (error_px, curvature) = self.centre(yellow, white).unzip();
-        let objects = self.objects()?;
+        let objects = objects?;
         let observed = objects.barrier.map(|b| (b.state, b.confidence));
         let belief = self.barrier.step(observed);
         self.last_arm = belief.and(objects.barrier.or(self.last_arm));
@@ -186,6 +186,7 @@ impl LanePipeline {
             angle_deg: arm.angle_deg,
             range: arm.range,
             belief,
+            fresh: objects.barrier.is_some(),
         });
         Ok(LaneSighting {
             error_px,
@@ -248,4 +249,16 @@ impl LanePipeline {
             curvature(&fit, y),
         ))
     }
+}
+
+/// The light and the barrier in `hsv` (a whole frame in HSV).
+fn objects_in(
+    lights: &LightFinder,
+    arm: &ArmFinder,
+    hsv: &Mat,
+) -> Result<ObjectDetections, String> {
+    Ok(ObjectDetections {
+        light: lights.find(hsv).map_err(|e| e.to_string())?,
+        barrier: arm.find(hsv).map_err(|e| e.to_string())?,
+    })
 }

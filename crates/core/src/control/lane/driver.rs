@@ -215,7 +215,15 @@ impl LaneDriver {
         }
         if let Some(b) = barrier {
             let near = b.range <= reach;
-            self.arm_ahead = (near && !self.opened && self.hold.is_none()).then_some(b.range);
+            // A moving arm's range reads short (an arm 2.3 m off, rising, reads 1 m): only
+            // one lying down or standing up places the barrier; a moving one keeps the
+            // place last read.
+            let placed = b.angle_deg.abs() <= DOWN_DEG || b.state == BarrierState::Up;
+            if !(near && !self.opened && self.hold.is_none()) {
+                self.arm_ahead = None;
+            } else if placed {
+                self.arm_ahead = Some(b.range);
+            }
         }
         match barrier {
             // Seen rising while waiting (not the arm met already up, whose next opening

@@ -170,6 +170,13 @@ fn barrier_at(state: BarrierState, angle_deg: f64, range: f64) -> LaneSighting {
     }
 }
 
+/// An arm 0.5 m ahead seen level and rising to 46 degrees, a frame every 0.1 s to 0.4 s.
+fn rise_from_level(d: &mut LaneDriver) {
+    for (i, a) in [0.0, 10.0, 30.0, 46.0].into_iter().enumerate() {
+        d.step(0.1 * (i + 1) as f64, Some(&arm(a)), 0.0);
+    }
+}
+
 /// A centred lane with an arm at `angle_deg` 0.5 m ahead, in the state of its angle.
 fn arm(angle_deg: f64) -> LaneSighting {
     barrier_at(BarrierState::of_angle(angle_deg), angle_deg, 0.5)
@@ -200,9 +207,7 @@ fn an_arm_seen_rising_out_of_the_picture_is_an_opening_and_one_lowering_is_not()
 fn once_an_opening_is_seen_the_rising_arm_does_not_stop_the_robot_but_a_lowering_one_does() {
     let mut d = LaneDriver::new(LaneDriveConfig::default());
     d.reset(0.0);
-    for (i, a) in [0.0, 10.0, 30.0, 46.0].into_iter().enumerate() {
-        d.step(0.1 * (i + 1) as f64, Some(&arm(a)), 0.0);
-    }
+    rise_from_level(&mut d);
     // Open at 46 degrees and rising; still moving at 50 and 50 again (a held frame).
     assert_eq!(d.step(0.5, Some(&arm(50.0)), 0.0).wait, None);
     assert_eq!(d.step(0.6, Some(&arm(50.0)), 0.0).wait, None);
@@ -289,9 +294,7 @@ fn losing_the_lane_stops_after_the_timeout() {
 fn an_arm_seen_opening_and_then_standing_raised_beyond_the_stopping_range_is_passed() {
     let mut d = LaneDriver::new(LaneDriveConfig::default());
     d.reset(0.0);
-    for (i, a) in [0.0, 10.0, 30.0, 46.0].into_iter().enumerate() {
-        d.step(0.1 * (i + 1) as f64, Some(&arm(a)), 0.0);
-    }
+    rise_from_level(&mut d);
     assert_eq!(d.step(0.5, Some(&arm(50.0)), 0.0).wait, None);
     // Raised, its range reading 0.7 m for two seconds while the robot creeps on, then out
     // of view above the picture: the robot drives under it.

@@ -43,6 +43,11 @@ pub struct LaneDriveConfig {
     pub light_line_ahead: f64,
     /// A barrier down or moving this near stops the robot.
     pub barrier_stop_range: f64,
+    /// Seconds the robot waits for an arm it remembers ahead but no frame has shown since:
+    /// lowered, an arm that near would be in view, so one unseen this long stands open
+    /// (or was never there: a far arm ranged short), and the robot drives on, stopping
+    /// again for any arm it then sees closed.
+    pub unseen_arm_patience: f64,
     /// Seconds without a lane line before lane following stops the robot.
     pub lost_after: f64,
 }
@@ -61,6 +66,7 @@ impl Default for LaneDriveConfig {
             light_stop_range: 0.85,
             light_line_ahead: 0.53,
             barrier_stop_range: 0.55,
+            unseen_arm_patience: 30.0,
             lost_after: 1.0,
         }
     }
@@ -86,6 +92,7 @@ impl LaneDriveConfig {
             ("light_stop_range", self.light_stop_range, 0.1, 10.0),
             ("light_line_ahead", self.light_line_ahead, 0.0, 10.0),
             ("barrier_stop_range", self.barrier_stop_range, 0.1, 10.0),
+            ("unseen_arm_patience", self.unseen_arm_patience, 1.0, 3600.0),
             ("lost_after", self.lost_after, 0.05, 60.0),
         ])
     }

@@ -66,6 +66,11 @@ pub struct LaneDriver {
     /// The range of an arm seen ahead and not seen to open, shortened likewise: an arm
     /// that rises leaves the picture's top before the robot reaches its stopping range.
     arm_ahead: Option<f64>,
+    /// Whether the hold is for an arm remembered out of view: its range may have read
+    /// short (glare ranged an arm 1.9 m off at 0.9 m), so an arm seen anywhere ahead is it.
+    remembered: bool,
+    /// When a frame last showed an arm, or the remembered arm's hold began.
+    arm_seen_at: f64,
     /// When the last step was taken.
     last_t: Option<f64>,
 }
@@ -99,6 +104,8 @@ impl LaneDriver {
             last_arm: None,
             light: LightWatch::default(),
             arm_ahead: None,
+            remembered: false,
+            arm_seen_at: 0.0,
             last_t: None,
         }
     }
@@ -116,6 +123,8 @@ impl LaneDriver {
         // What was seen before the pause is not ahead any more: the robot may have moved.
         self.light = LightWatch::default();
         self.arm_ahead = None;
+        self.remembered = false;
+        self.arm_seen_at = t;
         self.arm_range = None;
         self.arm = ArmWatch::default();
         self.last_arm = None;
@@ -148,7 +157,23 @@ impl LaneDriver {
             self.arm_ahead = None;
             if self.hold.is_none() && !self.opened && range >= 0.0 {
                 self.hold = Some(Wait::Barrier(BarrierState::Up));
+                self.remembered = true;
+                self.arm_seen_at = t;
             }
+        }
+        if fresh.is_some_and(|s| s.barrier.is_some_and(|b| b.fresh)) {
+            self.arm_seen_at = t;
+        }
+        // Waiting for a remembered arm that no frame has shown for the patience: it stands
+        // open, or was never where it was remembered.
+        if self.remembered
+            && self.hold == Some(Wait::Barrier(BarrierState::Up))
+            && t - self.arm_seen_at >= self.cfg.unseen_arm_patience
+        {
+            self.hold = None;
+            self.remembered = false;
+            self.opened = true;
+            self.unseen = 0;
         }
         // A red or yellow seen near, or seen farther off and then lost from view (a lamp
         // seen only now and then, or leaving the picture in a bend), stops the robot where
@@ -182,6 +207,14 @@ impl LaneDriver {
     /// Holds for a closed barrier in range; clears the hold when it opens (seed 000 §3's
     /// traffic compliance).
     fn comply(&mut self, s: &LaneSighting) {
+        self.see_barrier(s);
+        if !matches!(self.hold, Some(Wait::Barrier(_))) {
+            self.remembered = false;
+        }
+    }
+
+    /// `comply` but for forgetting the remembered arm once its hold is gone.
+    fn see_barrier(&mut self, s: &LaneSighting) {
         let waiting = matches!(self.hold, Some(Wait::Barrier(_)));
         // While the robot waits before an arm, one seen farther off is another barrier
         // down the track (this one has risen out of the picture), not this one.
@@ -200,7 +233,10 @@ impl LaneDriver {
             None => None,
         };
         let believed = self.arm_range.is_some_and(|(_, believed)| believed);
-        let barrier = (s.barrier).filter(|b| if waiting { b.range <= reach } else { believed });
+        let barrier = (s.barrier).filter(|b| match waiting {
+            true => b.range <= reach || (self.remembered && b.fresh),
+            false => believed,
+        });
         let angle = barrier.map(|b| b.angle_deg.abs());
         let last_arm = std::mem::replace(&mut self.last_arm, angle);
         let closed_ahead = waiting && self.hold != Some(Wait::Barrier(BarrierState::Up));
@@ -250,6 +286,8 @@ impl LaneDriver {
             }
             Some(b) if b.range <= self.cfg.barrier_stop_range => {
                 self.unseen = 0;
+                // Seen near, the arm is ranged afresh.
+                self.remembered = false;
                 // After an opening seen to begin, only an arm seen down or coming down
                 // closes the way again (the filter's state lags a rising arm).
                 let closing = b.angle_deg.abs() <= DOWN_DEG

@@ -350,3 +350,64 @@ fn an_arm_seen_only_while_moving_is_not_remembered_where_its_range_reads() {
         assert_eq!(d.step(t, Some(&seen(0.0)), 0.1).wait, None, "{t}");
     }
 }
+
+#[test]
+fn an_arm_remembered_short_of_where_it_stands_is_waited_for_wherever_it_is_seen_next() {
+    let mut d = LaneDriver::new(LaneDriveConfig::default());
+    d.reset(0.0);
+    // Read lying down 0.8 m off twice (it stands 1.5 m off), then out of view.
+    let misread = barrier_at(BarrierState::Down, 5.0, 0.8);
+    d.step(0.05, Some(&misread), 0.1);
+    d.step(0.1, Some(&misread), 0.1);
+    let mut t = 0.1;
+    let mut held = None;
+    while t < 5.0 && held.is_none() {
+        t += 0.1;
+        held = d.step(t, Some(&seen(0.0)), 0.1).wait;
+    }
+    assert_eq!(held, Some(Wait::Barrier(BarrierState::Up)));
+    // The arm itself, 1.2 m off, past the reach of a robot waiting at a barrier it ranged:
+    // seen lying down, then rising. That opening is the robot's.
+    for (k, a) in [0.0, 0.0, 15.0, 30.0].into_iter().enumerate() {
+        let s = barrier_at(BarrierState::of_angle(a), a, 1.2);
+        let step = d.step(t + 0.1 * (k + 1) as f64, Some(&s), 0.0);
+        assert!(step.wait.is_some(), "{a}: {step:?}");
+    }
+    let far = barrier_at(BarrierState::Moving, 50.0, 1.2);
+    assert_eq!(d.step(t + 0.5, Some(&far), 0.0).wait, None);
+}
+
+#[test]
+fn an_arm_remembered_ahead_and_never_seen_again_is_waited_for_only_the_patience() {
+    let cfg = LaneDriveConfig::default();
+    let patience = cfg.unseen_arm_patience;
+    let mut d = LaneDriver::new(cfg);
+    d.reset(0.0);
+    let ahead = barrier_at(BarrierState::Down, 5.0, 0.8);
+    d.step(0.05, Some(&ahead), 0.1);
+    d.step(0.1, Some(&ahead), 0.1);
+    let mut t = 0.1;
+    let mut held_at = None;
+    while t < 5.0 && held_at.is_none() {
+        t += 0.1;
+        held_at = d.step(t, Some(&seen(0.0)), 0.1).wait.map(|_| t);
+    }
+    let held_at = held_at.expect("held");
+    // Nothing in view: held until the patience runs out, then on its way for good.
+    let mut freed = None;
+    while t < held_at + 2.0 * patience && freed.is_none() {
+        t += 0.1;
+        freed = d.step(t, Some(&seen(0.0)), 0.0).wait.is_none().then_some(t);
+    }
+    let freed = freed.expect("freed");
+    assert!(
+        (freed - held_at - patience).abs() < 0.15,
+        "{held_at} {freed}"
+    );
+    assert_eq!(d.step(t + 0.1, Some(&seen(0.0)), 0.1).wait, None);
+    // An arm then met closed near still holds it.
+    let near = barrier_at(BarrierState::Down, 2.0, 0.5);
+    d.step(t + 0.2, Some(&near), 0.1);
+    let s = d.step(t + 0.3, Some(&near), 0.1);
+    assert_eq!(s.wait, Some(Wait::Barrier(BarrierState::Down)));
+}

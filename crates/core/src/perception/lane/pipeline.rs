@@ -170,9 +170,9 @@ impl LanePipeline {
         let masks = masks.map_err(|e| e.to_string())?;
         let cells = self.eye.cols() * self.eye.rows();
         let pixel_ratio = masks.lane_cells as f64 / cells as f64;
-        self.value.update(pixel_ratio);
         let yellow_found = self.line(&masks.yellow)?;
         let white_found = self.line(&masks.white)?;
+        (self.value).update(pixel_ratio, yellow_found.is_some() || white_found.is_some());
         let yellow = self.yellow.offer(yellow_found, &self.limits);
         let white = self.white.offer(white_found, &self.limits);
         let (error_px, curvature) = self.centre(yellow, white).unzip();

@@ -113,7 +113,7 @@ fn a_glare_spot_is_not_taken_for_a_lane_line() {
 #[test]
 fn the_brightness_floor_rises_through_faint_stripes_until_only_the_lines_pass() {
     // Faint pale stripes 2 cm wide every 6 cm across the whole floor, 30 levels above it:
-    // narrow enough to stand out, far over the band's 5 % at the starting floor of 50.
+    // narrow enough to stand out, far over the band's 10 % at the starting floor of 50.
     let hatched = floor(|x, y| match lines(Some(0.2), Some(-0.2), y) {
         FLOOR if (x / 0.06).fract() < 0.33 => [70, 70, 70],
         c => c,
@@ -123,8 +123,31 @@ fn the_brightness_floor_rises_through_faint_stripes_until_only_the_lines_pass() 
     assert!(before > 0.1, "{before}");
     let s = settled(&mut p, &hatched, 15);
     assert!(p.value_floor() > 70.0, "{}", p.value_floor());
-    assert!(s.pixel_ratio <= 0.06, "{before} -> {}", s.pixel_ratio);
+    assert!(s.pixel_ratio <= 0.1, "{before} -> {}", s.pixel_ratio);
     assert!(s.error_px.unwrap().abs() < 5.0, "{s:?}");
+}
+
+#[test]
+fn a_lane_gone_dark_under_a_shadow_is_found_again_by_a_robot_standing_before_it() {
+    // The floor learnt over faint stripes in the light is above the tape once a shadow
+    // falls over the whole view at 0.3 of the light: the paint vanishes, then a line comes
+    // back as the floor sinks, with nothing moving.
+    let hatched = floor(|x, y| match lines(Some(0.2), Some(-0.2), y) {
+        FLOOR if (x / 0.06).fract() < 0.33 => [70, 70, 70],
+        c => c,
+    });
+    let mut p = pipeline();
+    settled(&mut p, &hatched, 15);
+    let learnt = p.value_floor();
+    let dark = floor(|_, y| lines(Some(0.2), Some(-0.2), y).map(|v| (f64::from(v) * 0.3) as u8));
+    let first = p.read(&dark, None);
+    assert_eq!(first.pixel_ratio, 0.0, "{learnt}");
+    let s = settled(&mut p, &dark, 40);
+    assert!(s.pixel_ratio > 0.01, "{}", s.pixel_ratio);
+    assert!(p.value_floor() < learnt, "{} vs {learnt}", p.value_floor());
+    // One line is enough to drive on; the floor sinks no further once one is found.
+    assert!(s.yellow.is_some() || s.white.is_some(), "{s:?}");
+    assert!(s.error_px.unwrap().abs() < 8.0, "{s:?}");
 }
 
 #[test]

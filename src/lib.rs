@@ -5,7 +5,7 @@
 //! the names the rest of navdeck and its tests use.
 
 pub use navdeck_core::{
-    arm, clock, control, data, geometry, health, map, mission, perception, plan, sim, slam,
+    arm, clock, control, data, geometry, health, map, mission, perception, plan, sim, slam, tags,
 };
 pub use navdeck_link::{self as link, record};
 pub use navdeck_msgs as msgs;

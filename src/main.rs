@@ -132,6 +132,9 @@ enum Subcommand {
     /// rate, QoS and mismatches.
     #[command(subcommand)]
     Ros2(Ros2Command),
+    /// Tag maps (seed 003): check one, and plan BFS routes through it.
+    #[command(subcommand)]
+    Tags(commands::tags::TagsCommand),
 }
 
 fn main() -> ExitCode {
@@ -199,6 +202,7 @@ fn real_main(cli: Cli) -> Result<ExitCode> {
                 Subcommand::Arm(_) => "arm",
                 Subcommand::Replay(_) => "replay",
                 Subcommand::Ros2(_) => "ros2",
+                Subcommand::Tags(_) => "tags",
             };
             anyhow::bail!(
                 "{option} before `{name}` is the console's option: give the subcommand's own after it (navdeck {name} --help lists them)"
@@ -214,6 +218,7 @@ fn real_main(cli: Cli) -> Result<ExitCode> {
         Some(Subcommand::World(command)) => return commands::world::run(command),
         Some(Subcommand::Arm(command)) => return commands::arm::run(command),
         Some(Subcommand::Replay(args)) => return commands::replay::run(args),
+        Some(Subcommand::Tags(command)) => return commands::tags::run(command),
         Some(Subcommand::Ros2(command)) => {
             if let Some(option) = [
                 ("--domain", cli.domain.is_some()),

@@ -14,3 +14,4 @@ pub mod perception;
 pub mod plan;
 pub mod sim;
 pub mod slam;
+pub mod tags;

@@ -108,13 +108,11 @@ impl Default for LaneVisionConfig {
             // Twice the twin's 25 mm tape and TurtleBot3 AutoRace's 20-30 mm.
             paint_width_max: 0.05,
             // seed 000 §2.1.2: the loop holds lane pixels at 2-3 % of the image. navdeck
-            // counts them on the bird's-eye view, where two lines of 25 mm tape across a 1 m
-            // view cover 5 % (3.75 % with one dashed; a lens's blur widens them to 6-7 %),
-            // one line alone 1.25-2.5 %. The most is two lines of the widest paint
-            // (`paint_width_max`, 5 cm) across the view: more than that is not paint. At 5 %
-            // the loop raised the floor over two solid lines and over a raised arm's
-            // stripes, until tape under a shadow no longer passed.
-            pixel_ratio_band: [0.01, 0.10],
+            // counts them on the bird's-eye view, where the two lines of 25 mm tape (one
+            // dashed) across a 1 m view cover 3.75 %, one line alone 1.25-2.5 %. A floor
+            // raised over two solid lines (5-7 %) keeps glare's rim out; one raised above
+            // tape under a shadow sinks again once no line is found (`ValueLoop`).
+            pixel_ratio_band: [0.01, 0.05],
             // Not given by the seed: a 1 % ratio error moves the floor 1 level at once and 2
             // more each frame it lasts, so the integral, not a kick, holds the floor.
             pi_gains: [100.0, 200.0],

@@ -1,0 +1,16 @@
+//! Tag-graph navigation's map (seed 003): AprilTags on the floor, the directed edges a
+//! robot may drive between them, and named tasks; routes through it by BFS.
+//!
+//! - `file`: the tag map file (seed 003 §1.2.3's `map.yaml`) read and checked, each
+//!   error naming the tag and the line.
+//! - `graph`: BFS between tags, routes through a task's waypoints, blocked edges left out.
+//! - `scan`: the seed's scan list (§2.2 mode 4) from CSV: group ids to tags, a route from
+//!   the dock through them and back.
+
+pub mod file;
+pub mod graph;
+pub mod scan;
+
+pub use file::{Direction, EdgeKind, Tag, TagEdge, TagId, TagKind, TagMap, TagMapError, Zone};
+pub use graph::{Leg, Route, RouteError};
+pub use scan::{ScanError, ScanRoute};

@@ -1,7 +1,7 @@
 //! `navdeck tags` as a user runs it: the warehouse checked, routes planned round a blocked
 //! edge, a scan list turned into a route, and a bad map refused at its line.
 
-use crate::common::navdeck;
+use crate::common::{navdeck, scratch};
 
 const WAREHOUSE: &str = "maps/tag_warehouse.yaml";
 
@@ -52,9 +52,7 @@ fn a_blocked_aisle_is_refused_by_name_and_a_scan_list_routes_from_the_dock_and_b
         "{}",
         text(&out.stderr)
     );
-    let dir = std::env::temp_dir().join(format!("navdeck-tags-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let csv = dir.join("scan.csv");
+    let csv = scratch("scan").join("scan.csv");
     std::fs::write(&csv, "item,group_id\nbox,20\nbox,20\ncrate,36\n").unwrap();
     let out = navdeck(&[
         "tags",
@@ -67,14 +65,11 @@ fn a_blocked_aisle_is_refused_by_name_and_a_scan_list_routes_from_the_dock_and_b
     let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     assert_eq!(v["scan_tags"], serde_json::json!([120, 136]));
     assert_eq!(v["waypoints"], serde_json::json!([508, 120, 136, 508]));
-    std::fs::remove_dir_all(&dir).unwrap();
 }
 
 #[test]
 fn a_map_with_an_edge_to_nowhere_is_refused_with_the_file_and_line() {
-    let dir = std::env::temp_dir().join(format!("navdeck-tags-bad-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let bad = dir.join("bad.yaml");
+    let bad = scratch("bad").join("bad.yaml");
     let map = std::fs::read_to_string(WAREHOUSE).unwrap().replacen(
         "- {to: 117, direction: forward",
         "- {to: 917, direction: forward",
@@ -90,5 +85,4 @@ fn a_map_with_an_edge_to_nowhere_is_refused_with_the_file_and_line() {
         err.contains(&format!("line {line}: edge 104 -> 917: no tag 917")),
         "{err}"
     );
-    std::fs::remove_dir_all(&dir).unwrap();
 }

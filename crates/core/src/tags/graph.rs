@@ -4,7 +4,6 @@
 
 use super::file::{Direction, EdgeKind, TagId, TagMap};
 use std::collections::BTreeSet;
-use std::fmt;
 
 /// Edges a route may not use, as (from, to).
 pub type Blocked = BTreeSet<(TagId, TagId)>;
@@ -26,28 +25,14 @@ pub struct Route {
 }
 
 /// Why no route was found.
-#[derive(Clone, Debug, PartialEq, Eq)]
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
 pub enum RouteError {
+    #[error("no tag {0} in the map")]
     UnknownTag(TagId),
     /// No way along the graph's edges (less the blocked ones) from one tag to the next.
-    NoPath {
-        from: TagId,
-        to: TagId,
-    },
+    #[error("no way along the edges from tag {from} to tag {to}")]
+    NoPath { from: TagId, to: TagId },
 }
-
-impl fmt::Display for RouteError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            RouteError::UnknownTag(id) => write!(f, "no tag {id} in the map"),
-            RouteError::NoPath { from, to } => {
-                write!(f, "no way along the edges from tag {from} to tag {to}")
-            }
-        }
-    }
-}
-
-impl std::error::Error for RouteError {}
 
 impl TagMap {
     /// The fewest-edge way from `start` to `goal` (BFS, edges tried in the file's order),

@@ -5,7 +5,6 @@
 
 use super::file::{TagId, TagMap};
 use super::graph::{Blocked, Route, RouteError};
-use std::fmt;
 
 /// seed 003 §2.2: tag id = 100 + group id.
 pub const GROUP_TAG_BASE: TagId = 100;
@@ -22,39 +21,21 @@ pub struct ScanRoute {
 
 /// A scan list refused, naming the row (1-based, the header being row 1) where there is
 /// one.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum ScanError {
+    #[error("{0}")]
     Csv(String),
+    #[error("no group_id column (columns: {})", columns.join(", "))]
     NoGroupColumn { columns: Vec<String> },
+    #[error("row {row}: group_id {value:?} is not a whole number")]
     BadGroup { row: usize, value: String },
+    #[error("row {row}: group {group} is tag {tag}, which the map lacks")]
     NoTag { row: usize, group: u32, tag: TagId },
+    #[error("the list names no group")]
     Empty,
+    #[error("{0}")]
     Route(RouteError),
 }
-
-impl fmt::Display for ScanError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            ScanError::Csv(e) => write!(f, "{e}"),
-            ScanError::NoGroupColumn { columns } => {
-                write!(f, "no group_id column (columns: {})", columns.join(", "))
-            }
-            ScanError::BadGroup { row, value } => {
-                write!(f, "row {row}: group_id {value:?} is not a whole number")
-            }
-            ScanError::NoTag { row, group, tag } => {
-                write!(
-                    f,
-                    "row {row}: group {group} is tag {tag}, which the map lacks"
-                )
-            }
-            ScanError::Empty => write!(f, "the list names no group"),
-            ScanError::Route(e) => write!(f, "{e}"),
-        }
-    }
-}
-
-impl std::error::Error for ScanError {}
 
 /// The scan route for the CSV `text` on `map`.
 pub fn route_from_scan(map: &TagMap, text: &str) -> Result<ScanRoute, ScanError> {

@@ -213,7 +213,8 @@ impl LaneDriver {
         }
     }
 
-    /// `comply` but for forgetting the remembered arm once its hold is gone.
+    /// What the frame's arm does to the hold; `comply` then forgets the remembered arm
+    /// once no barrier holds the robot (this returns early from several branches).
     fn see_barrier(&mut self, s: &LaneSighting) {
         let waiting = matches!(self.hold, Some(Wait::Barrier(_)));
         // While the robot waits before an arm, one seen farther off is another barrier

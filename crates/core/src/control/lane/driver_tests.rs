@@ -119,15 +119,9 @@ fn an_arm_seen_ahead_and_then_lost_above_the_picture_holds_the_robot_at_the_stop
         d.step(0.05, Some(&ahead), 0.0);
         assert_eq!(d.step(0.1, Some(&ahead), 0.1).wait, None, "{first}");
         // Out of view from here at 0.1 m/s: 0.25 m on it is 0.55 m off.
-        let mut t = 0.1;
-        let mut held = None;
-        while t < 5.0 && held.is_none() {
-            t += 0.1;
-            held = d.step(t, Some(&seen(0.0)), 0.1).wait.map(|w| (w, t));
-        }
-        let (wait, at) = held.expect("held");
+        let (wait, t) = drive_until_held(&mut d, 0.1).expect("held");
         assert_eq!(wait, Wait::Barrier(BarrierState::Up), "{first}");
-        assert!((at - 2.6).abs() < 0.15, "{first}: {at}");
+        assert!((t - 2.6).abs() < 0.15, "{first}: {t}");
         // It comes down (read 0.6 m off, past the stopping range) and rises again: that
         // opening is the robot's.
         for (k, a) in [40.0, 10.0, 0.0, 0.0, 12.0, 30.0].into_iter().enumerate() {
@@ -175,6 +169,18 @@ fn rise_from_level(d: &mut LaneDriver) {
     for (i, a) in [0.0, 10.0, 30.0, 46.0].into_iter().enumerate() {
         d.step(0.1 * (i + 1) as f64, Some(&arm(a)), 0.0);
     }
+}
+
+/// Steps a centred lane with nothing else in view from `t`, at 0.1 m/s, a frame every
+/// 0.1 s up to 5 s: the first wait and when it began.
+fn drive_until_held(d: &mut LaneDriver, mut t: f64) -> Option<(Wait, f64)> {
+    while t < 5.0 {
+        t += 0.1;
+        if let Some(wait) = d.step(t, Some(&seen(0.0)), 0.1).wait {
+            return Some((wait, t));
+        }
+    }
+    None
 }
 
 /// A centred lane with an arm at `angle_deg` 0.5 m ahead, in the state of its angle.
@@ -359,13 +365,8 @@ fn an_arm_remembered_short_of_where_it_stands_is_waited_for_wherever_it_is_seen_
     let misread = barrier_at(BarrierState::Down, 5.0, 0.8);
     d.step(0.05, Some(&misread), 0.1);
     d.step(0.1, Some(&misread), 0.1);
-    let mut t = 0.1;
-    let mut held = None;
-    while t < 5.0 && held.is_none() {
-        t += 0.1;
-        held = d.step(t, Some(&seen(0.0)), 0.1).wait;
-    }
-    assert_eq!(held, Some(Wait::Barrier(BarrierState::Up)));
+    let (held, t) = drive_until_held(&mut d, 0.1).expect("held");
+    assert_eq!(held, Wait::Barrier(BarrierState::Up));
     // The arm itself, 1.2 m off, past the reach of a robot waiting at a barrier it ranged:
     // seen lying down, then rising. That opening is the robot's.
     for (k, a) in [0.0, 0.0, 15.0, 30.0].into_iter().enumerate() {
@@ -386,13 +387,8 @@ fn an_arm_remembered_ahead_and_never_seen_again_is_waited_for_only_the_patience(
     let ahead = barrier_at(BarrierState::Down, 5.0, 0.8);
     d.step(0.05, Some(&ahead), 0.1);
     d.step(0.1, Some(&ahead), 0.1);
-    let mut t = 0.1;
-    let mut held_at = None;
-    while t < 5.0 && held_at.is_none() {
-        t += 0.1;
-        held_at = d.step(t, Some(&seen(0.0)), 0.1).wait.map(|_| t);
-    }
-    let held_at = held_at.expect("held");
+    let (_, held_at) = drive_until_held(&mut d, 0.1).expect("held");
+    let mut t = held_at;
     // Nothing in view: held until the patience runs out, then on its way for good.
     let mut freed = None;
     while t < held_at + 2.0 * patience && freed.is_none() {

@@ -110,14 +110,20 @@ fn a_glare_spot_is_not_taken_for_a_lane_line() {
     assert!(s.error_px.unwrap().abs() < 5.0, "{s:?}");
 }
 
-#[test]
-fn the_brightness_floor_rises_through_faint_stripes_until_only_the_lines_pass() {
-    // Faint pale stripes 2 cm wide every 6 cm across the whole floor, 30 levels above it:
-    // narrow enough to stand out, far over the band's 5 % at the starting floor of 50.
-    let hatched = floor(|x, y| match lines(Some(0.2), Some(-0.2), y) {
+/// The straight lane on a floor of faint pale stripes 2 cm wide every 6 cm, 30 levels above
+/// the floor.
+fn hatched() -> BgrFrame {
+    floor(|x, y| match lines(Some(0.2), Some(-0.2), y) {
         FLOOR if (x / 0.06).fract() < 0.33 => [70, 70, 70],
         c => c,
-    });
+    })
+}
+
+#[test]
+fn the_brightness_floor_rises_through_faint_stripes_until_only_the_lines_pass() {
+    // The stripes are narrow enough to stand out, and far over the band's 5 % at the
+    // starting floor of 50.
+    let hatched = hatched();
     let mut p = pipeline();
     let before = p.read(&hatched, None).pixel_ratio;
     assert!(before > 0.1, "{before}");
@@ -132,10 +138,7 @@ fn a_lane_gone_dark_under_a_shadow_is_found_again_by_a_robot_standing_before_it(
     // The floor learnt over faint stripes in the light is above the tape once a shadow
     // falls over the whole view at 0.3 of the light: the paint vanishes, then a line comes
     // back as the floor sinks, with nothing moving.
-    let hatched = floor(|x, y| match lines(Some(0.2), Some(-0.2), y) {
-        FLOOR if (x / 0.06).fract() < 0.33 => [70, 70, 70],
-        c => c,
-    });
+    let hatched = hatched();
     let mut p = pipeline();
     settled(&mut p, &hatched, 15);
     let learnt = p.value_floor();

@@ -63,29 +63,40 @@ impl BgrFrame {
         })
     }
 
-    /// The frame shrunk to `width` x `height` by averaging boxes of pixels, as RGB.
+    /// The frame shrunk to `width` x `height` as RGB, each thumbnail pixel the mean of
+    /// its box of pixels, sampled on a grid of at most `SAMPLES` x `SAMPLES`.
     pub fn thumbnail(&self, width: usize, height: usize) -> ColourThumbnail {
+        /// Pixels sampled along each side of a box.
+        const SAMPLES: usize = 6;
         let (w, h) = (width.max(1), height.max(1));
         let mut rgb = Vec::with_capacity(3 * w * h);
+        let span = |t: usize, n: usize, size: usize| {
+            let a = t * size / n;
+            let b = ((t + 1) * size / n).max(a + 1).min(size);
+            (a..b).step_by((b - a).div_ceil(SAMPLES).max(1))
+        };
+        // The columns sampled, each with its thumbnail column.
+        let columns: Vec<(usize, usize)> = (0..w)
+            .flat_map(|tx| span(tx, w, self.width).map(move |x| (tx, x)))
+            .collect();
+        let mut sums = vec![[0u32; 4]; w];
         for ty in 0..h {
-            let y0 = ty * self.height / h;
-            let y1 = ((ty + 1) * self.height / h).max(y0 + 1).min(self.height);
-            for tx in 0..w {
-                let x0 = tx * self.width / w;
-                let x1 = ((tx + 1) * self.width / w).max(x0 + 1).min(self.width);
-                let mut sum = [0u32; 3];
-                for y in y0..y1 {
-                    let row = (self.data)
-                        .get(3 * (y * self.width + x0)..3 * (y * self.width + x1))
-                        .unwrap_or_default();
-                    for p in row.chunks_exact(3) {
-                        for c in 0..3 {
-                            sum[c] += u32::from(p[c]);
-                        }
+            sums.fill([0; 4]);
+            for y in span(ty, h, self.height) {
+                let Some(row) = self.data.get(3 * y * self.width..3 * (y + 1) * self.width) else {
+                    continue;
+                };
+                for &(tx, x) in &columns {
+                    let sum = &mut sums[tx];
+                    for c in 0..3 {
+                        sum[c] += u32::from(row[3 * x + c]);
                     }
+                    sum[3] += 1;
                 }
-                let n = ((y1 - y0) * (x1 - x0)).max(1) as u32;
-                rgb.extend([sum[2] / n, sum[1] / n, sum[0] / n].map(|v| v as u8));
+            }
+            for [b, g, r, n] in &sums {
+                let n = (*n).max(1);
+                rgb.extend([r / n, g / n, b / n].map(|v| v as u8));
             }
         }
         ColourThumbnail {

@@ -58,8 +58,19 @@ impl ArmFinder {
     /// The arm in `hsv` (the whole frame in HSV), if one is seen.
     pub fn find(&self, hsv: &Mat) -> opencv::Result<Option<BarrierObservation>> {
         let (red, stripe_axes) = self.stripes(hsv)?;
+        // Edges lie only round red pixels: the edge and Hough passes look only at the
+        // box round them (and not at all when there are none).
+        let found = imgproc::bounding_rect(&red)?;
+        if found.width == 0 || found.height == 0 {
+            return Ok(None);
+        }
+        let margin = 4;
+        let (x0, y0) = ((found.x - margin).max(0), (found.y - margin).max(0));
+        let x1 = (found.x + found.width + margin).min(red.cols());
+        let y1 = (found.y + found.height + margin).min(red.rows());
+        let near_red = Mat::roi(&red, core::Rect::new(x0, y0, x1 - x0, y1 - y0))?;
         let mut edges = Mat::default();
-        imgproc::canny_def(&red, &mut edges, 50.0, 150.0)?;
+        imgproc::canny_def(&near_red, &mut edges, 50.0, 150.0)?;
         let side = f64::from(hsv.rows().min(hsv.cols()));
         // seed 000 §3.2.1: minLineLength = max(30, 0.05 min side), maxLineGap = max(10, 0.02 min side).
         let (min_length, max_gap) = (
@@ -80,9 +91,10 @@ impl ArmFinder {
         // The Hough segments of the stripes' edges, and each stripe's own long axis (the
         // seed's red objects, §3.2.2): a stripe's edges can be too short for the Hough
         // transform's least length when the arm is far or slanted.
+        let offset = [x0, y0, x0, y0].map(f64::from);
         let segments: Vec<Segment> = lines
             .iter()
-            .map(|l| [0, 1, 2, 3].map(|i| f64::from(l[i])))
+            .map(|l| [0, 1, 2, 3].map(|i| f64::from(l[i]) + offset[i]))
             .chain(stripe_axes)
             .collect();
         // Linked within a little more than the arm is thick up close (0.03 m at 0.4 m).

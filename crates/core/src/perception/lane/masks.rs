@@ -209,13 +209,3 @@ impl MaskMaker {
         Ok(grown)
     }
 }
-
-/// The frame's bytes as a 3-channel OpenCV image, copied into `into`.
-pub fn bgr_mat(frame: &crate::perception::colour::BgrFrame, into: &mut Mat) -> opencv::Result<()> {
-    let (rows, cols) = (frame.height as i32, frame.width as i32);
-    if into.rows() != rows || into.cols() != cols || into.typ() != core::CV_8UC3 {
-        *into = Mat::new_rows_cols_with_default(rows, cols, core::CV_8UC3, Scalar::all(0.0))?;
-    }
-    into.data_bytes_mut()?.copy_from_slice(&frame.data);
-    Ok(())
-}

@@ -7,7 +7,7 @@ use super::birdseye::BirdsEye;
 use super::config::{LaneVisionConfig, LaneVisionError};
 use super::lane_fit::{FitLimits, LineTrack, curvature};
 use super::light::LightFinder;
-use super::masks::{MaskMaker, bgr_mat};
+use super::masks::MaskMaker;
 use super::value_loop::ValueLoop;
 use super::windows::{GridMask, LineFound, WindowSearch, find_line, x_at};
 use crate::clock::Clock;
@@ -43,7 +43,6 @@ pub struct LanePipeline {
     /// The arm as last seen, while the filter tracks it.
     last_arm: Option<BarrierObservation>,
     limits: FitLimits,
-    bgr: Mat,
     hsv: Mat,
 }
 
@@ -96,7 +95,6 @@ impl LanePipeline {
             },
             cfg: cfg.clone(),
             eye,
-            bgr: Mat::default(),
             hsv: Mat::default(),
         })
     }
@@ -150,8 +148,11 @@ impl LanePipeline {
                 k.height
             ));
         }
-        bgr_mat(frame, &mut self.bgr).map_err(|e| e.to_string())?;
-        imgproc::cvt_color_def(&self.bgr, &mut self.hsv, imgproc::COLOR_BGR2HSV)
+        // The frame's own bytes seen as a matrix, not copied.
+        let (rows, cols) = (frame.height as i32, frame.width as i32);
+        let bgr = Mat::new_rows_cols_with_bytes::<opencv::core::Vec3b>(rows, cols, &frame.data)
+            .map_err(|e| e.to_string())?;
+        imgproc::cvt_color_def(&bgr, &mut self.hsv, imgproc::COLOR_BGR2HSV)
             .map_err(|e| e.to_string())
     }
 

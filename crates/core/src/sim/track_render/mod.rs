@@ -5,7 +5,8 @@
 //! pixel's ray worked out once for the fixed mount (`floor`); the lights, barriers, walls
 //! and boxes are flat faces filled with a depth buffer (`objects`, `raster`); the
 //! lighting scales reflected colours, lays hard shadows on the floor and mirrors ceiling
-//! lamps in it (`lighting`); noise comes from the caller's seeded generator (`noise`).
+//! lamps in it (`lighting`); noise is drawn with the seed and placed by the caller's
+//! generator (`noise`).
 //! `truth` says which light and barrier a frame truly shows. Colours are chosen in
 //! OpenCV's HSV against the seed's thresholds (`palette`). Simplifications: no lens
 //! distortion, no motion blur, lamps light nothing round them.
@@ -16,6 +17,7 @@ mod noise;
 mod objects;
 pub mod palette;
 mod raster;
+mod scanline;
 mod texture;
 mod truth;
 mod view;
@@ -35,6 +37,7 @@ use crate::perception::mount::Mount;
 use crate::sim::track::{Lighting, TrackScene};
 use floor::FloorRays;
 use lighting::Ceiling;
+use noise::NoiseBank;
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use raster::{Canvas, Face};
@@ -61,6 +64,7 @@ pub struct TrackRenderer {
     shadows: Vec<Vec<Point2>>,
     ceiling: Ceiling,
     lighting: Lighting,
+    noise: NoiseBank,
     /// Reused from frame to frame.
     inverse_depth: Vec<f32>,
     faces: Vec<Face>,
@@ -70,7 +74,7 @@ impl TrackRenderer {
     /// A renderer of `scene` seen by `camera`. `walls`: the world's wall segments (drawn
     /// as vertical grey walls 0.3 m high; a segment on a box's outline is left to the
     /// box); `boxes`: box obstacles on the floor as (pose, width, depth), drawn as brown
-    /// boxes 0.15 m high; `seed` places the shadows and the ceiling lamps.
+    /// boxes 0.15 m high; `seed` places the shadows and the ceiling lamps and draws the noise.
     pub fn new(
         scene: &TrackScene,
         walls: &[Segment],
@@ -102,6 +106,7 @@ impl TrackRenderer {
         let mut rng = ChaCha8Rng::seed_from_u64(seed);
         let shadows = lighting::shadows(&mut rng, &scene.track, bounds.0, bounds.1);
         let ceiling = Ceiling::new(&mut rng, bounds.0, bounds.1);
+        let noise = NoiseBank::new(&mut rng);
         let texture = floor_texture(scene, bounds, &shadows, lighting.shadows);
         let intrinsics = camera.intrinsics();
         let mount = camera.mount();
@@ -120,6 +125,7 @@ impl TrackRenderer {
             shadows,
             ceiling,
             lighting,
+            noise,
             inverse_depth: vec![0.0; pixels],
             faces: Vec::new(),
         }
@@ -166,7 +172,7 @@ impl TrackRenderer {
         for face in &self.faces {
             raster::fill(&mut canvas, &view, face);
         }
-        noise::add_noise(&mut data, rng);
+        self.noise.add(&mut data, rng);
         BgrFrame {
             width,
             height,

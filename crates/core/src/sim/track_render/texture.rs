@@ -20,21 +20,21 @@ pub const SHADOW: f64 = 0.45;
 
 /// One level of the pyramid.
 #[derive(Clone)]
-struct Level {
-    inv_cell: f32,
-    width: usize,
-    height: usize,
-    texels: Vec<[u8; 4]>,
+pub(super) struct Level {
+    pub(super) inv_cell: f32,
+    pub(super) width: usize,
+    pub(super) height: usize,
+    pub(super) texels: Vec<[u8; 4]>,
 }
 
 /// The floor's colours before lighting, over a rectangle of the world.
 #[derive(Clone)]
 pub struct FloorTexture {
-    x0: f32,
-    y0: f32,
-    levels: Vec<Level>,
+    pub(super) x0: f32,
+    pub(super) y0: f32,
+    pub(super) levels: Vec<Level>,
     /// The bare floor, outside the rectangle.
-    outside: [u8; 3],
+    pub(super) outside: [u8; 3],
 }
 
 /// Where the finest level's cells lie: origin, cell side and counts.
@@ -166,11 +166,10 @@ impl FloorTexture {
 
     /// The colour at world (`x`, `y`) by sampling `code`: 0 bilinear on the finest level
     /// (where the camera magnifies it, near the robot), `1 + level` the nearest cell of
-    /// `level`.
-    #[inline]
+    /// `level`. One point at a time, plainly: what `scanline`'s rows must give.
+    #[cfg(test)]
     pub fn sample(&self, code: u8, x: f32, y: f32) -> [u8; 3] {
-        let level = usize::from(code.saturating_sub(1));
-        let l = &self.levels[level.min(LEVELS - 1)];
+        let l = self.level_of(code);
         let gx = (x - self.x0) * l.inv_cell;
         let gy = (y - self.y0) * l.inv_cell;
         if !(gx >= 0.0 && gy >= 0.0) {
@@ -186,8 +185,7 @@ impl FloorTexture {
                 self.outside
             };
         }
-        // Texel centres at half cells: bilinear weights from the offset past them, in
-        // 1/256ths so the blend is integer arithmetic.
+        // Texel centres at half cells: bilinear weights from the offset past them.
         let fx = ((gx - 0.5).max(0.0) * 256.0) as u32;
         let fy = ((gy - 0.5).max(0.0) * 256.0) as u32;
         let (ix, iy) = ((fx >> 8) as usize, (fy >> 8) as usize);
@@ -198,13 +196,16 @@ impl FloorTexture {
         let i = iy * w + ix;
         let (p00, p10) = (l.texels[i], l.texels[i + 1]);
         let (p01, p11) = (l.texels[i + w], l.texels[i + w + 1]);
-        let mut out = [0u8; 3];
-        for k in 0..3 {
+        [0, 1, 2].map(|k| {
             let top = u32::from(p00[k]) * (256 - ax) + u32::from(p10[k]) * ax;
             let bottom = u32::from(p01[k]) * (256 - ax) + u32::from(p11[k]) * ax;
-            out[k] = ((top * (256 - ay) + bottom * ay + 32768) >> 16) as u8;
-        }
-        out
+            ((top * (256 - ay) + bottom * ay + 32768) >> 16) as u8
+        })
+    }
+
+    /// The level `code` samples (0 and 1 both the finest).
+    pub(super) fn level_of(&self, code: u8) -> &Level {
+        &self.levels[usize::from(code.saturating_sub(1)).min(LEVELS - 1)]
     }
 }
 

@@ -4,9 +4,11 @@
 //! - `file`: the tag map file (seed 003 §1.2.3's `map.yaml`) read and checked, each
 //!   error naming the tag and the line.
 //! - `graph`: BFS between tags, routes through a task's waypoints, blocked edges left out.
+//! - `drive`: driving a route: pure pursuit, quarter turns, alignment, the pose reset.
 //! - `scan`: the seed's scan list (§2.2 mode 4) from CSV: group ids to tags, a route from
 //!   the dock through them and back.
 
+pub mod drive;
 pub mod file;
 pub mod graph;
 pub mod scan;

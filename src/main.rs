@@ -135,6 +135,8 @@ enum Subcommand {
     /// Tag maps (seed 003): check one, and plan BFS routes through it.
     #[command(subcommand)]
     Tags(commands::tags::TagsCommand),
+    /// Drive a tag map's task in the twin (seed 003) and score it against the truth.
+    Route(commands::route::RouteArgs),
 }
 
 fn main() -> ExitCode {
@@ -203,6 +205,7 @@ fn real_main(cli: Cli) -> Result<ExitCode> {
                 Subcommand::Replay(_) => "replay",
                 Subcommand::Ros2(_) => "ros2",
                 Subcommand::Tags(_) => "tags",
+                Subcommand::Route(_) => "route",
             };
             anyhow::bail!(
                 "{option} before `{name}` is the console's option: give the subcommand's own after it (navdeck {name} --help lists them)"
@@ -219,6 +222,7 @@ fn real_main(cli: Cli) -> Result<ExitCode> {
         Some(Subcommand::Arm(command)) => return commands::arm::run(command),
         Some(Subcommand::Replay(args)) => return commands::replay::run(args),
         Some(Subcommand::Tags(command)) => return commands::tags::run(command),
+        Some(Subcommand::Route(args)) => return commands::route::run(args),
         Some(Subcommand::Ros2(command)) => {
             if let Some(option) = [
                 ("--domain", cli.domain.is_some()),

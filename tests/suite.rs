@@ -122,6 +122,7 @@ mod sim_world;
 mod slam_ekf;
 mod snapshots;
 mod soak;
+mod route_cli;
 mod tags_cli;
 mod vision;
 mod vision_survey;

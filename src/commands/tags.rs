@@ -46,7 +46,7 @@ pub(crate) enum TagsCommand {
 }
 
 /// "101-117" as the edge 101 -> 117.
-fn edge(text: &str) -> Result<(TagId, TagId), String> {
+pub(crate) fn edge(text: &str) -> Result<(TagId, TagId), String> {
     let (a, b) = text
         .split_once('-')
         .ok_or_else(|| format!("{text:?}: give an edge as FROM-TO, e.g. 104-117"))?;

@@ -10,6 +10,7 @@ pub mod lane_detect;
 pub mod map_report;
 pub mod mission;
 pub mod plan_report;
+pub mod route;
 pub mod score;
 pub mod slam_figures;
 pub mod tour;

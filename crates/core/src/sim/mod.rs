@@ -45,6 +45,7 @@ pub mod rendered_camera;
 pub mod shapes;
 #[cfg(feature = "vision")]
 mod sheet_paint;
+pub mod tag_camera;
 pub mod track;
 pub mod track_render;
 mod truth;

@@ -4,38 +4,28 @@
 
 use super::*;
 use crate::geometry::{Pose2, wrap_angle};
+use crate::sim::tag_camera::TagCamera;
 use crate::tags::TagMap;
 use crate::tags::graph::Blocked;
+use rand::SeedableRng;
+use rand_chacha::ChaCha8Rng;
 
 const PERIOD: f64 = 1.0 / 30.0;
-/// The camera's view of the floor round the image centre's point: half its length along
-/// the heading and half its width, metres.
-const VIEW: (f64, f64) = (0.15, 0.2);
 
 fn warehouse() -> TagMap {
     TagMap::parse(include_str!("../../../../../maps/tag_warehouse.yaml")).unwrap()
 }
 
-/// The tags in view from `truth`, as the camera would report them.
+/// The tags in view from `truth`, exactly.
 fn sightings(map: &TagMap, truth: Pose2, look: f64) -> Vec<TagSighting> {
-    let (s, c) = truth.theta.sin_cos();
-    let (cx, cy) = (truth.x + look * c, truth.y + look * s);
-    let quarter = std::f64::consts::FRAC_PI_2;
-    map.tags
-        .iter()
-        .filter_map(|(&id, tag)| {
-            let (dx, dy) = (tag.x - cx, tag.y - cy);
-            let (ahead, left) = (c * dx + s * dy, -s * dx + c * dy);
-            let turned = wrap_angle(truth.theta - tag.zone.heading());
-            let align = turned - (turned / quarter).round() * quarter;
-            (ahead.abs() <= VIEW.0 && left.abs() <= VIEW.1).then_some(TagSighting {
-                id,
-                ahead,
-                lateral: -left,
-                align,
-            })
-        })
-        .collect()
+    let camera = TagCamera {
+        look,
+        half_length: 0.15,
+        half_width: 0.2,
+        offset_sd: 0.0,
+        angle_sd: 0.0,
+    };
+    camera.sightings(map, truth, &mut ChaCha8Rng::seed_from_u64(0))
 }
 
 /// What a run of one route came to.

@@ -1,0 +1,303 @@
+//! `navdeck route`: a robot in the twin drives a tag map's task (seed 003) on simulated
+//! time, seeing the floor's tags through the twin's ideal tag camera, with the wheel
+//! odometry between tags and the collision monitor on the lidar. A leg the monitor
+//! stops is marked blocked and the rest of the task planned again by BFS without it,
+//! from the last tag reached. The run is scored against the truth: each tag's arrival,
+//! each turn, and the end on the last tag (seed 003 §3.3: dock within 5 cm to the side,
+//! turns within 5°).
+
+use crate::config::Config;
+use crate::control::collision_monitor::{
+    CollisionMonitor, Obstacles, SourceKind, points_from_scan,
+};
+use crate::geometry::{Pose2, Twist, wrap_angle};
+use crate::sim::World;
+use crate::sim::tag_camera::TagCamera;
+use crate::slam::odometry::predict_pose;
+use crate::tags::drive::{DriveEvent, DriveGains, DriveSetup, Phase, TagDriver};
+use crate::tags::graph::Blocked;
+use crate::tags::{Direction, Leg, Route, TagId, TagMap};
+use rand::SeedableRng;
+use rand_chacha::ChaCha8Rng;
+use serde::Serialize;
+use std::path::Path;
+
+/// What a route run is asked to do.
+#[derive(Clone, Debug)]
+pub struct RouteOptions {
+    pub task: String,
+    pub seed: u64,
+    /// Edges with a box standing on them, as (from, to).
+    pub obstacles: Vec<(TagId, TagId)>,
+    /// Simulated seconds after which the run ends unfinished.
+    pub time_limit: f64,
+    /// The control loop's period, seconds (seed 003 §2.4: 30 Hz).
+    pub period: f64,
+}
+
+/// Where the robot stood, by the truth, when it reached a tag.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct TagArrival {
+    pub tag: TagId,
+    /// Metres past (+) or short of the tag along the heading, and to its left (+).
+    pub along_m: f64,
+    pub side_m: f64,
+}
+
+/// The outcome of one route run.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct RouteReport {
+    pub task: String,
+    pub seed: u64,
+    pub completed: bool,
+    /// The tags of the route as first planned, and every leg driven.
+    pub planned: Vec<TagId>,
+    pub legs_driven: usize,
+    pub arrivals: Vec<TagArrival>,
+    /// Each turn's true heading error at its end, degrees.
+    pub turn_errors_deg: Vec<f64>,
+    /// On the last tag, by the truth: to its side, along, and the heading, against the
+    /// tag's pose (the image centre over the tag, facing its zone's way).
+    pub end_side_m: Option<f64>,
+    pub end_along_m: Option<f64>,
+    pub end_heading_deg: Option<f64>,
+    /// Edges found blocked and routed round.
+    pub blocked: Vec<(TagId, TagId)>,
+    pub collisions: u32,
+    pub failure: Option<String>,
+    pub sim_time: f64,
+    pub wall_time_s: Option<f64>,
+    pub realtime_factor: Option<f64>,
+}
+
+/// The control loop's rate by default (seed 003 §2.4, §3.3: 30 Hz).
+pub const RATE_HZ: f64 = 30.0;
+
+/// The twin's world for `map`: a floor round the tags with a wall a metre and a half
+/// beyond, the robot on the dock, and a box on each edge of `obstacles`.
+pub fn world_for(map: &TagMap, look: f64, obstacles: &[(TagId, TagId)]) -> Result<World, String> {
+    let xs = map.tags.values().map(|t| t.x);
+    let ys = map.tags.values().map(|t| t.y);
+    let reach = xs.chain(ys).fold(0.0f64, |m, v| m.max(v.abs())) + 1.5;
+    let dock = &map.tags[&map.dock];
+    let heading = dock.zone.heading();
+    let (sx, sy) = (dock.x - look * heading.cos(), dock.y - look * heading.sin());
+    let mut text = format!(
+        "name = \"tags\"\nsize = [{s}, {s}]\nstart = [{sx}, {sy}, {h}]\n\
+         [[walls]]\npoints = [[-{r}, -{r}], [{r}, -{r}], [{r}, {r}], [-{r}, {r}]]\nclosed = true\n",
+        s = 2.0 * reach + 0.2,
+        r = reach,
+        h = heading.to_degrees()
+    );
+    for (a, b) in obstacles {
+        let (Some(a), Some(b)) = (map.tags.get(a), map.tags.get(b)) else {
+            return Err(format!("no edge {a}-{b} in the map to put a box on"));
+        };
+        text.push_str(&format!(
+            "[[obstacles]]\ncenter = [{}, {}]\nsize = [0.15, 0.15]\n",
+            (a.x + b.x) / 2.0,
+            (a.y + b.y) / 2.0
+        ));
+    }
+    World::from_toml(&text, Path::new("tags")).map_err(|e| e.to_string())
+}
+
+/// The leg from the middle of `stopped` back to its start, then on through `points`
+/// (the first of them that start).
+fn route_back(
+    map: &TagMap,
+    stopped: Leg,
+    points: &[TagId],
+    blocked: &Blocked,
+) -> Result<Route, String> {
+    let on = map.route(points, blocked).map_err(|e| e.to_string())?;
+    let back = Leg {
+        from: stopped.to,
+        to: stopped.from,
+        direction: match stopped.direction {
+            Direction::Forward => Direction::Backward,
+            Direction::Backward => Direction::Forward,
+        },
+        kind: stopped.kind,
+    };
+    let mut tags = vec![stopped.to];
+    tags.extend(on.tags);
+    let mut legs = vec![back];
+    legs.extend(on.legs);
+    Ok(Route { tags, legs })
+}
+
+/// Runs `options.task` of `map` with `config`'s robot in the twin.
+pub fn run(config: &Config, map: &TagMap, options: &RouteOptions) -> Result<RouteReport, String> {
+    let names: Vec<&str> = map.tasks.keys().map(String::as_str).collect();
+    let task = (map.tasks.get(&options.task)).ok_or_else(|| {
+        format!(
+            "no task {:?} in the map (tasks: {})",
+            options.task,
+            names.join(", ")
+        )
+    })?;
+    // The robot starts on the dock.
+    let mut waypoints = vec![map.dock];
+    waypoints.extend(task.iter().copied().skip_while(|&w| w == map.dock));
+    // The next waypoint to reach.
+    let mut next_waypoint = 1;
+    let mut blocked = Blocked::new();
+    let mut route = map.route(&waypoints, &blocked).map_err(|e| e.to_string())?;
+    let camera = TagCamera::default();
+    let setup = DriveSetup {
+        gains: DriveGains::from_map(map),
+        look: camera.look,
+        ..DriveSetup::default()
+    };
+    let world = world_for(map, camera.look, &options.obstacles)?;
+    let start = world.start;
+    let mut twin = crate::sim::Twin::new(world, &config.robot, &config.sim, options.seed);
+    let monitor = CollisionMonitor::new(&config.safety, config.robot.footprint_radius);
+    let mut rng = ChaCha8Rng::seed_from_u64(options.seed ^ 0x7a95);
+    let mut odom = Pose2::new(0.0, 0.0, 0.0);
+    let mut driver = TagDriver::new(map, &route, setup, start, odom);
+    let mut report = RouteReport {
+        task: options.task.clone(),
+        seed: options.seed,
+        completed: false,
+        planned: route.tags.clone(),
+        legs_driven: 0,
+        arrivals: Vec::new(),
+        turn_errors_deg: Vec::new(),
+        end_side_m: None,
+        end_along_m: None,
+        end_heading_deg: None,
+        blocked: Vec::new(),
+        collisions: 0,
+        failure: None,
+        sim_time: 0.0,
+        wall_time_s: None,
+        realtime_factor: None,
+    };
+    let mut scan_points = Vec::new();
+    let mut scan_age: Option<f64> = None;
+    let period = options.period;
+    let mut t = 0.0;
+    while t < options.time_limit && !matches!(driver.phase(), Phase::Done | Phase::Failed) {
+        let truth = twin.pose();
+        let seen = camera.sightings(map, truth, &mut rng);
+        let target = match driver.phase() {
+            Phase::Turn { target, .. } => Some(target),
+            _ => None,
+        };
+        let driving = match driver.phase() {
+            Phase::Drive { leg } | Phase::Search { leg } => Some(leg),
+            _ => None,
+        };
+        let ((v, w), events) = driver.step(map, odom, &seen);
+        for e in &events {
+            match e {
+                DriveEvent::Arrived { tag, .. } => {
+                    report.legs_driven += 1;
+                    report.arrivals.push(arrival(map, *tag, truth, camera.look));
+                    if waypoints.get(next_waypoint) == Some(tag) {
+                        next_waypoint += 1;
+                    }
+                }
+                DriveEvent::Turned { .. } => {
+                    if let Some(target) = target {
+                        report
+                            .turn_errors_deg
+                            .push(wrap_angle(target - truth.theta).to_degrees());
+                    }
+                }
+                DriveEvent::Done => report.completed = true,
+                DriveEvent::Failed { why, .. } => report.failure = Some(why.clone()),
+                DriveEvent::Aligned { .. } => {}
+            }
+        }
+        let command = Twist::new(v, w);
+        let verdict = monitor.check(
+            command,
+            &Obstacles {
+                points: &scan_points,
+                age: scan_age,
+                source: SourceKind::Scan,
+            },
+        );
+        // Held by a zone for an obstacle (not for want of a fresh scan, which only waits).
+        let held = command.linear.abs() > 0.0
+            && verdict.command.linear.abs() < 1e-9
+            && verdict.acted.is_some()
+            && !verdict.blocked;
+        if let (Some(leg), true) = (driving, held) {
+            // The monitor holds the robot on a leg: that edge is blocked. Back to the
+            // leg's start and plan the rest again without it (and its way back).
+            let stopped = route.legs[leg];
+            blocked.insert((stopped.from, stopped.to));
+            blocked.insert((stopped.to, stopped.from));
+            report.blocked.push((stopped.from, stopped.to));
+            let mut rest_points = vec![stopped.from];
+            rest_points.extend(&waypoints[next_waypoint.min(waypoints.len())..]);
+            let rest = route_back(map, stopped, &rest_points, &blocked);
+            match rest {
+                Ok(r) => {
+                    route = r;
+                    let est = driver.estimate(odom);
+                    driver = TagDriver::new(map, &route, setup, est, odom);
+                }
+                Err(why) => {
+                    report.failure = Some(format!(
+                        "leg {}-{} is blocked and there is no way round it: {why}",
+                        stopped.from, stopped.to
+                    ));
+                    break;
+                }
+            }
+            twin.set_command(Twist::ZERO);
+        } else {
+            twin.set_command(verdict.command);
+        }
+        twin.step(period);
+        let frame = twin.take_frame();
+        if let Some(wheels) = frame.wheels {
+            odom = predict_pose(odom, wheels, config.robot.track);
+        }
+        if let Some(scan) = &frame.scan {
+            scan_points = points_from_scan(scan, Pose2::default());
+            scan_age = Some(0.0);
+        } else if let Some(age) = scan_age.as_mut() {
+            *age += period;
+        }
+        t += period;
+    }
+    twin.set_command(Twist::ZERO);
+    if report.completed {
+        let truth = twin.pose();
+        let last = *route.tags.last().unwrap_or(&map.dock);
+        let end = arrival(map, last, truth, camera.look);
+        let heading = map.tags[&last].zone.heading();
+        let off = wrap_angle(truth.theta - heading);
+        // Square to the zone's axis either way round.
+        let off = wrap_angle(off - (off / std::f64::consts::PI).round() * std::f64::consts::PI);
+        report.end_side_m = Some(end.side_m);
+        report.end_along_m = Some(end.along_m);
+        report.end_heading_deg = Some(off.to_degrees());
+    }
+    if !report.completed && report.failure.is_none() {
+        report.failure = Some(format!("not done within {:.0} s", options.time_limit));
+    }
+    report.collisions = twin.collisions();
+    report.sim_time = t;
+    Ok(report)
+}
+
+/// Where the image centre's floor point stands from `tag`, by the truth, along the
+/// robot's heading and to its left.
+fn arrival(map: &TagMap, tag: TagId, truth: Pose2, look: f64) -> TagArrival {
+    let t = &map.tags[&tag];
+    let (s, c) = truth.theta.sin_cos();
+    let (cx, cy) = (truth.x + look * c, truth.y + look * s);
+    let (dx, dy) = (cx - t.x, cy - t.y);
+    TagArrival {
+        tag,
+        along_m: c * dx + s * dy,
+        side_m: -s * dx + c * dy,
+    }
+}

@@ -37,7 +37,13 @@ fn a_warehouse_task_is_driven_there_and_back_onto_the_dock() {
 #[test]
 fn a_box_on_an_aisles_only_way_fails_that_leg_by_name() {
     let out = navdeck(&[
-        "route", "--tags", WAREHOUSE, "--task", "task1", "--obstacle", "118-119",
+        "route",
+        "--tags",
+        WAREHOUSE,
+        "--task",
+        "task1",
+        "--obstacle",
+        "118-119",
     ]);
     assert_eq!(out.status.code(), Some(1), "{}", text(&out.stderr));
     let said = text(&out.stdout);

@@ -46,6 +46,9 @@ pub(crate) struct RouteArgs {
     json: bool,
 }
 
+/// A map to drive, the edges with a box on them, and the twin's seed.
+type MapToDrive = (TagMap, Vec<(TagId, TagId)>, u64);
+
 fn rate(s: &str) -> Result<f64, String> {
     super::args::bounded(s, 1.0, 200.0, "rate")
 }
@@ -86,7 +89,7 @@ pub(crate) fn run(args: &RouteArgs) -> Result<ExitCode> {
         None => Config::default(),
     };
     // (map, boxes on edges, seed) for each map to drive.
-    let maps: Vec<(TagMap, Vec<(TagId, TagId)>, u64)> = match (&args.tags, &args.sweep) {
+    let maps: Vec<MapToDrive> = match (&args.tags, &args.sweep) {
         (Some(path), _) => {
             let text = std::fs::read_to_string(path)
                 .with_context(|| format!("reading tag map {}", path.display()))?;

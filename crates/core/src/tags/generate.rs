@@ -103,7 +103,7 @@ pub fn grid(seed: u64) -> TagGrid {
     // In every third grid a box on an edge the first task drives, where a way round it
     // is left.
     let mut obstacles = Vec::new();
-    if seed % 3 == 0
+    if seed.is_multiple_of(3)
         && let Ok(route) = map.route(&tasks[0], &Blocked::new())
     {
         let candidates: Vec<(TagId, TagId)> = (route.legs.iter())

@@ -11,6 +11,7 @@ use crate::sim::track::Track;
 use nalgebra::Vector3;
 use rand::Rng;
 use rand_chacha::ChaCha8Rng;
+use rayon::prelude::*;
 
 /// Shadows laid across the lane, and elsewhere on the floor.
 const SHADOWS_ON_LANE: usize = 3;
@@ -149,10 +150,14 @@ impl Ceiling {
             let glare = lamp.bgr.map(|v| v as f32);
             let (ax, ay) = ((ax / along) as f32, (ay / along) as f32);
             let (bx, by) = ((ax_across.0 / across) as f32, (ax_across.1 / across) as f32);
-            for y in y0..y1 {
+            // Rows are shared among the cores; each pixel is worked on its own, so the
+            // frame is the same however many there are.
+            let width = view.width;
+            let rows = out[3 * y0 * width..3 * y1 * width].par_chunks_mut(3 * width);
+            rows.enumerate().for_each(|(k, row)| {
+                let y = y0 + k;
                 for x in x0..x1 {
-                    let i = y * view.width + x;
-                    let Some([rx, ry]) = rays.point(i) else {
+                    let Some([rx, ry]) = rays.point(y * width + x) else {
                         continue;
                     };
                     let wx = ox + cos * rx - sin * ry;
@@ -166,13 +171,13 @@ impl Ceiling {
                     // Full within the core, then a smoothstep fade to the rim.
                     let t = ((d2.sqrt() - CORE) / (1.0 - CORE)).clamp(0.0, 1.0);
                     let w = 1.0 - t * t * (3.0 - 2.0 * t);
-                    let px = &mut out[3 * i..3 * i + 3];
+                    let px = &mut row[3 * x..3 * x + 3];
                     for (channel, glare) in px.iter_mut().zip(glare) {
                         let v = f32::from(*channel) * (1.0 - w) + glare * w;
                         *channel = (v + 0.5).clamp(0.0, 255.0) as u8;
                     }
                 }
-            }
+            });
         }
     }
 }

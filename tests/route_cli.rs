@@ -68,3 +68,19 @@ fn on_generated_grids_a_boxed_edge_is_driven_round_and_every_task_ends_on_the_do
     }
     assert!(rounded >= 2, "{rounded} runs went round a box");
 }
+
+#[test]
+fn a_box_between_tags_no_edge_joins_is_refused_by_name() {
+    let out = navdeck(&[
+        "route",
+        "--tags",
+        WAREHOUSE,
+        "--task",
+        "task1",
+        "--obstacle",
+        "101-117",
+    ]);
+    assert_ne!(out.status.code(), Some(0));
+    let said = text(&out.stderr);
+    assert!(said.contains("no edge 101-117"), "{said}");
+}

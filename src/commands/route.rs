@@ -90,13 +90,7 @@ pub(crate) fn run(args: &RouteArgs) -> Result<ExitCode> {
     };
     // (map, boxes on edges, seed) for each map to drive.
     let maps: Vec<MapToDrive> = match (&args.tags, &args.sweep) {
-        (Some(path), _) => {
-            let text = std::fs::read_to_string(path)
-                .with_context(|| format!("reading tag map {}", path.display()))?;
-            let map =
-                TagMap::parse(&text).with_context(|| format!("tag map {}", path.display()))?;
-            vec![(map, args.obstacle.clone(), args.seed)]
-        }
+        (Some(path), _) => vec![(super::tags::load(path)?, args.obstacle.clone(), args.seed)],
         (None, Some(range)) => navdeck::runners::mission::parse_seeds(range)
             .map_err(anyhow::Error::msg)?
             .into_iter()

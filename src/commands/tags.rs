@@ -58,7 +58,7 @@ pub(crate) fn edge(text: &str) -> Result<(TagId, TagId), String> {
     Ok((tag(a)?, tag(b)?))
 }
 
-fn load(path: &Path) -> Result<TagMap> {
+pub(crate) fn load(path: &Path) -> Result<TagMap> {
     let text = std::fs::read_to_string(path)
         .with_context(|| format!("reading tag map {}", path.display()))?;
     TagMap::parse(&text).with_context(|| format!("tag map {}", path.display()))

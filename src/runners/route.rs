@@ -14,7 +14,7 @@ use crate::geometry::{Pose2, Twist, wrap_angle};
 use crate::sim::World;
 use crate::sim::tag_camera::TagCamera;
 use crate::slam::odometry::predict_pose;
-use crate::tags::drive::{DriveEvent, DriveGains, DriveSetup, Phase, TagDriver};
+use crate::tags::drive::{DriveEvent, DriveGains, DriveSetup, Phase, TagDriver, over_point};
 use crate::tags::graph::Blocked;
 use crate::tags::{Direction, Leg, Route, TagId, TagMap};
 use rand::SeedableRng;
@@ -50,8 +50,9 @@ pub struct RouteReport {
     pub task: String,
     pub seed: u64,
     pub completed: bool,
-    /// The tags of the route as first planned, and every leg driven.
+    /// The tags of the route as first planned.
     pub planned: Vec<TagId>,
+    /// Legs driven to their tag: one for each arrival.
     pub legs_driven: usize,
     pub arrivals: Vec<TagArrival>,
     /// Each turn's true heading error at its end, degrees.
@@ -75,22 +76,28 @@ pub const RATE_HZ: f64 = 30.0;
 
 /// The twin's world for `map`: a floor round the tags with a wall a metre and a half
 /// beyond, the robot on the dock, and a box on each edge of `obstacles`.
-pub fn world_for(map: &TagMap, look: f64, obstacles: &[(TagId, TagId)]) -> Result<World, String> {
+pub fn world_for(
+    map: &TagMap,
+    camera: &TagCamera,
+    obstacles: &[(TagId, TagId)],
+) -> Result<World, String> {
     let xs = map.tags.values().map(|t| t.x);
     let ys = map.tags.values().map(|t| t.y);
     let reach = xs.chain(ys).fold(0.0f64, |m, v| m.max(v.abs())) + 1.5;
     let dock = &map.tags[&map.dock];
-    let heading = dock.zone.heading();
-    let (sx, sy) = (dock.x - look * heading.cos(), dock.y - look * heading.sin());
+    let start = over_point(dock.x, dock.y, dock.zone.heading(), camera.look);
     let mut text = format!(
         "name = \"tags\"\nsize = [{s}, {s}]\nstart = [{sx}, {sy}, {h}]\n\
          [[walls]]\npoints = [[-{r}, -{r}], [{r}, -{r}], [{r}, {r}], [-{r}, {r}]]\nclosed = true\n",
         s = 2.0 * reach + 0.2,
         r = reach,
-        h = heading.to_degrees()
+        sx = start.x,
+        sy = start.y,
+        h = start.theta.to_degrees()
     );
     for (a, b) in obstacles {
-        let (Some(a), Some(b)) = (map.tags.get(a), map.tags.get(b)) else {
+        let joined = map.edge(*a, *b).or(map.edge(*b, *a)).is_some();
+        let (Some(a), Some(b), true) = (map.tags.get(a), map.tags.get(b), joined) else {
             return Err(format!("no edge {a}-{b} in the map to put a box on"));
         };
         text.push_str(&format!(
@@ -150,7 +157,7 @@ pub fn run(config: &Config, map: &TagMap, options: &RouteOptions) -> Result<Rout
         look: camera.look,
         ..DriveSetup::default()
     };
-    let world = world_for(map, camera.look, &options.obstacles)?;
+    let world = world_for(map, &camera, &options.obstacles)?;
     let start = world.start;
     let mut twin = crate::sim::Twin::new(world, &config.robot, &config.sim, options.seed);
     let monitor = CollisionMonitor::new(&config.safety, config.robot.footprint_radius);
@@ -194,8 +201,7 @@ pub fn run(config: &Config, map: &TagMap, options: &RouteOptions) -> Result<Rout
         for e in &events {
             match e {
                 DriveEvent::Arrived { tag, .. } => {
-                    report.legs_driven += 1;
-                    report.arrivals.push(arrival(map, *tag, truth, camera.look));
+                    report.arrivals.push(arrival(map, *tag, truth, &camera));
                     if waypoints.get(next_waypoint) == Some(tag) {
                         next_waypoint += 1;
                     }
@@ -271,7 +277,7 @@ pub fn run(config: &Config, map: &TagMap, options: &RouteOptions) -> Result<Rout
     if report.completed {
         let truth = twin.pose();
         let last = *route.tags.last().unwrap_or(&map.dock);
-        let end = arrival(map, last, truth, camera.look);
+        let end = arrival(map, last, truth, &camera);
         let heading = map.tags[&last].zone.heading();
         let off = wrap_angle(truth.theta - heading);
         // Square to the zone's axis either way round.
@@ -283,6 +289,7 @@ pub fn run(config: &Config, map: &TagMap, options: &RouteOptions) -> Result<Rout
     if !report.completed && report.failure.is_none() {
         report.failure = Some(format!("not done within {:.0} s", options.time_limit));
     }
+    report.legs_driven = report.arrivals.len();
     report.collisions = twin.collisions();
     report.sim_time = t;
     Ok(report)
@@ -290,11 +297,11 @@ pub fn run(config: &Config, map: &TagMap, options: &RouteOptions) -> Result<Rout
 
 /// Where the image centre's floor point stands from `tag`, by the truth, along the
 /// robot's heading and to its left.
-fn arrival(map: &TagMap, tag: TagId, truth: Pose2, look: f64) -> TagArrival {
+fn arrival(map: &TagMap, tag: TagId, truth: Pose2, camera: &TagCamera) -> TagArrival {
     let t = &map.tags[&tag];
     let (s, c) = truth.theta.sin_cos();
-    let (cx, cy) = (truth.x + look * c, truth.y + look * s);
-    let (dx, dy) = (cx - t.x, cy - t.y);
+    let centre = camera.centre(truth);
+    let (dx, dy) = (centre.x - t.x, centre.y - t.y);
     TagArrival {
         tag,
         along_m: c * dx + s * dy,

@@ -3,7 +3,7 @@
 //! the image centre's floor point and its angle, from the true pose, with a little noise
 //! drawn from the caller's generator.
 
-use crate::geometry::{Pose2, wrap_angle};
+use crate::geometry::{Point2, Pose2, wrap_angle};
 use crate::tags::TagMap;
 use crate::tags::drive::TagSighting;
 use rand_chacha::ChaCha8Rng;
@@ -36,16 +36,22 @@ impl Default for TagCamera {
 }
 
 impl TagCamera {
+    /// The image centre's floor point with the robot at `pose`.
+    pub fn centre(&self, pose: Pose2) -> Point2 {
+        let (s, c) = pose.theta.sin_cos();
+        Point2::new(pose.x + self.look * c, pose.y + self.look * s)
+    }
+
     /// The tags of `map` in view from the true pose `truth`.
     pub fn sightings(&self, map: &TagMap, truth: Pose2, rng: &mut ChaCha8Rng) -> Vec<TagSighting> {
         let (s, c) = truth.theta.sin_cos();
-        let (cx, cy) = (truth.x + self.look * c, truth.y + self.look * s);
+        let centre = self.centre(truth);
         let offset = Normal::new(0.0, self.offset_sd.max(0.0)).ok();
         let angle = Normal::new(0.0, self.angle_sd.max(0.0)).ok();
         let noise = |n: Option<Normal<f64>>, rng: &mut ChaCha8Rng| n.map_or(0.0, |n| n.sample(rng));
         let mut seen = Vec::new();
         for (&id, tag) in &map.tags {
-            let (dx, dy) = (tag.x - cx, tag.y - cy);
+            let (dx, dy) = (tag.x - centre.x, tag.y - centre.y);
             let (ahead, left) = (c * dx + s * dy, -s * dx + c * dy);
             if ahead.abs() > self.half_length || left.abs() > self.half_width {
                 continue;

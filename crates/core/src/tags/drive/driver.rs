@@ -5,7 +5,7 @@
 //! control period; time and sightings come from the caller.
 
 use super::control::{DriveGains, align_rate, aligned, pursuit, turn_done, turn_rate};
-use super::reset::{PoseReference, TagSighting, pose_from_tag};
+use super::reset::{PoseReference, TagSighting, over_point, pose_from_tag};
 use crate::geometry::{Point2, Pose2, wrap_angle};
 use crate::tags::file::{Direction, TagId, TagMap};
 use crate::tags::graph::Route;
@@ -57,12 +57,10 @@ pub enum Phase {
         target: f64,
     },
     /// Turning on the last tag until square to it.
-    Align {
-        tries: u32,
-    },
-    /// Backing off the last tag to come at it again, until the odometry has gone this far.
+    Align,
+    /// Backing off the last tag, from where the estimate put the robot, to come at it
+    /// again.
     BackOff {
-        tries: u32,
         from: Point2,
     },
     Done,
@@ -126,12 +124,9 @@ impl TagDriver {
                 } else {
                     travel
                 };
-                // The image centre's floor point is `look` ahead of the centre: the
-                // centre stops that far short of the tag along the heading.
-                let goal = Point2::new(
-                    b.x - setup.look * heading.cos(),
-                    b.y - setup.look * heading.sin(),
-                );
+                // The centre stops `look` short of the tag along the heading.
+                let stand = over_point(b.x, b.y, heading, setup.look);
+                let goal = Point2::new(stand.x, stand.y);
                 Some(LegPlan {
                     to: leg.to,
                     goal,
@@ -142,7 +137,7 @@ impl TagDriver {
             .collect::<Vec<_>>();
         let last_tag = route.tags.last().copied().unwrap_or(map.dock);
         let phase = if legs.is_empty() {
-            Phase::Align { tries: 0 }
+            Phase::Align
         } else {
             Phase::Drive { leg: 0 }
         };
@@ -214,7 +209,7 @@ impl TagDriver {
                     (0.0, turn_rate(&g, error))
                 }
             }
-            Phase::Align { tries } => match seen.iter().find(|s| s.id == self.last_tag) {
+            Phase::Align => match seen.iter().find(|s| s.id == self.last_tag) {
                 Some(s) => {
                     if aligned(&g, s.align, s.lateral) {
                         events.push(DriveEvent::Aligned {
@@ -228,7 +223,7 @@ impl TagDriver {
                     } else if align_rate(&g, s.align) == 0.0 {
                         // Square but to one side: a turn cannot mend that; back off and
                         // come at the tag again (navdeck's, the seed has no law here).
-                        self.back_off(tries, est, &mut events)
+                        self.back_off(est, &mut events)
                     } else {
                         (0.0, align_rate(&g, s.align))
                     }
@@ -242,11 +237,10 @@ impl TagDriver {
                     &mut events,
                 ),
             },
-            Phase::BackOff { tries, from } => {
+            Phase::BackOff { from } => {
                 let leg = self.legs.len() - 1;
                 let plan = self.legs[leg];
                 if from.distance(Point2::new(est.x, est.y)) >= 2.0 * self.setup.search_distance {
-                    self.tries = tries;
                     self.phase = Phase::Drive { leg };
                     (0.0, 0.0)
                 } else {
@@ -299,7 +293,7 @@ impl TagDriver {
     /// the next leg goes another way, else drive on.
     fn after_leg(&self, leg: usize, heading: f64) -> Phase {
         if leg + 1 >= self.legs.len() {
-            return Phase::Align { tries: self.tries };
+            return Phase::Align;
         }
         self.turn_if_needed(leg + 1, heading)
             .unwrap_or(Phase::Drive { leg: leg + 1 })
@@ -313,8 +307,8 @@ impl TagDriver {
             .then_some(Phase::Turn { leg, target })
     }
 
-    fn back_off(&mut self, tries: u32, est: Pose2, events: &mut Vec<DriveEvent>) -> (f64, f64) {
-        if tries + 1 >= self.setup.align_tries {
+    fn back_off(&mut self, est: Pose2, events: &mut Vec<DriveEvent>) -> (f64, f64) {
+        if self.tries + 1 >= self.setup.align_tries {
             let why = format!(
                 "square on tag {} but still to its side after {} tries",
                 self.last_tag, self.setup.align_tries
@@ -331,8 +325,8 @@ impl TagDriver {
                 events,
             );
         }
+        self.tries += 1;
         self.phase = Phase::BackOff {
-            tries: tries + 1,
             from: Point2::new(est.x, est.y),
         };
         (0.0, 0.0)

@@ -83,7 +83,7 @@ fn drive(map: &TagMap, route: &crate::tags::Route, start: Pose2) -> Outcome {
 /// The dock pose: the camera's image centre over the dock tag, facing +x.
 fn dock_pose(map: &TagMap, look: f64) -> Pose2 {
     let dock = &map.tags[&map.dock];
-    Pose2::new(dock.x - look, dock.y, 0.0)
+    over_point(dock.x, dock.y, 0.0, look)
 }
 
 #[test]

@@ -10,4 +10,4 @@ mod driver_tests;
 
 pub use control::DriveGains;
 pub use driver::{DriveEvent, DriveSetup, Phase, TagDriver};
-pub use reset::{PoseReference, TagSighting, pose_from_tag};
+pub use reset::{PoseReference, TagSighting, over_point, pose_from_tag};

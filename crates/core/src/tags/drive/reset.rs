@@ -45,6 +45,12 @@ pub fn pose_from_tag(tag: &Tag, sighting: &TagSighting, look: f64, heading_hint:
     )
 }
 
+/// The robot's pose with the image centre's floor point (`look` metres ahead of its
+/// centre) over the map point (`x`, `y`), facing `heading`.
+pub fn over_point(x: f64, y: f64, heading: f64, look: f64) -> Pose2 {
+    Pose2::new(x - look * heading.cos(), y - look * heading.sin(), heading)
+}
+
 /// The map pose and the odometry's pose at the last tag: the pose now is the reference
 /// carried on by the odometry's change since, turned into the map frame.
 #[derive(Clone, Copy, Debug, PartialEq)]

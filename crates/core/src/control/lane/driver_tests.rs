@@ -407,3 +407,50 @@ fn an_arm_remembered_ahead_and_never_seen_again_is_waited_for_only_the_patience(
     let s = d.step(t + 0.3, Some(&near), 0.1);
     assert_eq!(s.wait, Some(Wait::Barrier(BarrierState::Down)));
 }
+
+#[test]
+fn a_barrier_that_opens_is_crossed_at_the_crossing_speed_and_then_the_lane_speed_returns() {
+    let cfg = LaneDriveConfig::default();
+    let mut d = LaneDriver::new(cfg.clone());
+    d.reset(0.0);
+    rise_from_level(&mut d);
+    // Open: a centred lane now drives at the crossing speed, above the lane's top speed.
+    let s = d.step(0.5, Some(&seen(0.0)), 0.0);
+    assert_eq!(s.wait, None);
+    assert!(
+        (s.twist.linear - cfg.barrier_cross_speed).abs() < 1e-9,
+        "{s:?}"
+    );
+    assert!(cfg.barrier_cross_speed > cfg.max_speed);
+    // At the crossing speed until past the arm (the stopping range and the robot's length
+    // behind its camera), then the lane's top speed again.
+    let clear = cfg.barrier_stop_range + CROSSING_CLEAR;
+    let mut t = 0.5;
+    let mut crossed = 0.0;
+    while crossed < clear - 0.03 {
+        t += 0.1;
+        crossed += cfg.barrier_cross_speed * 0.1;
+        let s = d.step(t, Some(&seen(0.0)), cfg.barrier_cross_speed);
+        assert!(
+            (s.twist.linear - cfg.barrier_cross_speed).abs() < 1e-9,
+            "{crossed}"
+        );
+    }
+    for _ in 0..2 {
+        t += 0.1;
+        d.step(t, Some(&seen(0.0)), cfg.barrier_cross_speed);
+    }
+    let s = d.step(t + 0.1, Some(&seen(0.0)), cfg.max_speed);
+    assert!((s.twist.linear - cfg.max_speed).abs() < 1e-9, "{s:?}");
+}
+
+#[test]
+fn a_lane_without_a_barrier_never_drives_above_the_lane_speed() {
+    let cfg = LaneDriveConfig::default();
+    let mut d = LaneDriver::new(cfg.clone());
+    d.reset(0.0);
+    for k in 1..50 {
+        let s = d.step(0.1 * f64::from(k), Some(&seen(0.0)), cfg.max_speed);
+        assert!(s.twist.linear <= cfg.max_speed + 1e-12, "{k}: {s:?}");
+    }
+}

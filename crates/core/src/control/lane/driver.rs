@@ -318,9 +318,10 @@ impl LaneDriver {
             Some(b) if b.range <= reach => self.unseen = 0,
             _ => {
                 // No arm ahead for a second: past the barrier, and the next one is met
-                // afresh.
+                // afresh; while crossing, the arm the robot saw open has only left the
+                // picture (a raised arm does as the robot comes under it).
                 self.unseen += 1;
-                if self.unseen >= BARRIER_GONE {
+                if self.unseen >= BARRIER_GONE && self.crossing.is_none() {
                     self.opened = false;
                 }
             }

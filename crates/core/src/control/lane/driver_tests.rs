@@ -454,3 +454,24 @@ fn a_lane_without_a_barrier_never_drives_above_the_lane_speed() {
         assert!(s.twist.linear <= cfg.max_speed + 1e-12, "{k}: {s:?}");
     }
 }
+
+#[test]
+fn an_arm_lost_from_view_while_the_robot_crosses_and_seen_again_up_does_not_stop_it() {
+    let cfg = LaneDriveConfig::default();
+    let mut d = LaneDriver::new(cfg.clone());
+    d.reset(0.0);
+    rise_from_level(&mut d);
+    let v = cfg.barrier_cross_speed;
+    // Crossing: the raised arm is out of the picture for a second and more...
+    let mut t = 0.4;
+    for _ in 0..15 {
+        t += 0.1;
+        assert_eq!(d.step(t, Some(&seen(0.0)), v).wait, None);
+    }
+    // ...and seen again up, near, as the robot comes under it: it is the arm that opened.
+    for _ in 0..3 {
+        t += 0.1;
+        let s = d.step(t, Some(&barrier_at(BarrierState::Up, 85.0, 0.3)), v);
+        assert_eq!(s.wait, None, "{s:?}");
+    }
+}

@@ -43,11 +43,6 @@ pub struct LaneDriveConfig {
     pub light_line_ahead: f64,
     /// A barrier down or moving this near stops the robot.
     pub barrier_stop_range: f64,
-    /// Top speed once a barrier the robot waited at opens, m/s, until the robot is past
-    /// its arm: how long the arm stays up is unknown, so the robot clears it promptly, as
-    /// a driver clears a level crossing (at 0.1 m/s the 0.7 m from the stop to past the
-    /// arm takes 7 s, and an arm up for 8 s comes down on it).
-    pub barrier_cross_speed: f64,
     /// Seconds the robot waits for an arm it remembers ahead but no frame has shown since:
     /// lowered, an arm that near would be in view, so one unseen this long stands open
     /// (or was never there: a far arm ranged short), and the robot drives on, stopping
@@ -71,7 +66,6 @@ impl Default for LaneDriveConfig {
             light_stop_range: 0.85,
             light_line_ahead: 0.53,
             barrier_stop_range: 0.55,
-            barrier_cross_speed: 0.2,
             unseen_arm_patience: 30.0,
             lost_after: 1.0,
         }
@@ -98,7 +92,6 @@ impl LaneDriveConfig {
             ("light_stop_range", self.light_stop_range, 0.1, 10.0),
             ("light_line_ahead", self.light_line_ahead, 0.0, 10.0),
             ("barrier_stop_range", self.barrier_stop_range, 0.1, 10.0),
-            ("barrier_cross_speed", self.barrier_cross_speed, 0.01, 2.0),
             ("unseen_arm_patience", self.unseen_arm_patience, 1.0, 3600.0),
             ("lost_after", self.lost_after, 0.05, 60.0),
         ])

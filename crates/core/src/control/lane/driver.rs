@@ -71,8 +71,6 @@ pub struct LaneDriver {
     remembered: bool,
     /// When a frame last showed an arm, or the remembered arm's hold began.
     arm_seen_at: f64,
-    /// Metres still to drive at the crossing speed past a barrier that opened.
-    crossing: Option<f64>,
     /// When the last step was taken.
     last_t: Option<f64>,
 }
@@ -89,9 +87,6 @@ const BARRIER_AHEAD: f64 = 2.0;
 /// jumps (1.6 m, then 6 cm, then 1.7 m).
 const ARM_AGREE_METRES: f64 = 0.05;
 const ARM_AGREE_SHARE: f64 = 0.15;
-/// Metres beyond the stopping range the robot drives at the crossing speed once a barrier
-/// opens: the robot's length behind its camera (0.2 m on a TurtleBot3) and a margin.
-const CROSSING_CLEAR: f64 = 0.35;
 /// seed 000 §3.2.3: an arm within this of level is DOWN.
 const DOWN_DEG: f64 = 20.0;
 
@@ -111,7 +106,6 @@ impl LaneDriver {
             arm_ahead: None,
             remembered: false,
             arm_seen_at: 0.0,
-            crossing: None,
             last_t: None,
         }
     }
@@ -134,7 +128,6 @@ impl LaneDriver {
         self.arm_range = None;
         self.arm = ArmWatch::default();
         self.last_arm = None;
-        self.crossing = None;
         self.last_t = None;
     }
 
@@ -147,10 +140,6 @@ impl LaneDriver {
         if let Some(range) = &mut self.arm_ahead {
             *range -= speed.max(0.0) * dt;
         }
-        if let Some(left) = &mut self.crossing {
-            *left -= speed.max(0.0) * dt;
-        }
-        self.crossing = self.crossing.filter(|left| *left > 0.0);
         if let Some(s) = fresh {
             if let Some(light) = &s.light {
                 let reach = LIGHT_AHEAD * self.cfg.light_stop_range;
@@ -181,8 +170,10 @@ impl LaneDriver {
             && self.hold == Some(Wait::Barrier(BarrierState::Up))
             && t - self.arm_seen_at >= self.cfg.unseen_arm_patience
         {
+            self.hold = None;
             self.remembered = false;
-            self.open_way();
+            self.opened = true;
+            self.unseen = 0;
         }
         // A red or yellow seen near, or seen farther off and then lost from view (a lamp
         // seen only now and then, or leaving the picture in a bend), stops the robot where
@@ -254,7 +245,9 @@ impl LaneDriver {
             // Seen rising from where it lay while the robot waited, and now past RISEN_DEG
             // or gone from the view above it: the opening has begun, and the arm clears the
             // robot's height before the robot reaches it.
-            self.open_way();
+            self.hold = None;
+            self.opened = true;
+            self.unseen = 0;
             return;
         }
         if let Some(b) = barrier {
@@ -278,7 +271,9 @@ impl LaneDriver {
                     && b.state == BarrierState::Up
                     && self.hold != Some(Wait::Barrier(BarrierState::Up)) =>
             {
-                self.open_way();
+                self.hold = None;
+                self.opened = true;
+                self.unseen = 0;
             }
             // Waiting for the next opening of an arm met up: seen down or moving, wherever
             // its range reads (an arm's range reads short while it is raised), it is that
@@ -306,7 +301,8 @@ impl LaneDriver {
                     }
                 } else if closed_ahead {
                     // Seen rising while waiting: this opening is the robot's to pass.
-                    self.open_way();
+                    self.hold = None;
+                    self.opened = true;
                 } else if !self.opened {
                     // Up when first met near: how long it stays up is unknown, so the
                     // robot waits for an opening it sees begin.
@@ -318,23 +314,13 @@ impl LaneDriver {
             Some(b) if b.range <= reach => self.unseen = 0,
             _ => {
                 // No arm ahead for a second: past the barrier, and the next one is met
-                // afresh; while crossing, the arm the robot saw open has only left the
-                // picture (a raised arm does as the robot comes under it).
+                // afresh.
                 self.unseen += 1;
-                if self.unseen >= BARRIER_GONE && self.crossing.is_none() {
+                if self.unseen >= BARRIER_GONE {
                     self.opened = false;
                 }
             }
         }
-    }
-
-    /// The barrier the robot waited at opens: the hold clears, and the robot crosses at
-    /// the crossing speed until it is past the arm.
-    fn open_way(&mut self) {
-        self.hold = None;
-        self.opened = true;
-        self.unseen = 0;
-        self.crossing = Some(self.cfg.barrier_stop_range + CROSSING_CLEAR);
     }
 
     /// Lane following's twist for error `e` (bird's-eye pixels, + when the lane centre is
@@ -352,11 +338,7 @@ impl LaneDriver {
         let f = (1.0 - e.abs() / self.cfg.max_error)
             .max(0.0)
             .powf(self.cfg.alpha);
-        let top = match self.crossing {
-            Some(_) => self.cfg.barrier_cross_speed.max(self.cfg.max_speed),
-            None => self.cfg.max_speed,
-        };
-        (top * f, f)
+        (self.cfg.max_speed * f, f)
     }
 
     /// Seed 000 §2.4.1: (Kp e + Kd de) / speed_factor, speed_factor = clamp(v / v_nom,

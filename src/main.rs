@@ -179,6 +179,7 @@ fn real_main(cli: Cli) -> Result<ExitCode> {
             ("--config", cli.config.is_some()),
             ("--world", cli.twin.world.is_some()),
             ("--start", cli.twin.start.is_some()),
+            ("--tags", cli.twin.tags.is_some()),
             ("--keymap", cli.keymap.is_some()),
             ("--sim-camera", cli.twin.sim_camera),
             ("--fault", !cli.twin.fault.is_empty()),

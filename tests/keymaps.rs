@@ -74,6 +74,11 @@ fn defaults_have_the_seed_keys() {
                 assert_eq!(map.lookup(mode, key(name)), Some(Action::CursorUp));
                 continue;
             }
+            if mode == Mode::Route && name == "up" {
+                // Route mode chooses a task or a tag with the arrows.
+                assert_eq!(map.lookup(mode, key(name)), Some(Action::CursorUp));
+                continue;
+            }
             if mode == Mode::Load && name == "q" {
                 // q leaves the map picker rather than the console (ctrl-c still quits).
                 assert_eq!(map.lookup(mode, key(name)), Some(Action::ModeManual));
@@ -199,7 +204,13 @@ fn teleop_layout_drives_with_ijkl_and_changes_speeds_with_q_z_w_x_e_c() {
         map.lookup(Mode::Exploration, key("o")),
         Some(Action::GripperOpen)
     );
-    assert_eq!(map.lookup(Mode::Exploration, key("i")), None);
+    // i drives forward in manual mode only; elsewhere it is route mode, as by default,
+    // and I reaches route mode from manual mode.
+    assert_eq!(
+        map.lookup(Mode::Exploration, key("i")),
+        Some(Action::ModeRoute)
+    );
+    assert_eq!(map.lookup(Mode::Manual, key("I")), Some(Action::ModeRoute));
 }
 
 #[test]

@@ -27,6 +27,7 @@ impl App {
     /// The handlers that change the console (and, for a few, ask the pilot in its stead).
     fn apply_to_console(&mut self, handler: Handler) {
         let load = self.pilot().mode() == Mode::Load;
+        let route = self.pilot().mode() == Mode::Route;
         match handler {
             Handler::Quit => {
                 self.shutdown("quit by user");
@@ -94,8 +95,13 @@ impl App {
             }
             // In load mode up and down pick a map instead.
             Handler::Cursor(_, dy) if load && dy != 0.0 => self.pick(if dy > 0.0 { -1 } else { 1 }),
+            // In route mode they choose a task or a tag.
+            Handler::Cursor(_, dy) if route && dy != 0.0 => {
+                self.pick_route(if dy > 0.0 { -1 } else { 1 })
+            }
             Handler::Cursor(dx, dy) => self.move_cursor(dx, dy),
             Handler::PlanToCursor if load => self.load_selected(),
+            Handler::PlanToCursor if route => self.drive_picked_route(),
             Handler::PlanToCursor => {
                 let goal = self
                     .cursor
@@ -146,6 +152,7 @@ impl App {
             Typed::SaveRoute(name) => self.save_route(&name),
             Typed::LoadRoute(name) => self.load_route(&name),
             Typed::ShowRoute => self.show_route(),
+            Typed::TagRoute(goal) => self.run_intent(pilot::Intent::TagRoute(goal)),
             Typed::ShowBehaviours => self.show_behaviours(),
             Typed::SwitchBehaviour {
                 behaviour,

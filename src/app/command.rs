@@ -4,6 +4,7 @@
 use crate::control::config::ControllerKind;
 use crate::geometry::Point2;
 use crate::keymap::Action;
+use crate::pilot::tag_route::TagGoal;
 use crate::pilot::waypoints::{RouteAsk, Waypoint};
 
 /// The commands that take arguments, so no key can stand for them.
@@ -41,6 +42,9 @@ pub enum Typed {
     LoadRoute(String),
     /// `route` or `route show`: list the waypoints in the log.
     ShowRoute,
+    /// `route TASK`, `route task NAME`, `route tag ID`: route mode drives a tag map's
+    /// task, or to one tag (seed 003).
+    TagRoute(crate::pilot::tag_route::TagGoal),
     /// `behaviours`: the arbiter's last transitions, in the log.
     ShowBehaviours,
     /// `behaviour NAME on|off [SECONDS]`.
@@ -81,7 +85,7 @@ impl From<Typed> for Intent {
     }
 }
 
-pub const USAGE: &str = "goto X Y [THETA_DEG] | goto marker ID | goto+ X Y [THETA_DEG] | waypoint add [X Y [THETA_DEG]] | route start|pause|skip|clear|loop N|save NAME|load NAME | controller [pid|pure_pursuit|hybrid] | clear | save [NAME] | mission restart | pose X Y THETA_DEG | relocalize | localise | fault KIND[@START][+DURATION][:PARAM]|clear | zone keepout|speed|list|delete|clear|load … | quit";
+pub const USAGE: &str = "goto X Y [THETA_DEG] | goto marker ID | goto+ X Y [THETA_DEG] | waypoint add [X Y [THETA_DEG]] | route start|pause|skip|clear|loop N|save NAME|load NAME | route TASK|tag ID | controller [pid|pure_pursuit|hybrid] | clear | save [NAME] | mission restart | pose X Y THETA_DEG | relocalize | localise | fault KIND[@START][+DURATION][:PARAM]|clear | zone keepout|speed|list|delete|clear|load … | quit";
 
 /// A waypoint from `X Y [THETA_DEG]` words; `what` names the command in errors.
 fn waypoint(what: &str, words: &[&str]) -> Result<Waypoint, String> {
@@ -123,9 +127,21 @@ fn route(words: &[&str]) -> Result<Intent, String> {
         ),
         ["save", name] => return Ok(Typed::SaveRoute(name.to_string()).into()),
         ["load", name] => return Ok(Typed::LoadRoute(name.to_string()).into()),
+        // Route mode's (seed 003): a task of the tag map, or one tag.
+        ["tag", id] => {
+            let id = id
+                .parse()
+                .map_err(|_| format!("route tag: `{id}` is not a tag id"))?;
+            return Ok(Typed::TagRoute(TagGoal::Tag(id)).into());
+        }
+        ["task", name] | [name] => {
+            return Ok(Typed::TagRoute(TagGoal::Task(name.to_string())).into());
+        }
         _ => {
             return Err(
-                "route wants start, pause, skip, clear, loop N, save NAME or load NAME".to_string(),
+                "route wants start, pause, skip, clear, loop N, save NAME or load NAME (waypoints), \
+                 or TASK, task NAME or tag ID (route mode's tag map)"
+                    .to_string(),
             );
         }
     };
@@ -353,5 +369,27 @@ mod tests {
             parse("route save r1"),
             Ok(Typed::SaveRoute("r1".into()).into())
         );
+    }
+
+    #[test]
+    fn reads_route_modes_tasks_and_tags() {
+        let task = |name: &str| Ok(Typed::TagRoute(TagGoal::Task(name.into())).into());
+        assert_eq!(parse("route task1"), task("task1"));
+        // `task` names a task that shares a word with the waypoint route's commands.
+        assert_eq!(parse("route task start"), task("start"));
+        assert_eq!(
+            parse("route start"),
+            Ok(Typed::Route(RouteAsk::Start).into())
+        );
+        assert_eq!(
+            parse("route tag 205"),
+            Ok(Typed::TagRoute(TagGoal::Tag(205)).into())
+        );
+        assert!(
+            parse("route tag x")
+                .unwrap_err()
+                .contains("`x` is not a tag id")
+        );
+        assert!(parse("route a b c").unwrap_err().contains("tag ID"));
     }
 }

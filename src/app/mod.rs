@@ -18,6 +18,7 @@ mod prompt;
 mod recording;
 mod revision;
 mod route_file;
+mod route_picker;
 mod saving;
 pub mod zones;
 pub use saving::save_map_files;
@@ -84,6 +85,8 @@ pub struct App {
     localising: Option<LocalisingMove>,
     /// A keepout or speed zone being drawn with the cursor.
     zone_drawing: zones::Drawing,
+    /// Route mode's chosen row: a task or a tag (`route_picker.rs`).
+    route_pick: usize,
 }
 
 impl App {
@@ -110,6 +113,7 @@ impl App {
             redraw: revision::Redraw::default(),
             camera: camera_feed::CameraFeed::default(),
             localising: None,
+            route_pick: 0,
             config,
         };
         if app.link().takes_log() {

@@ -179,8 +179,19 @@ impl App {
                 ids.iter().map(u32::to_string).collect()
             }
             ["controller"] => owned(&CONTROLLERS),
-            ["route"] => owned(&ROUTE_WORDS),
+            ["route"] => {
+                // The waypoint route's words, then route mode's: tag, and the tasks.
+                let mut words: Vec<String> = owned(&ROUTE_WORDS);
+                if let Some(map) = self.pilot().tag_route().map() {
+                    words.push("tag".into());
+                    words.extend(map.tasks.keys().cloned());
+                }
+                words
+            }
             ["route", "load" | "save"] => self.maps_named(".route.yaml"),
+            ["route", "tag"] => (self.pilot().tag_route().map())
+                .map(|m| m.tags.keys().map(u32::to_string).collect())
+                .unwrap_or_default(),
             ["save"] => self.maps_named(".yaml"),
             ["waypoint"] => vec!["add".to_string()],
             ["mission"] => vec!["restart".to_string()],

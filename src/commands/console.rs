@@ -40,7 +40,7 @@ pub(crate) fn run(cli: &Cli) -> Result<ExitCode> {
         localize: cli.localize.choice(),
     };
     // Everything is loaded and validated before the terminal is touched.
-    let mut session = Session::load(&spec)?;
+    let mut session = Session::load_with_tags(&spec, cli.twin.tags.as_deref())?;
     session.inject_faults(&cli.twin.fault, spec.seed)?;
     // One monotonic clock times planning and camera detection alike.
     let stopwatch: std::sync::Arc<dyn Clock> = std::sync::Arc::new(WallClock::start());
@@ -85,6 +85,7 @@ fn recording_metadata(cli: &Cli) -> std::collections::BTreeMap<String, String> {
     m.insert("seed".into(), cli.twin.seed.to_string());
     let given = [
         ("world", path(&cli.twin.world)),
+        ("tags", path(&cli.twin.tags)),
         ("config", path(&cli.config)),
         ("keymap", path(&cli.keymap)),
         (

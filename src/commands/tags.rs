@@ -58,10 +58,9 @@ pub(crate) fn edge(text: &str) -> Result<(TagId, TagId), String> {
     Ok((tag(a)?, tag(b)?))
 }
 
+/// The tag map in `path` (read bounded, as the console's `--tags` reads it).
 pub(crate) fn load(path: &Path) -> Result<TagMap> {
-    let text = std::fs::read_to_string(path)
-        .with_context(|| format!("reading tag map {}", path.display()))?;
-    TagMap::parse(&text).with_context(|| format!("tag map {}", path.display()))
+    navdeck::session::load_tag_map(path)
 }
 
 fn route_json(route: &Route) -> serde_json::Value {

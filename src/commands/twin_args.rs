@@ -1,5 +1,6 @@
 //! The console's options for the twin (part of the binary, beside main.rs): its world,
-//! where it starts, its noise seed, its camera and the faults injected into it.
+//! where it starts, its noise seed, its floor tags, its camera and the faults injected
+//! into it.
 
 use super::args::{parse_pose, whole};
 use navdeck::geometry::Pose2;
@@ -27,6 +28,12 @@ pub(crate) struct TwinArgs {
         value_parser = whole::<u64>
     )]
     pub seed: u64,
+
+    /// A tag map (seed 003's map.yaml shape, e.g. maps/tag_warehouse.yaml) laid on the
+    /// twin's floor, seen by its ideal tag camera: route mode (i) drives its tasks. Without
+    /// --world the twin's world is built round the tags, the robot on the dock.
+    #[arg(long, value_name = "FILE")]
+    pub tags: Option<PathBuf>,
 
     /// The twin sees through a rendered camera and OpenCV's ArUco detector instead of its
     /// ideal marker sensor (needs a build with `--features vision`).

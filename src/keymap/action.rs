@@ -116,6 +116,7 @@ actions! {
     ModeLoad: "mode_load", "load a saved map" => Pilot(Intent::Mode(Mode::Load));
     ModeGripper: "mode_gripper", "gripper mode: the arm" => Pilot(Intent::Mode(Mode::Gripper));
     ModeLane: "mode_lane", "lane mode (lane, lights)" => Pilot(Intent::Mode(Mode::Lane));
+    ModeRoute: "mode_route", "route mode (tag graph)" => Pilot(Intent::Mode(Mode::Route));
     GripperOpen: "gripper_open", "open the gripper" => Pilot(Intent::Gripper(GripperCommand::Open));
     GripperClose: "gripper_close", "close the gripper" => Pilot(Intent::Gripper(GripperCommand::Close));
     Quit: "quit", "stop and quit (also :quit)" => Console(Quit);
@@ -218,7 +219,7 @@ impl Action {
 
     /// The help line for this action in `mode`: where a key means something else in a
     /// mode (speed keys jog the arm in gripper mode, the cursor picks a map in load
-    /// mode), that mode's meaning.
+    /// mode and a task or a tag in route mode), that mode's meaning.
     pub fn description_in(self, mode: Mode) -> &'static str {
         use Action::*;
         match (mode, self) {
@@ -227,6 +228,9 @@ impl Action {
             (Mode::Load, CursorUp) => "choose the map above",
             (Mode::Load, CursorDown) => "choose the map below",
             (Mode::Load, PlanToCursor) => "load the chosen map",
+            (Mode::Route, CursorUp) => "choose the route above",
+            (Mode::Route, CursorDown) => "choose the route below",
+            (Mode::Route, PlanToCursor) => "drive the chosen route",
             _ => self.description(),
         }
     }

@@ -14,13 +14,11 @@ use crate::geometry::{Pose2, Twist, wrap_angle};
 use crate::sim::World;
 use crate::sim::tag_camera::TagCamera;
 use crate::slam::odometry::predict_pose;
-use crate::tags::drive::{DriveEvent, DriveGains, DriveSetup, Phase, TagDriver, over_point};
-use crate::tags::graph::Blocked;
-use crate::tags::{Direction, Leg, Route, TagId, TagMap};
+use crate::tags::drive::{DriveEvent, DriveGains, DriveSetup, Phase, RouteRun};
+use crate::tags::{TagId, TagMap};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use serde::Serialize;
-use std::path::Path;
 
 /// What a route run is asked to do.
 #[derive(Clone, Debug)]
@@ -74,64 +72,13 @@ pub struct RouteReport {
 /// The control loop's rate by default (seed 003 §2.4, §3.3: 30 Hz).
 pub const RATE_HZ: f64 = 30.0;
 
-/// The twin's world for `map`: a floor round the tags with a wall a metre and a half
-/// beyond, the robot on the dock, and a box on each edge of `obstacles`.
+/// The twin's world for `map` (`tags::floor::world_for`), seen by `camera`.
 pub fn world_for(
     map: &TagMap,
     camera: &TagCamera,
     obstacles: &[(TagId, TagId)],
 ) -> Result<World, String> {
-    let xs = map.tags.values().map(|t| t.x);
-    let ys = map.tags.values().map(|t| t.y);
-    let reach = xs.chain(ys).fold(0.0f64, |m, v| m.max(v.abs())) + 1.5;
-    let dock = &map.tags[&map.dock];
-    let start = over_point(dock.x, dock.y, dock.zone.heading(), camera.look);
-    let mut text = format!(
-        "name = \"tags\"\nsize = [{s}, {s}]\nstart = [{sx}, {sy}, {h}]\n\
-         [[walls]]\npoints = [[-{r}, -{r}], [{r}, -{r}], [{r}, {r}], [-{r}, {r}]]\nclosed = true\n",
-        s = 2.0 * reach + 0.2,
-        r = reach,
-        sx = start.x,
-        sy = start.y,
-        h = start.theta.to_degrees()
-    );
-    for (a, b) in obstacles {
-        let joined = map.edge(*a, *b).or(map.edge(*b, *a)).is_some();
-        let (Some(a), Some(b), true) = (map.tags.get(a), map.tags.get(b), joined) else {
-            return Err(format!("no edge {a}-{b} in the map to put a box on"));
-        };
-        text.push_str(&format!(
-            "[[obstacles]]\ncenter = [{}, {}]\nsize = [0.15, 0.15]\n",
-            (a.x + b.x) / 2.0,
-            (a.y + b.y) / 2.0
-        ));
-    }
-    World::from_toml(&text, Path::new("tags")).map_err(|e| e.to_string())
-}
-
-/// The leg from the middle of `stopped` back to its start, then on through `points`
-/// (the first of them that start).
-fn route_back(
-    map: &TagMap,
-    stopped: Leg,
-    points: &[TagId],
-    blocked: &Blocked,
-) -> Result<Route, String> {
-    let on = map.route(points, blocked).map_err(|e| e.to_string())?;
-    let back = Leg {
-        from: stopped.to,
-        to: stopped.from,
-        direction: match stopped.direction {
-            Direction::Forward => Direction::Backward,
-            Direction::Backward => Direction::Forward,
-        },
-        kind: stopped.kind,
-    };
-    let mut tags = vec![stopped.to];
-    tags.extend(on.tags);
-    let mut legs = vec![back];
-    legs.extend(on.legs);
-    Ok(Route { tags, legs })
+    crate::tags::floor::world_for(map, camera.look, obstacles)
 }
 
 /// Runs `options.task` of `map` with `config`'s robot in the twin.
@@ -145,12 +92,7 @@ pub fn run(config: &Config, map: &TagMap, options: &RouteOptions) -> Result<Rout
         )
     })?;
     // The robot starts on the dock.
-    let mut waypoints = vec![map.dock];
-    waypoints.extend(task.iter().copied().skip_while(|&w| w == map.dock));
-    // The next waypoint to reach.
-    let mut next_waypoint = 1;
-    let mut blocked = Blocked::new();
-    let mut route = map.route(&waypoints, &blocked).map_err(|e| e.to_string())?;
+    let waypoints = RouteRun::task_waypoints(map.dock, task);
     let camera = TagCamera::default();
     let setup = DriveSetup {
         gains: DriveGains::from_map(map),
@@ -163,12 +105,12 @@ pub fn run(config: &Config, map: &TagMap, options: &RouteOptions) -> Result<Rout
     let monitor = CollisionMonitor::new(&config.safety, config.robot.footprint_radius);
     let mut rng = ChaCha8Rng::seed_from_u64(options.seed ^ 0x7a95);
     let mut odom = Pose2::new(0.0, 0.0, 0.0);
-    let mut driver = TagDriver::new(map, &route, setup, start, odom);
+    let mut run = RouteRun::new(map, waypoints, setup, start, odom).map_err(|e| e.to_string())?;
     let mut report = RouteReport {
         task: options.task.clone(),
         seed: options.seed,
         completed: false,
-        planned: route.tags.clone(),
+        planned: run.planned().to_vec(),
         legs_driven: 0,
         arrivals: Vec::new(),
         turn_errors_deg: Vec::new(),
@@ -186,25 +128,19 @@ pub fn run(config: &Config, map: &TagMap, options: &RouteOptions) -> Result<Rout
     let mut scan_age: Option<f64> = None;
     let period = options.period;
     let mut t = 0.0;
-    while t < options.time_limit && !matches!(driver.phase(), Phase::Done | Phase::Failed) {
+    while t < options.time_limit && !matches!(run.phase(), Phase::Done | Phase::Failed) {
         let truth = twin.pose();
         let seen = camera.sightings(map, truth, &mut rng);
-        let target = match driver.phase() {
+        let target = match run.phase() {
             Phase::Turn { target, .. } => Some(target),
             _ => None,
         };
-        let driving = match driver.phase() {
-            Phase::Drive { leg } | Phase::Search { leg } => Some(leg),
-            _ => None,
-        };
-        let ((v, w), events) = driver.step(map, odom, &seen);
+        let driving = run.driving_leg();
+        let ((v, w), events) = run.step(map, odom, &seen);
         for e in &events {
             match e {
                 DriveEvent::Arrived { tag, .. } => {
                     report.arrivals.push(arrival(map, *tag, truth, &camera));
-                    if waypoints.get(next_waypoint) == Some(tag) {
-                        next_waypoint += 1;
-                    }
                 }
                 DriveEvent::Turned { .. } => {
                     if let Some(target) = target {
@@ -235,26 +171,9 @@ pub fn run(config: &Config, map: &TagMap, options: &RouteOptions) -> Result<Rout
         if let (Some(leg), true) = (driving, held) {
             // The monitor holds the robot on a leg: that edge is blocked. Back to the
             // leg's start and plan the rest again without it (and its way back).
-            let stopped = route.legs[leg];
-            blocked.insert((stopped.from, stopped.to));
-            blocked.insert((stopped.to, stopped.from));
-            report.blocked.push((stopped.from, stopped.to));
-            let mut rest_points = vec![stopped.from];
-            rest_points.extend(&waypoints[next_waypoint.min(waypoints.len())..]);
-            let rest = route_back(map, stopped, &rest_points, &blocked);
-            match rest {
-                Ok(r) => {
-                    route = r;
-                    let est = driver.estimate(odom);
-                    driver = TagDriver::new(map, &route, setup, est, odom);
-                }
-                Err(why) => {
-                    report.failure = Some(format!(
-                        "leg {}-{} is blocked and there is no way round it: {why}",
-                        stopped.from, stopped.to
-                    ));
-                    break;
-                }
+            if let Err(why) = run.block(map, leg, odom) {
+                report.failure = Some(why);
+                break;
             }
             twin.set_command(Twist::ZERO);
         } else {
@@ -276,7 +195,7 @@ pub fn run(config: &Config, map: &TagMap, options: &RouteOptions) -> Result<Rout
     twin.set_command(Twist::ZERO);
     if report.completed {
         let truth = twin.pose();
-        let last = *route.tags.last().unwrap_or(&map.dock);
+        let last = *run.route().tags.last().unwrap_or(&map.dock);
         let end = arrival(map, last, truth, &camera);
         let heading = map.tags[&last].zone.heading();
         let off = wrap_angle(truth.theta - heading);
@@ -290,6 +209,7 @@ pub fn run(config: &Config, map: &TagMap, options: &RouteOptions) -> Result<Rout
         report.failure = Some(format!("not done within {:.0} s", options.time_limit));
     }
     report.legs_driven = report.arrivals.len();
+    report.blocked = run.blocked_edges().to_vec();
     report.collisions = twin.collisions();
     report.sim_time = t;
     Ok(report)

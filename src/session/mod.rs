@@ -3,6 +3,7 @@
 
 mod estimator;
 mod lane;
+mod tags;
 
 use crate::app::App;
 use crate::config::Config;
@@ -18,6 +19,7 @@ use anyhow::{Context, Result, bail};
 use estimator::localizer_for;
 pub use estimator::{continuing, graph_beside, read_graph};
 use std::path::PathBuf;
+pub use tags::load_tag_map;
 
 /// Why a camera option is refused by a build without OpenCV, and what to do.
 #[cfg(not(feature = "vision"))]
@@ -387,8 +389,10 @@ impl Session {
 
     /// The console on this session, starting at session time `now`.
     pub fn into_app(self, now: f64) -> App {
+        let tags = self.tag_map();
         let mut app = App::new(self.config, self.keymap, self.robot.into_link(), now);
         app.set_lane_unavailable(self.lane_unavailable);
+        app.set_tag_map(tags);
         if let Some(localizer) = &self.localizer {
             app.localize(localizer);
             // The map's keepout and speed zones, when Nav2 filter masks lie beside it.

@@ -88,6 +88,9 @@ pub fn draw_in(frame: &mut Frame, size: Rect, app: &App, theme: Theme) {
     } else if app.view().camera != crate::app::view::CameraPanel::Off {
         draw_camera(frame, app, theme, inner);
     }
+    if app.pilot().mode() == crate::app::mode::Mode::Route {
+        draw_route(frame, app, theme, inner);
+    }
     if app.pilot().mode() == crate::app::mode::Mode::Gripper && app.pilot().arm().is_some() {
         draw_arm(frame, app, theme, inner);
     }
@@ -270,6 +273,21 @@ fn draw_lane(frame: &mut Frame, app: &App, theme: Theme, map: Rect) {
         );
         super::widgets::lane::thumbnail(thumb, theme, thumb_area, frame.buffer_mut());
     }
+}
+
+/// Route mode's panel in the map's top-right corner: the run, then the list to choose
+/// from.
+fn draw_route(frame: &mut Frame, app: &App, theme: Theme, map: Rect) {
+    let width = (map.width / 2).clamp(30, 44).min(map.width);
+    let height = (map.height * 2 / 5).max(7).min(map.height);
+    let area = Rect::new(map.x + map.width - width, map.y, width, height);
+    let inner_w = usize::from(width.saturating_sub(2));
+    let rows = usize::from(height.saturating_sub(2));
+    let title = text::fit(super::widgets::tag_route::TITLE, inner_w);
+    let block = Block::bordered().title(title).border_style(theme.border());
+    let lines = super::widgets::tag_route::lines(app, theme, inner_w, rows);
+    frame.render_widget(Clear, area);
+    frame.render_widget(Paragraph::new(lines).block(block), area);
 }
 
 fn map_title(app: &App) -> String {

@@ -165,6 +165,7 @@ fn merge(frames: &[FrameMsg]) -> SensorFrame {
         out.initial_pose = frame.initial_pose.or(out.initial_pose);
         out.goal = frame.goal.or(out.goal);
         out.arm = frame.arm.or(out.arm);
+        out.tags = frame.tags.or(out.tags);
     }
     out
 }

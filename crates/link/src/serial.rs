@@ -228,6 +228,7 @@ impl RobotLink for SerialLink {
             goal: None,
             arm: None,
             lane: None,
+            tags: None,
         };
         Ok(frame)
     }

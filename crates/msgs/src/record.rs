@@ -224,6 +224,7 @@ impl FrameMsg {
                 joints: self.arm_joints,
             }),
             lane: None,
+            tags: None,
         })
     }
 }
@@ -391,6 +392,7 @@ mod tests {
                 joints: [0.1, 0.2, 0.3, 0.4],
             }),
             lane: None,
+            tags: None,
         };
         let msg = FrameMsg::from_poll(3.0, Ok(&frame));
         assert_eq!(msg.to_poll(), Ok(frame));

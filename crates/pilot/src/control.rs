@@ -69,6 +69,9 @@ impl Pilot {
         if let Some(lane) = &frame.lane {
             self.sense_lane(lane);
         }
+        if let Some(tags) = frame.tags.as_ref().filter(|_| camera_usable(frame)) {
+            self.sense_tags(t, tags);
+        }
         if let Some(scan) = &frame.scan {
             self.note_scan_for_monitor(t);
             self.localize_scan(scan);

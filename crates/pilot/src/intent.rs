@@ -59,6 +59,9 @@ pub enum Intent {
     Route(super::waypoints::RouteAsk),
     /// Keepout and speed zones: add, delete, clear, or take a map's.
     Zones(super::zones::ZoneAsk),
+    /// Route mode (seed 003): drive a tag map's task, or to one tag, from the tag under
+    /// the robot.
+    TagRoute(super::tag_route::TagGoal),
     /// Switch a behaviour on, or off for a while (None: until switched on).
     Behaviour {
         behaviour: super::behaviours::Behaviour,
@@ -190,6 +193,7 @@ impl Pilot {
                 true
             }
             Intent::Route(ask) => self.ask_route(ask),
+            Intent::TagRoute(goal) => self.go_tag_route(goal),
             Intent::Zones(ask) => {
                 self.ask_zones(ask);
                 false
@@ -209,8 +213,10 @@ impl Pilot {
         if mode == self.mode {
             return false;
         }
-        if let (Mode::PathFollowing | Mode::Exploration | Mode::Lane, LinkStatus::Lost(reason)) =
-            (mode, &self.behaviours.gate.link)
+        if let (
+            Mode::PathFollowing | Mode::Exploration | Mode::Lane | Mode::Route,
+            LinkStatus::Lost(reason),
+        ) = (mode, &self.behaviours.gate.link)
         {
             // Autonomy needs the robot's odometry to start from.
             let text = format!(
@@ -230,6 +236,10 @@ impl Pilot {
         if let (Mode::Lane, Some(why)) = (mode, self.lane_refusal()) {
             let text = format!("lane mode cannot start: {why}");
             self.log(Level::Error, text);
+            return false;
+        }
+        if let (Mode::Route, Some(why)) = (mode, self.route_refusal()) {
+            self.log(Level::Error, why);
             return false;
         }
         if mode == Mode::PathFollowing && !self.start_following() {
@@ -253,6 +263,9 @@ impl Pilot {
         if mode == Mode::Lane {
             self.enter_lane(self.now);
         }
+        if mode == Mode::Route {
+            self.enter_route();
+        }
         true
     }
 
@@ -260,7 +273,7 @@ impl Pilot {
     fn set_speed_limits(&mut self, mode: Mode) {
         let (s, r) = (&self.settings, &self.settings.robot);
         if mode == Mode::Race {
-            self.manual_speeds = (self.teleop.linear_speed, self.teleop.angular_speed);
+            self.teleop.keep_speeds();
             let speeds = (s.race.linear_speed, s.race.angular_speed);
             self.teleop.set_limits(r.max_linear, r.max_angular, speeds);
         } else if self.mode == Mode::Race {
@@ -268,7 +281,8 @@ impl Pilot {
                 s.teleop.max_linear.min(r.max_linear),
                 s.teleop.max_angular.min(r.max_angular),
             );
-            self.teleop.set_limits(lin, ang, self.manual_speeds);
+            let kept = self.teleop.kept_speeds();
+            self.teleop.set_limits(lin, ang, kept);
         }
     }
 
@@ -319,6 +333,7 @@ impl Pilot {
             Mode::Exploration => "e resumes the mission",
             Mode::PathFollowing => "p follows the path again",
             Mode::Lane => "k follows the lane again",
+            Mode::Route => "i drives the route on",
             _ => {
                 self.log(Level::Info, "stop");
                 return;

@@ -26,6 +26,8 @@ pub mod navigation;
 mod reckoning;
 mod safety;
 mod step;
+pub mod tag_route;
+mod tag_route_drive;
 pub mod teleop;
 mod trail;
 pub mod waypoints;
@@ -82,8 +84,6 @@ pub struct Pilot {
     now: f64,
     mode: Mode,
     teleop: Teleop,
-    /// Manual mode's speeds, kept while race mode drives faster.
-    manual_speeds: (f64, f64),
     odometry: Odometry,
     ekf: EkfSlam,
     /// The lidar estimator, when one runs: MCL on a known map, or lidar SLAM.
@@ -101,6 +101,8 @@ pub struct Pilot {
     hand: Hand,
     /// Lane mode: the lane driver and the newest lane sighting.
     lane: lane::Lane,
+    /// Route mode (seed 003): the tag map, the run, the tags seen.
+    tag_route: tag_route::TagRouting,
     /// A monotonic clock, installed by the runner, to time planning for the log only.
     stopwatch: Option<Arc<dyn Clock>>,
     log: Vec<LogLine>,
@@ -121,7 +123,6 @@ impl Pilot {
             now,
             mode: Mode::Manual,
             teleop,
-            manual_speeds: (0.0, 0.0),
             odometry: Odometry::new(start, robot.track),
             // The map frame starts at the robot: its pose is known exactly there.
             ekf: EkfSlam::new(start, Matrix3::zeros(), &settings.slam, robot.track),
@@ -143,6 +144,7 @@ impl Pilot {
                 ..Hand::default()
             },
             lane: lane::Lane::new(settings.lane.clone()),
+            tag_route: tag_route::TagRouting::default(),
             stopwatch: None,
             log: Vec::new(),
             settings,

@@ -1,5 +1,5 @@
 //! The operating modes of seed 001 ("Operating Modes": m e t p r l), and gripper mode
-//! (h) for an arm, and lane mode (k) of seed 000.
+//! (h) for an arm, lane mode (k) of seed 000 and route mode (i) of seed 003.
 
 /// What the console is doing with the robot.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -14,10 +14,12 @@ pub enum Mode {
     Gripper,
     /// Following a lane by camera, stopping at lights and barriers (seed 000 §2-§3).
     Lane,
+    /// Driving a route through a tag map's graph by its floor tags (seed 003).
+    Route,
 }
 
 impl Mode {
-    pub const ALL: [Mode; 8] = [
+    pub const ALL: [Mode; 9] = [
         Mode::Manual,
         Mode::Exploration,
         Mode::Thinking,
@@ -26,6 +28,7 @@ impl Mode {
         Mode::Load,
         Mode::Gripper,
         Mode::Lane,
+        Mode::Route,
     ];
 
     /// The keymap section that holds this mode's bindings.
@@ -39,6 +42,7 @@ impl Mode {
             Mode::Load => "load",
             Mode::Gripper => "gripper",
             Mode::Lane => "lane",
+            Mode::Route => "route",
         }
     }
 
@@ -57,6 +61,7 @@ impl Mode {
             Mode::Load => "LOAD",
             Mode::Gripper => "GRIPPER",
             Mode::Lane => "LANE",
+            Mode::Route => "ROUTE",
         }
     }
 
@@ -77,6 +82,7 @@ impl Mode {
                 | Mode::Load
                 | Mode::Gripper
                 | Mode::Lane
+                | Mode::Route
         )
     }
 }

@@ -91,6 +91,8 @@ pub struct Teleop {
     deadman_timeout: f64,
     release_events: bool,
     held: Vec<Held>,
+    /// Manual mode's speeds, kept while race mode drives faster.
+    kept_speeds: (f64, f64),
 }
 
 impl Teleop {
@@ -104,7 +106,18 @@ impl Teleop {
             deadman_timeout: config.deadman_timeout,
             release_events: false,
             held: Vec::new(),
+            kept_speeds: (0.0, 0.0),
         }
+    }
+
+    /// Keeps the speeds now in force, to give back on leaving race mode.
+    pub(crate) fn keep_speeds(&mut self) {
+        self.kept_speeds = (self.linear_speed, self.angular_speed);
+    }
+
+    /// The speeds kept by `keep_speeds`.
+    pub(crate) fn kept_speeds(&self) -> (f64, f64) {
+        self.kept_speeds
     }
 
     /// Whether the terminal reports key releases (kitty keyboard protocol).

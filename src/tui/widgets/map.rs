@@ -65,6 +65,7 @@ pub fn render(app: &App, theme: Theme, area: Rect, buf: &mut Buffer) {
     super::particles::render(app, &vp, theme, buf);
     super::sensing::render(app, &vp, theme, buf);
     super::graph::render(app, &vp, theme, buf);
+    super::tag_graph::render(app, &vp, theme, buf);
     super::path::render(app, &vp, theme, buf);
     super::explore::render(app, &vp, theme, buf);
     super::beliefs::render(app, &vp, theme, buf);

@@ -16,6 +16,8 @@ pub mod path;
 pub mod rows;
 pub mod sensing;
 pub mod status;
+pub mod tag_graph;
+pub mod tag_route;
 pub mod text;
 pub mod title;
 pub mod viewport;

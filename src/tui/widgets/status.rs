@@ -104,6 +104,7 @@ fn rows(app: &App) -> Vec<Row> {
         ));
     }
     rows.extend(navigation_rows(app));
+    rows.extend(super::tag_route::status_rows(app));
     rows.push(Row::new("Link", format!("{} {link}", app.link().label()), Need::Must).wrapping(2));
     if let LinkStatus::Lost(reason) = app.pilot().link_status() {
         // Why, as the link says it now (its waiting time counts up), over up to three

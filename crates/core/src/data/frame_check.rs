@@ -1,7 +1,8 @@
 //! The one check for everything a link hands the pilot, live or replayed: a frame's
-//! stamps, wheel travel, scan, sightings, camera report, poses and arm joints must be
-//! finite and within physical bounds. What fails is taken out (the part, or the whole
-//! frame when its stamp is bad) and named with its time, field and value; the rest goes on.
+//! stamps, wheel travel, scan, sightings, floor tags (`tag_check.rs`), camera report,
+//! poses and arm joints must be finite and within physical bounds. What fails is taken
+//! out (the part, or the whole frame when its stamp is bad) and named with its time,
+//! field and value; the rest goes on.
 
 use super::sensors::{LaserScan, SensorFrame};
 use crate::geometry::{Pose2, wrap_angle};
@@ -172,6 +173,7 @@ pub fn check_frame(frame: &mut SensorFrame, max_wheel_speed: f64) -> Result<Vec<
         }
     }
     check_sightings(frame, &mut refused);
+    super::tag_check::check_tags(frame, &mut refused);
     if let Some(camera) = frame.camera.as_mut() {
         if camera.ids.len() > MAX_MARKERS {
             let bound = format!("ids must number at most {MAX_MARKERS}");

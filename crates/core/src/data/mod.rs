@@ -16,6 +16,8 @@ pub mod printable;
 pub mod replace;
 pub mod robot;
 pub mod sensors;
+pub mod tag_check;
+pub mod tags;
 
 pub use arm::{ArmState, ArmTarget};
 pub use camera::{CameraStatus, Thumbnail};
@@ -23,3 +25,4 @@ pub use command::{Command, GripperCommand};
 pub use lane::{BarrierSeen, BarrierState, ColourThumbnail, LaneSighting, LightColour, LightSeen};
 pub use level::Level;
 pub use sensors::{GripperState, LaserScan, MarkerSighting, SensorFrame, WheelTravel};
+pub use tags::TagSighting;

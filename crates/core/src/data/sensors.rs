@@ -97,4 +97,7 @@ pub struct SensorFrame {
     pub arm: Option<super::ArmState>,
     /// What the lane camera's pipeline made of its newest frame.
     pub lane: Option<super::LaneSighting>,
+    /// The floor tags the tag camera saw in its newest frame (seed 003 §2.1), if one
+    /// arrived: an empty list is a frame with none in view.
+    pub tags: Option<Vec<super::TagSighting>>,
 }

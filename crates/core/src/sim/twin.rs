@@ -6,6 +6,7 @@ mod grasp;
 #[cfg(feature = "vision")]
 mod lane;
 mod sensors;
+mod tags;
 
 use super::blocks::BlockState;
 use super::collision::{Collider, Disc};
@@ -222,7 +223,8 @@ impl Twin {
 
     /// What the robot reported since the previous take: wheel travel (always, but for an
     /// odometry fault), the newest camera frame and scan (if any arrived), the gripper
-    /// state (always) and the arm's joints (with an arm, but for an arm fault).
+    /// state (always), the arm's joints (with an arm, but for an arm fault) and the tags
+    /// in view (with a tag map on the floor).
     pub fn take_frame(&mut self) -> SensorFrame {
         let h = self.clock.h;
         let taken_at = self.clock.taken_at as f64 * h;
@@ -256,6 +258,7 @@ impl Twin {
                 .filter(|_| !arm_silent)
                 .map(|a| a.state()),
             lane: self.sensors.take_lane(),
+            tags: self.take_tags(),
         }
     }
 

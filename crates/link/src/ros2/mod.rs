@@ -250,6 +250,7 @@ impl RobotLink for Ros2Link {
             goal: self.presence.take_goal(),
             arm: self.arm.as_mut().and_then(arm::Arm::take_state),
             lane: None,
+            tags: None,
         })
     }
 

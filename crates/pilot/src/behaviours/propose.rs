@@ -1,6 +1,6 @@
 //! The pilot's proposals: the safety gate's e-stop, and the task behaviour the mode runs
 //! (teleop, race, path following, the mission's exploration or pick-and-place, gripper
-//! jogging). The arbiter picks among them each control step.
+//! jogging, lane following, the tag route). The arbiter picks among them each control step.
 
 use super::{Behaviour, Proposal, Response};
 use crate::Pilot;
@@ -37,7 +37,15 @@ impl Pilot {
                     // Picking up and putting down a block touches it by design: the
                     // monitor leaves the gripper's lane to it.
                     let handling = task.behaviour == Behaviour::PickAndPlace;
-                    proposals.extend(self.collision_proposal(t, twist, handling));
+                    let monitor = self.collision_proposal(t, twist, handling);
+                    if task.behaviour == Behaviour::TagRoute {
+                        // A leg the monitor holds the robot on is blocked (tag_route_drive.rs).
+                        let held = monitor
+                            .as_ref()
+                            .is_some_and(|m| m.twist.linear.abs() < 1e-9);
+                        self.note_route_hold(t, twist, held);
+                    }
+                    proposals.extend(monitor);
                     proposals.push(task);
                 }
                 None
@@ -118,6 +126,7 @@ impl Pilot {
                 others.extend(hold);
                 follow
             }
+            Mode::Route => self.tag_route_proposal(t),
             Mode::Thinking | Mode::Load => return None,
         };
         Some(proposal)

@@ -2,7 +2,9 @@
 //! collision_avoidance 90, traffic_compliance 80, lane_following 70, pick_and_place 60,
 //! exploration 50). The seed's table has no keyboard driving; navdeck places teleop and
 //! race at 75, where a user expects them: above every autonomous behaviour, below every
-//! safety one. Path following (65) and gripper jogging (55) sit between the seed's tasks.
+//! safety one. Path following (65) and gripper jogging (55) sit between the seed's tasks;
+//! tag-route driving (seed 003) shares path following's 65: both drive a route, never at
+//! once.
 //! Sensor health (85, seed 000 §7.2.1's graceful degradation) holds or slows the task when
 //! a sensor is lost; the collision monitor, above it, still weighs what it lets through.
 
@@ -19,13 +21,14 @@ pub enum Behaviour {
     Race,
     LaneFollowing,
     PathFollowing,
+    TagRoute,
     PickAndPlace,
     GripperJog,
     Exploration,
 }
 
 impl Behaviour {
-    pub const ALL: [Behaviour; 11] = [
+    pub const ALL: [Behaviour; 12] = [
         Behaviour::EmergencyStop,
         Behaviour::CollisionMonitor,
         Behaviour::SensorHealth,
@@ -34,6 +37,7 @@ impl Behaviour {
         Behaviour::Race,
         Behaviour::LaneFollowing,
         Behaviour::PathFollowing,
+        Behaviour::TagRoute,
         Behaviour::PickAndPlace,
         Behaviour::GripperJog,
         Behaviour::Exploration,
@@ -48,7 +52,7 @@ impl Behaviour {
             Behaviour::TrafficCompliance => 80,
             Behaviour::Teleop | Behaviour::Race => 75,
             Behaviour::LaneFollowing => 70,
-            Behaviour::PathFollowing => 65,
+            Behaviour::PathFollowing | Behaviour::TagRoute => 65,
             Behaviour::PickAndPlace => 60,
             Behaviour::GripperJog => 55,
             Behaviour::Exploration => 50,
@@ -72,6 +76,7 @@ impl Behaviour {
             Behaviour::Race => "race",
             Behaviour::LaneFollowing => "lane_following",
             Behaviour::PathFollowing => "path_following",
+            Behaviour::TagRoute => "tag_route",
             Behaviour::PickAndPlace => "pick_and_place",
             Behaviour::GripperJog => "gripper_jog",
             Behaviour::Exploration => "exploration",
@@ -103,6 +108,7 @@ impl fmt::Display for Behaviour {
             Behaviour::Race => "race",
             Behaviour::LaneFollowing => "lane following",
             Behaviour::PathFollowing => "path following",
+            Behaviour::TagRoute => "tag route",
             Behaviour::PickAndPlace => "pick and place",
             Behaviour::GripperJog => "gripper jogging",
             Behaviour::Exploration => "exploration",
@@ -138,6 +144,7 @@ mod tests {
             for auto in [
                 LaneFollowing,
                 PathFollowing,
+                TagRoute,
                 PickAndPlace,
                 GripperJog,
                 Exploration,

@@ -31,6 +31,8 @@ pub(super) struct Sensors {
     /// The lane camera and its clock, on a world with a track.
     #[cfg(feature = "vision")]
     pub(super) lane_rig: Option<super::lane::LaneRig>,
+    /// The tag map on the floor and the tag camera, when tags are laid (`tags.rs`).
+    pub(super) tag_rig: Option<super::tags::TagRig>,
 }
 
 impl Sensors {
@@ -52,6 +54,7 @@ impl Sensors {
             lane: None,
             #[cfg(feature = "vision")]
             lane_rig: None,
+            tag_rig: None,
         }
     }
 

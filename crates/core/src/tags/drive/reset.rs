@@ -11,19 +11,8 @@ use super::super::file::Tag;
 use crate::geometry::{Point2, Pose2, wrap_angle};
 use std::f64::consts::FRAC_PI_2;
 
-/// A tag as the camera sees it, relative to the point of the floor at the image's centre
-/// (seed 003 §2.1: lateral, distance, the corners' angle).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct TagSighting {
-    pub id: super::super::file::TagId,
-    /// Metres the tag lies ahead of the image centre's floor point.
-    pub ahead: f64,
-    /// Metres the tag lies to the right of it (the seed's sign: + right).
-    pub lateral: f64,
-    /// The tag's top edge's angle in the image, radians, + anticlockwise, folded into
-    /// ±45° (a square tag looks alike turned a quarter).
-    pub align: f64,
-}
+/// Sightings cross a link as data; the driver reads them here.
+pub use crate::data::TagSighting;
 
 /// The robot's pose from `sighting` of `tag`, with the camera's floor centre `look`
 /// metres ahead of the robot's centre and `heading_hint` the heading believed so far

@@ -84,3 +84,65 @@ fn a_box_between_tags_no_edge_joins_is_refused_by_name() {
     let said = text(&out.stderr);
     assert!(said.contains("no edge 101-117"), "{said}");
 }
+
+/// `--sim-camera`: the tags drawn in the rendered camera's frames and read by OpenCV.
+#[cfg(feature = "vision")]
+#[test]
+fn a_warehouse_task_is_driven_seeing_the_tags_in_rendered_frames() {
+    let out = navdeck(&[
+        "route",
+        "--tags",
+        WAREHOUSE,
+        "--task",
+        "task1",
+        "--sim-camera",
+        "--json",
+    ]);
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+    let r = &reports(&out.stdout)[0];
+    assert_eq!(r["sensor"], "rendered", "{r}");
+    assert_eq!(r["completed"], true, "{r}");
+    assert_eq!(r["collisions"], 0);
+    assert!(r["end_side_m"].as_f64().unwrap().abs() < 0.05, "{r}");
+    let d = &r["detection"];
+    // Every tag shown whole was found, and each one found within a millimetre and a
+    // degree of the truth (seed 003 §2.5 aligns to 0.5° and 5 cm).
+    let (in_view, found) = (
+        d["tags_in_view"].as_u64().unwrap(),
+        d["tags_found_in_view"].as_u64().unwrap(),
+    );
+    assert!(in_view > 100 && found == in_view, "{d}");
+    assert!(d["lateral_error_m"]["max"].as_f64().unwrap() < 0.001, "{d}");
+    assert!(d["ahead_error_m"]["max"].as_f64().unwrap() < 0.001, "{d}");
+    assert!(d["align_error_deg"]["max"].as_f64().unwrap() < 1.0, "{d}");
+    assert_eq!(d["unknown_ids"], 0);
+    assert!(d["detect_time"]["mean_ms"].as_f64().unwrap() > 0.0, "{d}");
+}
+
+/// Without OpenCV, `--sim-camera` says what to build rather than driving blind.
+#[cfg(not(feature = "vision"))]
+#[test]
+fn sim_camera_without_the_vision_feature_says_how_to_build() {
+    let out = navdeck(&[
+        "route",
+        "--tags",
+        WAREHOUSE,
+        "--task",
+        "task1",
+        "--sim-camera",
+    ]);
+    assert_ne!(out.status.code(), Some(0));
+    let said = text(&out.stderr);
+    assert!(said.contains("--sim-camera"), "{said}");
+    assert!(said.contains("cargo build --features vision"), "{said}");
+    assert!(out.stdout.is_empty(), "{}", text(&out.stdout));
+}
+
+#[test]
+fn the_ideal_camera_is_named_and_adds_no_detection_figures() {
+    let out = navdeck(&["route", "--tags", WAREHOUSE, "--task", "task1", "--json"]);
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out.stderr));
+    let r = &reports(&out.stdout)[0];
+    assert_eq!(r["sensor"], "ideal", "{r}");
+    assert!(r.get("detection").is_none(), "{r}");
+}

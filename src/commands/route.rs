@@ -4,6 +4,7 @@
 use anyhow::{Context, Result};
 use navdeck::config::Config;
 use navdeck::runners::route::{self as runner, RouteOptions, RouteReport};
+use navdeck::runners::route_camera::TagSensor;
 use navdeck::tags::{TagId, TagMap, generate};
 use std::io::Write;
 use std::path::PathBuf;
@@ -41,6 +42,11 @@ pub(crate) struct RouteArgs {
     /// Parameters (TOML): the robot, the twin and the collision monitor's zones.
     #[arg(long, value_name = "FILE")]
     config: Option<PathBuf>,
+    /// See the tags in the rendered camera's frames (1280x720, each tag drawn as its
+    /// AprilTag 36h11 pattern) with OpenCV's detector and solvePnP, instead of the ideal
+    /// tag camera; the JSON adds the detection figures. Needs the `vision` feature.
+    #[arg(long)]
+    sim_camera: bool,
     /// Print one JSON object per task.
     #[arg(long)]
     json: bool,
@@ -64,8 +70,16 @@ fn human(r: &RouteReport) -> String {
         _ => String::new(),
     };
     let worst_turn = r.turn_errors_deg.iter().fold(0.0f64, |m, e| m.max(e.abs()));
+    let camera = r.detection.as_ref().map_or(String::new(), |d| {
+        let lateral = d.lateral_error_m.map_or(0.0, |e| e.mean * 1000.0);
+        let ms = d.detect_time.map_or(0.0, |t| t.mean_ms);
+        format!(
+            "; camera: {} of {} tags in view found, lateral error {lateral:.2} mm, {ms:.1} ms a frame",
+            d.tags_found_in_view, d.tags_in_view
+        )
+    });
     format!(
-        "task {} (seed {}): {} in {:.1} s, {} legs, {} turns (worst {:.2}°){}; blocked {:?}; collisions {}{}\n",
+        "task {} (seed {}): {} in {:.1} s, {} legs, {} turns (worst {:.2}°){}; blocked {:?}; collisions {}{camera}{}\n",
         r.task,
         r.seed,
         if r.completed { "done" } else { "NOT done" },
@@ -84,6 +98,16 @@ fn human(r: &RouteReport) -> String {
 }
 
 pub(crate) fn run(args: &RouteArgs) -> Result<ExitCode> {
+    #[cfg(not(feature = "vision"))]
+    if args.sim_camera {
+        anyhow::bail!("--sim-camera {}", navdeck::session::NEEDS_VISION);
+    }
+    let sensor = if args.sim_camera {
+        TagSensor::Rendered
+    } else {
+        TagSensor::Ideal
+    };
+    let stopwatch = navdeck::tui::events::WallClock::start();
     let config = match &args.config {
         Some(path) => Config::load(path).with_context(|| format!("config {}", path.display()))?,
         None => Config::default(),
@@ -114,9 +138,11 @@ pub(crate) fn run(args: &RouteArgs) -> Result<ExitCode> {
                 obstacles: obstacles.clone(),
                 time_limit: args.time_limit,
                 period: 1.0 / args.rate,
+                sensor,
             };
             let started = Instant::now();
-            let mut report = runner::run(&config, map, &options).map_err(anyhow::Error::msg)?;
+            let mut report = runner::run(&config, map, &options, Some(&stopwatch))
+                .map_err(anyhow::Error::msg)?;
             let wall = started.elapsed().as_secs_f64();
             report.wall_time_s = Some(wall);
             report.realtime_factor = Some(report.sim_time / wall.max(1e-9));

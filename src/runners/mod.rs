@@ -11,6 +11,7 @@ pub mod map_report;
 pub mod mission;
 pub mod plan_report;
 pub mod route;
+pub mod route_camera;
 pub mod score;
 pub mod slam_figures;
 pub mod tour;

@@ -4,8 +4,11 @@
 //! stops is marked blocked and the rest of the task planned again by BFS without it,
 //! from the last tag reached. The run is scored against the truth: each tag's arrival,
 //! each turn, and the end on the last tag (seed 003 §3.3: dock within 5 cm to the side,
-//! turns within 5°).
+//! turns within 5°). With `--sim-camera` (feature `vision`) the tags are seen in the
+//! rendered camera's frames by OpenCV instead (`route_camera`).
 
+use super::route_camera::{DetectionFigures, Eyes, TagSensor};
+use crate::clock::Clock;
 use crate::config::Config;
 use crate::control::collision_monitor::{
     CollisionMonitor, Obstacles, SourceKind, points_from_scan,
@@ -31,6 +34,8 @@ pub struct RouteOptions {
     pub time_limit: f64,
     /// The control loop's period, seconds (seed 003 §2.4: 30 Hz).
     pub period: f64,
+    /// The ideal tag camera, or the rendered one read by OpenCV (`--sim-camera`).
+    pub sensor: TagSensor,
 }
 
 /// Where the robot stood, by the truth, when it reached a tag.
@@ -64,6 +69,10 @@ pub struct RouteReport {
     pub blocked: Vec<(TagId, TagId)>,
     pub collisions: u32,
     pub failure: Option<String>,
+    /// The tag sensor that ran, and with the rendered camera how it did.
+    pub sensor: TagSensor,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub detection: Option<DetectionFigures>,
     pub sim_time: f64,
     pub wall_time_s: Option<f64>,
     pub realtime_factor: Option<f64>,
@@ -81,8 +90,14 @@ pub fn world_for(
     crate::tags::floor::world_for(map, camera.look, obstacles)
 }
 
-/// Runs `options.task` of `map` with `config`'s robot in the twin.
-pub fn run(config: &Config, map: &TagMap, options: &RouteOptions) -> Result<RouteReport, String> {
+/// Runs `options.task` of `map` with `config`'s robot in the twin; `stopwatch` times the
+/// rendered camera's frames.
+pub fn run(
+    config: &Config,
+    map: &TagMap,
+    options: &RouteOptions,
+    stopwatch: Option<&dyn Clock>,
+) -> Result<RouteReport, String> {
     let names: Vec<&str> = map.tasks.keys().map(String::as_str).collect();
     let task = (map.tasks.get(&options.task)).ok_or_else(|| {
         format!(
@@ -93,7 +108,16 @@ pub fn run(config: &Config, map: &TagMap, options: &RouteOptions) -> Result<Rout
     })?;
     // The robot starts on the dock.
     let waypoints = RouteRun::task_waypoints(map.dock, task);
-    let camera = TagCamera::default();
+    // The tags' printed size: the map's `vision.tag_size`, else the camera's config.
+    let tag_camera = &config.vision.tag_camera;
+    let side = map.param_f64("vision.tag_size", tag_camera.tag_side);
+    if !(0.005..=1.0).contains(&side) {
+        return Err(format!(
+            "the map's vision.tag_size = {side}: must lie in 0.005..=1 m"
+        ));
+    }
+    let mut eyes = Eyes::new(options.sensor, map, tag_camera, side, options.seed)?;
+    let camera = *eyes.ideal();
     let setup = DriveSetup {
         gains: DriveGains::from_map(map),
         look: camera.look,
@@ -120,6 +144,8 @@ pub fn run(config: &Config, map: &TagMap, options: &RouteOptions) -> Result<Rout
         blocked: Vec::new(),
         collisions: 0,
         failure: None,
+        sensor: options.sensor,
+        detection: None,
         sim_time: 0.0,
         wall_time_s: None,
         realtime_factor: None,
@@ -130,7 +156,7 @@ pub fn run(config: &Config, map: &TagMap, options: &RouteOptions) -> Result<Rout
     let mut t = 0.0;
     while t < options.time_limit && !matches!(run.phase(), Phase::Done | Phase::Failed) {
         let truth = twin.pose();
-        let seen = camera.sightings(map, truth, &mut rng);
+        let seen = eyes.see(map, truth, &mut rng, stopwatch)?;
         let target = match run.phase() {
             Phase::Turn { target, .. } => Some(target),
             _ => None,
@@ -208,6 +234,7 @@ pub fn run(config: &Config, map: &TagMap, options: &RouteOptions) -> Result<Rout
     if !report.completed && report.failure.is_none() {
         report.failure = Some(format!("not done within {:.0} s", options.time_limit));
     }
+    (report.sensor, report.detection) = eyes.finish();
     report.legs_driven = report.arrivals.len();
     report.blocked = run.blocked_edges().to_vec();
     report.collisions = twin.collisions();

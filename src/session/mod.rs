@@ -23,7 +23,7 @@ pub use tags::load_tag_map;
 
 /// Why a camera option is refused by a build without OpenCV, and what to do.
 #[cfg(not(feature = "vision"))]
-const NEEDS_VISION: &str = "needs navdeck built with the `vision` feature \
+pub const NEEDS_VISION: &str = "needs navdeck built with the `vision` feature \
      (cargo build --features vision; needs OpenCV: libopencv-dev libopencv-contrib-dev clang libclang-dev)";
 
 /// Which robot to drive.

@@ -21,6 +21,8 @@ pub struct VisionConfig {
     pub markers: MarkerSizes,
     pub detector: DetectorConfig,
     pub render: RenderConfig,
+    /// The tag camera of tag-graph navigation (seed 003), `navdeck route --sim-camera`.
+    pub tag_camera: super::tag_camera::TagCameraConfig,
 }
 
 /// Where the camera sits on the robot: seed 001 section 2, "Camera to Robot Transform".
@@ -372,7 +374,7 @@ impl VisionConfig {
                 "must be from 0 to under 0.5 (of a cell, on each side)".into(),
             ));
         }
-        Ok(())
+        self.tag_camera.validate()
     }
 }
 

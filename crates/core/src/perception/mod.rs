@@ -27,3 +27,8 @@ pub mod mount;
 #[cfg(feature = "vision")]
 pub mod pipeline;
 pub mod region;
+pub mod tag_camera;
+#[cfg(feature = "vision")]
+pub mod tag_detect;
+#[cfg(feature = "vision")]
+pub mod tag_patterns;

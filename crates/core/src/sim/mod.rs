@@ -42,10 +42,13 @@ mod readable;
 mod render;
 #[cfg(feature = "vision")]
 pub mod rendered_camera;
+#[cfg(feature = "vision")]
+pub mod rendered_tag_camera;
 pub mod shapes;
 #[cfg(feature = "vision")]
 mod sheet_paint;
 pub mod tag_camera;
+pub mod tag_render;
 pub mod track;
 pub mod track_render;
 mod truth;

@@ -4,8 +4,8 @@
 //! drawn from the caller's generator.
 
 use crate::geometry::{Point2, Pose2, wrap_angle};
-use crate::tags::TagMap;
 use crate::tags::drive::TagSighting;
+use crate::tags::{Tag, TagId, TagMap};
 use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, Normal};
 use std::f64::consts::FRAC_PI_2;
@@ -42,28 +42,40 @@ impl TagCamera {
         Point2::new(pose.x + self.look * c, pose.y + self.look * s)
     }
 
-    /// The tags of `map` in view from the true pose `truth`.
-    pub fn sightings(&self, map: &TagMap, truth: Pose2, rng: &mut ChaCha8Rng) -> Vec<TagSighting> {
+    /// Tag `id` lying at `tag` as seen from the true pose `truth` without noise,
+    /// wherever it lies.
+    pub fn exact(&self, id: TagId, tag: &Tag, truth: Pose2) -> TagSighting {
         let (s, c) = truth.theta.sin_cos();
         let centre = self.centre(truth);
+        let (dx, dy) = (tag.x - centre.x, tag.y - centre.y);
+        let (ahead, left) = (c * dx + s * dy, -s * dx + c * dy);
+        // A square tag looks alike a quarter turned: the angle folds into ±45°.
+        let turned = wrap_angle(truth.theta - tag.zone.heading());
+        let align = turned - (turned / FRAC_PI_2).round() * FRAC_PI_2;
+        TagSighting {
+            id,
+            ahead,
+            lateral: -left,
+            align,
+        }
+    }
+
+    /// The tags of `map` in view from the true pose `truth`.
+    pub fn sightings(&self, map: &TagMap, truth: Pose2, rng: &mut ChaCha8Rng) -> Vec<TagSighting> {
         let offset = Normal::new(0.0, self.offset_sd.max(0.0)).ok();
         let angle = Normal::new(0.0, self.angle_sd.max(0.0)).ok();
         let noise = |n: Option<Normal<f64>>, rng: &mut ChaCha8Rng| n.map_or(0.0, |n| n.sample(rng));
         let mut seen = Vec::new();
         for (&id, tag) in &map.tags {
-            let (dx, dy) = (tag.x - centre.x, tag.y - centre.y);
-            let (ahead, left) = (c * dx + s * dy, -s * dx + c * dy);
-            if ahead.abs() > self.half_length || left.abs() > self.half_width {
+            let exact = self.exact(id, tag, truth);
+            if exact.ahead.abs() > self.half_length || exact.lateral.abs() > self.half_width {
                 continue;
             }
-            // A square tag looks alike a quarter turned: the angle folds into ±45°.
-            let turned = wrap_angle(truth.theta - tag.zone.heading());
-            let align = turned - (turned / FRAC_PI_2).round() * FRAC_PI_2;
             seen.push(TagSighting {
                 id,
-                ahead: ahead + noise(offset, rng),
-                lateral: -left + noise(offset, rng),
-                align: align + noise(angle, rng),
+                ahead: exact.ahead + noise(offset, rng),
+                lateral: exact.lateral + noise(offset, rng),
+                align: exact.align + noise(angle, rng),
             });
         }
         seen

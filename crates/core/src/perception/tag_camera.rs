@@ -191,8 +191,10 @@ mod tests {
         let mut c = TagCameraConfig::default();
         c.mount.rotation_deg = [-80.0, 0.0, -90.0];
         assert_eq!(c.validate().unwrap_err().0, "tag_camera.mount");
-        let mut c = TagCameraConfig::default();
-        c.tag_side = f64::NAN;
+        let c = TagCameraConfig {
+            tag_side: f64::NAN,
+            ..TagCameraConfig::default()
+        };
         assert_eq!(c.validate().unwrap_err().0, "tag_camera.tag_side");
     }
 }

@@ -20,6 +20,8 @@ mod cyclone_peer;
 #[path = "interop_lane_camera.rs"]
 mod lane_camera;
 mod python_support;
+#[path = "interop_tag_graph.rs"]
+mod tag_graph;
 
 use common::scratch;
 use cyclone_peer::{CYCLONE_CONFIG, LinePeer, PATIENCE, python};

@@ -20,6 +20,7 @@ pub use navdeck_core::data::{
 use navdeck_core::geometry::{Point2, Pose2};
 use navdeck_core::map::grid::OccupancyGrid;
 use navdeck_core::slam::ekf::LandmarkEstimate;
+pub use navdeck_msgs::tag_graph_markers::TagGraphPicture;
 
 /// A line for the console's log from the link.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -71,6 +72,8 @@ pub struct Picture {
     pub map: Option<OccupancyGrid>,
     /// The console's state as JSON (`app::mission_state`), when it changed.
     pub state: Option<String>,
+    /// Route mode's tag graph and route, when a tag map is laid (at the full period).
+    pub tag_graph: Option<TagGraphPicture>,
 }
 
 /// Why a link could not do what was asked.

@@ -23,8 +23,9 @@ pub use sensor_msgs::{CompressedImage, Image, JointState, LaserScan};
 pub use std_msgs::{ColorRgba, Float64, Header, StringMsg};
 pub use tf2_msgs::TfMessage;
 pub use visualization_msgs::{
-    MARKER_ADD, MARKER_DELETEALL, MARKER_LINE_STRIP, MARKER_TEXT_VIEW_FACING, MarkerArray,
-    MarkerHumble, MarkerJazzy, MeshFile, UvCoordinate,
+    MARKER_ADD, MARKER_CUBE, MARKER_CUBE_LIST, MARKER_DELETEALL, MARKER_LINE_LIST,
+    MARKER_LINE_STRIP, MARKER_TEXT_VIEW_FACING, MarkerArray, MarkerHumble, MarkerJazzy, MeshFile,
+    UvCoordinate,
 };
 
 pub use crate::arm_msgs::{

@@ -9,6 +9,7 @@ mod picture;
 pub mod recording;
 mod schedule;
 pub mod state;
+mod tag_graph;
 
 use crate::{Notice, RobotLink};
 use navdeck_core::data::frame_check::FrameChecker;

@@ -2,6 +2,7 @@
 
 use super::Runtime;
 use super::state::MissionState;
+use super::tag_graph;
 use crate::Picture;
 
 /// When the full picture last went to the link, and the map revision it carried.
@@ -24,7 +25,8 @@ impl Default for Shown {
 }
 
 impl Runtime {
-    /// The pose every control step; the map, landmarks and plan at the link's period.
+    /// The pose every control step; the map, landmarks, plan and tag graph at the link's
+    /// period.
     pub(super) fn show_picture(&mut self, t: f64) {
         let Some(period) = self.link.picture_period() else {
             return;
@@ -66,6 +68,9 @@ impl Runtime {
             map: (full && self.shown.map != Some(belief.revision()))
                 .then(|| self.pilot.map_to_save()),
             state: state_changed.then(|| state.to_json()),
+            tag_graph: full
+                .then(|| tag_graph::picture(self.pilot.tag_route()))
+                .flatten(),
         };
         if state_changed {
             self.shown.state = Some(state);

@@ -67,8 +67,11 @@ pub struct MarkerArray<M> {
     pub markers: Vec<M>,
 }
 
-/// Marker.type values used here (visualization_msgs/Marker constants).
+/// Marker.type values used here (visualization_msgs/msg/Marker.msg's constants).
+pub const MARKER_CUBE: i32 = 1;
 pub const MARKER_LINE_STRIP: i32 = 4;
+pub const MARKER_LINE_LIST: i32 = 5;
+pub const MARKER_CUBE_LIST: i32 = 6;
 pub const MARKER_TEXT_VIEW_FACING: i32 = 9;
 /// Marker.action values.
 pub const MARKER_ADD: i32 = 0;

@@ -22,6 +22,9 @@ mod lane_camera;
 mod python_support;
 #[path = "interop_tag_graph.rs"]
 mod tag_graph;
+#[cfg(feature = "vision")]
+#[path = "interop_tag_route.rs"]
+mod tag_route;
 
 use common::scratch;
 use cyclone_peer::{CYCLONE_CONFIG, LinePeer, PATIENCE, python};

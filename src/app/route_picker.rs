@@ -13,11 +13,15 @@ use std::sync::Arc;
 impl App {
     /// Lays the tag map route mode drives on (`--tags`), seen by the twin's tag camera's
     /// mount; None leaves route mode saying what to pass.
-    pub fn set_tag_map(&mut self, map: Option<Arc<TagMap>>) {
+    pub fn set_tag_map(&mut self, map: Option<(Arc<TagMap>, f64)>) {
+        let (map, look) = match map {
+            Some((map, look)) => (Some(map), look),
+            None => (None, TagCamera::default().look),
+        };
         let setup = match &map {
             Some(map) => DriveSetup {
                 gains: DriveGains::from_map(map),
-                look: TagCamera::default().look,
+                look,
                 ..DriveSetup::default()
             },
             None => DriveSetup::default(),

@@ -31,7 +31,8 @@ pub(crate) struct TwinArgs {
 
     /// A tag map (seed 003's map.yaml shape, e.g. maps/tag_warehouse.yaml) laid on the
     /// twin's floor, seen by its ideal tag camera: route mode (i) drives its tasks. Without
-    /// --world the twin's world is built round the tags, the robot on the dock.
+    /// --world the twin's world is built round the tags, the robot on the dock. With
+    /// --link ros2 the robot's own camera reads the tags ([ros2.tags]: rgb, camera_info).
     #[arg(long, value_name = "FILE")]
     pub tags: Option<PathBuf>,
 

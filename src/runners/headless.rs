@@ -78,6 +78,10 @@ pub struct Following {
     pub path_length: Option<f64>,
     pub cross_track_rms: Option<f64>,
     pub true_cross_track_rms: Option<f64>,
+    /// Route mode's run (seed 003) as the console shows it, when one was asked for:
+    /// "done on tag 205", or the leg that failed.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub route: Option<String>,
 }
 
 /// Presses `keys` through the active keymap at `rate` keys per simulated second, waits
@@ -198,6 +202,10 @@ pub fn report(app: &App, keys: usize) -> Report {
             path_length: app.pilot().route().map(|r| r.plan.length),
             cross_track_rms: app.pilot().cross_track_rms(),
             true_cross_track_rms: app.pilot().true_cross_track_rms(),
+            route: (app.pilot().tag_route().goal()).map(|_| {
+                let r = app.pilot().tag_route();
+                r.outcome().map_or_else(|| r.phase_text(), str::to_string)
+            }),
         },
         quit: app.should_quit(),
         // A robot node's line (its /rosout) names the node.

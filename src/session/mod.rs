@@ -133,6 +133,9 @@ pub struct Session {
     pub localizer: Option<Localizer>,
     /// Why lane mode cannot run, until a lane camera is set up (`use_lane_camera`).
     lane_unavailable: Option<String>,
+    /// Route mode's tag map and its camera's floor point ahead of the robot, metres,
+    /// when a real robot's tag camera reads it (the twin keeps its own).
+    tags: Option<(std::sync::Arc<crate::tags::TagMap>, f64)>,
 }
 
 impl Session {
@@ -233,6 +236,7 @@ impl Session {
                  (--world maps/track.toml), or a real robot's --camera"
                     .into(),
             ),
+            tags: None,
         };
         // The twin's ideal sensor sees a block until the marker on its face is at the
         // sensor's least range.

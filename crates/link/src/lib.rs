@@ -11,6 +11,8 @@ pub mod ros2;
 pub mod runtime;
 pub mod serial;
 pub mod sim;
+#[cfg(feature = "vision")]
+pub mod tag_camera;
 
 use nalgebra::Matrix3;
 use navdeck_core::data::Level;

@@ -19,7 +19,9 @@ pub use geometry_msgs::{
 };
 pub use nav_msgs::{Cells, MapMetaData, OccupancyGrid, Odometry, Path};
 pub use rcl_interfaces::Log;
-pub use sensor_msgs::{CompressedImage, Image, JointState, LaserScan};
+pub use sensor_msgs::{
+    CameraInfo, CompressedImage, Image, JointState, LaserScan, RegionOfInterest,
+};
 pub use std_msgs::{ColorRgba, Float64, Header, StringMsg};
 pub use tf2_msgs::TfMessage;
 pub use visualization_msgs::{

@@ -69,7 +69,10 @@ impl Pilot {
         if let Some(lane) = &frame.lane {
             self.sense_lane(lane);
         }
-        if let Some(tags) = frame.tags.as_ref().filter(|_| camera_usable(frame)) {
+        // The tag camera may be a camera of its own (a ROS 2 robot's /rgb): its frames
+        // count unless the frame reports a failed camera.
+        let camera_failed = frame.camera.as_ref().is_some_and(|c| c.error.is_some());
+        if let Some(tags) = frame.tags.as_ref().filter(|_| !camera_failed) {
             self.sense_tags(t, tags);
         }
         if let Some(scan) = &frame.scan {

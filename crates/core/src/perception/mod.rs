@@ -32,3 +32,5 @@ pub mod tag_camera;
 pub mod tag_detect;
 #[cfg(feature = "vision")]
 pub mod tag_patterns;
+#[cfg(feature = "vision")]
+pub mod tag_pipeline;

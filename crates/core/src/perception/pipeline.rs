@@ -22,16 +22,23 @@ const WAIT: Duration = Duration::from_millis(100);
 pub trait FrameSource: Send + 'static {
     /// The next frame; `Ok(None)` when none came within the source's own timeout.
     fn grab(&mut self) -> Result<Option<CameraImage>, String>;
+
+    /// The camera's calibration as its driver publishes it (ROS 2's camera_info), when
+    /// a new one came since the last call: `Err` for one that cannot be used. Sources
+    /// without one give None.
+    fn take_calibration(&mut self) -> Option<Result<super::intrinsics::Intrinsics, String>> {
+        None
+    }
 }
 
 /// A one-value mailbox: putting replaces what was not yet taken.
-struct Slot<T> {
+pub(super) struct Slot<T> {
     value: Mutex<Option<T>>,
     filled: Condvar,
 }
 
 impl<T> Slot<T> {
-    fn new() -> Self {
+    pub(super) fn new() -> Self {
         Self {
             value: Mutex::new(None),
             filled: Condvar::new(),
@@ -39,17 +46,17 @@ impl<T> Slot<T> {
     }
 
     /// Stores `v`; true when it replaced a value nobody took.
-    fn put(&self, v: T) -> bool {
+    pub(super) fn put(&self, v: T) -> bool {
         let replaced = self.value.lock().unwrap().replace(v).is_some();
         self.filled.notify_one();
         replaced
     }
 
-    fn take(&self) -> Option<T> {
+    pub(super) fn take(&self) -> Option<T> {
         self.value.lock().unwrap().take()
     }
 
-    fn take_waiting(&self, timeout: Duration) -> Option<T> {
+    pub(super) fn take_waiting(&self, timeout: Duration) -> Option<T> {
         let guard = self.value.lock().unwrap();
         let (mut guard, _) = self
             .filled

@@ -96,7 +96,16 @@ impl std::fmt::Debug for TagDetector {
 impl TagDetector {
     /// A detector for `camera` and tags with black squares `side` metres across.
     pub fn new(camera: &TagCameraConfig, side: f64) -> Result<Self, TagDetectError> {
-        let intrinsics = camera.intrinsics();
+        Self::with_intrinsics(camera, side, camera.intrinsics())
+    }
+
+    /// As `new`, the lens calibrated elsewhere (a ROS 2 camera's camera_info) rather
+    /// than the config's image size and field of view.
+    pub fn with_intrinsics(
+        camera: &TagCameraConfig,
+        side: f64,
+        intrinsics: Intrinsics,
+    ) -> Result<Self, TagDetectError> {
         let mut parameters = aruco::DetectorParameters::create()?;
         parameters.set_corner_refinement_method(match camera.corner_refinement {
             TagCornerRefinement::None => aruco::CORNER_REFINE_NONE,

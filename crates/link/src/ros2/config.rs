@@ -161,6 +161,8 @@ pub struct Ros2Config {
     pub gripper_max_effort: f64,
     /// How the robot's RMW frames the action's service requests.
     pub gripper_action_rmw: Rmw,
+    /// Route mode's tag camera and tag graph topics (`[ros2.tags]`).
+    pub tags: super::tag_topics::TagTopics,
 }
 
 /// `arm_joint_names[k]`, for refusals (a field name is static).
@@ -214,6 +216,7 @@ impl Default for Ros2Config {
             gripper_closed_width: -0.01,
             gripper_max_effort: 1.0,
             gripper_action_rmw: Rmw::FastDds,
+            tags: super::tag_topics::TagTopics::default(),
         }
     }
 }

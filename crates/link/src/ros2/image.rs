@@ -1,7 +1,8 @@
 //! Camera frames from a ROS 2 image topic as a source for the camera pipeline, on a DDS
 //! participant of its own: sensor_msgs/Image (mono8, rgb8 or bgr8), or, for a topic
 //! ending in `/compressed` (image_transport's name, as a TurtleBot3 camera publishes),
-//! sensor_msgs/CompressedImage (JPEG or PNG), decoded by OpenCV.
+//! sensor_msgs/CompressedImage (JPEG or PNG), decoded by OpenCV. With a camera_info
+//! topic beside it (route mode's tag camera), the newest calibration rides along.
 
 use super::config::Ros2Config;
 use super::participant::{Factory, Joined, join, qos_profile, take_all};
@@ -9,6 +10,7 @@ use crate::LinkError;
 use navdeck_core::perception::colour::{BgrFrame, CameraImage};
 use navdeck_core::perception::compressed::decode_compressed;
 use navdeck_core::perception::frame::GrayFrame;
+use navdeck_core::perception::intrinsics::Intrinsics;
 use navdeck_core::perception::pipeline::FrameSource;
 use navdeck_msgs::ros as msgs;
 use ros2_client::{Context, Node, Subscription};
@@ -25,6 +27,10 @@ enum Images {
 
 pub struct Ros2ImageSource {
     images: Images,
+    /// The camera's sensor_msgs/CameraInfo and its topic, when asked for.
+    info: Option<(Subscription<msgs::CameraInfo>, String)>,
+    /// The calibration last handed on (a driver repeats it with every frame).
+    calibration: Option<Result<Intrinsics, String>>,
     _node: Node,
     _context: Context,
 }
@@ -32,6 +38,17 @@ pub struct Ros2ImageSource {
 impl Ros2ImageSource {
     /// Subscribes to `topic` (sensor-data QoS, `[ros2] scan_qos`).
     pub fn connect(config: &Ros2Config, domain: u16, topic: &str) -> Result<Self, LinkError> {
+        Self::connect_with_info(config, domain, topic, None)
+    }
+
+    /// Subscribes to `topic` and, when given, to the camera's calibration on
+    /// `info_topic` (the same QoS: drivers publish it with each frame).
+    pub fn connect_with_info(
+        config: &Ros2Config,
+        domain: u16,
+        topic: &str,
+        info_topic: Option<&str>,
+    ) -> Result<Self, LinkError> {
         let Joined {
             context,
             namespace,
@@ -46,12 +63,39 @@ impl Ros2ImageSource {
         let qos = qos_profile(config.scan_qos, false);
         let images = if topic.ends_with("/compressed") {
             let kind = "CompressedImage";
-            Images::Compressed(factory.subscription("camera", topic, "sensor_msgs", kind, qos)?)
+            Images::Compressed(factory.subscription(
+                "camera",
+                topic,
+                "sensor_msgs",
+                kind,
+                qos.clone(),
+            )?)
         } else {
-            Images::Raw(factory.subscription("camera", topic, "sensor_msgs", "Image", qos)?)
+            Images::Raw(factory.subscription(
+                "camera",
+                topic,
+                "sensor_msgs",
+                "Image",
+                qos.clone(),
+            )?)
+        };
+        let info = match info_topic {
+            Some(t) => {
+                let sub =
+                    factory.subscription("camera_info", t, "sensor_msgs", "CameraInfo", qos)?;
+                let shown = if t.starts_with('/') {
+                    t.to_string()
+                } else {
+                    format!("{}/{t}", namespace.trim_end_matches('/'))
+                };
+                Some((sub, shown))
+            }
+            None => None,
         };
         Ok(Self {
             images,
+            info,
+            calibration: None,
             _node: node,
             _context: context,
         })
@@ -59,6 +103,10 @@ impl Ros2ImageSource {
 }
 
 impl FrameSource for Ros2ImageSource {
+    fn take_calibration(&mut self) -> Option<Result<Intrinsics, String>> {
+        self.newest_calibration()
+    }
+
     fn grab(&mut self) -> Result<Option<CameraImage>, String> {
         let give_up = Instant::now() + GRAB_WAIT;
         loop {
@@ -82,6 +130,23 @@ impl FrameSource for Ros2ImageSource {
             // Edge of the system: the subscription has no blocking take.
             std::thread::sleep(Duration::from_millis(5));
         }
+    }
+}
+
+impl Ros2ImageSource {
+    /// The newest calibration on the camera_info topic, when it differs from the last
+    /// one handed on.
+    fn newest_calibration(&mut self) -> Option<Result<Intrinsics, String>> {
+        let (sub, topic) = self.info.as_ref()?;
+        let mut notes = Vec::new();
+        let newest = match take_all(sub, "camera_info", &mut notes).pop() {
+            Some(m) => super::camera_info::intrinsics(&m, topic),
+            None => Err(notes.pop()?.text),
+        };
+        (self.calibration.as_ref() != Some(&newest)).then(|| {
+            self.calibration = Some(newest.clone());
+            newest
+        })
     }
 }
 

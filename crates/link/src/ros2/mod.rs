@@ -11,6 +11,7 @@
 mod arm;
 pub mod arm_joints;
 pub mod beside;
+pub mod camera_info;
 pub mod cmd_vel;
 mod cmd_vel_out;
 pub mod config;
@@ -27,6 +28,7 @@ pub mod raw;
 mod readings;
 pub mod rosout;
 mod rviz;
+pub mod tag_topics;
 
 #[cfg(not(any(feature = "humble", feature = "jazzy")))]
 compile_error!(

@@ -47,3 +47,30 @@ pub struct CompressedImage {
     pub format: String,
     pub data: Vec<u8>,
 }
+
+/// sensor_msgs/RegionOfInterest.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct RegionOfInterest {
+    pub x_offset: u32,
+    pub y_offset: u32,
+    pub height: u32,
+    pub width: u32,
+    pub do_rectify: bool,
+}
+
+/// sensor_msgs/CameraInfo: a camera's calibration, published beside its images. `k`,
+/// `r` and `p` are fixed arrays (row-major 3x3, 3x3, 3x4), so no length on the wire.
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct CameraInfo {
+    pub header: Header,
+    pub height: u32,
+    pub width: u32,
+    pub distortion_model: String,
+    pub d: Vec<f64>,
+    pub k: [f64; 9],
+    pub r: [f64; 9],
+    pub p: [f64; 12],
+    pub binning_x: u32,
+    pub binning_y: u32,
+    pub roi: RegionOfInterest,
+}

@@ -46,11 +46,12 @@ impl Pilot {
         self.nav.replans
     }
 
-    /// Whether the robot is busy on its own (following a path).
+    /// Whether the robot is busy on its own (following a path, exploring, driving a route).
     pub fn is_busy(&self) -> bool {
         match self.mode {
             Mode::PathFollowing => self.follower.trajectory().is_some() && !self.nav.arrived,
             Mode::Exploration => self.mission().is_some_and(|m| !m.is_done()),
+            Mode::Route => self.tag_route().driving(),
             _ => false,
         }
     }

@@ -108,7 +108,18 @@ pub struct TagDriver {
     search_from: Option<Point2>,
     /// Tries at alignment used.
     tries: u32,
+    /// Control periods in a row the aligning tag was not in the frame, and the command
+    /// before it went missing.
+    align_unseen: u32,
+    align_last: (f64, f64),
 }
+
+/// A real camera's frames come slower than control (a 15 Hz /rgb under a 30 Hz loop) and
+/// now and then miss a tag: while aligning, a tag missing for up to this many control
+/// periods holds the last turn for the first of them, then stands still; after them the
+/// tag is lost.
+const ALIGN_HOLD: u32 = 1;
+const ALIGN_LOST: u32 = 15;
 
 impl TagDriver {
     /// A driver for `route` on `map`, the robot at map pose `start` with the odometry
@@ -149,6 +160,8 @@ impl TagDriver {
             reference: PoseReference::new(start, odom),
             search_from: None,
             tries: 0,
+            align_unseen: 0,
+            align_last: (0.0, 0.0),
         };
         driver.phase = driver
             .turn_if_needed(0, start.theta)
@@ -193,6 +206,7 @@ impl TagDriver {
                 if to_go.is_some_and(|d| d <= self.setup.arrive_band) {
                     events.push(DriveEvent::Arrived { leg, tag: plan.to });
                     self.search_from = None;
+                    (self.align_unseen, self.align_last) = (0, (0.0, 0.0));
                     self.phase = self.after_leg(leg, est.theta);
                     (0.0, 0.0)
                 } else {
@@ -211,6 +225,7 @@ impl TagDriver {
             }
             Phase::Align => match seen.iter().find(|s| s.id == self.last_tag) {
                 Some(s) => {
+                    self.align_unseen = 0;
                     if aligned(&g, s.align, s.lateral) {
                         events.push(DriveEvent::Aligned {
                             tag: s.id,
@@ -225,7 +240,16 @@ impl TagDriver {
                         // come at the tag again (navdeck's, the seed has no law here).
                         self.back_off(est, &mut events)
                     } else {
-                        (0.0, align_rate(&g, s.align))
+                        self.align_last = (0.0, align_rate(&g, s.align));
+                        self.align_last
+                    }
+                }
+                None if self.align_unseen < ALIGN_LOST => {
+                    self.align_unseen += 1;
+                    if self.align_unseen <= ALIGN_HOLD {
+                        self.align_last
+                    } else {
+                        (0.0, 0.0)
                     }
                 }
                 None => self.fail(

@@ -13,12 +13,12 @@ use super::frame::{CameraStatus, GrayFrame, Thumbnail};
 use super::intrinsics::Intrinsics;
 use super::mount::{Mount, range_bearing};
 use super::region::Region;
+use super::square_pose::square_pose;
 use crate::clock::Clock;
 use crate::data::MarkerSighting;
-use nalgebra::Vector3;
-use opencv::core::{Mat, Point2f, Point3f, Ptr, Vector};
+use opencv::core::{Mat, Point2f, Ptr, Vector};
 use opencv::prelude::*;
-use opencv::{aruco, calib3d, imgproc};
+use opencv::{aruco, imgproc};
 
 /// Why detection could not run.
 #[derive(Debug, thiserror::Error)]
@@ -333,47 +333,15 @@ impl Detector {
         id: u32,
         quad: &Vector<Point2f>,
     ) -> Result<Option<ArucoSighting>, VisionError> {
-        let half = (self.config.markers.side(id) / 2.0) as f32;
-        // IPPE_SQUARE's required object points: corners clockwise from top-left, z = 0
-        // (OpenCV docs, SolvePnPMethod SOLVEPNP_IPPE_SQUARE).
-        let object: Vector<Point3f> = Vector::from_iter([
-            Point3f::new(-half, half, 0.0),
-            Point3f::new(half, half, 0.0),
-            Point3f::new(half, -half, 0.0),
-            Point3f::new(-half, -half, 0.0),
-        ]);
-        let mut rvec = Mat::default();
-        let mut tvec = Mat::default();
-        let solved = calib3d::solve_pnp(
-            &object,
-            quad,
-            &self.camera_matrix,
-            &self.distortion,
-            &mut rvec,
-            &mut tvec,
-            false,
-            calib3d::SOLVEPNP_IPPE_SQUARE,
-        )?;
-        if !solved {
+        let half = self.config.markers.side(id) / 2.0;
+        let Some(pose) = square_pose(half, quad, &self.camera_matrix, &self.distortion)? else {
             return Ok(None);
-        }
-        let mut projected: Vector<Point2f> = Vector::new();
-        calib3d::project_points_def(
-            &object,
-            &rvec,
-            &tvec,
-            &self.camera_matrix,
-            &self.distortion,
-            &mut projected,
-        )?;
-        let mut corners = [[0f32; 2]; 4];
-        let mut sum2 = 0.0;
-        for (k, (seen, model)) in quad.iter().zip(projected.iter()).enumerate() {
-            corners[k] = [seen.x, seen.y];
-            sum2 += f64::from((seen.x - model.x).powi(2) + (seen.y - model.y).powi(2));
-        }
-        let t = |i: i32| tvec.at::<f64>(i).copied();
-        let centre = Vector3::new(t(0)?, t(1)?, t(2)?);
+        };
+        let corners: [[f32; 2]; 4] = std::array::from_fn(|k| {
+            let p = quad.get(k).unwrap_or_default();
+            [p.x, p.y]
+        });
+        let centre = pose.centre;
         if centre.z.is_nan() || centre.z <= 0.0 {
             return Ok(None);
         }
@@ -383,7 +351,7 @@ impl Detector {
             id,
             range,
             bearing,
-            reprojection_px: (sum2 / 4.0).sqrt(),
+            reprojection_px: pose.reprojection_px,
             corners,
         }))
     }

@@ -27,6 +27,8 @@ pub mod mount;
 #[cfg(feature = "vision")]
 pub mod pipeline;
 pub mod region;
+#[cfg(feature = "vision")]
+pub mod square_pose;
 pub mod tag_camera;
 #[cfg(feature = "vision")]
 pub mod tag_detect;

@@ -13,14 +13,14 @@ use super::calibration;
 use super::frame::GrayFrame;
 use super::intrinsics::Intrinsics;
 use super::mount::Mount;
+use super::square_pose::square_pose;
 use super::tag_camera::{TagCameraConfig, TagCornerRefinement};
 use crate::geometry::wrap_angle;
 use crate::tags::drive::TagSighting;
 use crate::tags::{TagId, TagMap};
-use nalgebra::{Matrix3, Vector3};
-use opencv::core::{Mat, Point2f, Point3f, Ptr, Vector};
+use opencv::aruco;
+use opencv::core::{Mat, Point2f, Ptr, Vector};
 use opencv::prelude::*;
-use opencv::{aruco, calib3d};
 use std::f64::consts::FRAC_PI_2;
 
 /// Candidates nearer each other than this share of their perimeter are one square
@@ -197,58 +197,11 @@ impl TagDetector {
         if quad.len() != 4 || !self.clear_of_edges(&corners) {
             return Ok(None);
         }
-        let h = self.half_side as f32;
-        // IPPE_SQUARE's object points: corners clockwise from the top-left, z = 0, x to
-        // the marker's right and y to its top (OpenCV docs, SOLVEPNP_IPPE_SQUARE).
-        let object: Vector<Point3f> = Vector::from_iter([
-            Point3f::new(-h, h, 0.0),
-            Point3f::new(h, h, 0.0),
-            Point3f::new(h, -h, 0.0),
-            Point3f::new(-h, -h, 0.0),
-        ]);
-        let (mut rvec, mut tvec) = (Mat::default(), Mat::default());
-        let solved = calib3d::solve_pnp(
-            &object,
-            quad,
-            &self.camera_matrix,
-            &self.distortion,
-            &mut rvec,
-            &mut tvec,
-            false,
-            calib3d::SOLVEPNP_IPPE_SQUARE,
-        )?;
-        if !solved {
+        let Some(pose) = square_pose(self.half_side, quad, &self.camera_matrix, &self.distortion)?
+        else {
             return Ok(None);
-        }
-        let mut projected: Vector<Point2f> = Vector::new();
-        calib3d::project_points_def(
-            &object,
-            &rvec,
-            &tvec,
-            &self.camera_matrix,
-            &self.distortion,
-            &mut projected,
-        )?;
-        let sum2: f64 = (quad.iter().zip(projected.iter()))
-            .map(|(seen, model)| f64::from((seen.x - model.x).powi(2) + (seen.y - model.y).powi(2)))
-            .sum();
-        let reprojection_px = (sum2 / 4.0).sqrt();
-        let mut rotation = Mat::default();
-        calib3d::rodrigues_def(&rvec, &mut rotation)?;
-        let r = |i: i32, j: i32| rotation.at_2d::<f64>(i, j).copied();
-        let t = |i: i32| tvec.at::<f64>(i).copied();
-        let turn = Matrix3::new(
-            r(0, 0)?,
-            r(0, 1)?,
-            r(0, 2)?,
-            r(1, 0)?,
-            r(1, 1)?,
-            r(1, 2)?,
-            r(2, 0)?,
-            r(2, 1)?,
-            r(2, 2)?,
-        );
-        let centre = Vector3::new(t(0)?, t(1)?, t(2)?);
+        };
+        let (centre, turn, reprojection_px) = (pose.centre, pose.rotation, pose.reprojection_px);
         if !(centre.iter().all(|v| v.is_finite()) && centre.z > 0.0)
             || reprojection_px > self.config.max_reprojection_error_px
         {

@@ -37,12 +37,8 @@ struct Outcome {
     seconds: f64,
 }
 
-fn drive(map: &TagMap, route: &crate::tags::Route, start: Pose2) -> Outcome {
-    drive_seeing_every(map, route, start, 1)
-}
-
-/// `drive` with a camera whose frames come every `every` control periods (a 15 Hz camera
-/// under the 30 Hz loop for 2): the periods between see nothing.
+/// A camera whose frames come every `every` control periods (1 for every period, 2 for a
+/// 15 Hz camera under the 30 Hz loop): the periods between see nothing.
 fn drive_seeing_every(
     map: &TagMap,
     route: &crate::tags::Route,

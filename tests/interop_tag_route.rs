@@ -144,8 +144,14 @@ fn route_mode_drives_a_ros2_robot_to_a_tag_by_its_own_camera_and_camera_info() {
         .abs()
         .to_degrees();
     assert!(off < 5.0, "heading {off:.2} degrees off: {pose:?}");
-    let warnings = report["warnings"].to_string();
-    assert!(!warnings.contains("camera_info"), "{warnings}");
+    // A frame may come before the first camera_info; no frame went unread for another
+    // reason (a calibration refused, a frame of another size).
+    let warnings: Vec<String> = serde_json::from_value(report["warnings"].clone()).unwrap();
+    let waiting = "tag camera rgb: waiting for the camera's calibration (camera_info)";
+    let camera = warnings
+        .iter()
+        .filter(|w| w.contains("tag camera") && *w != waiting);
+    assert_eq!(camera.count(), 0, "{warnings:?}");
     eprintln!(
         "tag route over ROS 2: rest {miss:.4} m off ({along:.4} along, {side:.4} side), heading {off:.2} deg, {} frames, {route:?}",
         record["frames"]

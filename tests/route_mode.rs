@@ -300,3 +300,42 @@ fn a_task_the_map_does_not_hold_and_a_robot_off_the_graph_are_named() {
     let said = "route mode starts on a tag; the nearest, tag 102, is 1.00 m away";
     assert!(lost.logged(said), "{}", lost.log_text());
 }
+
+#[test]
+fn with_mcl_localising_a_tag_seen_gathers_its_particles_on_the_tag_pose() {
+    let mut robot = rig_on(warehouse(), &[]);
+    let clock = ManualClock::default();
+    // MCL on the twin's own world, started 0.3 m and 10 degrees from the truth.
+    let start = truth(&robot);
+    let world =
+        navdeck::tags::floor::world_for(&warehouse(), TagCamera::default().look, &[]).unwrap();
+    let wrong = Pose2::new(
+        start.x + 0.3,
+        start.y - 0.1,
+        start.theta + 10f64.to_radians(),
+    );
+    let initial = navdeck::pilot::localize::InitialPose::At(wrong);
+    (robot
+        .robot
+        .pilot_mut()
+        .use_mcl(&world.rasterize(0.05), initial, 7))
+    .unwrap();
+    let off = |rig: &Rig| {
+        let (est, real) = (rig.pilot().estimated_pose(), truth(rig));
+        est.position().distance(real.position())
+    };
+    assert!(off(&robot) > 0.25, "MCL starts wrong");
+    // A period with the dock tag in view: the particles gather on the tag's pose.
+    clock.advance(robot.pilot().settings().robot.control_period);
+    robot.tick(clock.now());
+    assert!(robot.pilot().mcl().is_some());
+    assert_eq!(
+        robot.pilot().tag_route().last_reset().map(|r| r.tag),
+        Some(508)
+    );
+    assert!(
+        off(&robot) < 0.02,
+        "MCL's estimate {:.3} m off the truth",
+        off(&robot)
+    );
+}

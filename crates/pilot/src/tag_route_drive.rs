@@ -115,13 +115,19 @@ impl Pilot {
         }
     }
 
-    /// A pose from a tag placed in the EKF, the estimate the console shows when no
-    /// lidar estimator runs.
+    /// A pose from a tag placed in the estimate the console shows: the EKF's, and MCL's
+    /// particles when it localises; lidar SLAM's mapping frame is left alone.
     pub(crate) fn reset_from_tag(&mut self, pose: Pose2) {
-        if !matches!(self.scan_estimator, ScanEstimator::None) {
-            return;
-        }
         let (sd, sa) = (RESET_STD_M, RESET_STD_RAD);
+        match &mut self.scan_estimator {
+            // Lidar SLAM maps in the frame the robot started in: moving the robot would
+            // tear its map (slam_toolbox's mapping mode takes no pose either).
+            ScanEstimator::Slam(_) => return,
+            // MCL's particles gather round the tag's pose, as round an RViz pose estimate
+            // but as tight as the tag's own error.
+            ScanEstimator::Mcl(mcl) => mcl.init_at(pose, sd, sa),
+            ScanEstimator::None => {}
+        }
         let cov = Matrix3::from_diagonal(&Vector3::new(sd * sd, sd * sd, sa * sa));
         self.ekf.relocate(pose, &cov);
     }

@@ -206,3 +206,58 @@ fn a_bad_domain_or_config_is_refused_by_name() {
         &["interfaces", "lab-router"],
     );
 }
+
+#[test]
+fn ros2_robots_lists_each_namespaced_turtlebot_and_no_other_topic() {
+    let domain = 148u16;
+    let Some(_peer) = LinePeer::start("fleet_peer.py", domain) else {
+        return;
+    };
+    let cfg = config("fleet", LOOPBACK);
+    let d = domain.to_string();
+    let args = [
+        "ros2",
+        "robots",
+        "--domain",
+        &d,
+        "--duration",
+        "2",
+        "--config",
+    ];
+    let out = run(navdeck(&args).arg(&cfg).arg("--json"));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let report: Value = serde_json::from_slice(&out.stdout).unwrap();
+    let robots = report["robots"].as_array().unwrap();
+    let names: Vec<&str> = robots
+        .iter()
+        .map(|r| r["namespace"].as_str().unwrap())
+        .collect();
+    assert_eq!(names, ["/tb3_0", "/tb3_1"], "{report:#}");
+    let rate = robots[0]["odom_rate_hz"].as_f64().expect("odometry's rate");
+    assert!(
+        (12.0..=28.0).contains(&rate),
+        "{rate} Hz, the peer sends 20"
+    );
+    assert_eq!(
+        robots[0]["cmd_vel_types"],
+        serde_json::json!(["geometry_msgs/msg/Twist"])
+    );
+    assert_eq!(
+        robots[1]["cmd_vel_types"],
+        serde_json::json!(["geometry_msgs/msg/TwistStamped"])
+    );
+    assert_eq!(
+        (robots[0]["scan"].as_bool(), robots[0]["camera"].as_bool()),
+        (Some(true), Some(false))
+    );
+    assert_eq!(robots[1]["camera"].as_bool(), Some(true));
+    // The table says how to drive each.
+    let out = run(navdeck(&args).arg(&cfg));
+    let table = String::from_utf8_lossy(&out.stdout);
+    assert!(table.contains("--link ros2 --ns /tb3_1"), "{table}");
+    assert!(!table.contains("chatter"), "{table}");
+}

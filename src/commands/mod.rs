@@ -39,6 +39,7 @@ pub(crate) mod mission;
 pub(crate) mod plan;
 pub(crate) mod replay;
 pub(crate) mod ros2;
+pub(crate) mod ros2_robots;
 pub(crate) mod route;
 pub(crate) mod tags;
 pub(crate) mod tour;

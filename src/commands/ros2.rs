@@ -26,6 +26,10 @@ pub enum Ros2Command {
     /// Every topic on the domain: ROS type, publishers, subscribers, rate, QoS, and the
     /// mismatches that silently keep publishers and subscribers apart.
     Topics(TopicsArgs),
+    /// The robots on the domain: namespaces in which something publishes Odometry on
+    /// `odom` or reads Twist / TwistStamped on `cmd_vel` (several TurtleBot3s each under
+    /// its own namespace), with their odometry's rate, cmd_vel's type, scan and camera.
+    Robots(super::ros2_robots::RobotsArgs),
 }
 
 /// `navdeck ros2 topics`.
@@ -53,7 +57,7 @@ pub struct TopicsArgs {
 }
 
 /// Seconds to listen: 0.1 to an hour.
-fn parse_duration(s: &str) -> Result<f64, String> {
+pub(super) fn parse_duration(s: &str) -> Result<f64, String> {
     let v: f64 = s
         .trim()
         .parse()
@@ -77,21 +81,31 @@ struct Report {
 pub fn run(command: &Ros2Command) -> Result<ExitCode> {
     match command {
         Ros2Command::Topics(args) => topics(args),
+        Ros2Command::Robots(args) => super::ros2_robots::robots(args),
     }
 }
 
-fn topics(args: &TopicsArgs) -> Result<ExitCode> {
-    let mut config = match &args.config {
+/// Joins the domain as `--link ros2` does (config `config`, navdeck's node under `ns`)
+/// and listens for `duration` seconds on the wall clock: the listener, the time it
+/// stopped and the domain.
+pub(super) fn listen(
+    config: Option<&std::path::Path>,
+    ns: Option<&str>,
+    domain: Option<u16>,
+    duration: f64,
+    all: bool,
+) -> Result<(Listener, f64, u16)> {
+    let mut config = match config {
         Some(path) => Config::load(path)?,
         None => Config::default(),
     };
-    if let Some(ns) = &args.ns {
+    if let Some(ns) = ns {
         super::args::check_namespace("--ns", ns)?;
-        config.ros2.namespace = ns.clone();
+        config.ros2.namespace = ns.to_string();
     }
-    let domain = domain_from(args.domain, std::env::var("ROS_DOMAIN_ID").ok())
-        .map_err(anyhow::Error::msg)?;
-    let mut listener = Listener::join(&config.ros2, domain, args.all)
+    let domain =
+        domain_from(domain, std::env::var("ROS_DOMAIN_ID").ok()).map_err(anyhow::Error::msg)?;
+    let mut listener = Listener::join(&config.ros2, domain, all)
         .with_context(|| format!("cannot join DDS domain {domain}"))?;
     // The edge's wall clock: the listener is told the time, it reads none.
     let started = Instant::now();
@@ -103,14 +117,25 @@ fn topics(args: &TopicsArgs) -> Result<ExitCode> {
             next_discovery = now + DISCOVERY_EVERY;
         }
         listener.poll(now, discover);
-        if now >= args.duration {
+        if now >= duration {
             break now;
         }
-        std::thread::sleep(Duration::from_secs_f64(POLL.min(args.duration - now)));
+        std::thread::sleep(Duration::from_secs_f64(POLL.min(duration - now)));
     };
     for (topic, why) in listener.failures() {
         say_err!("navdeck: no rate for {topic}: {why}");
     }
+    Ok((listener, now, domain))
+}
+
+fn topics(args: &TopicsArgs) -> Result<ExitCode> {
+    let (listener, now, domain) = listen(
+        args.config.as_deref(),
+        args.ns.as_deref(),
+        args.domain,
+        args.duration,
+        args.all,
+    )?;
     let rows = graph::rows(&listener.endpoints(), &listener.rates(now), args.all);
     if args.json {
         let report = Report {
@@ -132,10 +157,13 @@ fn topics(args: &TopicsArgs) -> Result<ExitCode> {
 
 /// The rows as an aligned text table with a header.
 fn table(rows: &[TopicRow]) -> String {
-    let mut cells: Vec<[String; 7]> =
-        vec![["TOPIC", "TYPE", "PUB", "SUB", "HZ", "QOS", "FLAGS"].map(String::from)];
+    let mut cells: Vec<Vec<String>> = vec![
+        ["TOPIC", "TYPE", "PUB", "SUB", "HZ", "QOS", "FLAGS"]
+            .map(String::from)
+            .to_vec(),
+    ];
     for r in rows {
-        cells.push([
+        cells.push(vec![
             r.name.clone(),
             r.types.join(", "),
             r.publishers.to_string(),
@@ -149,21 +177,28 @@ fn table(rows: &[TopicRow]) -> String {
             },
         ]);
     }
-    let mut widths = [0usize; 7];
-    for row in &cells {
+    // Counts and rates are right-aligned.
+    aligned(&cells, &[2, 3, 4])
+}
+
+/// `cells` (a header row first) as columns two spaces apart, those in `right`
+/// right-aligned.
+pub(super) fn aligned(cells: &[Vec<String>], right: &[usize]) -> String {
+    let columns = cells.iter().map(Vec::len).max().unwrap_or(0);
+    let mut widths = vec![0usize; columns];
+    for row in cells {
         for (w, cell) in widths.iter_mut().zip(row) {
             *w = (*w).max(cell.chars().count());
         }
     }
     let mut out = String::new();
-    for row in &cells {
+    for row in cells {
         let mut line = String::new();
-        for (k, (cell, w)) in row.iter().zip(widths).enumerate() {
+        for (k, (cell, &w)) in row.iter().zip(&widths).enumerate() {
             if k > 0 {
                 line.push_str("  ");
             }
-            // Counts and rates are right-aligned.
-            if (2..=4).contains(&k) {
+            if right.contains(&k) {
                 line.push_str(&format!("{cell:>w$}"));
             } else {
                 line.push_str(&format!("{cell:<w$}"));

@@ -4,6 +4,7 @@
 //! Pure: no network, no clock.
 
 mod endpoint;
+pub mod robots;
 #[cfg(test)]
 mod tests;
 

@@ -35,6 +35,7 @@ mod gripper;
 pub mod lane_camera;
 mod lidar;
 pub mod nav2_world;
+pub mod noise_bank;
 mod raster;
 #[cfg(feature = "vision")]
 mod readable;

@@ -3,6 +3,7 @@
 //! lens's darker corners), and the sensor's noise on every frame. All of it comes from
 //! the renderer's seed and the caller's generator.
 
+use crate::sim::noise_bank::NoiseBank;
 use rand::Rng;
 use rand_chacha::ChaCha8Rng;
 use std::f64::consts::TAU;
@@ -152,44 +153,18 @@ impl FrameLight {
     }
 }
 
-/// Grey-level offsets drawn once, `sd` levels of standard deviation, added to frame after
-/// frame from a place the caller's generator draws.
-#[derive(Clone)]
-pub struct NoiseBank {
-    offsets: Vec<i8>,
-}
-
-impl std::fmt::Debug for NoiseBank {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(f, "NoiseBank {{ {} offsets }}", self.offsets.len())
-    }
-}
-
-impl NoiseBank {
-    /// `len` offsets: each the centred sum of two random bytes (triangular, variance
-    /// 2 (256² - 1) / 12 for independent discrete uniforms), scaled to `sd`.
-    pub fn new(sd: f64, len: usize, rng: &mut ChaCha8Rng) -> Self {
-        let scale = sd / (2.0 * (256.0f64 * 256.0 - 1.0) / 12.0).sqrt();
-        let mut bytes = vec![0u8; 2 * len.max(1)];
-        rng.fill(&mut bytes[..]);
-        let offsets = (bytes.chunks_exact(2))
+/// The tag camera's bank: `len` grey-level offsets of `sd` levels of standard deviation,
+/// each the centred sum of two random bytes (triangular, variance 2 (256² - 1) / 12 for
+/// independent discrete uniforms), scaled to `sd`.
+pub fn noise_bank(sd: f64, len: usize, rng: &mut ChaCha8Rng) -> NoiseBank {
+    let scale = sd / (2.0 * (256.0f64 * 256.0 - 1.0) / 12.0).sqrt();
+    let mut bytes = vec![0u8; 2 * len.max(1)];
+    rng.fill(&mut bytes[..]);
+    NoiseBank::of(
+        (bytes.chunks_exact(2))
             .map(|b| ((f64::from(b[0]) + f64::from(b[1]) - 255.0) * scale).round() as i8)
-            .collect();
-        Self { offsets }
-    }
-
-    /// Adds the offsets to `pixels` from a place drawn from `rng`, wrapping round.
-    pub fn add(&self, pixels: &mut [u8], rng: &mut ChaCha8Rng) {
-        let n = self.offsets.len();
-        let mut at = rng.random_range(0..n);
-        for p in pixels.iter_mut() {
-            *p = (i16::from(*p) + i16::from(self.offsets[at])).clamp(0, 255) as u8;
-            at += 1;
-            if at == n {
-                at = 0;
-            }
-        }
-    }
+            .collect(),
+    )
 }
 
 #[cfg(test)]
@@ -240,17 +215,11 @@ mod tests {
     #[test]
     fn the_noise_has_about_the_standard_deviation_asked() {
         let mut rng = ChaCha8Rng::seed_from_u64(1);
-        let bank = NoiseBank::new(2.0, 1 << 16, &mut rng);
+        let bank = noise_bank(2.0, 1 << 16, &mut rng);
         let mut pixels = vec![100u8; 1 << 16];
         bank.add(&mut pixels, &mut rng);
-        let n = pixels.len() as f64;
-        let mean = pixels.iter().map(|&p| f64::from(p)).sum::<f64>() / n;
-        let var = pixels
-            .iter()
-            .map(|&p| (f64::from(p) - mean).powi(2))
-            .sum::<f64>()
-            / n;
+        let (mean, sd) = crate::sim::noise_bank::spread(&pixels);
         assert!((mean - 100.0).abs() < 0.05, "{mean}");
-        assert!((var.sqrt() - 2.0).abs() < 0.1, "{}", var.sqrt());
+        assert!((sd - 2.0).abs() < 0.1, "{sd}");
     }
 }

@@ -19,8 +19,9 @@ use crate::perception::frame::GrayFrame;
 use crate::perception::intrinsics::Intrinsics;
 use crate::perception::mount::Mount;
 use crate::perception::tag_camera::TagCameraConfig;
+use crate::sim::noise_bank::NoiseBank;
 use crate::tags::{TagId, TagMap};
-use floor::{FloorShade, FrameLight, NoiseBank};
+use floor::{FloorShade, FrameLight, noise_bank};
 use paint::{Canvas, InkLevels};
 use projection::FloorView;
 use rand::SeedableRng;
@@ -83,7 +84,7 @@ impl TagRenderer {
         let pixels = k.width as usize * k.height as usize;
         Self {
             shade: FloorShade::new(&mut rng),
-            noise: NoiseBank::new(camera.noise_std, 2 * pixels, &mut rng),
+            noise: noise_bank(camera.noise_std, 2 * pixels, &mut rng),
             intrinsics: k,
             mount: camera.mount(),
             tags,

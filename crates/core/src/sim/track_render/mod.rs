@@ -106,7 +106,7 @@ impl TrackRenderer {
         let mut rng = ChaCha8Rng::seed_from_u64(seed);
         let shadows = lighting::shadows(&mut rng, &scene.track, bounds.0, bounds.1);
         let ceiling = Ceiling::new(&mut rng, bounds.0, bounds.1);
-        let noise = NoiseBank::new(&mut rng);
+        let noise = noise::bank(&mut rng);
         let texture = floor_texture(scene, bounds, &shadows, lighting.shadows);
         let intrinsics = camera.intrinsics();
         let mount = camera.mount();

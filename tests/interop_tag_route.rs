@@ -6,15 +6,14 @@
 //! peer's own pose says where the robot came to rest.
 
 use crate::common::scratch;
-use crate::cyclone_peer::{CYCLONE_CONFIG, python};
+use crate::cyclone_peer::LinePeer;
 use nalgebra::Vector3;
 use navdeck::perception::tag_camera::TagCameraConfig;
 use navdeck::perception::tag_patterns::TagPatterns;
 use navdeck::tags::TagMap;
 use serde_json::{Value, json};
-use std::io::{BufRead, BufReader};
 
-use std::process::{Command, Stdio};
+use std::process::Command;
 
 const WAREHOUSE: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/maps/tag_warehouse.yaml");
 
@@ -54,9 +53,6 @@ fn scene(map: &TagMap, camera: &TagCameraConfig) -> Value {
 
 #[test]
 fn route_mode_drives_a_ros2_robot_to_a_tag_by_its_own_camera_and_camera_info() {
-    let Some(python) = python() else {
-        return;
-    };
     let domain = 97u16;
     let map = TagMap::parse(&std::fs::read_to_string(WAREHOUSE).unwrap()).unwrap();
     let camera = TagCameraConfig::default();
@@ -70,25 +66,11 @@ fn route_mode_drives_a_ros2_robot_to_a_tag_by_its_own_camera_and_camera_info() {
         "[robot]\ntrack = 0.16\ncontrol_period = 0.0333\n[ros2]\ninterfaces = [\"127.0.0.1\"]\n",
     )
     .unwrap();
-    let script = concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/tests/interop/tag_robot_peer.py"
-    );
-    let mut peer = Command::new(&python)
-        .arg(script)
-        .arg(domain.to_string())
-        .arg(&scene_path)
-        .arg(&out)
-        .env("CYCLONEDDS_URI", CYCLONE_CONFIG)
-        .stdin(Stdio::piped())
-        .stdout(Stdio::piped())
-        .spawn()
-        .expect("start the tag robot peer");
-    let mut line = String::new();
-    BufReader::new(peer.stdout.take().unwrap())
-        .read_line(&mut line)
-        .unwrap();
-    assert_eq!(line.trim(), "ready", "the peer did not start");
+    let (scene_arg, out_arg) = (scene_path.to_str().unwrap(), out.to_str().unwrap());
+    let Some(peer) = LinePeer::start_with("tag_robot_peer.py", domain, &[scene_arg, out_arg])
+    else {
+        return;
+    };
     let navdeck = Command::new(env!("CARGO_BIN_EXE_navdeck"))
         .args([
             "--link",
@@ -103,8 +85,7 @@ fn route_mode_drives_a_ros2_robot_to_a_tag_by_its_own_camera_and_camera_info() {
         .args(["--keys", "i:route tag 117<enter>"])
         .output()
         .expect("run navdeck");
-    drop(peer.stdin.take());
-    assert!(peer.wait().unwrap().success(), "the peer failed");
+    assert!(peer.finish(), "the peer failed");
     assert!(
         navdeck.status.success(),
         "navdeck failed: {}",

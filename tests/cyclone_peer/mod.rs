@@ -65,6 +65,15 @@ impl LinePeer {
         Some(peer)
     }
 
+    /// Closes the peer's stdin, which tells it to write down what it got and leave, and
+    /// waits for it: whether it ended well. (Not every test binary sharing this module
+    /// asks for it.)
+    #[allow(dead_code)]
+    pub fn finish(mut self) -> bool {
+        drop(self.stdin.take());
+        self.child.wait().is_ok_and(|s| s.success())
+    }
+
     /// The peer's next line, waiting at most PATIENCE for `what`.
     pub fn next_line(&mut self, what: &str) -> String {
         self.lines

@@ -16,30 +16,16 @@ import json
 import select
 import sys
 import time
-from dataclasses import dataclass, field
 
 from cyclonedds.core import Policy, Qos
 from cyclonedds.domain import DomainParticipant
-from cyclonedds.idl import IdlStruct
-from cyclonedds.idl import types as t
 from cyclonedds.pub import DataWriter
 from cyclonedds.sub import DataReader
 from cyclonedds.topic import Topic
 from cyclonedds.util import duration
 
-from turtlebot_peer import Header, ros, stamp_now
+from turtlebot_peer import Header, Image, ros, stamp_now
 from turtlebot_peer import OccupancyGrid as Grid
-
-
-@dataclass
-class Image(IdlStruct, typename=ros("sensor_msgs", "Image")):
-    header: Header = field(default_factory=Header)
-    height: t.uint32 = 0
-    width: t.uint32 = 0
-    encoding: str = ""
-    is_bigendian: t.uint8 = 0
-    step: t.uint32 = 0
-    data: t.sequence[t.uint8] = field(default_factory=list)
 
 
 MAP_SIDE = 384

@@ -22,9 +22,8 @@ from cyclonedds.sub import DataReader
 from cyclonedds.topic import Topic
 from cyclonedds.util import duration
 
-from tag_robot_peer import Image
 from topics_peer import LaserScan
-from turtlebot_peer import Header, Odometry, Twist, TwistStamped, ros, stamp_now
+from turtlebot_peer import Image, Odometry, Twist, TwistStamped, odometry, ros
 
 
 @dataclass
@@ -52,7 +51,7 @@ def main():
         if ready and not sys.stdin.readline():
             break
         for w in odom:
-            w.write(Odometry(header=Header(stamp=stamp_now(), frame_id="odom"), child_frame_id="base_footprint"))
+            w.write(odometry())
 
 
 if __name__ == "__main__":

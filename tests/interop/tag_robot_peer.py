@@ -30,20 +30,9 @@ from cyclonedds.sub import DataReader
 from cyclonedds.topic import Topic
 from cyclonedds.util import duration
 
-from turtlebot_peer import Header, Odometry, Twist, ros, stamp_now
+from turtlebot_peer import Header, Image, Odometry, Twist, odometry, ros, stamp_now
 
 FLOOR, BLACK, WHITE = 120, 25, 230
-
-
-@dataclass
-class Image(IdlStruct, typename=ros("sensor_msgs", "Image")):
-    header: Header = field(default_factory=Header)
-    height: t.uint32 = 0
-    width: t.uint32 = 0
-    encoding: str = ""
-    is_bigendian: t.uint8 = 0
-    step: t.uint32 = 0
-    data: t.sequence[t.uint8] = field(default_factory=list)
 
 
 @dataclass
@@ -158,12 +147,7 @@ def main():
             if isinstance(sample, Twist):
                 v, w = sample.linear.x, sample.angular.z
                 commands += 1
-        odom = Odometry(header=Header(stamp=stamp_now(), frame_id="odom"), child_frame_id="base_footprint")
-        odom.pose.pose.position.x = x
-        odom.pose.pose.position.y = y
-        odom.pose.pose.orientation.z = math.sin(th / 2)
-        odom.pose.pose.orientation.w = math.cos(th / 2)
-        odom_writer.write(odom)
+        odom_writer.write(odometry(x, y, th))
         if now >= next_frame:
             next_frame = now + period
             img = camera.frame(x, y, th)

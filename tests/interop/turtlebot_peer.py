@@ -115,6 +115,17 @@ class Odometry(IdlStruct, typename=ros("nav_msgs", "Odometry")):
 
 
 @dataclass
+class Image(IdlStruct, typename=ros("sensor_msgs", "Image")):
+    header: Header = field(default_factory=Header)
+    height: t.uint32 = 0
+    width: t.uint32 = 0
+    encoding: str = ""
+    is_bigendian: t.uint8 = 0
+    step: t.uint32 = 0
+    data: t.sequence[t.uint8] = field(default_factory=list)
+
+
+@dataclass
 class JointState(IdlStruct, typename=ros("sensor_msgs", "JointState")):
     header: Header = field(default_factory=Header)
     name: t.sequence[str] = field(default_factory=list)
@@ -266,6 +277,16 @@ def stamp_now():
     return Time(sec=int(now), nanosec=int((now % 1.0) * 1e9))
 
 
+def odometry(x=0.0, y=0.0, th=0.0):
+    """nav_msgs/Odometry of base_footprint in odom, stamped now, at (x, y) heading th."""
+    odom = Odometry(header=Header(stamp=stamp_now(), frame_id="odom"), child_frame_id="base_footprint")
+    odom.pose.pose.position.x = x
+    odom.pose.pose.position.y = y
+    odom.pose.pose.orientation.z = math.sin(th / 2)
+    odom.pose.pose.orientation.w = math.cos(th / 2)
+    return odom
+
+
 def main():
     domain, out = int(sys.argv[1]), sys.argv[2]
     stamped = "--stamped" in sys.argv[3:]
@@ -331,13 +352,7 @@ def main():
         if scan_writer and now >= next_scan:
             next_scan = now + SCAN_PERIOD
             scan_writer.write(room_scan(x, y, th))
-        header = Header(stamp=stamp_now(), frame_id="odom")
-        odom = Odometry(header=header, child_frame_id="base_footprint")
-        odom.pose.pose.position.x = x
-        odom.pose.pose.position.y = y
-        odom.pose.pose.orientation.z = math.sin(th / 2)
-        odom.pose.pose.orientation.w = math.cos(th / 2)
-        odom_writer.write(odom)
+        odom_writer.write(odometry(x, y, th))
         joint_writer.write(
             JointState(
                 header=Header(stamp=stamp_now()),

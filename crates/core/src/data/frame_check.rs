@@ -43,7 +43,7 @@ pub struct Refused {
 }
 
 impl Refused {
-    fn new(field: &'static str, value: f64, bound: impl Into<String>) -> Self {
+    pub(super) fn new(field: &'static str, value: f64, bound: impl Into<String>) -> Self {
         Self {
             field,
             value,
@@ -226,23 +226,14 @@ pub fn check_frame(frame: &mut SensorFrame, max_wheel_speed: f64) -> Result<Vec<
 /// Sightings: at most `MAX_MARKERS`, each range within its bounds and bearing finite
 /// (then wrapped); a bad one is taken out, the rest kept.
 fn check_sightings(frame: &mut SensorFrame, refused: &mut Vec<Refused>) {
-    let Some(sightings) = frame.sightings.as_mut() else {
-        return;
-    };
-    if sightings.len() > MAX_MARKERS {
-        let bound = format!("must number at most {MAX_MARKERS}");
-        refused.push(Refused::new("sightings", sightings.len() as f64, bound));
-        frame.sightings = None;
-        return;
-    }
     let range_bound = format!(
         "must lie in {}..={} m",
         short(MIN_SIGHTING_RANGE),
         short(MAX_SIGHTING_RANGE)
     );
-    let mut first = None;
-    sightings.retain_mut(|s| {
-        let why = if !(MIN_SIGHTING_RANGE..=MAX_SIGHTING_RANGE).contains(&s.range) {
+    let list = &mut frame.sightings;
+    check_list(list, "sightings", MAX_MARKERS, refused, |s| {
+        if !(MIN_SIGHTING_RANGE..=MAX_SIGHTING_RANGE).contains(&s.range) {
             Some(Refused::new(
                 "sightings.range",
                 s.range,
@@ -257,7 +248,32 @@ fn check_sightings(frame: &mut SensorFrame, refused: &mut Vec<Refused>) {
         } else {
             s.bearing = wrap_angle(s.bearing);
             None
-        };
+        }
+    });
+}
+
+/// Checks a frame's list `field` in place: more than `max` items and the whole list is
+/// taken out; else each item `check` refuses (it may mend the rest) is taken out, the
+/// first of them named.
+pub(super) fn check_list<T>(
+    list: &mut Option<Vec<T>>,
+    field: &'static str,
+    max: usize,
+    refused: &mut Vec<Refused>,
+    mut check: impl FnMut(&mut T) -> Option<Refused>,
+) {
+    let Some(items) = list.as_mut() else {
+        return;
+    };
+    if items.len() > max {
+        let bound = format!("must number at most {max}");
+        refused.push(Refused::new(field, items.len() as f64, bound));
+        *list = None;
+        return;
+    }
+    let mut first = None;
+    items.retain_mut(|item| {
+        let why = check(item);
         let keep = why.is_none();
         if first.is_none() {
             first = why;

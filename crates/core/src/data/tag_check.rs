@@ -2,7 +2,7 @@
 //! frame, each offset finite and within `MAX_TAG_OFFSET`, each angle finite (then
 //! wrapped). A bad sighting is taken out and named; the rest are kept.
 
-use super::frame_check::{Refused, short};
+use super::frame_check::{Refused, check_list, short};
 use super::sensors::SensorFrame;
 use crate::geometry::wrap_angle;
 
@@ -14,49 +14,23 @@ pub const MAX_TAG_OFFSET: f64 = 10.0;
 
 /// Checks `frame.tags` in place, adding what it took out to `refused`.
 pub(super) fn check_tags(frame: &mut SensorFrame, refused: &mut Vec<Refused>) {
-    let Some(tags) = frame.tags.as_mut() else {
-        return;
-    };
-    if tags.len() > MAX_TAGS {
-        let bound = format!("must number at most {MAX_TAGS}");
-        refused.push(Refused {
-            field: "tags",
-            value: tags.len() as f64,
-            bound,
-        });
-        frame.tags = None;
-        return;
-    }
     let offset_bound = format!("must be finite, within ±{} m", short(MAX_TAG_OFFSET));
-    let mut first = None;
-    tags.retain_mut(|s| {
+    check_list(&mut frame.tags, "tags", MAX_TAGS, refused, |s| {
         let offsets = [("tags.ahead", s.ahead), ("tags.lateral", s.lateral)];
-        let why = match offsets
+        match offsets
             .into_iter()
             .find(|(_, v)| !(0.0..=MAX_TAG_OFFSET).contains(&v.abs()))
         {
-            Some((field, value)) => Some(Refused {
-                field,
-                value,
-                bound: offset_bound.clone(),
-            }),
-            None if !s.align.is_finite() => Some(Refused {
-                field: "tags.align",
-                value: s.align,
-                bound: "must be finite".into(),
-            }),
+            Some((field, value)) => Some(Refused::new(field, value, offset_bound.clone())),
+            None if !s.align.is_finite() => {
+                Some(Refused::new("tags.align", s.align, "must be finite"))
+            }
             None => {
                 s.align = wrap_angle(s.align);
                 None
             }
-        };
-        let keep = why.is_none();
-        if first.is_none() {
-            first = why;
         }
-        keep
     });
-    refused.extend(first);
 }
 
 #[cfg(test)]

@@ -43,6 +43,11 @@ pub struct LaneDriveConfig {
     pub light_line_ahead: f64,
     /// A barrier down or moving this near stops the robot.
     pub barrier_stop_range: f64,
+    /// Speed while passing a barrier whose opening the robot saw begin, m/s: at lane speed
+    /// a robot that stopped short of the stop range (a rising arm's range reads short)
+    /// needs 12 s to clear the arm, longer than the 8 s of the shortest opening the twin
+    /// generates; a TurtleBot3 Burger's top speed is 0.22 m/s.
+    pub crossing_speed: f64,
     /// Seconds the robot waits for an arm it remembers ahead but no frame has shown since:
     /// lowered, an arm that near would be in view, so one unseen this long stands open
     /// (or was never there: a far arm ranged short), and the robot drives on, stopping
@@ -66,6 +71,7 @@ impl Default for LaneDriveConfig {
             light_stop_range: 0.85,
             light_line_ahead: 0.53,
             barrier_stop_range: 0.55,
+            crossing_speed: 0.2,
             unseen_arm_patience: 30.0,
             lost_after: 1.0,
         }
@@ -92,6 +98,7 @@ impl LaneDriveConfig {
             ("light_stop_range", self.light_stop_range, 0.1, 10.0),
             ("light_line_ahead", self.light_line_ahead, 0.0, 10.0),
             ("barrier_stop_range", self.barrier_stop_range, 0.1, 10.0),
+            ("crossing_speed", self.crossing_speed, 0.01, 2.0),
             ("unseen_arm_patience", self.unseen_arm_patience, 1.0, 3600.0),
             ("lost_after", self.lost_after, 0.05, 60.0),
         ])

@@ -52,6 +52,11 @@ pub struct LaneDriver {
     hold: Option<Wait>,
     /// Whether the robot saw the barrier ahead open while it waited, and may pass.
     opened: bool,
+    /// The range of the arm the robot stopped for, when it was seen near (none while no
+    /// barrier holds the robot, and for an arm remembered out of view).
+    held_range: Option<f64>,
+    /// Metres still to drive at the crossing speed, past an arm whose opening the robot saw.
+    crossing: Option<f64>,
     /// Frames since an arm was last seen ahead (within `BARRIER_AHEAD` stopping ranges).
     unseen: u32,
     /// The arm's range in the last frame that showed it, and whether that frame agreed
@@ -82,6 +87,17 @@ const LIGHT_AHEAD: f64 = 2.0;
 /// Arms seen within this many stopping ranges are the barrier ahead: remembered when lost
 /// from view, and while the robot waits, the only arm that can open its way.
 const BARRIER_AHEAD: f64 = 2.0;
+/// Metres past the arm, beyond the robot's reckoned distance to it, that the crossing
+/// speed lasts: the camera sits 5 cm before the robot's centre, the footprint reaches
+/// about 0.1 m behind it, and the arm's range may read a tenth of a metre short.
+const CROSS_BEYOND: f64 = 0.3;
+/// Metres beyond the range of the arm the robot stopped for past which an arm seen while
+/// it waits is another barrier.
+const ARM_SEPARATE: f64 = 0.3;
+/// Arms placed within this many stopping ranges are remembered when they rise out of
+/// view: an arm down 1.7 m ahead reads 1.1-1.2 m, and one seen rising from there stays up
+/// too short a time for the robot to reach it at lane speed.
+const REMEMBER_AHEAD: f64 = 3.0;
 /// How far apart, metres plus a share of the range, two frames may put an arm for the
 /// second to confirm the first: a raised arm's range wanders by a tenth, a misread one
 /// jumps (1.6 m, then 6 cm, then 1.7 m).
@@ -98,6 +114,8 @@ impl LaneDriver {
             seen_at: None,
             hold: None,
             opened: false,
+            crossing: None,
+            held_range: None,
             unseen: 0,
             arm_range: None,
             arm: ArmWatch::default(),
@@ -120,6 +138,8 @@ impl LaneDriver {
         self.seen_at = Some(t);
         self.hold = None;
         self.opened = false;
+        self.crossing = None;
+        self.held_range = None;
         // What was seen before the pause is not ahead any more: the robot may have moved.
         self.light = LightWatch::default();
         self.arm_ahead = None;
@@ -140,6 +160,20 @@ impl LaneDriver {
         if let Some(range) = &mut self.arm_ahead {
             *range -= speed.max(0.0) * dt;
         }
+        if let Some(range) = &mut self.held_range {
+            *range -= speed.max(0.0) * dt;
+        }
+        if let Some(left) = &mut self.crossing {
+            *left -= speed.max(0.0) * dt;
+        }
+        if self.crossing.is_some_and(|left| left <= 0.0) {
+            // Past the arm: the next one is met afresh.
+            self.crossing = None;
+            self.opened = false;
+        }
+        if self.hold.is_some() {
+            self.crossing = None;
+        }
         if let Some(s) = fresh {
             if let Some(light) = &s.light {
                 let reach = LIGHT_AHEAD * self.cfg.light_stop_range;
@@ -155,6 +189,10 @@ impl LaneDriver {
             && range <= self.cfg.barrier_stop_range
         {
             self.arm_ahead = None;
+            // Remembered while crossing, it is the next barrier: the crossing is over.
+            if self.crossing.take().is_some() {
+                self.opened = false;
+            }
             if self.hold.is_none() && !self.opened && range >= 0.0 {
                 self.hold = Some(Wait::Barrier(BarrierState::Up));
                 self.remembered = true;
@@ -199,6 +237,14 @@ impl LaneDriver {
                 _ => Twist::ZERO,
             },
         };
+        // Passing an opened barrier, the speed law's share of the crossing speed.
+        let twist = match self.crossing {
+            Some(_) => Twist::new(
+                twist.linear * self.cfg.crossing_speed / self.cfg.max_speed,
+                twist.angular,
+            ),
+            None => twist,
+        };
         let lost = self.seen_at.is_none_or(|s| t - s >= self.cfg.lost_after);
         let wait = (light_wait.or(self.hold)).or(lost.then_some(Wait::LaneLost));
         LaneStep { twist, wait }
@@ -208,6 +254,9 @@ impl LaneDriver {
     /// traffic compliance).
     fn comply(&mut self, s: &LaneSighting) {
         self.see_barrier(s);
+        if self.hold.is_none() {
+            self.held_range = None;
+        }
         if !matches!(self.hold, Some(Wait::Barrier(_))) {
             self.remembered = false;
         }
@@ -234,9 +283,13 @@ impl LaneDriver {
             None => None,
         };
         let believed = self.arm_range.is_some_and(|(_, believed)| believed);
-        let barrier = (s.barrier).filter(|b| match waiting {
-            true => b.range <= reach || (self.remembered && b.fresh),
-            false => believed,
+        // An arm ranged when the robot stopped for it is told from one farther down the
+        // track by range (barriers stand at least 1.2 m apart; a far one's range reads
+        // short while it moves, 0.8 m for 1.8 m).
+        let barrier = (s.barrier).filter(|b| match (waiting, self.held_range) {
+            (true, Some(held)) if !self.remembered => b.range <= held + ARM_SEPARATE,
+            (true, _) => b.range <= reach || (self.remembered && b.fresh),
+            (false, _) => believed,
         });
         let angle = barrier.map(|b| b.angle_deg.abs());
         let last_arm = std::mem::replace(&mut self.last_arm, angle);
@@ -245,20 +298,22 @@ impl LaneDriver {
             // Seen rising from where it lay while the robot waited, and now past RISEN_DEG
             // or gone from the view above it: the opening has begun, and the arm clears the
             // robot's height before the robot reaches it.
-            self.hold = None;
-            self.opened = true;
-            self.unseen = 0;
+            self.open_way();
             return;
         }
         if let Some(b) = barrier {
-            let near = b.range <= reach;
+            let near = b.range <= REMEMBER_AHEAD * self.cfg.barrier_stop_range;
             // A moving arm's range reads short (an arm 2.3 m off, rising, reads 1 m): only
             // one lying down or standing up places the barrier; a moving one keeps the
             // place last read.
             let placed = b.angle_deg.abs() <= DOWN_DEG || b.state == BarrierState::Up;
-            if !(near && !self.opened && self.hold.is_none()) {
+            // While crossing, an arm seen lying down beyond the one being passed is the next
+            // barrier (a raised one may be the one being passed: its range reads long).
+            let next = b.angle_deg.abs() <= DOWN_DEG
+                && (self.crossing).is_some_and(|left| b.range > left - CROSS_BEYOND + ARM_SEPARATE);
+            if !(near && (!self.opened || next) && self.hold.is_none()) {
                 self.arm_ahead = None;
-            } else if placed {
+            } else if placed && b.fresh {
                 self.arm_ahead = Some(b.range);
             }
         }
@@ -271,22 +326,22 @@ impl LaneDriver {
                     && b.state == BarrierState::Up
                     && self.hold != Some(Wait::Barrier(BarrierState::Up)) =>
             {
-                self.hold = None;
-                self.opened = true;
-                self.unseen = 0;
+                self.open_way();
             }
-            // Waiting for the next opening of an arm met up: seen down or moving, wherever
-            // its range reads (an arm's range reads short while it is raised), it is that
-            // arm closing, and its rise will be the robot's opening.
-            Some(b)
-                if self.hold == Some(Wait::Barrier(BarrierState::Up))
-                    && b.state != BarrierState::Up =>
-            {
-                self.hold = Some(Wait::Barrier(b.state));
+            // Waiting for the next opening of an arm met up: seen lying down, wherever its
+            // range reads (an arm's range reads short while it is raised), it is that arm
+            // closed, and its rise will be the robot's opening. Only down: a raised arm
+            // stands mostly above the picture, and the finder merges what is left of it with
+            // an arm farther down the track into a moving or raised arm that is neither.
+            Some(b) if self.hold == Some(Wait::Barrier(BarrierState::Up)) => {
+                if b.angle_deg.abs() <= DOWN_DEG {
+                    self.hold = Some(Wait::Barrier(BarrierState::Down));
+                }
                 self.unseen = 0;
             }
             Some(b) if b.range <= self.cfg.barrier_stop_range => {
                 self.unseen = 0;
+                self.held_range.get_or_insert(b.range);
                 // Seen near, the arm is ranged afresh.
                 self.remembered = false;
                 // After an opening seen to begin, only an arm seen down or coming down
@@ -301,8 +356,7 @@ impl LaneDriver {
                     }
                 } else if closed_ahead {
                     // Seen rising while waiting: this opening is the robot's to pass.
-                    self.hold = None;
-                    self.opened = true;
+                    self.open_way();
                 } else if !self.opened {
                     // Up when first met near: how long it stays up is unknown, so the
                     // robot waits for an opening it sees begin.
@@ -321,6 +375,18 @@ impl LaneDriver {
                 }
             }
         }
+    }
+
+    /// The opening of the arm the robot waited before has begun: it drives on at the
+    /// crossing speed until past the arm (ranged when it stopped; a remembered arm, at
+    /// most `BARRIER_AHEAD` stopping ranges ahead).
+    fn open_way(&mut self) {
+        self.hold = None;
+        self.opened = true;
+        self.unseen = 0;
+        let far = BARRIER_AHEAD * self.cfg.barrier_stop_range;
+        let arm = self.held_range.filter(|_| !self.remembered).unwrap_or(far);
+        self.crossing = Some(arm.max(0.0) + CROSS_BEYOND);
     }
 
     /// Lane following's twist for error `e` (bird's-eye pixels, + when the lane centre is

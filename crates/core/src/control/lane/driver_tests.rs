@@ -94,19 +94,22 @@ fn a_barrier_down_or_moving_holds_until_up() {
 fn a_barrier_already_up_when_met_is_passed_only_on_an_opening_seen_to_begin() {
     let mut d = LaneDriver::new(LaneDriveConfig::default());
     d.reset(0.0);
-    let barrier = |state| barrier_at(state, 90.0, 0.5);
-    d.step(0.05, Some(&barrier(BarrierState::Up)), 0.1);
-    let up = d.step(0.1, Some(&barrier(BarrierState::Up)), 0.1);
+    d.step(0.05, Some(&arm(85.0)), 0.1);
+    let up = d.step(0.1, Some(&arm(85.0)), 0.1);
     assert_eq!(up.wait, Some(Wait::Barrier(BarrierState::Up)));
     // Still up a frame later: how long it stays up is still unknown.
-    let still = d.step(0.15, Some(&barrier(BarrierState::Up)), 0.0);
+    let still = d.step(0.15, Some(&arm(85.0)), 0.0);
     assert_eq!(still.wait, Some(Wait::Barrier(BarrierState::Up)));
-    d.step(0.2, Some(&barrier(BarrierState::Moving)), 0.0);
-    d.step(0.3, Some(&barrier(BarrierState::Down)), 0.0);
-    assert_eq!(
-        d.step(0.4, Some(&barrier(BarrierState::Up)), 0.0).wait,
-        None
-    );
+    // Read moving and then raised again (what is left in the picture of an arm standing
+    // up, merged with one farther on): not an opening.
+    d.step(0.2, Some(&arm(67.0)), 0.0);
+    let merged = d.step(0.3, Some(&arm(76.0)), 0.0);
+    assert_eq!(merged.wait, Some(Wait::Barrier(BarrierState::Up)));
+    // Seen lying down, then raised: that is an opening.
+    d.step(0.4, Some(&arm(40.0)), 0.0);
+    let down = d.step(0.5, Some(&arm(2.0)), 0.0);
+    assert_eq!(down.wait, Some(Wait::Barrier(BarrierState::Down)));
+    assert_eq!(d.step(0.6, Some(&arm(85.0)), 0.0).wait, None);
 }
 
 #[test]
@@ -406,4 +409,72 @@ fn an_arm_remembered_ahead_and_never_seen_again_is_waited_for_only_the_patience(
     d.step(t + 0.2, Some(&near), 0.1);
     let s = d.step(t + 0.3, Some(&near), 0.1);
     assert_eq!(s.wait, Some(Wait::Barrier(BarrierState::Down)));
+}
+
+#[test]
+fn an_opened_barrier_is_crossed_at_the_crossing_speed_and_lane_speed_follows() {
+    let cfg = LaneDriveConfig::default();
+    let (lane, crossing) = (cfg.max_speed, cfg.crossing_speed);
+    let mut d = LaneDriver::new(cfg);
+    d.reset(0.0);
+    rise_from_level(&mut d);
+    let mut t = 0.4;
+    let mut driven = 0.0;
+    let mut speeds = Vec::new();
+    while driven < 1.5 {
+        t += 0.1;
+        let s = d.step(t, Some(&seen(0.0)), speeds.last().copied().unwrap_or(0.0));
+        assert_eq!(s.wait, None, "{t}");
+        driven += 0.1 * speeds.last().copied().unwrap_or(0.0);
+        speeds.push(s.twist.linear);
+    }
+    // Fast until past the arm (0.5 m ahead, and 0.3 m more: 40 steps of 2 cm), then lane
+    // speed again.
+    let fast = speeds
+        .iter()
+        .filter(|&&v| (v - crossing).abs() < 1e-9)
+        .count();
+    assert!((40..=41).contains(&fast), "{fast}: {speeds:?}");
+    assert!((speeds.last().unwrap() - lane).abs() < 1e-9, "{speeds:?}");
+}
+
+#[test]
+fn an_arm_down_beyond_the_one_being_crossed_stops_the_robot_at_its_own_stopping_range() {
+    let cfg = LaneDriveConfig::default();
+    let stop = cfg.barrier_stop_range;
+    let mut d = LaneDriver::new(cfg);
+    d.reset(0.0);
+    rise_from_level(&mut d);
+    // Crossing: the next arm, 1.4 m on, lies down in two frames, then rises out of view.
+    let next = barrier_at(BarrierState::Down, 2.0, 1.4);
+    d.step(0.5, Some(&next), 0.0);
+    assert_eq!(d.step(0.6, Some(&next), 0.0).wait, None);
+    let (mut t, mut driven) = (0.6, 0.0);
+    let held = loop {
+        t += 0.1;
+        let s = d.step(t, Some(&seen(0.0)), 0.2);
+        driven += 0.02;
+        if let Some(wait) = s.wait {
+            break wait;
+        }
+        assert!(driven < 2.0, "never held");
+    };
+    assert_eq!(held, Wait::Barrier(BarrierState::Up));
+    assert!((driven - (1.4 - stop)).abs() < 0.03, "{driven}");
+}
+
+#[test]
+fn an_arm_farther_on_than_the_one_waited_for_neither_closes_nor_opens_it() {
+    let mut d = LaneDriver::new(LaneDriveConfig::default());
+    d.reset(0.0);
+    for k in 1..=3 {
+        d.step(0.1 * f64::from(k), Some(&arm(2.0)), 0.0);
+    }
+    // The arm ahead is out of view; one 0.9 m on (inside two stopping ranges, past the
+    // one waited for by more than 0.3 m) rises from level to 60 degrees.
+    for (k, a) in [0.0, 0.0, 20.0, 40.0, 60.0].into_iter().enumerate() {
+        let far = barrier_at(BarrierState::of_angle(a), a, 0.9);
+        let s = d.step(0.4 + 0.1 * k as f64, Some(&far), 0.0);
+        assert_eq!(s.wait, Some(Wait::Barrier(BarrierState::Down)), "{a}");
+    }
 }

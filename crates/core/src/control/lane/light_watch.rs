@@ -17,9 +17,11 @@ const CONFIRM_SHARE: f64 = 0.05;
 /// A green seen longer ago than this, seconds, is stale at the stop point: the light may
 /// have turned (a yellow lasts a few seconds), so the robot stops and looks again.
 pub const GREEN_FRESH: f64 = 1.0;
-/// Metres before the stop line within which a light that turns no longer stops the
-/// robot: it would stop on the line, so it drives through, as a driver does at a late
-/// yellow (at 0.1 m/s it clears the line in a second, inside the shortest yellow).
+/// Metres past the stop line, by the robot's reckoning, after which a light that turns no
+/// longer stops the robot: at lane speed it stops within a centimetre, so before the line
+/// it can always stop, and a lamp's distance along the lane reads up to a tenth of a metre
+/// short (a robot 0.15 m before the line reckoned itself 0.04 m before it and drove
+/// through a late yellow as it turned red).
 const LINE_MARGIN: f64 = 0.05;
 /// Metres past the lamp, measured from the stop point, after which the light is behind.
 const PASS_MARGIN: f64 = 0.3;
@@ -108,7 +110,7 @@ impl LightWatch {
         if self.pending.as_ref().is_some_and(agrees) || self.ahead.as_ref().is_some_and(agrees) {
             // A light that turns before the robot is well on its way is obeyed afresh.
             let turned = self.ahead.is_some_and(|a| a.colour != now.colour);
-            if turned && self.committed.is_some_and(|c| c.ahead > line + LINE_MARGIN) {
+            if turned && self.committed.is_some_and(|c| c.ahead > line - LINE_MARGIN) {
                 self.committed = None;
             }
             self.ahead = Some(now);
@@ -121,7 +123,7 @@ impl LightWatch {
     pub(super) fn call(&mut self, t: f64, stop_range: f64, line: f64) -> LightCall {
         if self
             .committed
-            .is_some_and(|c| c.ahead <= line + LINE_MARGIN)
+            .is_some_and(|c| c.ahead <= line - LINE_MARGIN)
         {
             return LightCall::Go;
         }

@@ -378,13 +378,13 @@ impl LaneDriver {
     }
 
     /// The opening of the arm the robot waited before has begun: it drives on at the
-    /// crossing speed until past the arm (ranged when it stopped; a remembered arm, at
-    /// most `BARRIER_AHEAD` stopping ranges ahead).
+    /// crossing speed until past the arm (ranged when it stopped; a remembered arm may
+    /// stand as far as `REMEMBER_AHEAD` stopping ranges ahead, as it was placed from there).
     fn open_way(&mut self) {
         self.hold = None;
         self.opened = true;
         self.unseen = 0;
-        let far = BARRIER_AHEAD * self.cfg.barrier_stop_range;
+        let far = REMEMBER_AHEAD * self.cfg.barrier_stop_range;
         let arm = self.held_range.filter(|_| !self.remembered).unwrap_or(far);
         self.crossing = Some(arm.max(0.0) + CROSS_BEYOND);
     }

@@ -98,7 +98,10 @@ pub(crate) fn run(args: &LaneArgs) -> Result<ExitCode> {
             lighting: lighting.name(),
         };
         let started = Instant::now();
-        let mut report = lane_runner::run(&config, link, &options).map_err(anyhow::Error::msg)?;
+        // On one of rayon's threads, the renderer's and the pipeline's parallel passes
+        // share the frame with the other thread directly rather than each waking the pool.
+        let mut report = rayon::scope(|_| lane_runner::run(&config, link, &options))
+            .map_err(anyhow::Error::msg)?;
         let wall = started.elapsed().as_secs_f64();
         report.wall_time_s = Some(wall);
         report.realtime_factor = Some(report.sim_time / wall.max(1e-9));

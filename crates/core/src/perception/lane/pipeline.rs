@@ -107,11 +107,8 @@ impl LanePipeline {
     /// A whole frame through every stage, with the temporal filters updated.
     pub fn read(&mut self, frame: &BgrFrame, stopwatch: Option<&dyn Clock>) -> LaneSighting {
         let started = stopwatch.map(|s| s.now());
-        let mut sighting = match self.try_read(frame) {
-            Ok(s) => s,
-            Err(why) => LaneSighting::failed(why),
-        };
-        if frame.data.len() == 3 * frame.width * frame.height {
+        let mut sighting = self.try_read(frame).unwrap_or_else(LaneSighting::failed);
+        if sighting.thumbnail.is_none() && frame.data.len() == 3 * frame.width * frame.height {
             sighting.thumbnail = Some(frame.thumbnail(THUMBNAIL.0, THUMBNAIL.1));
         }
         sighting.latency = stopwatch.zip(started).map(|(s, t0)| s.now() - t0);
@@ -162,10 +159,13 @@ impl LanePipeline {
 
     fn try_read(&mut self, frame: &BgrFrame) -> Result<LaneSighting, String> {
         self.load_hsv(frame)?;
-        // The lane's masks and the light and barrier are found from the same HSV frame
-        // at once, on two cores where there are two.
-        let (masks, objects) = rayon::join(
-            || self.masks.masks(&self.hsv, self.value.floor()),
+        // The lane's masks (and the console's thumbnail) and the light and barrier are
+        // found from the same HSV frame at once, on two cores where there are two.
+        let ((masks, thumbnail), objects) = rayon::join(
+            || {
+                let masks = self.masks.masks(&self.hsv, self.value.floor());
+                (masks, frame.thumbnail(THUMBNAIL.0, THUMBNAIL.1))
+            },
             || objects_in(&self.lights, &self.arm, &self.hsv),
         );
         let masks = masks.map_err(|e| e.to_string())?;
@@ -198,7 +198,7 @@ impl LanePipeline {
             light: objects.light,
             barrier,
             latency: None,
-            thumbnail: None,
+            thumbnail: Some(thumbnail),
             error: None,
         })
     }

@@ -21,7 +21,7 @@ const FAR: f64 = 40.0;
 const BAND: usize = 640 * 16;
 /// A stretch of a row ends where a pixel's floor point strays this far from even steps
 /// from its start, metres (a hundredth of the finest cell).
-const EVEN: f64 = 5e-5;
+pub const EVEN: f64 = 5e-5;
 
 /// A stretch of one image row: its first pixel, how it samples the texture (`SKY` for
 /// none) and where it meets the floor in the robot frame.
@@ -125,6 +125,19 @@ impl FloorRays {
     #[inline]
     pub fn point(&self, i: usize) -> Option<[f32; 2]> {
         (self.levels[i] != SKY).then(|| self.points[i])
+    }
+
+    /// Row `y`'s stretches that see the floor: first pixel, end (exclusive) and where they
+    /// meet the floor in the robot frame (every pixel within `EVEN` of the line's steps).
+    pub fn floor_stretches(&self, y: usize) -> impl Iterator<Item = (usize, usize, FloorLine)> {
+        let runs = &self.runs[y];
+        let width = self.width;
+        (runs.iter().enumerate())
+            .filter(|(_, run)| run.code != SKY)
+            .map(move |(k, run)| {
+                let end = runs.get(k + 1).map_or(width, |r| r.start);
+                (run.start, end, run.line)
+            })
     }
 
     /// Paints the floor seen from `pose` into `out` (BGR rows), every colour scaled by

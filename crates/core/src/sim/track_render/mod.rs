@@ -4,14 +4,15 @@
 //! The floor is a top-down texture of the lane's tape (`texture`), looked up through each
 //! pixel's ray worked out once for the fixed mount (`floor`); the lights, barriers, walls
 //! and boxes are flat faces filled with a depth buffer (`objects`, `raster`); the
-//! lighting scales reflected colours, lays hard shadows on the floor and mirrors ceiling
-//! lamps in it (`lighting`); noise is drawn with the seed and placed by the caller's
+//! lighting scales reflected colours, lays hard shadows on the floor (`lighting`) and
+//! mirrors ceiling lamps in it (`glare`); noise is drawn with the seed and placed by the caller's
 //! generator (`noise`).
 //! `truth` says which light and barrier a frame truly shows. Colours are chosen in
 //! OpenCV's HSV against the seed's thresholds (`palette`). Simplifications: no lens
 //! distortion, no motion blur, lamps light nothing round them.
 
 mod floor;
+mod glare;
 mod lighting;
 mod noise;
 mod objects;
@@ -36,7 +37,7 @@ use crate::perception::lane_camera::LaneCameraConfig;
 use crate::perception::mount::Mount;
 use crate::sim::track::{Lighting, TrackScene};
 use floor::FloorRays;
-use lighting::Ceiling;
+use glare::Ceiling;
 use noise::NoiseBank;
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
@@ -68,6 +69,10 @@ pub struct TrackRenderer {
     /// Reused from frame to frame.
     inverse_depth: Vec<f32>,
     faces: Vec<Face>,
+    /// The floor and its glare as last painted, and the pose and brightness it was painted
+    /// for: a robot standing still (at a light or a barrier) sees the same floor.
+    floor: Vec<u8>,
+    floor_seen: Option<(Pose2, f64)>,
 }
 
 impl TrackRenderer {
@@ -128,6 +133,8 @@ impl TrackRenderer {
             noise,
             inverse_depth: vec![0.0; pixels],
             faces: Vec::new(),
+            floor: vec![0; 3 * pixels],
+            floor_seen: None,
         }
     }
 
@@ -141,20 +148,23 @@ impl TrackRenderer {
             self.texture = floor_texture(&self.scene, self.bounds, &self.shadows, lighting.shadows);
         }
         self.lighting = lighting;
+        self.floor_seen = None;
     }
 
     /// The frame the camera takes from `pose` at twin time `t`, its noise from `rng`.
     pub fn render(&mut self, pose: Pose2, t: f64, rng: &mut ChaCha8Rng) -> BgrFrame {
         let view = View::new(&self.intrinsics, &self.mount, pose);
         let (width, height) = (view.width, view.height);
-        let mut data = vec![0u8; 3 * width * height];
         let brightness = self.lighting.level.brightness();
-        let room = palette::bytes(palette::bgr(palette::ROOM), brightness);
-        self.rays
-            .paint(&self.texture, pose, brightness, room, &mut data);
-        if self.lighting.glare {
-            self.ceiling.paint_glare(&self.rays, &view, pose, &mut data);
+        if self.floor_seen != Some((pose, brightness)) {
+            let room = palette::bytes(palette::bgr(palette::ROOM), brightness);
+            (self.rays).paint(&self.texture, pose, brightness, room, &mut self.floor);
+            if self.lighting.glare {
+                (self.ceiling).paint_glare(&self.rays, &view, pose, &mut self.floor);
+            }
+            self.floor_seen = Some((pose, brightness));
         }
+        let mut data = self.floor.clone();
         self.faces.clear();
         objects::faces(
             &self.scene,

@@ -239,3 +239,22 @@ fn the_same_seed_and_calls_give_the_same_frames() {
     let c = renderer(&world, lighting).render(pose, 2.0, &mut ChaCha8Rng::seed_from_u64(4));
     assert_ne!(a, c, "the noise comes from the generator");
 }
+
+#[test]
+fn a_robot_standing_still_or_coming_back_sees_what_a_fresh_camera_would() {
+    let world = track_world();
+    let glare = Lighting::parse("glare").unwrap();
+    let (here, there) = (on_lane(&world, 0.5), on_lane(&world, 0.6));
+    let mut r = renderer(&world, glare);
+    r.render(here, 1.0, &mut rng());
+    r.render(there, 2.0, &mut rng());
+    r.render(here, 2.5, &mut rng());
+    // Standing still since 2.5 s: the floor is the one painted then, the rest is new.
+    let fresh = renderer(&world, glare).render(here, 3.0, &mut rng());
+    assert_eq!(r.render(here, 3.0, &mut rng()), fresh);
+    // The light dims while the robot stands.
+    let dark = Lighting::parse("dark+glare").unwrap();
+    r.set_lighting(dark);
+    let fresh = renderer(&world, dark).render(here, 3.5, &mut rng());
+    assert_eq!(r.render(here, 3.5, &mut rng()), fresh);
+}

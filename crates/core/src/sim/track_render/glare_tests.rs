@@ -1,5 +1,5 @@
-//! The glare painted row by row is the glare of every lamp tried on every pixel of its box,
-//! each pixel blended as it was before the rows were painted a stretch at a time.
+//! The glare painted row by row, between each ellipse's edges, is the glare of every lamp
+//! tried on every pixel of its box.
 use super::*;
 use crate::perception::lane_camera::LaneCameraConfig;
 use rand::SeedableRng;
@@ -18,24 +18,12 @@ fn paint_pixel_by_pixel(ceiling: &Ceiling, rays: &FloorRays, view: &View, pose: 
     out
 }
 
-/// Blends the glare into pixel `i` (`px`, its BGR bytes) if its floor point is inside
-/// the ellipse: full within the core, then a smoothstep fade to the rim.
+/// Blends the glare into pixel `i` (`px`, its BGR bytes) on its own, each channel as the
+/// stretch does all of them, if its floor point is inside the ellipse.
 fn paint_pixel(spot: &Spot, rays: &FloorRays, i: usize, px: &mut [u8]) {
-    let Some([rx, ry]) = rays.point(i) else {
+    let Some(w) = rays.point(i).map(|p| spot.weight(p)).filter(|&w| w > 0.0) else {
         return;
     };
-    let ([ox, oy], [sin, cos]) = (spot.offset, spot.sin_cos);
-    let ([ax, ay], [bx, by]) = (spot.along, spot.across);
-    let wx = ox + cos * rx - sin * ry;
-    let wy = oy + sin * rx + cos * ry;
-    let a = wx * ax + wy * ay;
-    let b = wx * bx + wy * by;
-    let d2 = a * a + b * b;
-    if d2 >= 1.0 {
-        return;
-    }
-    let t = ((d2.sqrt() - CORE) / (1.0 - CORE)).clamp(0.0, 1.0);
-    let w = 1.0 - t * t * (3.0 - 2.0 * t);
     for (channel, glare) in px.iter_mut().zip(spot.glare) {
         let v = f32::from(*channel) * (1.0 - w) + glare * w;
         *channel = (v + 0.5).clamp(0.0, 255.0) as u8;

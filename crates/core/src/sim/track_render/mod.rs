@@ -5,8 +5,8 @@
 //! pixel's ray worked out once for the fixed mount (`floor`); the lights, barriers, walls
 //! and boxes are flat faces filled with a depth buffer (`objects`, `raster`); the
 //! lighting scales reflected colours, lays hard shadows on the floor (`lighting`) and
-//! mirrors ceiling lamps in it (`glare`); noise is drawn with the seed and placed by the caller's
-//! generator (`noise`).
+//! mirrors ceiling lamps in it (`glare`); noise is drawn with the seed and placed by the
+//! caller's generator (`noise`).
 //! `truth` says which light and barrier a frame truly shows. Colours are chosen in
 //! OpenCV's HSV against the seed's thresholds (`palette`). Simplifications: no lens
 //! distortion, no motion blur, lamps light nothing round them.

@@ -62,17 +62,20 @@ pub fn start_recording(
 
 /// `dir/navdeck-STAMP-PID.mcap`: where `[record] folder` puts a session's recording.
 pub fn dated_recording(dir: &std::path::Path) -> PathBuf {
-    dated_file(dir, "mcap")
+    dated_file(dir, "", "mcap")
 }
 
-/// `dir/navdeck-STAMP-PID.EXT`: STAMP the start time in UTC, RFC 3339 with the `:` left
+/// `dir/navdeck-STAMP-PIDSUFFIX.EXT`: STAMP the start time in UTC, RFC 3339 with the `:` left
 /// out so the name works everywhere; the process ID keeps two consoles started in the
 /// same second apart.
-fn dated_file(dir: &std::path::Path, ext: &str) -> PathBuf {
+fn dated_file(dir: &std::path::Path, suffix: &str, ext: &str) -> PathBuf {
     let stamp = humantime::format_rfc3339_seconds(std::time::SystemTime::now())
         .to_string()
         .replace(':', "");
-    dir.join(format!("navdeck-{stamp}-{}.{ext}", std::process::id()))
+    dir.join(format!(
+        "navdeck-{stamp}-{}{suffix}.{ext}",
+        std::process::id()
+    ))
 }
 
 /// Plays a recording on the real terminal until quit, a signal or a hang-up; opens on
@@ -164,9 +167,9 @@ fn no_keyboard(e: &std::io::Error) -> anyhow::Error {
 }
 
 /// Opens a new `dir/navdeck-STAMP-PID.log` (`dated_file`), making `dir` if needed.
-fn open_log_file(dir: &std::path::Path) -> std::io::Result<(PathBuf, std::fs::File)> {
+fn open_log_file(dir: &std::path::Path, suffix: &str) -> std::io::Result<(PathBuf, std::fs::File)> {
     crate::data::replace::create_folder(dir)?;
-    let path = dated_file(dir, "log");
+    let path = dated_file(dir, suffix, "log");
     let file = std::fs::OpenOptions::new()
         .write(true)
         .create_new(true)
@@ -185,36 +188,12 @@ pub fn run_console(
     let theme = Theme::from_env(std::env::var_os("NO_COLOR"));
     let clock = WallClock::start();
     let mut app = session.into_app(0.0);
-    app.set_stopwatch(stopwatch);
-    app.set_maps_dir(
-        options
-            .maps_dir
-            .clone()
-            .unwrap_or_else(|| PathBuf::from("maps")),
-    );
-    app.set_date_source(Box::new(|| {
-        humantime::format_rfc3339_seconds(std::time::SystemTime::now()).to_string()
-    }));
-    if options.braille {
-        app.apply(crate::keymap::Action::ToggleBraille);
-    }
+    prepare(&mut app, options, stopwatch);
     if let Some((path, session)) = &options.record {
         start_recording(&mut app, path, session.clone(), false)?;
     }
     let log_dir = (options.log_dir.clone()).unwrap_or_else(|| PathBuf::from("logs"));
-    let log_file = match open_log_file(&log_dir) {
-        Ok((path, file)) => match app.log_to(Box::new(file)) {
-            Ok(()) => Some(path),
-            Err(e) => {
-                app.warn(format!("no log file: cannot write {}: {e}", path.display()));
-                None
-            }
-        },
-        Err(e) => {
-            app.warn(format!("no log file in {}: {e}", log_dir.display()));
-            None
-        }
-    };
+    let log_file = log_into(&mut app, &log_dir, "");
     let mut stats = RunStats::default();
     let outcome = on_terminal(&signals, |terminal, events| {
         run(
@@ -232,14 +211,10 @@ pub fn run_console(
     // Closes the link: the serial port, the DDS participant.
     drop(app);
     let outcome = signalled_failure(outcome, &signals);
-    let why = match &outcome {
-        Ok(Exit::Quit) => "quit by user".to_string(),
-        Ok(Exit::InputClosed) => "the terminal hung up".to_string(),
-        Ok(Exit::Signal(n)) => format!("{} received", signal_name(*n)),
-        Err(e) => e.to_string(),
-    };
-    // The terminal may be gone: a message that cannot be written is no reason to fail.
-    tell(&format!("navdeck: robot on {label} stopped; {why}"));
+    tell(&format!(
+        "navdeck: robot on {label} stopped; {}",
+        why_ended(&outcome)
+    ));
     match (recorded, &options.record) {
         (Some(Ok(summary)), Some((path, _))) => tell(&format!(
             "navdeck: session recorded in {} ({} bytes)",
@@ -253,6 +228,100 @@ pub fn run_console(
         tell(&format!("navdeck: session log in {}", path.display()));
     }
     Ok(exit_status(&outcome) as u8)
+}
+
+/// Runs a fleet's console on the real terminal, as `run_console` runs one robot's: every
+/// robot stopped and every link closed however it ends, a log file per robot.
+pub fn run_fleet_console(
+    members: Vec<(String, Session)>,
+    options: &ConsoleOptions,
+    stopwatch: Arc<dyn Clock>,
+) -> Result<u8> {
+    let signals = Signals::watch().context("cannot watch signals")?;
+    let theme = Theme::from_env(std::env::var_os("NO_COLOR"));
+    let clock = WallClock::start();
+    let log_dir = (options.log_dir.clone()).unwrap_or_else(|| PathBuf::from("logs"));
+    let mut logs = Vec::new();
+    let mut fleet_members = Vec::with_capacity(members.len());
+    for (name, session) in members {
+        let mut app = session.into_app(0.0);
+        prepare(&mut app, options, stopwatch.clone());
+        logs.extend(log_into(&mut app, &log_dir, &format!("-{name}")));
+        fleet_members.push(crate::fleet::Member { name, app });
+    }
+    let mut fleet = crate::fleet::Fleet::new(fleet_members);
+    let mut stats = RunStats::default();
+    let outcome = on_terminal(&signals, |terminal, events| {
+        run(
+            terminal,
+            &mut fleet,
+            events,
+            &clock,
+            signals.cell(),
+            theme,
+            &mut stats,
+        )
+    })?;
+    let labels: Vec<String> = (fleet.members().iter())
+        .map(|m| format!("{} on {}", m.name, m.app.link().label()))
+        .collect();
+    // Closes every link.
+    drop(fleet);
+    let outcome = signalled_failure(outcome, &signals);
+    tell(&format!(
+        "navdeck: robots {} stopped; {}",
+        labels.join(", "),
+        why_ended(&outcome)
+    ));
+    for path in logs {
+        tell(&format!("navdeck: session log in {}", path.display()));
+    }
+    Ok(exit_status(&outcome) as u8)
+}
+
+/// What every console on a terminal sets up: the planning stopwatch, the maps folder, the
+/// wall-clock date for file names and the braille map when asked for.
+fn prepare(app: &mut App, options: &ConsoleOptions, stopwatch: Arc<dyn Clock>) {
+    app.set_stopwatch(stopwatch);
+    app.set_maps_dir(
+        options
+            .maps_dir
+            .clone()
+            .unwrap_or_else(|| PathBuf::from("maps")),
+    );
+    app.set_date_source(Box::new(|| {
+        humantime::format_rfc3339_seconds(std::time::SystemTime::now()).to_string()
+    }));
+    if options.braille {
+        app.apply(crate::keymap::Action::ToggleBraille);
+    }
+}
+
+/// Sends `app`'s log to a new dated file in `log_dir` (its name ending in `suffix`);
+/// a warning in the log when it cannot. Returns the file's path.
+fn log_into(app: &mut App, log_dir: &std::path::Path, suffix: &str) -> Option<PathBuf> {
+    match open_log_file(log_dir, suffix) {
+        Ok((path, file)) => match app.log_to(Box::new(file)) {
+            Ok(()) => Some(path),
+            Err(e) => {
+                app.warn(format!("no log file: cannot write {}: {e}", path.display()));
+                None
+            }
+        },
+        Err(e) => {
+            app.warn(format!("no log file in {}: {e}", log_dir.display()));
+            None
+        }
+    }
+}
+
+fn why_ended(outcome: &Result<Exit, RunError>) -> String {
+    match outcome {
+        Ok(Exit::Quit) => "quit by user".to_string(),
+        Ok(Exit::InputClosed) => "the terminal hung up".to_string(),
+        Ok(Exit::Signal(n)) => format!("{} received", signal_name(*n)),
+        Err(e) => e.to_string(),
+    }
 }
 
 /// Writes `text` and a newline to standard error, its control characters escaped (a

@@ -14,6 +14,7 @@ pub use navdeck_pilot as pilot;
 pub mod app;
 pub mod config;
 pub mod console;
+pub mod fleet;
 pub mod keymap;
 pub mod replay;
 pub mod runners;

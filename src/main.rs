@@ -2,7 +2,7 @@
 
 use anyhow::{Result, bail};
 use clap::Parser;
-use commands::args::{parse_domain, parse_key_rate};
+use commands::args::{parse_domain, parse_key_rate, whole};
 use commands::arm::ArmCommand;
 use commands::map::MapCommand;
 use commands::mission::MissionArgs;
@@ -32,9 +32,16 @@ struct Cli {
     #[arg(long, default_value = "sim", value_name = "LINK")]
     link: LinkChoice,
 
-    /// ROS 2: namespace of the robot's topics, e.g. /tb3 (over [ros2] namespace).
+    /// ROS 2: namespace of the robot's topics, e.g. /tb3 (over [ros2] namespace). Given
+    /// more than once, one console drives a fleet: a robot per namespace.
     #[arg(long, value_name = "NS")]
-    ns: Option<String>,
+    ns: Vec<String>,
+
+    /// Put N twins in one world, a fleet in one console: each with its own pilot, seen by
+    /// the others' lidars and cameras, able to run into them; robot 1 at the world's
+    /// start, the others on free places nearest it.
+    #[arg(long, value_name = "N", value_parser = whole::<usize>)]
+    robots: Option<usize>,
 
     /// Join ROS 2 beside the twin or a serial robot: RViz draws the map, plan and pose,
     /// RViz's "2D Goal Pose" (/goal_pose) and "2D Pose Estimate" (/initialpose) act,
@@ -227,7 +234,7 @@ fn real_main(cli: Cli) -> Result<ExitCode> {
         Some(Subcommand::Ros2(command)) => {
             if let Some(option) = [
                 ("--domain", cli.domain.is_some()),
-                ("--ns", cli.ns.is_some()),
+                ("--ns", !cli.ns.is_empty()),
             ]
             .iter()
             .find_map(|(name, on)| on.then_some(name))
@@ -240,7 +247,7 @@ fn real_main(cli: Cli) -> Result<ExitCode> {
         }
         None => {}
     }
-    if let Some(ns) = &cli.ns {
+    for ns in &cli.ns {
         commands::args::check_namespace("--ns", ns)?;
     }
     commands::console::run(&cli)

@@ -83,6 +83,7 @@ mod control_follow;
 mod dead_terminal;
 mod degradation;
 mod faults;
+mod fleet;
 mod generated_sweep;
 mod gripper;
 mod hangup;

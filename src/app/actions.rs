@@ -115,6 +115,7 @@ impl App {
             Handler::SaveMap => {
                 self.save_map(saving::SAVE_KEY_NAME);
             }
+            Handler::Fleet(ask) => self.ask_fleet(ask),
             Handler::Nothing => {}
         }
     }
@@ -167,6 +168,7 @@ impl App {
             Typed::ClearFaults => self.clear_faults(),
             Typed::ShowFaults => self.show_faults(),
             Typed::Zone(z) => self.apply_zone(z),
+            Typed::Robot(name) => self.ask_fleet(super::fleet_view::FleetAsk::Select(name)),
         }
     }
 

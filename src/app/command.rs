@@ -10,6 +10,8 @@ use crate::pilot::waypoints::{RouteAsk, Waypoint};
 /// The commands that take arguments, so no key can stand for them.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Typed {
+    /// `robot NAME`: select the fleet's robot of that name or number.
+    Robot(String),
     /// `goto X Y`: plan to a point of the map frame, metres.
     GotoPoint(Point2),
     /// `goto X Y THETA_DEG`: plan to a pose, ending facing THETA (RViz's "2D Goal Pose").
@@ -85,7 +87,7 @@ impl From<Typed> for Intent {
     }
 }
 
-pub const USAGE: &str = "goto X Y [THETA_DEG] | goto marker ID | goto+ X Y [THETA_DEG] | waypoint add [X Y [THETA_DEG]] | route start|pause|skip|clear|loop N|save NAME|load NAME | route TASK|tag ID | controller [pid|pure_pursuit|hybrid] | clear | save [NAME] | mission restart | pose X Y THETA_DEG | relocalize | localise | fault KIND[@START][+DURATION][:PARAM]|clear | zone keepout|speed|list|delete|clear|load … | quit";
+pub const USAGE: &str = "goto X Y [THETA_DEG] | goto marker ID | goto+ X Y [THETA_DEG] | waypoint add [X Y [THETA_DEG]] | route start|pause|skip|clear|loop N|save NAME|load NAME | route TASK|tag ID | controller [pid|pure_pursuit|hybrid] | clear | save [NAME] | mission restart | pose X Y THETA_DEG | relocalize | localise | fault KIND[@START][+DURATION][:PARAM]|clear | zone keepout|speed|list|delete|clear|load … | robot NAME | quit";
 
 /// A waypoint from `X Y [THETA_DEG]` words; `what` names the command in errors.
 fn waypoint(what: &str, words: &[&str]) -> Result<Waypoint, String> {
@@ -217,6 +219,8 @@ pub fn parse(line: &str) -> Result<Intent, String> {
         ),
         // vim's quit: stops the robot and ends the session, as the quit key does.
         ["q" | "quit"] => Ok(Action::Quit.into()),
+        ["robot", name] => Ok(Typed::Robot(name.to_string()).into()),
+        ["robot", ..] => Err("robot wants one NAME or number (the fleet panel lists them)".to_string()),
         ["mission", ..] => Err("mission wants `restart` (e resumes a paused mission)".to_string()),
         ["save", name] => Ok(Typed::Save(name.to_string()).into()),
         // The same as the save key: maps/saved.

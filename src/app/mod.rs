@@ -10,6 +10,7 @@ mod camera_feed;
 mod command;
 mod control;
 mod faults;
+pub mod fleet_view;
 pub mod loading;
 mod localising;
 pub mod log;
@@ -87,6 +88,8 @@ pub struct App {
     zone_drawing: zones::Drawing,
     /// Route mode's chosen row: a task or a tag (`route_picker.rs`).
     route_pick: usize,
+    /// What this console asks of its fleet, and the other robots on its map.
+    fleet: fleet_view::FleetView,
 }
 
 impl App {
@@ -114,6 +117,7 @@ impl App {
             camera: camera_feed::CameraFeed::default(),
             localising: None,
             route_pick: 0,
+            fleet: fleet_view::FleetView::default(),
             config,
         };
         if app.link().takes_log() {

@@ -32,13 +32,16 @@ pub(crate) fn run(cli: &Cli) -> Result<ExitCode> {
         keymap: cli.keymap.clone(),
         link: match &cli.link {
             LinkChoice::Ros2(_) => LinkChoice::Ros2(navdeck::session::Ros2Target {
-                namespace: cli.ns.clone(),
+                namespace: cli.ns.first().cloned(),
                 domain: cli.domain,
             }),
             other => other.clone(),
         },
         localize: cli.localize.choice(),
     };
+    if cli.robots.is_some_and(|n| n > 1) || cli.ns.len() > 1 {
+        return super::fleet::run(cli, &spec);
+    }
     // Everything is loaded and validated before the terminal is touched.
     let mut session = Session::load_with_tags(&spec, cli.twin.tags.as_deref())?;
     session.inject_faults(&cli.twin.fault, spec.seed)?;
@@ -54,7 +57,7 @@ pub(crate) fn run(cli: &Cli) -> Result<ExitCode> {
     }
     if cli.ros2 {
         session = session.with_ros2(&navdeck::session::Ros2Target {
-            namespace: cli.ns.clone(),
+            namespace: cli.ns.first().cloned(),
             domain: cli.domain,
         })?;
     }

@@ -33,6 +33,7 @@ pub(crate) const ERROR_LINE: usize = 400;
 pub(crate) mod args;
 pub(crate) mod arm;
 pub(crate) mod console;
+pub(crate) mod fleet;
 pub(crate) mod lane;
 pub(crate) mod map;
 pub(crate) mod mission;

@@ -1,6 +1,7 @@
 //! The one enum through which keys change the console's state, declared once: each
 //! action's variant, keymap name, help line and route sit on one row of `actions!`.
 
+use crate::app::fleet_view::FleetAsk;
 use crate::data::GripperCommand;
 use crate::pilot::Intent;
 use crate::pilot::arm::{ArmAxis, ArmPose};
@@ -22,7 +23,7 @@ pub enum Route {
 }
 
 /// The console's own handlers (run by `App::apply_to_console`).
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub enum Handler {
     /// Stop the robot and end the session.
     Quit,
@@ -56,6 +57,8 @@ pub enum Handler {
     ZoneCorner(bool),
     CommandLine,
     SaveMap,
+    /// Something for the fleet around the console: select a robot, stop them all.
+    Fleet(crate::app::fleet_view::FleetAsk),
     /// Nothing at all.
     Nothing,
 }
@@ -194,6 +197,10 @@ actions! {
     NextController: "next_controller", "next path controller" => Pilot(Intent::NextController);
     SaveMap: "save_map", "save the map (maps/saved)" => Console(SaveMap);
     UndoMapLoad: "undo_map_load", "undo the last map load" => Pilot(Intent::UndoMapLoad);
+    // A fleet: several robots in one console.
+    NextRobot: "next_robot", "select the next robot" => Console(Fleet(FleetAsk::Step(1)));
+    PreviousRobot: "previous_robot", "select the robot before" => Console(Fleet(FleetAsk::Step(-1)));
+    StopAll: "stop_all", "stop every robot (any mode)" => Console(Fleet(FleetAsk::StopAll));
     /// Unbinds a key that a lower layer of the keymap bound.
     Unbound: "none", "(unbound)" => Console(Nothing);
 }

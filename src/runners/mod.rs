@@ -3,6 +3,7 @@
 
 pub mod arm_pick;
 pub mod faults;
+pub mod fleet;
 pub mod headless;
 pub mod lane;
 #[cfg(feature = "vision")]

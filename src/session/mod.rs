@@ -2,6 +2,7 @@
 //! Everything is loaded and checked here, before the terminal is touched.
 
 mod estimator;
+pub mod fleet;
 mod lane;
 mod tags;
 

@@ -2,11 +2,10 @@
 //! It takes its backend, event source and clock as parameters, so tests drive it
 //! with a script and a `TestBackend`.
 
-use super::draw::draw;
+use super::deck::Deck;
 use super::events::{Clock, Event, EventSource};
 use super::signals::signal_name;
 use super::theme::Theme;
-use crate::app::App;
 use ratatui::Terminal;
 use ratatui::backend::Backend;
 use std::sync::atomic::{AtomicUsize, Ordering};
@@ -42,9 +41,9 @@ pub struct RunStats {
 
 /// Runs the console until quit, a signal, closed input or a terminal error.
 /// `signal` holds the number of a pending signal, 0 for none.
-pub fn run<B: Backend>(
+pub fn run<B: Backend, D: Deck + ?Sized>(
     terminal: &mut Terminal<B>,
-    app: &mut App,
+    app: &mut D,
     events: &mut dyn EventSource,
     clock: &dyn Clock,
     signal: &AtomicUsize,
@@ -64,7 +63,7 @@ pub fn run<B: Backend>(
         }
         if drawn != Some(app.revision()) {
             terminal
-                .draw(|frame| draw(frame, app, theme))
+                .draw(|frame| app.draw(frame, theme))
                 .map_err(|e| fail(app, e))?;
             drawn = Some(app.revision());
             stats.frames_drawn += 1;
@@ -100,7 +99,7 @@ pub fn run<B: Backend>(
 }
 
 /// Stops the robot and names the signal, if one has arrived.
-fn signalled(app: &mut App, signal: &AtomicUsize) -> Option<Exit> {
+fn signalled<D: Deck + ?Sized>(app: &mut D, signal: &AtomicUsize) -> Option<Exit> {
     let pending = signal.load(Ordering::SeqCst);
     if pending == 0 {
         return None;
@@ -109,7 +108,7 @@ fn signalled(app: &mut App, signal: &AtomicUsize) -> Option<Exit> {
     Some(Exit::Signal(pending))
 }
 
-fn fail(app: &mut App, e: impl std::fmt::Display) -> RunError {
+fn fail<D: Deck + ?Sized>(app: &mut D, e: impl std::fmt::Display) -> RunError {
     let message = e.to_string();
     app.shutdown(&format!("terminal output failed: {message}"));
     RunError::Draw(message)

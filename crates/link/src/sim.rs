@@ -1,24 +1,59 @@
 //! The twin behind the link trait: the default robot when no hardware is at hand.
 
 use super::{Command, LinkError, Notice, RobotLink, SensorFrame};
+use navdeck_core::sim::fleet::FleetBoard;
 use navdeck_core::sim::{Faults, Twin};
+use std::sync::{Arc, Mutex};
+
+/// The board a fleet's twins share, and this robot's place on it.
+type Seat = (Arc<Mutex<FleetBoard>>, usize);
 
 /// Drives the digital twin; `poll(now)` steps its physics up to `now`.
 pub struct SimLink {
     twin: Twin,
     clock: f64,
+    /// In a fleet: the board through which the robots see each other and share blocks.
+    fleet: Option<Seat>,
 }
 
 impl SimLink {
     /// A link whose session clock starts at `start` seconds.
     pub fn new(twin: Twin, start: f64) -> Self {
-        Self { twin, clock: start }
+        Self {
+            twin,
+            clock: start,
+            fleet: None,
+        }
+    }
+
+    /// Robot `index` of a fleet whose twins share `board`: before each step it takes the
+    /// others' poses and the blocks from the board, after it writes its own back.
+    pub fn in_fleet(twin: Twin, start: f64, board: Arc<Mutex<FleetBoard>>, index: usize) -> Self {
+        Self {
+            fleet: Some((board, index)),
+            ..Self::new(twin, start)
+        }
+    }
+
+    fn step(&mut self, dt: f64) {
+        let Some((board, me)) = &self.fleet else {
+            self.twin.step(dt);
+            return;
+        };
+        // A robot that panicked while holding the board left it as it was: still usable.
+        let mut board = board.lock().unwrap_or_else(|e| e.into_inner());
+        board.before_step(*me, &mut self.twin);
+        self.twin.step(dt);
+        board.after_step(*me, &self.twin);
     }
 }
 
 impl RobotLink for SimLink {
     fn label(&self) -> String {
-        format!("sim:{}", self.twin.world().name)
+        match &self.fleet {
+            Some((_, me)) => format!("sim:{} #{}", self.twin.world().name, me + 1),
+            None => format!("sim:{}", self.twin.world().name),
+        }
     }
 
     fn send(&mut self, command: &Command) -> Result<(), LinkError> {
@@ -34,7 +69,7 @@ impl RobotLink for SimLink {
 
     fn poll(&mut self, now: f64) -> Result<SensorFrame, LinkError> {
         if now > self.clock {
-            self.twin.step(now - self.clock);
+            self.step(now - self.clock);
             self.clock = now;
         }
         Ok(self.twin.take_frame())

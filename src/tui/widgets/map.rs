@@ -77,6 +77,14 @@ pub fn render(app: &App, theme: Theme, area: Rect, buf: &mut Buffer) {
     super::filter_zones::render(app, &vp, theme, buf);
     super::sensing::footprint(app, &vp, theme, buf);
     super::zones::render(app, &vp, theme, buf);
+    // A fleet's other robots by their numbers (past 9: their names' first letters).
+    for mark in app.fleet_marks() {
+        let body = char::from_digit(mark.number as u32, 10)
+            .filter(|_| mark.number < 10)
+            .or_else(|| mark.name.chars().next())
+            .unwrap_or('?');
+        draw_robot(mark.pose, body, &vp, theme.value(), buf);
+    }
     draw_robot(app.pilot().estimated_pose(), '@', &vp, theme.robot(), buf);
     super::path::cursor(app, &vp, theme, buf);
 }

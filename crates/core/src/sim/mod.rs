@@ -27,6 +27,7 @@ mod encoders;
 mod error;
 pub mod fault;
 pub mod faults;
+pub mod fleet;
 #[cfg(feature = "vision")]
 mod frame_noise;
 pub mod generate;
@@ -65,6 +66,6 @@ pub use error::WorldError;
 pub use fault::{FaultKind, FaultSpec, FaultSpecError};
 pub use faults::{FaultNote, FaultRecord, Faults, Scheduled};
 pub use truth::{GroundTruth, collision_note};
-pub use twin::Twin;
+pub use twin::{Neighbour, Twin};
 pub use world::{Block, BlockColor, Gate, Marker, Obstacle, World};
 pub use world_file::{DEFAULT_BLOCK_SIZE, DEFAULT_GATE_WIDTH};

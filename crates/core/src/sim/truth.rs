@@ -29,6 +29,11 @@ pub trait GroundTruth {
     fn barrier_hits(&self) -> u32 {
         0
     }
+    /// Contacts with another robot of a fleet in the same world, also counted in
+    /// `collisions`.
+    fn robot_hits(&self) -> u32 {
+        0
+    }
 }
 
 impl GroundTruth for Twin {
@@ -58,6 +63,9 @@ impl GroundTruth for Twin {
     }
     fn barrier_hits(&self) -> u32 {
         Twin::barrier_hits(self)
+    }
+    fn robot_hits(&self) -> u32 {
+        Twin::robot_hits(self)
     }
 }
 

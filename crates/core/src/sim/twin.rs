@@ -5,6 +5,7 @@ mod arms;
 mod grasp;
 #[cfg(feature = "vision")]
 mod lane;
+mod others;
 mod sensors;
 mod tags;
 
@@ -20,6 +21,7 @@ use super::{Marker, World};
 use crate::data::robot::RobotConfig;
 use crate::data::{GripperState, SensorFrame};
 use crate::geometry::{Pose2, Segment, Twist};
+pub use others::Neighbour;
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use sensors::Sensors;
@@ -58,6 +60,8 @@ pub struct Twin {
     wall_ends: Vec<Segment>,
     /// Faults injected on the twin's time (`--fault`, `:fault`).
     faults: Faults,
+    /// A fleet's other robots in the same world (`others.rs`).
+    others: others::Others,
 }
 
 /// Half the thickness of the twin's walls as the lidar sees their ends, metres: a 5 cm
@@ -142,6 +146,7 @@ impl Twin {
             released: None,
             wall_ends,
             faults: Faults::default(),
+            others: others::Others::default(),
         }
     }
 
@@ -387,6 +392,7 @@ impl Twin {
                 radius: b.radius(),
             });
         }
+        self.contacts.discs.extend_from_slice(&self.others.discs);
         let verdict = self.contacts.collider.check(
             &self.world.walls,
             &self.contacts.discs,
@@ -400,6 +406,10 @@ impl Twin {
         }
         if verdict.blocked || under_arm {
             self.drive = Twist::ZERO;
+            let r = self.robot.footprint_radius;
+            if !self.contacts.in_contact && self.others.touches(next.position(), r) {
+                self.others.hits += 1;
+            }
             if !self.contacts.in_contact {
                 self.contacts.collisions += 1;
                 self.contacts.in_contact = true;
@@ -424,7 +434,11 @@ impl Twin {
 
     fn capture_camera(&mut self) {
         self.refresh_blocks();
-        let occluders: [&[Segment]; 2] = [&self.world.walls, &self.free_blocks.edges];
+        let occluders: [&[Segment]; 3] = [
+            &self.world.walls,
+            &self.free_blocks.edges,
+            &self.others.outlines,
+        ];
         let markers = self.world.markers.iter().chain(&self.free_blocks.markers);
         self.sensors
             .capture_camera(self.pose, markers, &occluders, &mut self.rng);
@@ -432,7 +446,12 @@ impl Twin {
 
     fn capture_scan(&mut self) {
         self.refresh_blocks();
-        let solids: [&[Segment]; 3] = [&self.world.walls, &self.wall_ends, &self.free_blocks.edges];
+        let solids: [&[Segment]; 4] = [
+            &self.world.walls,
+            &self.wall_ends,
+            &self.free_blocks.edges,
+            &self.others.outlines,
+        ];
         self.sensors.capture_scan(self.pose, &solids, &mut self.rng);
     }
 }

@@ -1,0 +1,105 @@
+//! The console on a fleet (`--robots N`, `--ns` more than once), and its headless run.
+
+use crate::Cli;
+use anyhow::{Context, Result, bail};
+use navdeck::clock::Clock;
+use navdeck::console::{ConsoleOptions, run_fleet_console};
+use navdeck::fleet::{Fleet, Member};
+use navdeck::keymap::parse_key_sequence;
+use navdeck::session::{LinkChoice, SessionSpec, fleet};
+use navdeck::tui::events::WallClock;
+use navdeck::tui::signals::Signals;
+use std::io::Write;
+use std::process::ExitCode;
+use std::time::Instant;
+
+/// Opens the fleet's console, or runs it headless with --headless.
+pub(crate) fn run(cli: &Cli, spec: &SessionSpec) -> Result<ExitCode> {
+    // What a fleet does not take yet, refused by name before any link is opened.
+    let refused = [
+        ("--sim-camera", cli.twin.sim_camera),
+        ("--camera", cli.camera.is_some()),
+        ("--ros2", cli.ros2),
+        ("--record", cli.record.is_some()),
+        ("--fault", !cli.twin.fault.is_empty()),
+        ("--tags", cli.twin.tags.is_some()),
+    ];
+    if let Some((option, _)) = refused.iter().find(|(_, on)| *on) {
+        bail!(
+            "{option} drives one robot: it is not taken with a fleet (--robots N, --ns more than once)"
+        );
+    }
+    let members = match (&spec.link, cli.robots) {
+        (LinkChoice::Sim, Some(n)) => fleet::twins(spec, n)?,
+        (LinkChoice::Ros2(_), None) => fleet::ros2(spec, &cli.ns)?,
+        (LinkChoice::Ros2(_), Some(_)) => {
+            bail!("--robots puts twins in one world: a ROS 2 fleet is --ns given once per robot")
+        }
+        _ => bail!("--ns more than once needs --link ros2"),
+    };
+    let stopwatch: std::sync::Arc<dyn Clock> = std::sync::Arc::new(WallClock::start());
+    if !cli.headless {
+        let options = ConsoleOptions {
+            maps_dir: cli.maps_dir.clone(),
+            log_dir: cli.log_dir.clone(),
+            braille: cli.braille,
+            record: None,
+        };
+        return Ok(ExitCode::from(run_fleet_console(
+            members, &options, stopwatch,
+        )?));
+    }
+    let keys =
+        parse_key_sequence(cli.keys.as_deref().unwrap_or("")).context("cannot read --keys")?;
+    let mut apps = Vec::with_capacity(members.len());
+    for (name, session) in members {
+        let mut app = session.into_app(0.0);
+        app.set_stopwatch(stopwatch.clone());
+        if let Some(dir) = &cli.maps_dir {
+            app.set_maps_dir(dir.join(&name));
+        }
+        apps.push(Member { name, app });
+    }
+    let mut fleet = Fleet::new(apps);
+    let started = Instant::now();
+    // Robots on ROS 2 live on the wall clock: pace the run by it, and stop on a signal.
+    let simulated = (fleet.members().iter()).all(|m| m.app.link().ground_truth().is_some());
+    let signals = match simulated {
+        true => None,
+        false => Some(Signals::watch().context("cannot watch for signals")?),
+    };
+    let mut report = match &signals {
+        None => navdeck::runners::fleet::run(&mut fleet, &keys, cli.key_rate, &mut |_| true, false),
+        Some(signals) => {
+            let mut pace = |t: f64| {
+                let ahead = t - started.elapsed().as_secs_f64();
+                if ahead > 0.0 {
+                    std::thread::sleep(std::time::Duration::from_secs_f64(ahead));
+                }
+                signals.pending().is_none()
+            };
+            navdeck::runners::fleet::run(&mut fleet, &keys, cli.key_rate, &mut pace, true)
+        }
+    };
+    navdeck::tui::deck::Deck::shutdown(&mut fleet, "headless run ended");
+    let wall = started.elapsed().as_secs_f64();
+    report.wall_time_s = Some(wall);
+    report.realtime_factor = Some(report.sim_time / wall.max(1e-9));
+    if cli.json {
+        sayln!("{}", serde_json::to_string(&report)?);
+    } else {
+        for r in &report.robots {
+            say!(
+                "{}: {}",
+                r.name,
+                navdeck::runners::headless::human(&r.report)
+            );
+        }
+    }
+    let status = signals
+        .as_ref()
+        .and_then(Signals::pending)
+        .map_or(0, |n| 128 + n as u8);
+    drop(fleet);
+    Ok(ExitCode::from(status))
+}

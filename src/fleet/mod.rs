@@ -1,0 +1,262 @@
+//! Several robots in one console: each keeps its own console (link, pilot, log, view),
+//! one is selected and takes the keys, the `:` commands and the screen, and the fleet
+//! panel shows them all. Stop-all reaches every robot from any mode; a robot whose link
+//! is lost is marked alone, the others drive on.
+
+pub mod panel;
+
+use crate::app::fleet_view::{FleetAsk, FleetMark};
+use crate::app::log::Level;
+use crate::app::{App, KeyKind, LinkStatus};
+use crate::keymap::{Action, Key};
+use crate::tui::deck::Deck;
+use crate::tui::theme::Theme;
+use ratatui::Frame;
+
+/// One robot of the fleet: its name in the panel and `:robot NAME`, and its console.
+pub struct Member {
+    pub name: String,
+    pub app: App,
+}
+
+/// The robots of one console; see the module comment.
+pub struct Fleet {
+    members: Vec<Member>,
+    selected: usize,
+    /// The terminal's size in cells.
+    screen: (u16, u16),
+    /// Counts what changes the fleet's own part of the screen (the selection).
+    changes: u64,
+    /// Each robot's link status as last seen, to name a change once.
+    links: Vec<LinkStatus>,
+    quit: bool,
+}
+
+impl Fleet {
+    /// A fleet of `members`, the first selected. Names must differ: `:robot NAME` finds
+    /// one by it.
+    pub fn new(members: Vec<Member>) -> Fleet {
+        assert!(!members.is_empty(), "a fleet has at least one robot");
+        let links = members
+            .iter()
+            .map(|m| m.app.pilot().link_status().clone())
+            .collect();
+        let mut fleet = Fleet {
+            members,
+            selected: 0,
+            screen: (80, 24),
+            changes: 0,
+            links,
+            quit: false,
+        };
+        let names: Vec<String> = fleet.members.iter().map(|m| m.name.clone()).collect();
+        let text = format!(
+            "fleet of {}: {}; ctrl-n selects the next, :robot NAME one by name, X stops all",
+            names.len(),
+            names.join(", ")
+        );
+        for m in &mut fleet.members {
+            m.app.note(Level::Info, text.clone());
+        }
+        fleet.mark_others();
+        fleet
+    }
+
+    pub fn members(&self) -> &[Member] {
+        &self.members
+    }
+
+    pub fn members_mut(&mut self) -> &mut [Member] {
+        &mut self.members
+    }
+
+    pub fn selected(&self) -> usize {
+        self.selected
+    }
+
+    /// The selected robot's console.
+    pub fn app(&self) -> &App {
+        &self.members[self.selected].app
+    }
+
+    fn app_mut(&mut self) -> &mut App {
+        &mut self.members[self.selected].app
+    }
+
+    /// Selects robot `index` (from 0), saying so in its log.
+    pub fn select(&mut self, index: usize) {
+        if index >= self.members.len() || index == self.selected {
+            return;
+        }
+        self.selected = index;
+        self.changes += 1;
+        let name = self.members[index].name.clone();
+        let n = self.members.len();
+        self.app_mut().note(
+            Level::Info,
+            format!("robot {name} ({}/{n}) selected", index + 1),
+        );
+        self.mark_others();
+    }
+
+    /// Stops every robot as the stop key stops one (an autonomous mode pauses), and says
+    /// so in the selected robot's log.
+    pub fn stop_all(&mut self) {
+        for m in &mut self.members {
+            m.app.apply(Action::Stop);
+        }
+        let n = self.members.len();
+        self.app_mut()
+            .note(Level::Warn, format!("stop all: {n} robots told to stop"));
+    }
+
+    /// Acts on what the selected console asked of the fleet.
+    fn take_ask(&mut self) {
+        let Some(ask) = self.app_mut().take_fleet_ask() else {
+            return;
+        };
+        let n = self.members.len();
+        match ask {
+            FleetAsk::StopAll => self.stop_all(),
+            FleetAsk::Step(by) => {
+                let next = (self.selected as i64 + i64::from(by)).rem_euclid(n as i64);
+                self.select(next as usize);
+            }
+            FleetAsk::Select(name) => match self.find(&name) {
+                Some(i) => self.select(i),
+                None => {
+                    let names: Vec<&str> = self.members.iter().map(|m| m.name.as_str()).collect();
+                    let text = format!(
+                        ":robot {name}: no such robot; the fleet has {} (or 1..{n})",
+                        names.join(", ")
+                    );
+                    self.app_mut().note(Level::Error, text);
+                }
+            },
+        }
+    }
+
+    /// The robot named `name`, or numbered so from 1.
+    fn find(&self, name: &str) -> Option<usize> {
+        let by_name = self.members.iter().position(|m| m.name == name);
+        let by_number = name
+            .parse::<usize>()
+            .ok()
+            .filter(|k| (1..=self.members.len()).contains(k))
+            .map(|k| k - 1);
+        by_name.or(by_number)
+    }
+
+    /// The other robots on the selected console's map, where each believes it is.
+    fn mark_others(&mut self) {
+        let marks: Vec<FleetMark> = (self.members.iter().enumerate())
+            .filter(|(i, _)| *i != self.selected)
+            .map(|(i, m)| FleetMark {
+                number: i + 1,
+                name: m.name.clone(),
+                pose: m.app.pilot().estimated_pose(),
+            })
+            .collect();
+        self.app_mut().set_fleet_marks(marks);
+    }
+
+    /// Names in the selected console's log each robot whose link was lost or came back.
+    fn note_links(&mut self) {
+        for i in 0..self.members.len() {
+            let now = self.members[i].app.pilot().link_status().clone();
+            if now == self.links[i] {
+                continue;
+            }
+            self.links[i] = now.clone();
+            if i == self.selected {
+                continue;
+            }
+            let name = self.members[i].name.clone();
+            let (level, text) = match now {
+                LinkStatus::Lost(why) => (Level::Warn, format!("robot {name}: link lost ({why})")),
+                LinkStatus::Back => (Level::Info, format!("robot {name}: link back")),
+                LinkStatus::Ok => (Level::Info, format!("robot {name}: link up")),
+            };
+            self.app_mut().note(level, text);
+        }
+    }
+
+    /// Rows the fleet panel takes at the bottom of a `height`-row terminal.
+    fn panel_rows(&self, height: u16) -> u16 {
+        panel::rows_for(self.members.len(), height)
+    }
+}
+
+impl Deck for Fleet {
+    fn resize(&mut self, width: u16, height: u16) {
+        self.screen = (width, height);
+        let rest = height.saturating_sub(self.panel_rows(height));
+        for m in &mut self.members {
+            m.app.resize(width, rest);
+        }
+        self.changes += 1;
+    }
+
+    fn update(&mut self, now: f64) {
+        for m in &mut self.members {
+            m.app.update(now);
+        }
+        if let Some(m) = self.members.iter().find(|m| m.app.should_quit()) {
+            let why = format!("robot {} quit the console", m.name);
+            for m in self.members.iter_mut().filter(|m| !m.app.should_quit()) {
+                m.app.shutdown(&why);
+            }
+            self.quit = true;
+        }
+        self.note_links();
+        self.mark_others();
+    }
+
+    fn handle_key(&mut self, key: Key, kind: KeyKind, now: f64) {
+        self.app_mut().handle_key(key, kind, now);
+        self.take_ask();
+        if self.app().should_quit() {
+            let why = format!(
+                "robot {} quit the console",
+                self.members[self.selected].name
+            );
+            for m in self.members.iter_mut().filter(|m| !m.app.should_quit()) {
+                m.app.shutdown(&why);
+            }
+            self.quit = true;
+        }
+    }
+
+    fn should_quit(&self) -> bool {
+        self.quit
+    }
+
+    fn revision(&self) -> u64 {
+        let apps: u64 = self.members.iter().map(|m| m.app.revision()).sum();
+        apps.wrapping_add(self.changes)
+    }
+
+    fn next_deadline(&self) -> f64 {
+        (self.members.iter())
+            .map(|m| m.app.next_deadline())
+            .fold(f64::INFINITY, f64::min)
+    }
+
+    fn shutdown(&mut self, reason: &str) {
+        for m in &mut self.members {
+            m.app.shutdown(reason);
+        }
+    }
+
+    fn draw(&self, frame: &mut Frame, theme: Theme) {
+        let area = frame.area();
+        let rows = self.panel_rows(area.height);
+        let top = ratatui::layout::Rect::new(0, 0, area.width, area.height - rows);
+        crate::tui::draw::draw_in(frame, top, self.app(), theme);
+        let bottom = ratatui::layout::Rect::new(0, area.height - rows, area.width, rows);
+        panel::render(self, theme, bottom, frame);
+    }
+}
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,249 @@
+//! A fleet in one console: the keys drive the selected robot, stop-all reaches every
+//! robot from any mode, `:robot` selects by name or number, a lost link marks one robot,
+//! and the twins see and stop for each other.
+
+use crate::common::*;
+use navdeck::app::KeyKind;
+use navdeck::fleet::{Fleet, Member};
+use navdeck::link::{Command, LinkError, RobotLink, SensorFrame};
+use navdeck::pilot::mode::Mode;
+use navdeck::session::{SessionSpec, fleet};
+use navdeck::tui::events::{Event, ManualClock, ScriptedEvents, Step};
+use navdeck::tui::run::{RunStats, run};
+use navdeck::tui::theme::Theme;
+use ratatui::Terminal;
+use ratatui::backend::TestBackend;
+use std::sync::atomic::AtomicUsize;
+
+/// The whole log of `app`, a line each.
+fn log_of(app: &navdeck::app::App) -> String {
+    let lines: Vec<&str> = app.log_book().iter().map(|e| e.text.as_str()).collect();
+    lines.join("\n")
+}
+
+/// `n` twins in the built-in arena, robot 1 selected.
+fn twins(n: usize) -> Fleet {
+    let members = fleet::twins(&SessionSpec::twin(None), n).expect("a fleet of twins");
+    Fleet::new(
+        (members.into_iter())
+            .map(|(name, s)| Member {
+                name,
+                app: s.into_app(0.0),
+            })
+            .collect(),
+    )
+}
+
+fn named(name: &str) -> Step {
+    Step::Event(Event::Key(key(name), KeyKind::Press))
+}
+
+fn typed(line: &str) -> Vec<Step> {
+    let mut steps = vec![press(':')];
+    steps.extend(line.chars().map(press));
+    steps.push(named("enter"));
+    steps
+}
+
+/// Runs the real loop on `fleet` in a `w` x `h` test terminal through `steps`.
+/// The clock carries on from `clock`'s time, so several plays make one session.
+fn play_on(
+    clock: &ManualClock,
+    fleet: &mut Fleet,
+    w: u16,
+    h: u16,
+    steps: Vec<Step>,
+) -> Terminal<TestBackend> {
+    let mut terminal = Terminal::new(TestBackend::new(w, h)).unwrap();
+    let clock = clock.clone();
+    let mut events = ScriptedEvents::new(clock.clone(), steps);
+    let signal = AtomicUsize::new(0);
+    let mut stats = RunStats::default();
+    let theme = Theme { color: false };
+    run(
+        &mut terminal,
+        fleet,
+        &mut events,
+        &clock,
+        &signal,
+        theme,
+        &mut stats,
+    )
+    .unwrap();
+    terminal
+}
+
+fn play(fleet: &mut Fleet, w: u16, h: u16, steps: Vec<Step>) -> Terminal<TestBackend> {
+    play_on(&ManualClock::default(), fleet, w, h, steps)
+}
+
+fn truth(fleet: &Fleet, i: usize) -> navdeck::geometry::Pose2 {
+    fleet.members()[i].app.true_pose().unwrap()
+}
+
+#[test]
+fn the_drive_keys_move_the_selected_robot_only() {
+    let mut fleet = twins(3);
+    let starts: Vec<_> = (0..3).map(|i| truth(&fleet, i)).collect();
+    let mut steps = hold('a', 1.0);
+    steps.push(named("ctrl-n"));
+    steps.extend(hold('d', 1.0));
+    steps.push(Step::Wait(1.0));
+    play(&mut fleet, 100, 32, steps);
+    let turned = |i: usize| truth(&fleet, i).theta - starts[i].theta;
+    assert!(turned(0) > 0.3, "robot 1 turned left {}", turned(0));
+    assert!(turned(1) < -0.3, "robot 2 turned right {}", turned(1));
+    assert_eq!(truth(&fleet, 2), starts[2], "robot 3 was never driven");
+    assert_eq!(fleet.selected(), 1);
+}
+
+#[test]
+fn stop_all_stops_every_robot_whatever_its_mode() {
+    let mut fleet = twins(3);
+    // Robot 1 explores, robot 2 follows a path, robot 3 turns on its key.
+    let mut steps = vec![press('e'), Step::Wait(2.0), named("ctrl-n")];
+    steps.extend(typed("goto 0.5 -1.0"));
+    steps.extend([Step::Wait(2.0), named("ctrl-n")]);
+    steps.extend(hold('a', 0.5));
+    steps.push(press('X'));
+    steps.push(Step::Wait(0.1));
+    play(&mut fleet, 100, 32, steps);
+    for m in fleet.members() {
+        let p = m.app.pilot();
+        assert!(
+            p.commanded().is_zero(),
+            "{} still commanded {:?}",
+            m.name,
+            p.commanded()
+        );
+        assert_ne!(p.mode(), Mode::Exploration, "{} still explores", m.name);
+        assert!(!p.is_busy(), "{} still busy", m.name);
+    }
+    let log = log_of(&fleet.members()[2].app);
+    assert!(log.contains("stop all: 3 robots told to stop"), "{log}");
+}
+
+#[test]
+fn robots_are_selected_by_name_or_number_and_an_unknown_name_is_named() {
+    let mut fleet = twins(3);
+    let clock = ManualClock::default();
+    let mut steps = typed("robot robot3");
+    play_on(&clock, &mut fleet, 100, 32, steps);
+    assert_eq!(fleet.selected(), 2);
+    steps = typed("robot 2");
+    play_on(&clock, &mut fleet, 100, 32, steps);
+    assert_eq!(fleet.selected(), 1);
+    steps = typed("robot nobody");
+    steps.push(named("ctrl-p"));
+    steps.push(named("ctrl-p"));
+    play_on(&clock, &mut fleet, 100, 32, steps);
+    let log = log_of(&fleet.members()[1].app);
+    assert!(
+        log.contains(":robot nobody: no such robot; the fleet has robot1, robot2, robot3"),
+        "{log}"
+    );
+    // Back from robot 2 past robot 1 to the last.
+    assert_eq!(fleet.selected(), 2);
+}
+
+/// A robot that answers until session time `until`, then is lost.
+struct AnswersUntil {
+    until: f64,
+}
+
+impl RobotLink for AnswersUntil {
+    fn label(&self) -> String {
+        "robot-b".into()
+    }
+    fn send(&mut self, _: &Command) -> Result<(), LinkError> {
+        Ok(())
+    }
+    fn poll(&mut self, now: f64) -> Result<SensorFrame, LinkError> {
+        match now < self.until {
+            true => Ok(SensorFrame {
+                stamp: now,
+                ..Default::default()
+            }),
+            false => Err(LinkError::Lost("no odometry for 1.0 s".into())),
+        }
+    }
+    fn stop(&mut self) {}
+}
+
+#[test]
+fn a_lost_link_marks_that_robot_only_and_the_others_drive_on() {
+    let lost = navdeck::app::App::new(
+        navdeck::config::Config::default(),
+        navdeck::keymap::Keymap::default_map(),
+        Box::new(AnswersUntil { until: 0.5 }),
+        0.0,
+    );
+    let mut fleet = Fleet::new(vec![
+        Member {
+            name: "twin".into(),
+            app: default_app(),
+        },
+        Member {
+            name: "b".into(),
+            app: lost,
+        },
+    ]);
+    let start = truth(&fleet, 0);
+    let mut steps = vec![Step::Wait(0.6)];
+    steps.extend(hold('w', 1.5));
+    let terminal = play(&mut fleet, 110, 30, steps);
+    let shown = screen(&terminal);
+    let row = |name: &str| {
+        shown
+            .lines()
+            .find(|l| l.contains(&format!(" {name} ")) && l.contains("°"))
+            .unwrap_or_else(|| panic!("no row for {name} in\n{shown}"))
+            .to_string()
+    };
+    assert!(row("b").contains("LOST"), "{}", row("b"));
+    assert!(row("twin").contains(" ok "), "{}", row("twin"));
+    let driven = truth(&fleet, 0).position().distance(start.position());
+    assert!(driven > 0.1, "the twin drove {driven} m");
+    let log = log_of(&fleet.members()[0].app);
+    assert!(log.contains("robot b: link lost"), "{log}");
+}
+
+#[test]
+fn a_robot_driven_at_another_is_stopped_short_of_it_by_what_its_lidar_sees() {
+    let mut fleet = twins(2);
+    // Robot 2 starts behind robot 1, facing it.
+    let (a, b) = (truth(&fleet, 0), truth(&fleet, 1));
+    assert!(b.x < a.x && (a.y - b.y).abs() < 1e-9, "{a:?} {b:?}");
+    let mut steps = vec![named("ctrl-n")];
+    steps.extend(hold('w', 6.0));
+    play(&mut fleet, 100, 32, steps);
+    let gap = truth(&fleet, 0)
+        .position()
+        .distance(truth(&fleet, 1).position());
+    let twin = fleet.members()[1].app.link().ground_truth().unwrap();
+    assert_eq!((twin.robot_hits(), twin.collisions()), (0, 0), "gap {gap}");
+    assert!(gap < 0.3, "robot 2 did not close in: gap {gap}");
+}
+
+#[test]
+fn fleet_screen_100x32() {
+    let mut fleet = twins(3);
+    let mut steps = hold('w', 1.0);
+    steps.push(named("ctrl-n"));
+    steps.extend(hold('a', 0.5));
+    steps.push(Step::Wait(0.6));
+    let terminal = play(&mut fleet, 100, 32, steps);
+    insta::assert_snapshot!(screen(&terminal));
+}
+
+#[test]
+fn the_fleet_keys_alone_stop_the_one_robot_or_say_there_is_no_other() {
+    let mut steps = hold('w', 0.5);
+    steps.push(press('X'));
+    steps.push(named("ctrl-n"));
+    steps.push(Step::Wait(0.1));
+    let done = run_script(default_app(), 80, 24, steps);
+    assert!(done.app.pilot().commanded().is_zero());
+    let log = log_of(&done.app);
+    assert!(log.contains("one robot in this console"), "{log}");
+}

@@ -99,14 +99,24 @@ fn the_drive_keys_move_the_selected_robot_only() {
 
 #[test]
 fn stop_all_stops_every_robot_whatever_its_mode() {
-    let mut fleet = twins(3);
     // Robot 1 explores, robot 2 follows a path, robot 3 turns on its key.
+    let mut fleet = twins(3);
     let mut steps = vec![press('e'), Step::Wait(2.0), named("ctrl-n")];
-    steps.extend(typed("goto 0.5 -1.0"));
+    steps.extend(typed("goto 0.9 0.6"));
+    steps.push(press('p'));
     steps.extend([Step::Wait(2.0), named("ctrl-n")]);
     steps.extend(hold('a', 0.5));
     steps.push(press('X'));
     steps.push(Step::Wait(0.1));
+    // Robot 2 follows its path until the key: the same session without it ends on the way.
+    let mut before = twins(3);
+    play(&mut before, 100, 32, steps[..steps.len() - 2].to_vec());
+    let log = log_of(&before.members()[1].app);
+    assert!(
+        log.contains("path to (") && !log.contains("no path"),
+        "{log}"
+    );
+    assert!(!log.contains("arrived"), "{log}");
     play(&mut fleet, 100, 32, steps);
     for m in fleet.members() {
         let p = m.app.pilot();

@@ -16,6 +16,8 @@ mod common {
     pub use scratch::*;
 }
 mod cyclone_peer;
+#[path = "interop_fleet.rs"]
+mod fleet;
 #[cfg(feature = "vision")]
 #[path = "interop_lane_camera.rs"]
 mod lane_camera;

@@ -62,6 +62,9 @@ pub(crate) fn run(cli: &Cli, spec: &SessionSpec) -> Result<ExitCode> {
     }
     let mut fleet = Fleet::new(apps);
     let started = Instant::now();
+    let epoch = std::time::SystemTime::now()
+        .duration_since(std::time::UNIX_EPOCH)
+        .map_or(0.0, |d| d.as_secs_f64());
     // Robots on ROS 2 live on the wall clock: pace the run by it, and stop on a signal.
     let simulated = (fleet.members().iter()).all(|m| m.app.link().ground_truth().is_some());
     let signals = match simulated {
@@ -84,6 +87,7 @@ pub(crate) fn run(cli: &Cli, spec: &SessionSpec) -> Result<ExitCode> {
     navdeck::tui::deck::Deck::shutdown(&mut fleet, "headless run ended");
     let wall = started.elapsed().as_secs_f64();
     report.wall_time_s = Some(wall);
+    report.epoch_unix = signals.as_ref().map(|_| epoch);
     report.realtime_factor = Some(report.sim_time / wall.max(1e-9));
     if cli.json {
         sayln!("{}", serde_json::to_string(&report)?);

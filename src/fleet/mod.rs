@@ -30,6 +30,8 @@ pub struct Fleet {
     /// Each robot's link status as last seen, to name a change once.
     links: Vec<LinkStatus>,
     quit: bool,
+    /// Session times at which every robot was told to stop.
+    stops: Vec<f64>,
 }
 
 impl Fleet {
@@ -48,6 +50,7 @@ impl Fleet {
             changes: 0,
             links,
             quit: false,
+            stops: Vec::new(),
         };
         let names: Vec<String> = fleet.members.iter().map(|m| m.name.clone()).collect();
         let text = format!(
@@ -68,6 +71,11 @@ impl Fleet {
 
     pub fn members_mut(&mut self) -> &mut [Member] {
         &mut self.members
+    }
+
+    /// Session times at which every robot was told to stop (the stop-all key).
+    pub fn stop_all_times(&self) -> &[f64] {
+        &self.stops
     }
 
     pub fn selected(&self) -> usize {
@@ -102,6 +110,7 @@ impl Fleet {
     /// Stops every robot as the stop key stops one (an autonomous mode pauses), and says
     /// so in the selected robot's log.
     pub fn stop_all(&mut self) {
+        self.stops.push(self.app().now());
         for m in &mut self.members {
             m.app.apply(Action::Stop);
         }
@@ -168,7 +177,9 @@ impl Fleet {
                 continue;
             }
             self.links[i] = now.clone();
-            if i == self.selected {
+            // A robot not yet heard from is awaited, not lost: its row says so.
+            let awaited = !self.members[i].app.pilot().link_ever_up();
+            if i == self.selected || awaited {
                 continue;
             }
             let name = self.members[i].name.clone();

@@ -18,6 +18,11 @@ pub struct FleetReport {
     /// Which robot the keys went to at the end (its name).
     pub selected: String,
     pub robots: Vec<RobotReport>,
+    /// Session times of each stop-all.
+    pub stop_all_times: Vec<f64>,
+    /// A run paced by the wall clock: UNIX time at session time 0, so that a peer's
+    /// times can be set beside the session's.
+    pub epoch_unix: Option<f64>,
     pub wall_time_s: Option<f64>,
     pub realtime_factor: Option<f64>,
 }
@@ -124,6 +129,8 @@ pub fn fleet_report(fleet: &Fleet, keys: usize) -> FleetReport {
                 report: report(&m.app, keys),
             })
             .collect(),
+        stop_all_times: fleet.stop_all_times().to_vec(),
+        epoch_unix: None,
         wall_time_s: None,
         realtime_factor: None,
     }

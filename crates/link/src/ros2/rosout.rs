@@ -53,9 +53,14 @@ pub fn log_message(stamp: msgs::Time, level: Level, logger: &str, text: &str) ->
 }
 
 /// Which of the robot's /rosout lines reach the console: not navdeck's own (they come
-/// back on the same topic), nor those below `lowest`.
+/// back on the same topic), nor another console's, nor those below `lowest`. Under a
+/// namespace, a node in another namespace belongs to another robot of the fleet: its
+/// lines are that robot's, not this one's.
 pub fn wanted(msg: &msgs::Log, own_logger: &str, lowest: u8) -> Option<Notice> {
-    if msg.name == own_logger || msg.level < lowest {
+    let (own_ns, node) = own_logger.rsplit_once('.').unwrap_or(("", own_logger));
+    let (ns, name) = msg.name.rsplit_once('.').unwrap_or(("", &msg.name));
+    let another_robots = !own_ns.is_empty() && !ns.is_empty() && ns != own_ns;
+    if name == node || another_robots || msg.level < lowest {
         return None;
     }
     Some(Notice {
@@ -106,5 +111,23 @@ mod tests {
         assert_eq!(n.level, Level::Warn);
         assert_eq!(n.source.as_deref(), Some("turtlebot3_node"));
         assert_eq!(n.text, "battery low");
+    }
+
+    #[test]
+    fn under_a_namespace_other_robots_and_other_consoles_are_left_out() {
+        let line = |name: &str| msgs::Log {
+            level: WARN,
+            name: name.into(),
+            msg: "battery low".into(),
+            ..msgs::Log::default()
+        };
+        let own = logger_name("/tb3_0", "navdeck");
+        assert!(wanted(&line("tb3_0.turtlebot3_node"), &own, INFO).is_some());
+        assert!(wanted(&line("turtlebot3_node"), &own, INFO).is_some());
+        assert_eq!(wanted(&line("tb3_1.turtlebot3_node"), &own, INFO), None);
+        assert_eq!(wanted(&line("tb3_1.navdeck"), &own, INFO), None);
+        // Without a namespace every robot node is this robot's; other consoles are not.
+        assert!(wanted(&line("tb3_1.turtlebot3_node"), "navdeck", INFO).is_some());
+        assert_eq!(wanted(&line("tb3_1.navdeck"), "navdeck", INFO), None);
     }
 }

@@ -257,3 +257,16 @@ fn the_fleet_keys_alone_stop_the_one_robot_or_say_there_is_no_other() {
     let log = log_of(&done.app);
     assert!(log.contains("one robot in this console"), "{log}");
 }
+
+#[test]
+fn the_help_lists_the_fleet_keys_in_a_fleet() {
+    let mut fleet = twins(2);
+    let shown = screen(&play(
+        &mut fleet,
+        120,
+        40,
+        vec![press('?'), Step::Wait(0.1)],
+    ));
+    assert!(shown.contains("stop every robot (any mode)"), "{shown}");
+    assert!(shown.contains("select the next robot"), "{shown}");
+}

@@ -1,6 +1,7 @@
 //! The help overlay: the active mode's bindings, generated from the keymap, and a legend.
 
 use crate::app::App;
+use crate::keymap::action::{Handler, Route};
 use crate::keymap::{Action, Key, KeyCode};
 use crate::pilot::mode::Mode;
 use crate::tui::theme::Theme;
@@ -125,8 +126,11 @@ pub fn entry_texts(app: &App) -> Vec<(String, String)> {
     };
     let mut entries = Vec::new();
     let mut done: Vec<Action> = Vec::new();
+    // The fleet's keys are listed only in a fleet.
+    let alone = app.fleet_marks().is_empty();
     for (action, keys) in &bindings {
-        if done.contains(action) {
+        let for_fleet = matches!(action.route(), Route::Console(Handler::Fleet(_)));
+        if done.contains(action) || (alone && for_fleet) {
             continue;
         }
         let family = FAMILIES

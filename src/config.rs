@@ -70,6 +70,10 @@ pub struct Config {
     pub safety: crate::control::collision_monitor::SafetyConfig,
     /// Lane mode: the lane camera, its pipeline and lane following.
     pub lane: crate::control::lane::LaneConfig,
+    /// `[[fleet]]`: the robots one console drives (none: the one robot of the command
+    /// line).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub fleet: Vec<crate::fleet::config::FleetEntry>,
 }
 
 impl Config {
@@ -171,6 +175,15 @@ impl Config {
                     reason,
                 });
             }
+        }
+        if let Some((field, value, reason)) = crate::fleet::config::problem(&self.fleet) {
+            return Err(ConfigError::Invalid {
+                path: path.to_path_buf(),
+                line: text.and_then(|t| line_of(t, &field)),
+                field,
+                value,
+                reason: reason.into(),
+            });
         }
         if let Some((field, name, reason)) = self.safety.name_problem() {
             let field = format!("safety.{field}");

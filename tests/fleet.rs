@@ -270,3 +270,39 @@ fn the_help_lists_the_fleet_keys_in_a_fleet() {
     assert!(shown.contains("stop every robot (any mode)"), "{shown}");
     assert!(shown.contains("select the next robot"), "{shown}");
 }
+
+#[test]
+fn a_config_fleet_names_its_robots_and_localises_each_its_own_way() {
+    let config = navdeck::config::Config::parse(
+        "[[fleet]]\nname = \"scout\"\n\n[[fleet]]\nname = \"mapper\"\nestimator = \"slam\"\n",
+        std::path::Path::new("fleet.toml"),
+    )
+    .unwrap();
+    let members = fleet::from_entries(&SessionSpec::twin(None), &config.fleet, None).unwrap();
+    let mut fleet = Fleet::new(
+        (members.into_iter())
+            .map(|(name, s)| Member {
+                name,
+                app: s.into_app(0.0),
+            })
+            .collect(),
+    );
+    play(&mut fleet, 100, 32, hold('w', 1.0));
+    let [scout, mapper] = fleet.members() else {
+        panic!("two robots");
+    };
+    assert_eq!(
+        (scout.name.as_str(), mapper.name.as_str()),
+        ("scout", "mapper")
+    );
+    assert!(scout.app.pilot().lidar_slam().is_none());
+    assert!(
+        mapper.app.pilot().lidar_slam().is_some(),
+        "mapper maps by lidar"
+    );
+    // One world: the second twin stands beside the first.
+    let gap = truth(&fleet, 0)
+        .position()
+        .distance(truth(&fleet, 1).position());
+    assert!(gap < 0.5, "{gap}");
+}

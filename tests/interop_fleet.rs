@@ -188,3 +188,62 @@ fn ten_namespaced_robots_reach_goals_stop_together_and_outlive_a_lost_one() {
     fleet_drives_stops_and_outlives_a_lost_robot(132, 10);
     fleet_reaches_its_goals(134, 10);
 }
+
+#[test]
+fn a_config_fleet_mixes_a_twin_and_a_namespaced_ros2_robot() {
+    let Some(python) = python() else {
+        return;
+    };
+    let domain = 135u16;
+    let dir = scratch("fleet135");
+    let out = dir.join("peer.json");
+    let cfg = dir.join("fleet.toml");
+    let fleet = "[[fleet]]\nname = \"twin\"\n\n[[fleet]]\nname = \"tb3\"\nlink = \"ros2\"\nnamespace = \"/tb3_0\"\n";
+    std::fs::write(&cfg, format!("{}{fleet}", super::LOOPBACK)).unwrap();
+    let script = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/interop/fleet_drive_peer.py"
+    );
+    let mut peer = Command::new(&python)
+        .arg(script)
+        .args([domain.to_string(), "1".to_string()])
+        .arg(&out)
+        .env("CYCLONEDDS_URI", CYCLONE_CONFIG)
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .spawn()
+        .expect("start the Cyclone DDS fleet peer");
+    let mut line = String::new();
+    BufReader::new(peer.stdout.take().unwrap())
+        .read_line(&mut line)
+        .unwrap();
+    assert_eq!(line.trim(), "ready", "the peer did not start");
+    let navdeck = Command::new(env!("CARGO_BIN_EXE_navdeck"))
+        .args(["--domain", &domain.to_string(), "--config"])
+        .arg(&cfg)
+        .args([
+            "--headless",
+            "--json",
+            "--keys",
+            "wwwwwwwwww<ctrl-n>wwwwwwwwww",
+        ])
+        .output()
+        .expect("run navdeck");
+    drop(peer.stdin.take());
+    assert!(peer.wait().unwrap().success(), "the peer failed");
+    assert!(
+        navdeck.status.success(),
+        "{}",
+        String::from_utf8_lossy(&navdeck.stderr)
+    );
+    let report: Value = serde_json::from_slice(&navdeck.stdout).unwrap();
+    let record: Value = serde_json::from_str(&std::fs::read_to_string(&out).unwrap()).unwrap();
+    let robots = report["robots"].as_array().unwrap();
+    let names: Vec<&str> = robots.iter().map(|r| r["name"].as_str().unwrap()).collect();
+    assert_eq!(names, ["twin", "tb3"]);
+    assert!(robots[0]["link"].as_str().unwrap().starts_with("sim:"));
+    assert!(f(&robots[0]["distance_driven"]) > 0.1, "the twin drove");
+    // The ROS 2 robot drove on its own keys, in its own odometry frame.
+    let x = f(&record["robots"][0]["pose"][0]);
+    assert!(x > 0.1, "the TurtleBot drove {x} m");
+}

@@ -42,6 +42,16 @@ pub(crate) fn run(cli: &Cli) -> Result<ExitCode> {
     if cli.robots.is_some_and(|n| n > 1) || cli.ns.len() > 1 {
         return super::fleet::run(cli, &spec);
     }
+    // A config with a [[fleet]] opens the fleet it lists, unless the command line names
+    // the robot.
+    if let Some(path) = cli
+        .config
+        .as_deref()
+        .filter(|_| cli.robots.is_none() && cli.ns.is_empty())
+        && !navdeck::config::Config::load(path)?.fleet.is_empty()
+    {
+        return super::fleet::run(cli, &spec);
+    }
     // Everything is loaded and validated before the terminal is touched.
     let mut session = Session::load_with_tags(&spec, cli.twin.tags.as_deref())?;
     session.inject_faults(&cli.twin.fault, spec.seed)?;

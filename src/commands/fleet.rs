@@ -29,7 +29,14 @@ pub(crate) fn run(cli: &Cli, spec: &SessionSpec) -> Result<ExitCode> {
             "{option} drives one robot: it is not taken with a fleet (--robots N, --ns more than once)"
         );
     }
+    let listed = match &spec.config {
+        Some(path) if cli.robots.is_none() && cli.ns.is_empty() => {
+            navdeck::config::Config::load(path)?.fleet
+        }
+        _ => Vec::new(),
+    };
     let members = match (&spec.link, cli.robots) {
+        _ if !listed.is_empty() => fleet::from_entries(spec, &listed, cli.domain)?,
         (LinkChoice::Sim, Some(n)) => fleet::twins(spec, n)?,
         (LinkChoice::Ros2(_), None) => fleet::ros2(spec, &cli.ns)?,
         (LinkChoice::Ros2(_), Some(_)) => {

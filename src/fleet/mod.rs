@@ -3,6 +3,7 @@
 //! panel shows them all. Stop-all reaches every robot from any mode; a robot whose link
 //! is lost is marked alone, the others drive on.
 
+pub mod config;
 pub mod panel;
 
 use crate::app::fleet_view::{FleetAsk, FleetMark};

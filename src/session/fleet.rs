@@ -1,10 +1,11 @@
 //! The sessions of a fleet: N twins in one world (`--robots N`), or one robot per ROS 2
 //! namespace (`--ns` repeated), each a session of its own with a name.
 
-use super::{LinkChoice, Robot, Ros2Target, Session, SessionSpec};
+use super::{LinkChoice, LocalizeChoice, Robot, Ros2Target, Session, SessionSpec};
+use crate::fleet::config::FleetEntry;
 use crate::link::sim::SimLink;
 use crate::sim::fleet::{FleetBoard, spread_starts};
-use anyhow::{Result, bail};
+use anyhow::{Context, Result, bail};
 use std::sync::{Arc, Mutex};
 
 /// Most robots one console takes.
@@ -15,11 +16,23 @@ pub const MAX_ROBOTS: usize = 32;
 /// the others with its lidar and camera, runs into them, and finds blocks where the
 /// others left them.
 pub fn twins(spec: &SessionSpec, n: usize) -> Result<Vec<(String, Session)>> {
-    if spec.link != LinkChoice::Sim {
-        bail!("--robots needs the twin (--link sim); a ROS 2 fleet is --ns repeated");
-    }
     if !(1..=MAX_ROBOTS).contains(&n) {
         bail!("--robots {n}: a console takes 1 to {MAX_ROBOTS} robots");
+    }
+    let named: Vec<(String, LocalizeChoice)> = (1..=n)
+        .map(|i| (format!("robot{i}"), spec.localize.clone()))
+        .collect();
+    named_twins(spec, &named)
+}
+
+/// Twins in the world of `spec` as `twins` places them, each with its name and how it
+/// is localised.
+fn named_twins(
+    spec: &SessionSpec,
+    named: &[(String, LocalizeChoice)],
+) -> Result<Vec<(String, Session)>> {
+    if spec.link != LinkChoice::Sim {
+        bail!("--robots needs the twin (--link sim); a ROS 2 fleet is --ns repeated");
     }
     let first = Session::load(spec)?;
     let Robot::Twin(twin) = &first.robot else {
@@ -27,15 +40,16 @@ pub fn twins(spec: &SessionSpec, n: usize) -> Result<Vec<(String, Session)>> {
     };
     let world = twin.world().clone();
     let radius = first.config.robot.footprint_radius;
-    let starts = spread_starts(&world, n, radius).map_err(anyhow::Error::msg)?;
+    let starts = spread_starts(&world, named.len(), radius).map_err(anyhow::Error::msg)?;
     let board = Arc::new(Mutex::new(FleetBoard::new(&world, &starts, radius)));
-    let mut sessions = Vec::with_capacity(n);
-    for (i, start) in starts.iter().enumerate() {
+    let mut sessions = Vec::with_capacity(named.len());
+    for (i, (start, (name, localize))) in starts.iter().zip(named).enumerate() {
         let mut placed = world.clone();
         placed.start = *start;
         let own = SessionSpec {
             seed: spec.seed.wrapping_add(i as u64),
             start: Some(*start),
+            localize: localize.clone(),
             ..spec.clone()
         };
         let mut session = Session::load_with_world(&own, placed)?;
@@ -45,7 +59,61 @@ pub fn twins(spec: &SessionSpec, n: usize) -> Result<Vec<(String, Session)>> {
             }
             link => link,
         };
-        sessions.push((format!("robot{}", i + 1), session));
+        sessions.push((name.clone(), session));
+    }
+    Ok(sessions)
+}
+
+/// The robots of the config's `[[fleet]]`, in its order: its twins share one world,
+/// each ROS 2 robot has its own participant on `domain` (`--domain`; else
+/// ROS_DOMAIN_ID), each serial robot its own port.
+pub fn from_entries(
+    spec: &SessionSpec,
+    entries: &[FleetEntry],
+    domain: Option<u16>,
+) -> Result<Vec<(String, Session)>> {
+    if entries.len() > MAX_ROBOTS {
+        bail!(
+            "[[fleet]]: a console takes at most {MAX_ROBOTS} robots, not {}",
+            entries.len()
+        );
+    }
+    let mut sims = Vec::new();
+    for e in entries {
+        if e.link_choice().map_err(anyhow::Error::msg)? == LinkChoice::Sim {
+            sims.push((e.name.clone(), e.localize().map_err(anyhow::Error::msg)?));
+        }
+    }
+    let twin_spec = SessionSpec {
+        link: LinkChoice::Sim,
+        ..spec.clone()
+    };
+    let mut twins = match sims.is_empty() {
+        true => Vec::new(),
+        false => named_twins(&twin_spec, &sims)?,
+    }
+    .into_iter();
+    let mut sessions = Vec::with_capacity(entries.len());
+    for e in entries {
+        let localize = e.localize().map_err(anyhow::Error::msg)?;
+        let link = match e.link_choice().map_err(anyhow::Error::msg)? {
+            LinkChoice::Sim => {
+                sessions.extend(twins.next());
+                continue;
+            }
+            LinkChoice::Ros2(_) => LinkChoice::Ros2(Ros2Target {
+                namespace: e.namespace.clone(),
+                domain,
+            }),
+            serial => serial,
+        };
+        let own = SessionSpec {
+            link,
+            localize,
+            ..spec.clone()
+        };
+        let session = Session::load(&own).with_context(|| format!("[[fleet]] robot {}", e.name))?;
+        sessions.push((e.name.clone(), session));
     }
     Ok(sessions)
 }

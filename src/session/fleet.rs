@@ -93,6 +93,11 @@ pub fn from_entries(
         false => named_twins(&twin_spec, &sims)?,
     }
     .into_iter();
+    let on_ros2 = (entries.iter()).any(|e| matches!(e.link_choice(), Ok(LinkChoice::Ros2(_))));
+    let participant = match on_ros2 {
+        true => Some(shared_participant(spec, domain)?),
+        false => None,
+    };
     let mut sessions = Vec::with_capacity(entries.len());
     for e in entries {
         let localize = e.localize().map_err(anyhow::Error::msg)?;
@@ -112,7 +117,11 @@ pub fn from_entries(
             localize,
             ..spec.clone()
         };
-        let session = Session::load(&own).with_context(|| format!("[[fleet]] robot {}", e.name))?;
+        let session = match (&own.link, &participant) {
+            (LinkChoice::Ros2(_), Some(shared)) => Session::load_on(&own, shared),
+            _ => Session::load(&own),
+        }
+        .with_context(|| format!("[[fleet]] robot {}", e.name))?;
         sessions.push((e.name.clone(), session));
     }
     Ok(sessions)
@@ -136,6 +145,7 @@ pub fn ros2(spec: &SessionSpec, namespaces: &[String]) -> Result<Vec<(String, Se
         }
     }
     let mut sessions = Vec::with_capacity(namespaces.len());
+    let participant = shared_participant(spec, target.domain)?;
     for ns in namespaces {
         let own = SessionSpec {
             link: LinkChoice::Ros2(Ros2Target {
@@ -150,7 +160,24 @@ pub fn ros2(spec: &SessionSpec, namespaces: &[String]) -> Result<Vec<(String, Se
         } else {
             name
         };
-        sessions.push((name, Session::load(&own)?));
+        sessions.push((name, Session::load_on(&own, &participant)?));
     }
     Ok(sessions)
+}
+
+/// The one DDS participant a fleet's ROS 2 robots share, in `domain` (else
+/// ROS_DOMAIN_ID) on the config's interfaces.
+fn shared_participant(
+    spec: &SessionSpec,
+    domain: Option<u16>,
+) -> Result<crate::link::ros2::Participant> {
+    let config = match &spec.config {
+        Some(path) => crate::config::Config::load(path)?,
+        None => crate::config::Config::default(),
+    };
+    let domain = crate::link::ros2::domain_from(domain, std::env::var("ROS_DOMAIN_ID").ok())
+        .map_err(anyhow::Error::msg)?;
+    let (participant, _) = crate::link::ros2::participant::participant(&config.ros2, domain)
+        .context("cannot join ROS 2")?;
+    Ok(participant)
 }

@@ -141,7 +141,13 @@ pub struct Session {
 
 impl Session {
     pub fn load(spec: &SessionSpec) -> Result<Session> {
-        Self::load_inner(spec, None)
+        Self::load_inner(spec, None, None)
+    }
+
+    /// As `load`, a ROS 2 robot's node on `shared`, a participant the robots of a fleet
+    /// share (one DDS participant per process, as ROS 2's own nodes have).
+    pub fn load_on(spec: &SessionSpec, shared: &crate::link::ros2::Participant) -> Result<Session> {
+        Self::load_inner(spec, None, Some(shared))
     }
 
     /// As `load`, with the twin in `world` (one made in memory, e.g. generated) instead
@@ -151,10 +157,14 @@ impl Session {
         if spec.link != LinkChoice::Sim {
             bail!("world {} needs the twin (--link sim)", world.name);
         }
-        Self::load_inner(spec, Some(world))
+        Self::load_inner(spec, Some(world), None)
     }
 
-    fn load_inner(spec: &SessionSpec, given: Option<World>) -> Result<Session> {
+    fn load_inner(
+        spec: &SessionSpec,
+        given: Option<World>,
+        shared: Option<&crate::link::ros2::Participant>,
+    ) -> Result<Session> {
         let mut config = match &spec.config {
             Some(path) => Config::load(path)?,
             None => Config::default(),
@@ -208,12 +218,16 @@ impl Session {
                 let domain = domain_from(target.domain, std::env::var("ROS_DOMAIN_ID").ok())
                     .map_err(anyhow::Error::msg)?;
                 ros2_domain = Some(domain);
-                let link = Ros2Link::connect(Ros2Options {
+                let options = Ros2Options {
                     config: config.ros2.clone(),
                     domain,
                     track: config.robot.track,
                     max_wheel_speed: config.robot.max_wheel_speed(),
-                })
+                };
+                let link = match shared {
+                    Some(participant) => Ros2Link::connect_on(options, participant.clone()),
+                    None => Ros2Link::connect(options),
+                }
                 .context("cannot open the ROS 2 link")?;
                 Robot::Link(Box::new(link))
             }

@@ -45,6 +45,8 @@ use participant::{Factory, Joined, fail, join};
 pub use participant::{dds_type, domain_from};
 use presence::Presence;
 use readings::{Inbound, WheelOdometry};
+/// A DDS participant in a domain, which the nodes of a fleet's robots share.
+pub use ros2_client::Context as Participant;
 use ros2_client::{Context, Node, NodeName, Publisher};
 use std::collections::BTreeMap;
 
@@ -94,13 +96,25 @@ impl Ros2Link {
     /// Joins the DDS domain and sets up every topic. Nothing is published until the
     /// first command.
     pub fn connect(options: Ros2Options) -> Result<Self, LinkError> {
+        let joined = join(&options.config, options.domain, NODE_NAME)?;
+        Self::on(options, joined)
+    }
+
+    /// As `connect`, on `context`: a participant in `options.domain` that other robots
+    /// of a fleet share (`participant::participant` makes one).
+    pub fn connect_on(options: Ros2Options, context: Context) -> Result<Self, LinkError> {
+        let joined = participant::join_on(context, Vec::new(), &options.config, NODE_NAME)?;
+        Self::on(options, joined)
+    }
+
+    fn on(options: Ros2Options, joined: Joined) -> Result<Self, LinkError> {
         let config = options.config;
         let Joined {
             context,
             namespace,
             mut node,
             notes,
-        } = join(&config, options.domain, NODE_NAME)?;
+        } = joined;
         let c = &config;
         let mut f = Factory {
             node: &mut node,

@@ -165,6 +165,43 @@ pub struct Joined {
 /// Joins the DDS domain on the configured interfaces (or loopback alone, when the ROS 2
 /// environment asks) and makes a node `name` in the configured namespace.
 pub fn join(config: &Ros2Config, domain: u16, name: &str) -> Result<Joined, LinkError> {
+    let (context, notes) = participant(config, domain)?;
+    join_on(context, notes, config, name)
+}
+
+/// A node `name` in the configured namespace on a participant already in the domain: a
+/// fleet's robots share one participant, as the nodes of one ROS 2 process do.
+pub fn join_on(
+    context: Context,
+    notes: Vec<Notice>,
+    config: &Ros2Config,
+    name: &str,
+) -> Result<Joined, LinkError> {
+    let namespace = if config.namespace.is_empty() {
+        "/".to_string()
+    } else {
+        config.namespace.clone()
+    };
+    let node_name = NodeName::new(&namespace, name).map_err(|e| {
+        LinkError::Lost(format!(
+            "[ros2] namespace = {:?} is not a ROS 2 namespace: {e:?}",
+            config.namespace
+        ))
+    })?;
+    let node = context
+        .new_node(node_name, NodeOptions::new().enable_rosout(false))
+        .map_err(|e| fail(format!("create the {name} node"), e))?;
+    Ok(Joined {
+        context,
+        namespace,
+        node,
+        notes,
+    })
+}
+
+/// A participant in DDS `domain` on the configured interfaces (or loopback alone, when
+/// the ROS 2 environment asks), and what the log should say about the environment.
+pub fn participant(config: &Ros2Config, domain: u16) -> Result<(Context, Vec<Notice>), LinkError> {
     let mut builder = ros2_client::dds::rustdds::DomainParticipantBuilder::new(domain);
     let scope = RosEnvironment::from_process().scope(built_distro());
     if scope.localhost_only {
@@ -185,26 +222,7 @@ pub fn join(config: &Ros2Config, domain: u16, name: &str) -> Result<Joined, Link
         .map_err(|e| fail(format!("join DDS domain {domain}"), e))?;
     let context = Context::from_domain_participant(participant)
         .map_err(|e| fail("start a ROS 2 context", e))?;
-    let namespace = if config.namespace.is_empty() {
-        "/".to_string()
-    } else {
-        config.namespace.clone()
-    };
-    let node_name = NodeName::new(&namespace, name).map_err(|e| {
-        LinkError::Lost(format!(
-            "[ros2] namespace = {:?} is not a ROS 2 namespace: {e:?}",
-            config.namespace
-        ))
-    })?;
-    let node = context
-        .new_node(node_name, NodeOptions::new().enable_rosout(false))
-        .map_err(|e| fail(format!("create the {name} node"), e))?;
-    Ok(Joined {
-        context,
-        namespace,
-        node,
-        notes: scope.notes,
-    })
+    Ok((context, scope.notes))
 }
 
 #[cfg(test)]

@@ -306,3 +306,32 @@ fn a_config_fleet_names_its_robots_and_localises_each_its_own_way() {
         .distance(truth(&fleet, 1).position());
     assert!(gap < 0.5, "{gap}");
 }
+
+#[test]
+fn twins_meeting_head_on_give_way_by_number_and_never_touch() {
+    let mut fleet = twins(2);
+    let (one, two) = (truth(&fleet, 0), truth(&fleet, 1));
+    assert!(
+        two.x < one.x,
+        "robot 2 starts behind robot 1: {one:?} {two:?}"
+    );
+    // Robot 1 turns back west past robot 2; robot 2 drives east past robot 1.
+    let mut steps = typed("goto -1.7 -1.5");
+    steps.push(press('p'));
+    steps.push(named("ctrl-n"));
+    steps.extend(typed("goto -0.4 -1.5"));
+    steps.push(press('p'));
+    steps.push(Step::Wait(40.0));
+    play(&mut fleet, 100, 32, steps);
+    let hits: Vec<u32> = (fleet.members().iter())
+        .map(|m| m.app.link().ground_truth().unwrap().robot_hits())
+        .collect();
+    assert_eq!(hits, [0, 0]);
+    let log = log_of(&fleet.members()[1].app);
+    assert!(log.contains("giving way to robot 1"), "{log}");
+    assert!(!log_of(&fleet.members()[0].app).contains("giving way"));
+    for (i, goal) in [(0, -1.7), (1, -0.4)] {
+        let x = truth(&fleet, i).x;
+        assert!((x - goal).abs() < 0.1, "robot {} ended at x = {x}", i + 1);
+    }
+}

@@ -52,6 +52,12 @@ impl App {
         }
     }
 
+    /// This robot is number `number` of a fleet whose other robots stand as `peers`, in
+    /// its own map frame: it gives way to them when it drives itself.
+    pub fn set_fleet(&mut self, number: usize, peers: Vec<crate::control::fleet_yield::Peer>) {
+        self.runtime.pilot_mut().set_fleet(number, peers);
+    }
+
     pub fn fleet_marks(&self) -> &[FleetMark] {
         &self.fleet.marks
     }

@@ -9,6 +9,7 @@ pub mod panel;
 use crate::app::fleet_view::{FleetAsk, FleetMark};
 use crate::app::log::Level;
 use crate::app::{App, KeyKind, LinkStatus};
+use crate::control::fleet_yield::Peer;
 use crate::keymap::{Action, Key};
 use crate::tui::deck::Deck;
 use crate::tui::theme::Theme;
@@ -193,6 +194,29 @@ impl Fleet {
         }
     }
 
+    /// Tells each twin's pilot where the fleet's other twins stand, so that it gives way
+    /// to them. Twins of one world share its frame; robots on real links each have
+    /// their own odometry frame, which navdeck does not yet join into one map.
+    fn tell_peers(&mut self) {
+        let peers: Vec<Peer> = (self.members.iter().enumerate())
+            .filter(|(_, m)| m.app.link().ground_truth().is_some())
+            .map(|(i, m)| Peer {
+                number: i + 1,
+                pose: m.app.pilot().estimated_pose(),
+                linear: m.app.pilot().measured().linear,
+            })
+            .collect();
+        if peers.len() < 2 {
+            return;
+        }
+        for peer in &peers {
+            let others = peers.iter().filter(|p| p.number != peer.number).copied();
+            self.members[peer.number - 1]
+                .app
+                .set_fleet(peer.number, others.collect());
+        }
+    }
+
     /// Rows the fleet panel takes at the bottom of a `height`-row terminal.
     fn panel_rows(&self, height: u16) -> u16 {
         panel::rows_for(self.members.len(), height)
@@ -210,6 +234,7 @@ impl Deck for Fleet {
     }
 
     fn update(&mut self, now: f64) {
+        self.tell_peers();
         for m in &mut self.members {
             m.app.update(now);
         }

@@ -5,6 +5,7 @@
 pub mod collision_monitor;
 pub mod config;
 pub mod controller;
+pub mod fleet_yield;
 pub mod follower;
 pub mod hybrid;
 pub mod lane;

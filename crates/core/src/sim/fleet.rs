@@ -85,7 +85,8 @@ impl FleetBoard {
 }
 
 /// Starts for `n` robots of footprint `radius`: the world's start first, then free poses
-/// nearest it on a grid of the robots' spacing, all facing the start's way. Each keeps
+/// nearest it on a grid of the robots' spacing beside and behind it (ahead only when
+/// those run out), all facing the start's way. Each keeps
 /// clear of walls, blocks and the others. Fewer than `n` free places: the error says how
 /// many fitted.
 pub fn spread_starts(world: &World, n: usize, radius: f64) -> Result<Vec<Pose2>, String> {
@@ -96,8 +97,9 @@ pub fn spread_starts(world: &World, n: usize, radius: f64) -> Result<Vec<Pose2>,
     let mut offsets: Vec<(i32, i32)> = (-reach..=reach)
         .flat_map(|i| (-reach..=reach).map(move |j| (i, j)))
         .collect();
-    // Nearest first; at equal distance behind before beside before ahead, left first.
-    offsets.sort_by_key(|&(i, j)| (i * i + j * j, i, -j));
+    // Beside and behind before ahead, so that the first robots face open floor; then
+    // nearest first, left first.
+    offsets.sort_by_key(|&(i, j)| (i > 0, i * i + j * j, i, -j));
     let mut starts: Vec<Pose2> = Vec::with_capacity(n);
     for (i, j) in offsets {
         if starts.len() == n {

@@ -3,6 +3,7 @@
 
 pub mod arbiter;
 mod collision;
+mod fleet;
 mod health;
 mod propose;
 pub mod table;
@@ -19,6 +20,8 @@ pub(crate) struct Behaviours {
     pub arbiter: Arbiter,
     pub collision: collision::CollisionWatch,
     pub health: navdeck_core::health::SensorHealth,
+    /// This robot's fleet, when it has one: whom it gives way to.
+    pub fleet: fleet::FleetWatch,
 }
 
 impl Behaviours {
@@ -29,6 +32,7 @@ impl Behaviours {
             arbiter: Arbiter::default(),
             collision: collision::CollisionWatch::new(&settings.safety, radius),
             health: navdeck_core::health::SensorHealth::new(settings.safety.health.clone()),
+            fleet: fleet::FleetWatch::default(),
         }
     }
 }

@@ -46,6 +46,7 @@ impl Pilot {
                         self.note_route_hold(t, twist, held);
                     }
                     proposals.extend(monitor);
+                    proposals.extend(self.yield_proposal(&task));
                     proposals.push(task);
                 }
                 None

@@ -7,6 +7,8 @@
 //! once.
 //! Sensor health (85, seed 000 §7.2.1's graceful degradation) holds or slows the task when
 //! a sensor is lost; the collision monitor, above it, still weighs what it lets through.
+//! Fleet yield (82, navdeck's) holds an autonomous robot that owes another of its fleet
+//! the way (`control::fleet_yield`): a rule of the road, beside traffic compliance.
 
 use std::fmt;
 
@@ -16,6 +18,7 @@ pub enum Behaviour {
     EmergencyStop,
     CollisionMonitor,
     SensorHealth,
+    FleetYield,
     TrafficCompliance,
     Teleop,
     Race,
@@ -28,10 +31,11 @@ pub enum Behaviour {
 }
 
 impl Behaviour {
-    pub const ALL: [Behaviour; 12] = [
+    pub const ALL: [Behaviour; 13] = [
         Behaviour::EmergencyStop,
         Behaviour::CollisionMonitor,
         Behaviour::SensorHealth,
+        Behaviour::FleetYield,
         Behaviour::TrafficCompliance,
         Behaviour::Teleop,
         Behaviour::Race,
@@ -49,6 +53,7 @@ impl Behaviour {
             Behaviour::EmergencyStop => 100,
             Behaviour::CollisionMonitor => 90,
             Behaviour::SensorHealth => 85,
+            Behaviour::FleetYield => 82,
             Behaviour::TrafficCompliance => 80,
             Behaviour::Teleop | Behaviour::Race => 75,
             Behaviour::LaneFollowing => 70,
@@ -71,6 +76,7 @@ impl Behaviour {
             Behaviour::EmergencyStop => "emergency_stop",
             Behaviour::CollisionMonitor => "collision_monitor",
             Behaviour::SensorHealth => "sensor_health",
+            Behaviour::FleetYield => "fleet_yield",
             Behaviour::TrafficCompliance => "traffic_compliance",
             Behaviour::Teleop => "teleop",
             Behaviour::Race => "race",
@@ -103,6 +109,7 @@ impl fmt::Display for Behaviour {
             Behaviour::EmergencyStop => "e-stop",
             Behaviour::CollisionMonitor => "collision monitor",
             Behaviour::SensorHealth => "sensor health",
+            Behaviour::FleetYield => "fleet yield",
             Behaviour::TrafficCompliance => "traffic compliance",
             Behaviour::Teleop => "teleop",
             Behaviour::Race => "race",

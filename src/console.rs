@@ -234,6 +234,7 @@ pub fn run_console(
 /// robot stopped and every link closed however it ends, a log file per robot.
 pub fn run_fleet_console(
     members: Vec<(String, Session)>,
+    recruiter: Option<crate::fleet::recruit::Recruiter>,
     options: &ConsoleOptions,
     stopwatch: Arc<dyn Clock>,
 ) -> Result<u8> {
@@ -250,6 +251,9 @@ pub fn run_fleet_console(
         fleet_members.push(crate::fleet::Member { name, app });
     }
     let mut fleet = crate::fleet::Fleet::new(fleet_members);
+    if let Some(recruiter) = recruiter {
+        fleet.set_recruiter(recruiter);
+    }
     let mut stats = RunStats::default();
     let outcome = on_terminal(&signals, |terminal, events| {
         run(

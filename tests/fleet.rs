@@ -278,7 +278,7 @@ fn a_config_fleet_names_its_robots_and_localises_each_its_own_way() {
         std::path::Path::new("fleet.toml"),
     )
     .unwrap();
-    let members = fleet::from_entries(&SessionSpec::twin(None), &config.fleet, None).unwrap();
+    let members = fleet::from_entries(&SessionSpec::twin(None), &config.fleet, None, None).unwrap();
     let mut fleet = Fleet::new(
         (members.into_iter())
             .map(|(name, s)| Member {
@@ -334,4 +334,34 @@ fn twins_meeting_head_on_give_way_by_number_and_never_touch() {
         let x = truth(&fleet, i).x;
         assert!((x - goal).abs() < 0.1, "robot {} ended at x = {x}", i + 1);
     }
+}
+
+#[test]
+fn a_robot_that_appears_is_offered_once_and_joins_when_added() {
+    use navdeck::fleet::recruit::Recruiter;
+    let mut fleet = twins(2);
+    fleet.set_recruiter(Recruiter {
+        seen: Box::new(|| vec!["/tb3_0".into(), "/tb3_9".into()]),
+        add: Box::new(|ns: &str, now: f64| {
+            let mut spares = fleet::twins(&SessionSpec::twin(None), 1)?;
+            let (_, session) = spares.remove(0);
+            Ok(Member {
+                name: ns.trim_start_matches('/').into(),
+                app: session.into_app(now),
+            })
+        }),
+        known: vec!["/tb3_0".into()],
+        looked_at: f64::NEG_INFINITY,
+    });
+    let mut steps = vec![Step::Wait(5.0)];
+    steps.extend(typed("robot add /tb3_9"));
+    steps.extend(typed("robot tb3_9"));
+    play(&mut fleet, 100, 32, steps);
+    let log = log_of(&fleet.members()[0].app);
+    let offer = "robot /tb3_9 appeared on the domain: :robot add /tb3_9 drives it";
+    assert_eq!(log.matches(offer).count(), 1, "{log}");
+    assert!(!log.contains("robot /tb3_0 appeared"), "{log}");
+    assert!(log.contains("robot tb3_9 joined: 3 robots"), "{log}");
+    assert_eq!(fleet.members().len(), 3);
+    assert_eq!(fleet.selected(), 2);
 }

@@ -15,6 +15,21 @@ const STOP_WITHIN: f64 = 0.2;
 /// Runs `n` robots on `domain` (robot 0 going silent 2 s after it starts moving, when
 /// `lose`); returns navdeck's report and the peer's record.
 fn fleet_run(domain: u16, n: usize, keys: &str, lose: bool) -> Option<(Value, Value)> {
+    run_peer(domain, n, n, keys, lose)
+}
+
+/// `n` robots on `domain`, of which navdeck starts with the first `driven`.
+fn fleet_run_some(domain: u16, n: usize, driven: usize, keys: &str) -> Option<(Value, Value)> {
+    run_peer(domain, n, driven, keys, false)
+}
+
+fn run_peer(
+    domain: u16,
+    n: usize,
+    driven: usize,
+    keys: &str,
+    lose: bool,
+) -> Option<(Value, Value)> {
     let python = python()?;
     let dir = scratch(&format!("fleet{domain}"));
     let out = dir.join("peer.json");
@@ -48,7 +63,7 @@ fn fleet_run(domain: u16, n: usize, keys: &str, lose: bool) -> Option<(Value, Va
         "--config",
     ]);
     navdeck.arg(&cfg);
-    for k in 0..n {
+    for k in 0..driven {
         navdeck.args(["--ns", &format!("/tb3_{k}")]);
     }
     let navdeck = navdeck
@@ -246,4 +261,27 @@ fn a_config_fleet_mixes_a_twin_and_a_namespaced_ros2_robot() {
     // The ROS 2 robot drove on its own keys, in its own odometry frame.
     let x = f(&record["robots"][0]["pose"][0]);
     assert!(x > 0.1, "the TurtleBot drove {x} m");
+}
+
+#[test]
+fn a_robot_that_appears_is_named_and_joins_on_robot_add() {
+    let domain = 136u16;
+    // Three robots on the domain; the console starts with two.
+    let keys = format!(
+        "{}:robot<space>add<space>/tb3_2<enter>:robot<space>tb3_2<enter>wwwwwwwwwwww",
+        "0".repeat(30)
+    );
+    let Some((report, record)) = fleet_run_some(domain, 3, 2, &keys) else {
+        return;
+    };
+    let robots = report["robots"].as_array().unwrap();
+    let names: Vec<&str> = robots.iter().map(|r| r["name"].as_str().unwrap()).collect();
+    assert_eq!(names, ["tb3_0", "tb3_1", "tb3_2"]);
+    assert_eq!(report["selected"], "tb3_2");
+    let x = f(&record["robots"][2]["pose"][0]);
+    assert!(x > 0.1, "the robot that joined drove {x} m");
+    for k in [0, 1] {
+        let x = f(&record["robots"][k]["pose"][0]);
+        assert!(x.abs() < 1e-9, "tb3_{k} was not driven, yet moved {x} m");
+    }
 }

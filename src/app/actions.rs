@@ -169,6 +169,7 @@ impl App {
             Typed::ShowFaults => self.show_faults(),
             Typed::Zone(z) => self.apply_zone(z),
             Typed::Robot(name) => self.ask_fleet(super::fleet_view::FleetAsk::Select(name)),
+            Typed::AddRobot(ns) => self.ask_fleet(super::fleet_view::FleetAsk::Add(ns)),
         }
     }
 

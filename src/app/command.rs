@@ -12,6 +12,8 @@ use crate::pilot::waypoints::{RouteAsk, Waypoint};
 pub enum Typed {
     /// `robot NAME`: select the fleet's robot of that name or number.
     Robot(String),
+    /// `robot add NS`: drive the robot under ROS 2 namespace NS too.
+    AddRobot(String),
     /// `goto X Y`: plan to a point of the map frame, metres.
     GotoPoint(Point2),
     /// `goto X Y THETA_DEG`: plan to a pose, ending facing THETA (RViz's "2D Goal Pose").
@@ -87,7 +89,7 @@ impl From<Typed> for Intent {
     }
 }
 
-pub const USAGE: &str = "goto X Y [THETA_DEG] | goto marker ID | goto+ X Y [THETA_DEG] | waypoint add [X Y [THETA_DEG]] | route start|pause|skip|clear|loop N|save NAME|load NAME | route TASK|tag ID | controller [pid|pure_pursuit|hybrid] | clear | save [NAME] | mission restart | pose X Y THETA_DEG | relocalize | localise | fault KIND[@START][+DURATION][:PARAM]|clear | zone keepout|speed|list|delete|clear|load … | robot NAME | quit";
+pub const USAGE: &str = "goto X Y [THETA_DEG] | goto marker ID | goto+ X Y [THETA_DEG] | waypoint add [X Y [THETA_DEG]] | route start|pause|skip|clear|loop N|save NAME|load NAME | route TASK|tag ID | controller [pid|pure_pursuit|hybrid] | clear | save [NAME] | mission restart | pose X Y THETA_DEG | relocalize | localise | fault KIND[@START][+DURATION][:PARAM]|clear | zone keepout|speed|list|delete|clear|load … | robot NAME|add NS | quit";
 
 /// A waypoint from `X Y [THETA_DEG]` words; `what` names the command in errors.
 fn waypoint(what: &str, words: &[&str]) -> Result<Waypoint, String> {
@@ -219,6 +221,8 @@ pub fn parse(line: &str) -> Result<Intent, String> {
         ),
         // vim's quit: stops the robot and ends the session, as the quit key does.
         ["q" | "quit"] => Ok(Action::Quit.into()),
+        ["robot", "add", ns] => crate::link::ros2::config::check_namespace(ns)
+            .map(|_| Typed::AddRobot(ns.to_string()).into()),
         ["robot", name] => Ok(Typed::Robot(name.to_string()).into()),
         ["robot", ..] => Err("robot wants one NAME or number (the fleet panel lists them)".to_string()),
         ["mission", ..] => Err("mission wants `restart` (e resumes a paused mission)".to_string()),

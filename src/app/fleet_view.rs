@@ -14,6 +14,8 @@ pub enum FleetAsk {
     Select(String),
     /// Stop every robot.
     StopAll,
+    /// `:robot add NS`: the robot under a ROS 2 namespace joins.
+    Add(String),
 }
 
 /// Another robot of the fleet as this console draws it: its number from 1, its name and

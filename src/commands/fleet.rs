@@ -4,9 +4,10 @@ use crate::Cli;
 use anyhow::{Context, Result, bail};
 use navdeck::clock::Clock;
 use navdeck::console::{ConsoleOptions, run_fleet_console};
+use navdeck::fleet::recruit::Recruiter;
 use navdeck::fleet::{Fleet, Member};
 use navdeck::keymap::parse_key_sequence;
-use navdeck::session::{LinkChoice, SessionSpec, fleet};
+use navdeck::session::{LinkChoice, Ros2Target, Session, SessionSpec, fleet};
 use navdeck::tui::events::WallClock;
 use navdeck::tui::signals::Signals;
 use std::io::Write;
@@ -35,16 +36,32 @@ pub(crate) fn run(cli: &Cli, spec: &SessionSpec) -> Result<ExitCode> {
         }
         _ => Vec::new(),
     };
-    let members = match (&spec.link, cli.robots) {
-        _ if !listed.is_empty() => fleet::from_entries(spec, &listed, cli.domain)?,
-        (LinkChoice::Sim, Some(n)) => fleet::twins(spec, n)?,
-        (LinkChoice::Ros2(_), None) => fleet::ros2(spec, &cli.ns)?,
-        (LinkChoice::Ros2(_), Some(_)) => {
+    // The fleet's ROS 2 robots share one participant, which also watches for new ones.
+    let on_ros2 = match listed.is_empty() {
+        true => matches!(spec.link, LinkChoice::Ros2(_)) && cli.robots.is_none(),
+        false => (listed.iter()).any(|e| matches!(e.link_choice(), Ok(LinkChoice::Ros2(_)))),
+    };
+    let participant = match on_ros2 {
+        true => Some(fleet::shared_participant(spec, cli.domain)?),
+        false => None,
+    };
+    let members = match (&spec.link, cli.robots, &participant) {
+        _ if !listed.is_empty() => {
+            fleet::from_entries(spec, &listed, cli.domain, participant.as_ref())?
+        }
+        (LinkChoice::Sim, Some(n), _) => fleet::twins(spec, n)?,
+        (LinkChoice::Ros2(_), None, Some(p)) => fleet::ros2(spec, &cli.ns, p)?,
+        (LinkChoice::Ros2(_), Some(_), _) => {
             bail!("--robots puts twins in one world: a ROS 2 fleet is --ns given once per robot")
         }
         _ => bail!("--ns more than once needs --link ros2"),
     };
     let stopwatch: std::sync::Arc<dyn Clock> = std::sync::Arc::new(WallClock::start());
+    let known: Vec<String> = match listed.is_empty() {
+        true => cli.ns.clone(),
+        false => listed.iter().filter_map(|e| e.namespace.clone()).collect(),
+    };
+    let recruiter = participant.map(|p| recruiter(spec, cli.domain, p, known, &stopwatch));
     if !cli.headless {
         let options = ConsoleOptions {
             maps_dir: cli.maps_dir.clone(),
@@ -53,7 +70,7 @@ pub(crate) fn run(cli: &Cli, spec: &SessionSpec) -> Result<ExitCode> {
             record: None,
         };
         return Ok(ExitCode::from(run_fleet_console(
-            members, &options, stopwatch,
+            members, recruiter, &options, stopwatch,
         )?));
     }
     let keys =
@@ -68,6 +85,9 @@ pub(crate) fn run(cli: &Cli, spec: &SessionSpec) -> Result<ExitCode> {
         apps.push(Member { name, app });
     }
     let mut fleet = Fleet::new(apps);
+    if let Some(recruiter) = recruiter {
+        fleet.set_recruiter(recruiter);
+    }
     let started = Instant::now();
     let epoch = std::time::SystemTime::now()
         .duration_since(std::time::UNIX_EPOCH)
@@ -113,4 +133,40 @@ pub(crate) fn run(cli: &Cli, spec: &SessionSpec) -> Result<ExitCode> {
         .map_or(0, |n| 128 + n as u8);
     drop(fleet);
     Ok(ExitCode::from(status))
+}
+
+/// Watches `participant`'s domain for robots not in the fleet (`known`), and opens a
+/// console on the one `:robot add NS` names.
+fn recruiter(
+    spec: &SessionSpec,
+    domain: Option<u16>,
+    participant: navdeck::link::ros2::Participant,
+    known: Vec<String>,
+    stopwatch: &std::sync::Arc<dyn Clock>,
+) -> Recruiter {
+    let watched = participant.clone();
+    let spec = spec.clone();
+    let stopwatch = stopwatch.clone();
+    Recruiter {
+        seen: Box::new(move || navdeck::link::ros2::raw::robots_seen(&watched)),
+        add: Box::new(move |ns: &str, now: f64| {
+            let own = SessionSpec {
+                link: LinkChoice::Ros2(Ros2Target {
+                    namespace: Some(ns.to_string()),
+                    domain,
+                }),
+                ..spec.clone()
+            };
+            let mut app = Session::load_on(&own, &participant)?.into_app(now);
+            app.set_stopwatch(stopwatch.clone());
+            let name = ns.trim_start_matches('/');
+            let name = if name.is_empty() { "/" } else { name };
+            Ok(Member {
+                name: name.to_string(),
+                app,
+            })
+        }),
+        known,
+        looked_at: f64::NEG_INFINITY,
+    }
 }

@@ -5,6 +5,7 @@
 
 pub mod config;
 pub mod panel;
+pub mod recruit;
 
 use crate::app::fleet_view::{FleetAsk, FleetMark};
 use crate::app::log::Level;
@@ -34,6 +35,8 @@ pub struct Fleet {
     quit: bool,
     /// Session times at which every robot was told to stop.
     stops: Vec<f64>,
+    /// Robots that may join from the domain (a ROS 2 fleet).
+    recruiter: Option<recruit::Recruiter>,
 }
 
 impl Fleet {
@@ -53,6 +56,7 @@ impl Fleet {
             links,
             quit: false,
             stops: Vec::new(),
+            recruiter: None,
         };
         let names: Vec<String> = fleet.members.iter().map(|m| m.name.clone()).collect();
         let text = format!(
@@ -133,6 +137,7 @@ impl Fleet {
                 let next = (self.selected as i64 + i64::from(by)).rem_euclid(n as i64);
                 self.select(next as usize);
             }
+            FleetAsk::Add(ns) => self.add_robot(&ns),
             FleetAsk::Select(name) => match self.find(&name) {
                 Some(i) => self.select(i),
                 None => {
@@ -247,6 +252,7 @@ impl Deck for Fleet {
         }
         self.note_links();
         self.mark_others();
+        self.look_for_robots(now);
     }
 
     fn handle_key(&mut self, key: Key, kind: KeyKind, now: f64) {

@@ -71,6 +71,7 @@ pub fn from_entries(
     spec: &SessionSpec,
     entries: &[FleetEntry],
     domain: Option<u16>,
+    participant: Option<&crate::link::ros2::Participant>,
 ) -> Result<Vec<(String, Session)>> {
     if entries.len() > MAX_ROBOTS {
         bail!(
@@ -93,11 +94,6 @@ pub fn from_entries(
         false => named_twins(&twin_spec, &sims)?,
     }
     .into_iter();
-    let on_ros2 = (entries.iter()).any(|e| matches!(e.link_choice(), Ok(LinkChoice::Ros2(_))));
-    let participant = match on_ros2 {
-        true => Some(shared_participant(spec, domain)?),
-        false => None,
-    };
     let mut sessions = Vec::with_capacity(entries.len());
     for e in entries {
         let localize = e.localize().map_err(anyhow::Error::msg)?;
@@ -117,7 +113,7 @@ pub fn from_entries(
             localize,
             ..spec.clone()
         };
-        let session = match (&own.link, &participant) {
+        let session = match (&own.link, participant) {
             (LinkChoice::Ros2(_), Some(shared)) => Session::load_on(&own, shared),
             _ => Session::load(&own),
         }
@@ -129,7 +125,11 @@ pub fn from_entries(
 
 /// One robot per ROS 2 namespace in `namespaces` (at least two, all different), each
 /// on its own DDS participant in the same domain; named by its namespace.
-pub fn ros2(spec: &SessionSpec, namespaces: &[String]) -> Result<Vec<(String, Session)>> {
+pub fn ros2(
+    spec: &SessionSpec,
+    namespaces: &[String],
+    participant: &crate::link::ros2::Participant,
+) -> Result<Vec<(String, Session)>> {
     let LinkChoice::Ros2(target) = &spec.link else {
         bail!("--ns more than once needs --link ros2");
     };
@@ -145,7 +145,6 @@ pub fn ros2(spec: &SessionSpec, namespaces: &[String]) -> Result<Vec<(String, Se
         }
     }
     let mut sessions = Vec::with_capacity(namespaces.len());
-    let participant = shared_participant(spec, target.domain)?;
     for ns in namespaces {
         let own = SessionSpec {
             link: LinkChoice::Ros2(Ros2Target {
@@ -160,14 +159,14 @@ pub fn ros2(spec: &SessionSpec, namespaces: &[String]) -> Result<Vec<(String, Se
         } else {
             name
         };
-        sessions.push((name, Session::load_on(&own, &participant)?));
+        sessions.push((name, Session::load_on(&own, participant)?));
     }
     Ok(sessions)
 }
 
 /// The one DDS participant a fleet's ROS 2 robots share, in `domain` (else
 /// ROS_DOMAIN_ID) on the config's interfaces.
-fn shared_participant(
+pub fn shared_participant(
     spec: &SessionSpec,
     domain: Option<u16>,
 ) -> Result<crate::link::ros2::Participant> {

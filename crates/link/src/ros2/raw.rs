@@ -140,6 +140,25 @@ impl Arrivals {
     }
 }
 
+/// The namespaces of the robots `participant` has discovered on its domain
+/// (`graph::robots`), leaving out its own endpoints: what a fleet's console offers to add.
+pub fn robots_seen(participant: &Context) -> Vec<String> {
+    let p = participant.domain_participant();
+    let own = p.guid().prefix;
+    let mut ends: Vec<Endpoint> = (p.discovered_writers().iter())
+        .filter(|w| w.publication_topic_data.key.prefix != own)
+        .map(Endpoint::from_writer)
+        .collect();
+    ends.extend(
+        (p.discovered_readers().iter())
+            .filter(|r| r.subscription_topic_data.key().prefix != own)
+            .map(Endpoint::from_reader),
+    );
+    (graph::robots::robots(&ends, &BTreeMap::new()).into_iter())
+        .map(|r| r.namespace)
+        .collect()
+}
+
 /// A reader that keeps bytes, on one topic, and what it counted.
 struct RateReader {
     reader: DataReader<RawSample, RawAdapter>,

@@ -60,6 +60,12 @@ impl App {
         self.runtime.pilot_mut().set_fleet(number, peers);
     }
 
+    /// The blocks the fleet's other robots claim and those they delivered, for this
+    /// robot's mission.
+    pub fn share_work(&mut self, taken: std::collections::BTreeSet<u32>, elsewhere: &[u32]) {
+        self.runtime.pilot_mut().share_work(taken, elsewhere);
+    }
+
     pub fn fleet_marks(&self) -> &[FleetMark] {
         &self.fleet.marks
     }

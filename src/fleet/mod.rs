@@ -37,6 +37,8 @@ pub struct Fleet {
     stops: Vec<f64>,
     /// Robots that may join from the domain (a ROS 2 fleet).
     recruiter: Option<recruit::Recruiter>,
+    /// Which twin works on which block.
+    claims: crate::mission::claims::Claims,
 }
 
 impl Fleet {
@@ -57,6 +59,7 @@ impl Fleet {
             quit: false,
             stops: Vec::new(),
             recruiter: None,
+            claims: Default::default(),
         };
         let names: Vec<String> = fleet.members.iter().map(|m| m.name.clone()).collect();
         let text = format!(
@@ -222,6 +225,27 @@ impl Fleet {
         }
     }
 
+    /// Tells twin `i`'s mission the blocks the fleet's other twins claim and those they
+    /// delivered; its own claim is settled first come, first served.
+    fn share_work(&mut self, i: usize) {
+        if self.members[i].app.link().ground_truth().is_none() {
+            return;
+        }
+        let twins: Vec<bool> = (self.members.iter())
+            .map(|m| m.app.link().ground_truth().is_some())
+            .collect();
+        let wants: Vec<Option<u32>> = (self.members.iter().zip(&twins))
+            .map(|(m, &twin)| m.app.pilot().fleet_claim().filter(|_| twin))
+            .collect();
+        self.claims.settle(&wants);
+        let taken = self.claims.taken_for(i);
+        let elsewhere: Vec<u32> = (self.members.iter().enumerate())
+            .filter(|(k, _)| *k != i && twins[*k])
+            .flat_map(|(_, m)| m.app.pilot().delivered_ids())
+            .collect();
+        self.members[i].app.share_work(taken, &elsewhere);
+    }
+
     /// Rows the fleet panel takes at the bottom of a `height`-row terminal.
     fn panel_rows(&self, height: u16) -> u16 {
         panel::rows_for(self.members.len(), height)
@@ -240,8 +264,10 @@ impl Deck for Fleet {
 
     fn update(&mut self, now: f64) {
         self.tell_peers();
-        for m in &mut self.members {
-            m.app.update(now);
+        for i in 0..self.members.len() {
+            // Each robot steps knowing what the others claimed before it.
+            self.share_work(i);
+            self.members[i].app.update(now);
         }
         if let Some(m) = self.members.iter().find(|m| m.app.should_quit()) {
             let why = format!("robot {} quit the console", m.name);

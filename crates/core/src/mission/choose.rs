@@ -65,7 +65,7 @@ impl Mission {
         let potential = self
             .objects
             .blocks()
-            .filter(|b| !b.confirmed && !b.delivered)
+            .filter(|b| !b.confirmed && !b.delivered && !self.taken.contains(&b.markers[0]))
             .filter(|b| self.looks_at(b.markers[0]) < POTENTIAL_LOOKS)
             .min_by(|a, b| {
                 let (da, db) = (a.position.distance(robot), b.position.distance(robot));
@@ -167,6 +167,7 @@ impl Mission {
             .filter(|b| b.confirmed && !b.delivered && self.held != Some(b.markers[0]))
             .filter(|b| self.objects.gate_for(b.colour).is_some())
             .filter(|b| !self.demoted.contains_key(&b.markers[0]))
+            .filter(|b| !self.taken.contains(&b.markers[0]))
             .filter(|b| self.attempts.get(&b.markers[0]).copied().unwrap_or(0) < MAX_BLOCK_ATTEMPTS)
             .min_by(|a, b| {
                 let (da, db) = (a.position.distance(robot), b.position.distance(robot));

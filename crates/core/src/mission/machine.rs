@@ -49,6 +49,8 @@ pub struct Mission {
     pub(super) relocated: bool,
     /// The arm that picks and places blocks, when the robot has one.
     pub(super) arm: Option<ArmMoves>,
+    /// Blocks a fleet's other robots claim (`shared.rs`): never chosen here.
+    pub(super) taken: std::collections::BTreeSet<u32>,
 }
 
 pub(super) enum Tick {
@@ -74,6 +76,7 @@ impl Mission {
             timeline: Vec::new(),
             held: None,
             delivered_markers: Vec::new(),
+            taken: std::collections::BTreeSet::new(),
             drop_slots: BTreeMap::new(),
             relocated: false,
             arm: None,

@@ -70,3 +70,23 @@ impl Pilot {
         }
     }
 }
+
+impl Pilot {
+    /// The block this robot's mission works on (its odd marker), for the fleet's claims.
+    pub fn fleet_claim(&self) -> Option<u32> {
+        self.exploring.mission.as_ref().and_then(|m| m.claim())
+    }
+
+    /// The blocks this robot's mission delivered, by odd marker.
+    pub fn delivered_ids(&self) -> Vec<u32> {
+        (self.exploring.mission.as_ref()).map_or_else(Vec::new, |m| m.delivered_ids())
+    }
+
+    /// The blocks the fleet's other robots claim and those they delivered, for this
+    /// robot's mission (`Mission::share`).
+    pub fn share_work(&mut self, taken: std::collections::BTreeSet<u32>, elsewhere: &[u32]) {
+        if let Some(m) = self.exploring.mission.as_mut() {
+            m.share(taken, elsewhere);
+        }
+    }
+}

@@ -365,3 +365,31 @@ fn a_robot_that_appears_is_offered_once_and_joins_when_added() {
     assert_eq!(fleet.members().len(), 3);
     assert_eq!(fleet.selected(), 2);
 }
+
+#[test]
+fn two_twins_deliver_a_generated_worlds_blocks_sooner_than_one_and_touch_nothing() {
+    use navdeck::sim::generate::{GenerateOptions, generate};
+    let world = generate(&GenerateOptions {
+        seed: 1,
+        ..GenerateOptions::default()
+    })
+    .unwrap();
+    let spec = SessionSpec {
+        seed: 1,
+        ..SessionSpec::twin(None)
+    };
+    let pair = fleet::twins_in(&spec, world.clone(), 2).unwrap();
+    let fleet_run = navdeck::runners::fleet_mission::run(pair, 1, 1200.0);
+    assert!(fleet_run.success(), "{fleet_run:?}");
+    let (config, link) = navdeck::session::Session::load_with_world(&spec, world)
+        .unwrap()
+        .into_link();
+    let alone = navdeck::runners::mission::run(&config, link, None, 1, 1200.0, false);
+    assert_eq!(alone.true_delivered, Some(fleet_run.total));
+    assert!(
+        fleet_run.sim_time < alone.sim_time,
+        "two robots {:.1} s, one {:.1} s",
+        fleet_run.sim_time,
+        alone.sim_time
+    );
+}

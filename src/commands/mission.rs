@@ -69,6 +69,10 @@ pub(crate) struct MissionArgs {
     /// mapping on or to localise on with MCL (one run).
     #[arg(long, value_name = "FILE.yaml", conflicts_with = "sweep")]
     save_map: Option<PathBuf>,
+    /// N twins in one world explore and deliver together (blocks claimed one robot at a
+    /// time, robots giving way to each other).
+    #[arg(long, value_name = "N", value_parser = super::args::whole::<usize>)]
+    robots: Option<usize>,
 }
 
 pub(crate) fn run(args: &MissionArgs) -> Result<ExitCode> {
@@ -121,6 +125,37 @@ pub(crate) fn run(args: &MissionArgs) -> Result<ExitCode> {
         session.inject_faults(&args.fault, seed)?;
         Ok(session)
     };
+    if let Some(n) = args.robots.filter(|n| *n > 1) {
+        let refused = [
+            ("--sim-camera", args.sim_camera),
+            ("--fault", !args.fault.is_empty()),
+            ("--log", args.log),
+            ("--save-map", args.save_map.is_some()),
+        ];
+        if let Some((option, _)) = refused.iter().find(|(_, on)| *on) {
+            bail!("{option} is for one robot: it is not taken with --robots");
+        }
+        let twins = |seed: u64| -> Result<Vec<(String, Session)>> {
+            match &generated {
+                Some(options) => {
+                    let options = GenerateOptions {
+                        seed,
+                        ..options.clone()
+                    };
+                    let world = generate::generate(&options).map_err(generate_error)?;
+                    navdeck::session::fleet::twins_in(&spec(seed), world, n)
+                }
+                None => navdeck::session::fleet::twins(&spec(seed), n),
+            }
+        };
+        return super::mission_fleet::run(
+            twins,
+            args.seed,
+            args.sweep.as_deref(),
+            args.time_limit,
+            args.json,
+        );
+    }
     // Load once up front so a bad file is refused before anything runs.
     load(args.seed)?;
     let one = |seed: u64| -> Result<mission_runner::MissionReport> {

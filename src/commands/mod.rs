@@ -37,6 +37,7 @@ pub(crate) mod fleet;
 pub(crate) mod lane;
 pub(crate) mod map;
 pub(crate) mod mission;
+pub(crate) mod mission_fleet;
 pub(crate) mod plan;
 pub(crate) mod replay;
 pub(crate) mod ros2;

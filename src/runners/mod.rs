@@ -4,6 +4,7 @@
 pub mod arm_pick;
 pub mod faults;
 pub mod fleet;
+pub mod fleet_mission;
 pub mod headless;
 pub mod lane;
 #[cfg(feature = "vision")]

@@ -4,6 +4,7 @@
 use super::{LinkChoice, LocalizeChoice, Robot, Ros2Target, Session, SessionSpec};
 use crate::fleet::config::FleetEntry;
 use crate::link::sim::SimLink;
+use crate::sim::World;
 use crate::sim::fleet::{FleetBoard, spread_starts};
 use anyhow::{Context, Result, bail};
 use std::sync::{Arc, Mutex};
@@ -22,19 +23,31 @@ pub fn twins(spec: &SessionSpec, n: usize) -> Result<Vec<(String, Session)>> {
     let named: Vec<(String, LocalizeChoice)> = (1..=n)
         .map(|i| (format!("robot{i}"), spec.localize.clone()))
         .collect();
-    named_twins(spec, &named)
+    named_twins(spec, None, &named)
+}
+
+/// `twins`, in `world` (one made in memory, e.g. generated) instead of `spec.world`.
+pub fn twins_in(spec: &SessionSpec, world: World, n: usize) -> Result<Vec<(String, Session)>> {
+    let named: Vec<(String, LocalizeChoice)> = (1..=n)
+        .map(|i| (format!("robot{i}"), spec.localize.clone()))
+        .collect();
+    named_twins(spec, Some(world), &named)
 }
 
 /// Twins in the world of `spec` as `twins` places them, each with its name and how it
 /// is localised.
 fn named_twins(
     spec: &SessionSpec,
+    given: Option<World>,
     named: &[(String, LocalizeChoice)],
 ) -> Result<Vec<(String, Session)>> {
     if spec.link != LinkChoice::Sim {
         bail!("--robots needs the twin (--link sim); a ROS 2 fleet is --ns repeated");
     }
-    let first = Session::load(spec)?;
+    let first = match given {
+        Some(world) => Session::load_with_world(spec, world)?,
+        None => Session::load(spec)?,
+    };
     let Robot::Twin(twin) = &first.robot else {
         bail!("--robots needs the twin (--link sim)");
     };
@@ -91,7 +104,7 @@ pub fn from_entries(
     };
     let mut twins = match sims.is_empty() {
         true => Vec::new(),
-        false => named_twins(&twin_spec, &sims)?,
+        false => named_twins(&twin_spec, None, &sims)?,
     }
     .into_iter();
     let mut sessions = Vec::with_capacity(entries.len());

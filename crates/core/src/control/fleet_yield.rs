@@ -3,7 +3,9 @@
 //! too, within a few footprints, yields unless it has the right of way: a robot in a
 //! doorway (a passage narrower than `doorway`) goes first, so that it clears it; between
 //! two robots equally placed, the lower number goes. A robot standing still is an
-//! obstacle like any other, left to the collision monitor and the planner.
+//! obstacle like any other, left to the collision monitor and the planner, except that
+//! no robot moves towards another closer than `keep_clear`, however slowly: there the
+//! monitor's zones no longer tell a robot from the one it touches.
 
 use crate::geometry::{Point2, Pose2, wrap_angle};
 
@@ -29,18 +31,22 @@ pub struct YieldRule {
     pub doorway: f64,
     /// Slower than this a robot counts as standing, m/s.
     pub standing: f64,
+    /// Nearer than this (centre to centre), metres, a robot moves towards no other.
+    pub keep_clear: f64,
 }
 
 impl Default for YieldRule {
     /// navdeck's figures for TurtleBot3-sized robots (0.08 m footprint radius): 0.6 m is
     /// about two robots' stopping distance at 0.22 m/s plus both footprints; a doorway
-    /// under 0.8 m lets one robot through at a time.
+    /// under 0.8 m lets one robot through at a time; 0.22 m keeps 6 cm
+    /// between two footprints.
     fn default() -> Self {
         Self {
             radius: 0.6,
             ahead: 60f64.to_radians(),
             doorway: 0.8,
             standing: 0.02,
+            keep_clear: 0.22,
         }
     }
 }
@@ -56,16 +62,21 @@ pub enum Right {
     },
 }
 
-/// Whether `target` lies within `rule.ahead` of the way `from` travels (forward when
-/// `linear` is positive, backward when negative).
-fn in_the_way(rule: &YieldRule, from: Pose2, linear: f64, target: Point2) -> bool {
+/// Whether `target` lies within `cone` of the way `from` travels (forward when `linear`
+/// is positive, backward when negative).
+fn within(cone: f64, from: Pose2, linear: f64, target: Point2) -> bool {
     let way = if linear >= 0.0 {
         from.theta
     } else {
         from.theta + std::f64::consts::PI
     };
     let bearing = (target.y - from.y).atan2(target.x - from.x);
-    wrap_angle(bearing - way).abs() <= rule.ahead
+    wrap_angle(bearing - way).abs() <= cone
+}
+
+/// Whether `target` lies within `rule.ahead` of the way `from` travels.
+fn in_the_way(rule: &YieldRule, from: Pose2, linear: f64, target: Point2) -> bool {
+    within(rule.ahead, from, linear, target)
 }
 
 /// Whether robot `me_number` at `me`, moving at `linear`, goes on or yields to one of
@@ -78,10 +89,25 @@ pub fn judge(
     peers: &[Peer],
     narrow: &dyn Fn(Point2) -> bool,
 ) -> Right {
-    if linear.abs() < rule.standing {
+    // Turning on the spot moves no robot towards another.
+    if linear.abs() < 1e-3 {
         return Right::Go;
     }
     let here = me.position();
+    let crowded = (peers.iter())
+        .filter(|p| p.number != me_number)
+        .filter(|p| here.distance(p.pose.position()) < rule.keep_clear)
+        // Any motion that brings the two nearer: within a right angle of the way.
+        .find(|p| within(std::f64::consts::FRAC_PI_2, me, linear, p.pose.position()));
+    if let Some(p) = crowded {
+        return Right::Yield {
+            to: p.number,
+            why: "it is too close",
+        };
+    }
+    if linear.abs() < rule.standing {
+        return Right::Go;
+    }
     let mut first: Option<(f64, Right)> = None;
     for p in peers.iter().filter(|p| p.number != me_number) {
         let there = p.pose.position();

@@ -101,7 +101,7 @@ fn two_robots_meeting_never_both_wait_nor_both_go() {
     let mut meetings = 0;
     for k in 0..200 {
         let a = k as f64 * 0.7;
-        let (x, y) = (0.1 + 0.4 * (a * 1.3).cos().abs(), 0.2 * a.sin());
+        let (x, y) = (0.22 + 0.3 * (a * 1.3).cos().abs(), 0.2 * a.sin());
         let one = peer(1, -x / 2.0, -y / 2.0, (y).atan2(x), 0.2);
         let two = peer(2, x / 2.0, y / 2.0, (-y).atan2(-x), 0.15);
         let peers = [one, two];
@@ -125,4 +125,25 @@ fn a_doorway_is_a_passage_narrower_than_the_rule_says() {
     // A wide opening is no doorway.
     let wide = |p: Point2| p.x.abs() < 0.05 && p.y.abs() > 0.6;
     assert!(!narrow_at(Point2::new(0.0, 0.0), 0.8, 0.02, &wide));
+}
+
+#[test]
+fn nobody_moves_towards_a_robot_closer_than_keep_clear_even_slowly_or_standing() {
+    let rule = YieldRule::default();
+    let me = peer(1, 0.0, 0.0, 0.0, 0.01);
+    let near = peer(2, 0.2, 0.0, 0.0, 0.0);
+    let peers = [me, near];
+    let too_close = Right::Yield {
+        to: 2,
+        why: "it is too close",
+    };
+    // Robot 1 has the lower number, and robot 2 stands: still it may not creep on.
+    assert_eq!(judge(&rule, 1, me.pose, 0.01, &peers, &open), too_close);
+    // Off to the side but drawing nearer: still too close.
+    let beside = peer(2, 0.1, 0.18, 0.0, 0.0);
+    let side = judge(&rule, 1, me.pose, 0.1, &[me, beside], &open);
+    assert!(matches!(side, Right::Yield { to: 2, .. }), "{side:?}");
+    // Away from it, or turning on the spot, it may.
+    assert_eq!(judge(&rule, 1, me.pose, -0.1, &peers, &open), Right::Go);
+    assert_eq!(judge(&rule, 1, me.pose, 0.0, &peers, &open), Right::Go);
 }

@@ -185,8 +185,6 @@ pub fn run_console(
     stopwatch: Arc<dyn Clock>,
 ) -> Result<u8> {
     let signals = Signals::watch().context("cannot watch signals")?;
-    let theme = Theme::from_env(std::env::var_os("NO_COLOR"));
-    let clock = WallClock::start();
     let mut app = session.into_app(0.0);
     prepare(&mut app, options, stopwatch);
     if let Some((path, session)) = &options.record {
@@ -194,18 +192,7 @@ pub fn run_console(
     }
     let log_dir = (options.log_dir.clone()).unwrap_or_else(|| PathBuf::from("logs"));
     let log_file = log_into(&mut app, &log_dir, "");
-    let mut stats = RunStats::default();
-    let outcome = on_terminal(&signals, |terminal, events| {
-        run(
-            terminal,
-            &mut app,
-            events,
-            &clock,
-            signals.cell(),
-            theme,
-            &mut stats,
-        )
-    })?;
+    let outcome = run_on_wall_clock(&mut app, &signals)?;
     let label = app.link().label();
     let recorded = app.finish_recording();
     // Closes the link: the serial port, the DDS participant.
@@ -239,8 +226,6 @@ pub fn run_fleet_console(
     stopwatch: Arc<dyn Clock>,
 ) -> Result<u8> {
     let signals = Signals::watch().context("cannot watch signals")?;
-    let theme = Theme::from_env(std::env::var_os("NO_COLOR"));
-    let clock = WallClock::start();
     let log_dir = (options.log_dir.clone()).unwrap_or_else(|| PathBuf::from("logs"));
     let mut logs = Vec::new();
     let mut fleet_members = Vec::with_capacity(members.len());
@@ -254,18 +239,7 @@ pub fn run_fleet_console(
     if let Some(recruiter) = recruiter {
         fleet.set_recruiter(recruiter);
     }
-    let mut stats = RunStats::default();
-    let outcome = on_terminal(&signals, |terminal, events| {
-        run(
-            terminal,
-            &mut fleet,
-            events,
-            &clock,
-            signals.cell(),
-            theme,
-            &mut stats,
-        )
-    })?;
+    let outcome = run_on_wall_clock(&mut fleet, &signals)?;
     let labels: Vec<String> = (fleet.members().iter())
         .map(|m| format!("{} on {}", m.name, m.app.link().label()))
         .collect();
@@ -281,6 +255,28 @@ pub fn run_fleet_console(
         tell(&format!("navdeck: session log in {}", path.display()));
     }
     Ok(exit_status(&outcome) as u8)
+}
+
+/// Runs `deck`'s main loop on the real terminal, its session time on the wall clock from
+/// now, until quit, a signal in `signals`, a hang-up or a terminal error.
+fn run_on_wall_clock<D: crate::tui::deck::Deck>(
+    deck: &mut D,
+    signals: &Signals,
+) -> Result<Result<Exit, RunError>> {
+    let theme = Theme::from_env(std::env::var_os("NO_COLOR"));
+    let clock = WallClock::start();
+    let mut stats = RunStats::default();
+    on_terminal(signals, |terminal, events| {
+        run(
+            terminal,
+            deck,
+            events,
+            &clock,
+            signals.cell(),
+            theme,
+            &mut stats,
+        )
+    })
 }
 
 /// What every console on a terminal sets up: the planning stopwatch, the maps folder, the

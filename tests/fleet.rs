@@ -24,14 +24,7 @@ fn log_of(app: &navdeck::app::App) -> String {
 /// `n` twins in the built-in arena, robot 1 selected.
 fn twins(n: usize) -> Fleet {
     let members = fleet::twins(&SessionSpec::twin(None), n).expect("a fleet of twins");
-    Fleet::new(
-        (members.into_iter())
-            .map(|(name, s)| Member {
-                name,
-                app: s.into_app(0.0),
-            })
-            .collect(),
-    )
+    Fleet::of_sessions(members, 0.0)
 }
 
 fn named(name: &str) -> Step {
@@ -279,14 +272,7 @@ fn a_config_fleet_names_its_robots_and_localises_each_its_own_way() {
     )
     .unwrap();
     let members = fleet::from_entries(&SessionSpec::twin(None), &config.fleet, None, None).unwrap();
-    let mut fleet = Fleet::new(
-        (members.into_iter())
-            .map(|(name, s)| Member {
-                name,
-                app: s.into_app(0.0),
-            })
-            .collect(),
-    );
+    let mut fleet = Fleet::of_sessions(members, 0.0);
     play(&mut fleet, 100, 32, hold('w', 1.0));
     let [scout, mapper] = fleet.members() else {
         panic!("two robots");

@@ -4,10 +4,8 @@
 //! and the others drive on; the stop-all key brings every robot's cmd_vel to zero.
 
 use crate::common::scratch;
-use crate::cyclone_peer::{CYCLONE_CONFIG, python};
 use serde_json::Value;
-use std::io::{BufRead, BufReader};
-use std::process::{Command, Stdio};
+use std::ffi::OsString;
 
 /// Most time from the stop-all key to a robot's first zero cmd_vel (the bar).
 const STOP_WITHIN: f64 = 0.2;
@@ -23,6 +21,8 @@ fn fleet_run_some(domain: u16, n: usize, driven: usize, keys: &str) -> Option<(V
     run_peer(domain, n, driven, keys, false)
 }
 
+/// The fleet peer with `n` robots on `domain` beside navdeck over `--link ros2` driving
+/// the first `driven` robots, one `--ns` each.
 fn run_peer(
     domain: u16,
     n: usize,
@@ -30,56 +30,38 @@ fn run_peer(
     keys: &str,
     lose: bool,
 ) -> Option<(Value, Value)> {
-    let python = python()?;
+    let ns: Vec<String> = (0..driven)
+        .flat_map(|k| ["--ns".to_string(), format!("/tb3_{k}")])
+        .collect();
+    let mut args: Vec<&str> = vec!["--link", "ros2"];
+    args.extend(ns.iter().map(String::as_str));
+    run_beside(domain, n, "", lose, &args, keys)
+}
+
+/// The fleet peer with `n` robots on `domain` (robot 0 going silent 2 s after it starts
+/// moving, when `lose`), and navdeck headless with the config `extra` (after the
+/// loopback settings), `args` and `keys`.
+fn run_beside(
+    domain: u16,
+    n: usize,
+    extra: &str,
+    lose: bool,
+    args: &[&str],
+    keys: &str,
+) -> Option<(Value, Value)> {
     let dir = scratch(&format!("fleet{domain}"));
     let out = dir.join("peer.json");
     let cfg = dir.join("navdeck.toml");
-    std::fs::write(&cfg, super::LOOPBACK).unwrap();
-    let script = concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/tests/interop/fleet_drive_peer.py"
-    );
-    let mut peer = Command::new(&python)
-        .arg(script)
-        .args([domain.to_string(), n.to_string()])
-        .arg(&out)
-        .args(if lose { &["--lose", "0@2"][..] } else { &[] })
-        .env("CYCLONEDDS_URI", CYCLONE_CONFIG)
-        .stdin(Stdio::piped())
-        .stdout(Stdio::piped())
-        .spawn()
-        .expect("start the Cyclone DDS fleet peer");
-    let mut line = String::new();
-    BufReader::new(peer.stdout.take().unwrap())
-        .read_line(&mut line)
-        .unwrap();
-    assert_eq!(line.trim(), "ready", "the peer did not start");
-    let mut navdeck = Command::new(env!("CARGO_BIN_EXE_navdeck"));
-    navdeck.args([
-        "--link",
-        "ros2",
-        "--domain",
-        &domain.to_string(),
-        "--config",
-    ]);
-    navdeck.arg(&cfg);
-    for k in 0..driven {
-        navdeck.args(["--ns", &format!("/tb3_{k}")]);
+    std::fs::write(&cfg, format!("{}{extra}", super::LOOPBACK)).unwrap();
+    let mut peer: Vec<OsString> = vec![n.to_string().into(), out.clone().into()];
+    if lose {
+        peer.extend(["--lose", "0@2"].map(OsString::from));
     }
-    let navdeck = navdeck
-        .args(["--headless", "--json", "--keys", keys])
-        .output()
-        .expect("run navdeck");
-    drop(peer.stdin.take());
-    assert!(peer.wait().unwrap().success(), "the peer failed");
-    assert!(
-        navdeck.status.success(),
-        "navdeck failed: {}",
-        String::from_utf8_lossy(&navdeck.stderr)
-    );
-    let report: Value = serde_json::from_slice(&navdeck.stdout).unwrap();
-    let record: Value = serde_json::from_str(&std::fs::read_to_string(&out).unwrap()).unwrap();
-    Some((report, record))
+    let mut navdeck: Vec<OsString> = vec!["--domain".into(), domain.to_string().into()];
+    navdeck.extend(["--config".into(), cfg.into()]);
+    navdeck.extend(args.iter().map(OsString::from));
+    navdeck.extend(["--headless", "--json", "--keys", keys].map(OsString::from));
+    super::with_peer("fleet_drive_peer.py", domain, &peer, &out, &navdeck)
 }
 
 fn f(v: &Value) -> f64 {
@@ -206,53 +188,11 @@ fn ten_namespaced_robots_reach_goals_stop_together_and_outlive_a_lost_one() {
 
 #[test]
 fn a_config_fleet_mixes_a_twin_and_a_namespaced_ros2_robot() {
-    let Some(python) = python() else {
+    let fleet = "[[fleet]]\nname = \"twin\"\n\n[[fleet]]\nname = \"tb3\"\nlink = \"ros2\"\nnamespace = \"/tb3_0\"\n";
+    let keys = "wwwwwwwwww<ctrl-n>wwwwwwwwww";
+    let Some((report, record)) = run_beside(135, 1, fleet, false, &[], keys) else {
         return;
     };
-    let domain = 135u16;
-    let dir = scratch("fleet135");
-    let out = dir.join("peer.json");
-    let cfg = dir.join("fleet.toml");
-    let fleet = "[[fleet]]\nname = \"twin\"\n\n[[fleet]]\nname = \"tb3\"\nlink = \"ros2\"\nnamespace = \"/tb3_0\"\n";
-    std::fs::write(&cfg, format!("{}{fleet}", super::LOOPBACK)).unwrap();
-    let script = concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/tests/interop/fleet_drive_peer.py"
-    );
-    let mut peer = Command::new(&python)
-        .arg(script)
-        .args([domain.to_string(), "1".to_string()])
-        .arg(&out)
-        .env("CYCLONEDDS_URI", CYCLONE_CONFIG)
-        .stdin(Stdio::piped())
-        .stdout(Stdio::piped())
-        .spawn()
-        .expect("start the Cyclone DDS fleet peer");
-    let mut line = String::new();
-    BufReader::new(peer.stdout.take().unwrap())
-        .read_line(&mut line)
-        .unwrap();
-    assert_eq!(line.trim(), "ready", "the peer did not start");
-    let navdeck = Command::new(env!("CARGO_BIN_EXE_navdeck"))
-        .args(["--domain", &domain.to_string(), "--config"])
-        .arg(&cfg)
-        .args([
-            "--headless",
-            "--json",
-            "--keys",
-            "wwwwwwwwww<ctrl-n>wwwwwwwwww",
-        ])
-        .output()
-        .expect("run navdeck");
-    drop(peer.stdin.take());
-    assert!(peer.wait().unwrap().success(), "the peer failed");
-    assert!(
-        navdeck.status.success(),
-        "{}",
-        String::from_utf8_lossy(&navdeck.stderr)
-    );
-    let report: Value = serde_json::from_slice(&navdeck.stdout).unwrap();
-    let record: Value = serde_json::from_str(&std::fs::read_to_string(&out).unwrap()).unwrap();
     let robots = report["robots"].as_array().unwrap();
     let names: Vec<&str> = robots.iter().map(|r| r["name"].as_str().unwrap()).collect();
     assert_eq!(names, ["twin", "tb3"]);

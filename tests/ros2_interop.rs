@@ -38,6 +38,7 @@ use navdeck::link::ros2::config::{Qos, Reliability, Rmw};
 use navdeck::link::ros2::{Ros2Link, Ros2Options};
 use navdeck::link::{Picture, RobotLink, SensorFrame};
 use serde_json::Value;
+use std::ffi::OsString;
 use std::io::{BufRead, BufReader};
 use std::process::{Command, Stdio};
 use std::time::Instant;
@@ -67,19 +68,44 @@ fn drive_with(
     config: &str,
     navdeck_args: &[&str],
 ) -> Option<(Value, Value)> {
-    let python = python()?;
     let dir = scratch(&domain.to_string());
     let out = dir.join("peer.json");
     let cfg = dir.join("navdeck.toml");
     std::fs::write(&cfg, config).unwrap();
-    let script = concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/tests/interop/turtlebot_peer.py"
-    );
+    let mut peer: Vec<OsString> = vec![out.clone().into()];
+    peer.extend(peer_args.iter().map(OsString::from));
+    let mut navdeck: Vec<OsString> = [
+        "--link",
+        "ros2",
+        "--domain",
+        &domain.to_string(),
+        "--config",
+    ]
+    .map(OsString::from)
+    .into();
+    navdeck.push(cfg.into());
+    navdeck.extend(navdeck_args.iter().map(OsString::from));
+    navdeck.extend(["--headless", "--json", "--keys", keys].map(OsString::from));
+    with_peer("turtlebot_peer.py", domain, &peer, &out, &navdeck)
+}
+
+/// Starts the peer `script` (tests/interop/) on `domain` with `peer_args` after the
+/// domain, waits for its "ready", runs navdeck with `navdeck_args` (a headless run
+/// printing JSON), then closes the peer's stdin, which makes it write its record to
+/// `out` and leave. Returns navdeck's report and the peer's record; None when there is
+/// no Python with Cyclone DDS.
+fn with_peer(
+    script: &str,
+    domain: u16,
+    peer_args: &[OsString],
+    out: &std::path::Path,
+    navdeck_args: &[OsString],
+) -> Option<(Value, Value)> {
+    let python = python()?;
+    let script = format!("{}/tests/interop/{script}", env!("CARGO_MANIFEST_DIR"));
     let mut peer = Command::new(&python)
         .arg(script)
         .arg(domain.to_string())
-        .arg(&out)
         .args(peer_args)
         .env("CYCLONEDDS_URI", CYCLONE_CONFIG)
         .stdin(Stdio::piped())
@@ -92,16 +118,7 @@ fn drive_with(
         .unwrap();
     assert_eq!(line.trim(), "ready", "the peer did not start");
     let navdeck = Command::new(env!("CARGO_BIN_EXE_navdeck"))
-        .args([
-            "--link",
-            "ros2",
-            "--domain",
-            &domain.to_string(),
-            "--config",
-        ])
-        .arg(&cfg)
         .args(navdeck_args)
-        .args(["--headless", "--json", "--keys", keys])
         .output()
         .expect("run navdeck");
     // Closing its stdin tells the peer to write down what it got and leave.
@@ -113,7 +130,7 @@ fn drive_with(
         String::from_utf8_lossy(&navdeck.stderr)
     );
     let report: Value = serde_json::from_slice(&navdeck.stdout).unwrap();
-    let record: Value = serde_json::from_str(&std::fs::read_to_string(&out).unwrap()).unwrap();
+    let record: Value = serde_json::from_str(&std::fs::read_to_string(out).unwrap()).unwrap();
     Some((report, record))
 }
 

@@ -175,13 +175,7 @@ fn run_headless(
     let mut report = match &signals {
         None => headless::run(&mut app, &keys, cli.key_rate),
         Some(signals) => {
-            let mut pace = |t: f64| {
-                let ahead = t - started.elapsed().as_secs_f64();
-                if ahead > 0.0 {
-                    std::thread::sleep(std::time::Duration::from_secs_f64(ahead));
-                }
-                signals.pending().is_none()
-            };
+            let mut pace = super::sweep::wall_pacer(started, signals);
             headless::run_paced(&mut app, &keys, cli.key_rate, &mut pace)
         }
     };

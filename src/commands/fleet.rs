@@ -101,13 +101,7 @@ pub(crate) fn run(cli: &Cli, spec: &SessionSpec) -> Result<ExitCode> {
     let mut report = match &signals {
         None => navdeck::runners::fleet::run(&mut fleet, &keys, cli.key_rate, &mut |_| true, false),
         Some(signals) => {
-            let mut pace = |t: f64| {
-                let ahead = t - started.elapsed().as_secs_f64();
-                if ahead > 0.0 {
-                    std::thread::sleep(std::time::Duration::from_secs_f64(ahead));
-                }
-                signals.pending().is_none()
-            };
+            let mut pace = super::sweep::wall_pacer(started, signals);
             navdeck::runners::fleet::run(&mut fleet, &keys, cli.key_rate, &mut pace, true)
         }
     };

@@ -118,31 +118,9 @@ pub(crate) fn run(args: &LaneArgs) -> Result<ExitCode> {
     let runs: Vec<(u64, Lighting)> = (seeds.iter())
         .flat_map(|&s| lightings.iter().map(move |&l| (s, l)))
         .collect();
-    let next = std::sync::atomic::AtomicUsize::new(0);
-    let workers = std::thread::available_parallelism().map_or(2, |n| n.get());
-    let results = std::sync::Mutex::new(Vec::new());
-    std::thread::scope(|scope| {
-        for _ in 0..workers.min(runs.len()) {
-            scope.spawn(|| {
-                loop {
-                    let k = next.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-                    let Some(&(seed, lighting)) = runs.get(k) else {
-                        break;
-                    };
-                    let report = one(seed, lighting);
-                    results
-                        .lock()
-                        .expect("no worker panicked")
-                        .push((k, report));
-                }
-            });
-        }
-    });
-    let mut results = results.into_inner().expect("no worker panicked");
-    results.sort_by_key(|(k, _)| *k);
-    let reports = (results.into_iter())
-        .map(|(_, r)| r)
-        .collect::<Result<Vec<_>>>()?;
+    let reports = (super::sweep::on_all_cores(&runs, |(seed, lighting)| one(seed, lighting))
+        .into_iter())
+    .collect::<Result<Vec<_>>>()?;
     for report in &reports {
         if args.json {
             sayln!("{}", serde_json::to_string(report)?);

@@ -50,26 +50,8 @@ pub(crate) fn run(
     };
     let seeds = parse_seeds(range).map_err(anyhow::Error::msg)?;
     twins(seeds[0])?;
-    let next = std::sync::atomic::AtomicUsize::new(0);
-    let workers = std::thread::available_parallelism().map_or(2, |n| n.get());
-    let results = std::sync::Mutex::new(Vec::new());
-    std::thread::scope(|scope| {
-        for _ in 0..workers {
-            scope.spawn(|| {
-                loop {
-                    let k = next.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-                    let Some(&seed) = seeds.get(k) else { break };
-                    let report = one(seed);
-                    results.lock().expect("no worker panicked").push(report);
-                }
-            });
-        }
-    });
-    let mut reports = (results
-        .into_inner()
-        .expect("no worker panicked")
-        .into_iter())
-    .collect::<Result<Vec<_>>>()?;
+    let mut reports =
+        (super::sweep::on_all_cores(&seeds, one).into_iter()).collect::<Result<Vec<_>>>()?;
     reports.sort_by_key(|r| r.seed);
     let summary = summarise(reports);
     if json {

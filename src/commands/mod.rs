@@ -43,6 +43,7 @@ pub(crate) mod replay;
 pub(crate) mod ros2;
 pub(crate) mod ros2_robots;
 pub(crate) mod route;
+pub(crate) mod sweep;
 pub(crate) mod tags;
 pub(crate) mod tour;
 pub(crate) mod twin_args;

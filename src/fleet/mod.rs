@@ -74,6 +74,18 @@ impl Fleet {
         fleet
     }
 
+    /// A fleet of the consoles on `sessions`, each starting at session time `now`.
+    pub fn of_sessions(sessions: Vec<(String, crate::session::Session)>, now: f64) -> Fleet {
+        Fleet::new(
+            (sessions.into_iter())
+                .map(|(name, s)| Member {
+                    name,
+                    app: s.into_app(now),
+                })
+                .collect(),
+        )
+    }
+
     pub fn members(&self) -> &[Member] {
         &self.members
     }

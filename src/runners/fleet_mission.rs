@@ -2,7 +2,7 @@
 //! simulated time (each its own mission, blocks claimed one robot at a time, robots
 //! giving way to each other), scored against the twin's truth.
 
-use crate::fleet::{Fleet, Member};
+use crate::fleet::Fleet;
 use crate::keymap::Action;
 use crate::mission::drop_places::AT_GATE;
 use crate::pilot::mode::Mode;
@@ -59,14 +59,7 @@ fn delivered(truth: &dyn GroundTruth) -> usize {
 /// block is delivered, every mission has ended, or `time_limit` simulated seconds.
 pub fn run(members: Vec<(String, Session)>, seed: u64, time_limit: f64) -> FleetMissionReport {
     let robots = members.len();
-    let mut fleet = Fleet::new(
-        (members.into_iter())
-            .map(|(name, s)| Member {
-                name,
-                app: s.into_app(0.0),
-            })
-            .collect(),
-    );
+    let mut fleet = Fleet::of_sessions(members, 0.0);
     for m in fleet.members_mut() {
         m.app.apply(Action::ModeExplore);
     }

@@ -397,3 +397,80 @@ fn the_status_panel_says_what_discovery_found_with_a_waiting_time_that_counts() 
     let screen = drawn(&c.app, 120, 40);
     assert!(screen.contains("Odom    odom "), "{screen}");
 }
+
+/// Publishes `goal` on /goal_pose from a node of its own, again every 100 ms, until the
+/// links' wake socket turns readable (the console's input wait would return) or PATIENCE
+/// runs out; whether it did.
+fn publish_until_woken(domain: u16, goal: &navdeck::msgs::ros::PoseStamped) -> bool {
+    use ros2_client::{MessageTypeName, Name, NodeName, NodeOptions};
+    use rustix::event::{PollFd, PollFlags, Timespec, poll};
+    let wake = navdeck::link::tasks::wake::global().expect("a wake socket");
+    let context = ros2_support::context(domain, false);
+    let mut node = context
+        .new_node(
+            NodeName::new("/", "rviz_stand_in").unwrap(),
+            NodeOptions::new().enable_rosout(false),
+        )
+        .unwrap();
+    let qos = navdeck::link::ros2::participant::qos_profile(Default::default(), false);
+    let topic = node
+        .create_topic(
+            &Name::parse("/goal_pose").unwrap(),
+            MessageTypeName::new("geometry_msgs", "PoseStamped"),
+            &qos,
+        )
+        .unwrap();
+    let publisher = node.create_publisher(&topic, None).unwrap();
+    let started = Instant::now();
+    while started.elapsed().as_secs_f64() < PATIENCE {
+        publisher.publish(goal.clone()).unwrap();
+        let mut fds = [PollFd::from_borrowed_fd(wake.fd(), PollFlags::IN)];
+        let tenth = Timespec {
+            tv_sec: 0,
+            tv_nsec: 100_000_000,
+        };
+        if poll(&mut fds, Some(&tenth)).unwrap_or(0) > 0 {
+            return true;
+        }
+    }
+    false
+}
+
+#[test]
+fn a_goal_from_rviz_wakes_the_console_at_once_and_the_next_poll_takes_it() {
+    use navdeck::link::RobotLink;
+    use navdeck::msgs::ros::{Header, Pose, PoseStamped, Quaternion};
+    let _robot = FakeRobot::start(FakeOptions::new(69));
+    let mut link = Ros2Link::connect(Ros2Options {
+        config: Default::default(),
+        domain: 69,
+        track: ros2_support::TRACK,
+        max_wheel_speed: 0.3,
+    })
+    .expect("ROS 2 link");
+    let mut goal = PoseStamped {
+        header: Header {
+            frame_id: "map".into(),
+            ..Default::default()
+        },
+        pose: Pose::default(),
+    };
+    goal.pose.position.x = 1.5;
+    goal.pose.position.y = -0.5;
+    goal.pose.orientation = Quaternion::from_yaw(0.0);
+    assert!(
+        publish_until_woken(69, &goal),
+        "no wake within {PATIENCE} s of publishing a goal"
+    );
+    // The link answers once the robot's odometry flows; the goal waits for that poll.
+    let started = Instant::now();
+    let taken = loop {
+        let now = started.elapsed().as_secs_f64();
+        if let Ok(frame) = link.poll(now) {
+            break frame.goal.expect("the goal that woke the console");
+        }
+        assert!(now < PATIENCE, "the link never came up");
+        std::thread::sleep(Duration::from_millis(5));
+    };
+    assert!((taken.x - 1.5).abs() < 1e-9 && (taken.y + 0.5).abs() < 1e-9);
+}

@@ -13,6 +13,7 @@ pub mod serial;
 pub mod sim;
 #[cfg(feature = "vision")]
 pub mod tag_camera;
+pub mod tasks;
 
 use nalgebra::Matrix3;
 use navdeck_core::data::Level;

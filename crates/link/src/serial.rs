@@ -1,8 +1,9 @@
 //! A robot running the ROSArduinoBridge firmware on a serial port (the protocol
 //! diffdrive_arduino and ros_arduino_bridge speak), behind the link trait.
 //!
-//! The blocking port I/O runs on a worker thread the link owns; `send` hands it the latest
-//! command and `poll` collects the wheel travel it read. Fault totals (retries, timeouts,
+//! The blocking port I/O runs as a worker in the links' runtime's pool for blocking work
+//! (`tasks`); `send` hands it the latest command and `poll` collects the wheel travel it
+//! read; its warnings and a lost or found port wake the console. Fault totals (retries, timeouts,
 //! garbage lines, replies out of turn, `Invalid Command`s, rejected encoder jumps,
 //! reconnects) are kept in `stats()` and summarised as notes for the console's log.
 
@@ -20,7 +21,7 @@ use navdeck_core::data::ArmTarget;
 use navdeck_core::data::robot::RobotConfig;
 use std::sync::Arc;
 use std::sync::mpsc::{self, Receiver, Sender};
-use std::thread::JoinHandle;
+use tokio::task::JoinHandle;
 use transport::Counters;
 pub use transport::SerialStats;
 use wheels::WheelGeometry;
@@ -107,14 +108,13 @@ impl SerialLink {
         let (to_worker, rx) = mpsc::channel();
         let (tx, from_worker) = mpsc::channel();
         let worker = Worker::new(settings, rx, tx, counters.clone());
-        let handle = std::thread::Builder::new()
-            .name("navdeck-serial".into())
-            .spawn(move || worker.run(transport))
-            .map_err(|e| ConnectError::Port {
+        let handle = crate::tasks::spawn_blocking(move || worker.run(transport)).map_err(|e| {
+            ConnectError::Port {
                 path: path.clone(),
                 baud,
                 reason: e.to_string(),
-            })?;
+            }
+        })?;
         Ok(SerialLink {
             label: format!("serial:{path}@{baud}"),
             to_worker,
@@ -250,7 +250,7 @@ impl Drop for SerialLink {
     fn drop(&mut self) {
         let _ = self.to_worker.send(ToWorker::Shutdown);
         if let Some(handle) = self.worker.take() {
-            let _ = handle.join();
+            crate::tasks::join(handle);
         }
     }
 }

@@ -1,8 +1,10 @@
-//! Key input straight from the terminal device: poll(2) on the terminal and on the signal
-//! socket, one read, bytes to keys. A terminal that has gone (end of file, EIO, hang-up)
+//! Key input straight from the terminal device: poll(2) on the terminal, the signal socket
+//! and the links' wake socket (terminal input, link events and the tick timer, the poll's
+//! timeout, are waited on in this one place), one read, bytes to keys. A terminal that has gone (end of file, EIO, hang-up)
 //! ends the input at once instead of being polled in a loop, and a signal wakes the wait.
 
 use super::decode::{Input, InputDecoder};
+use crate::link::tasks::wake;
 use crate::tui::events::{Event, EventSource};
 use crate::tui::signals::Signals;
 use crate::tui::terminal;
@@ -112,16 +114,24 @@ impl EventSource for TtyEvents<'_> {
             tv_nsec: 0,
         });
         let tty = self.device.fd();
+        let links = wake::global();
         let mut fds = [
             PollFd::from_borrowed_fd(tty, PollFlags::IN),
             PollFd::from_borrowed_fd(self.signals.wake_fd(), PollFlags::IN),
+            PollFd::from_borrowed_fd(links.map_or(tty, |w| w.fd()), PollFlags::IN),
         ];
-        match poll(&mut fds, Some(&timeout)) {
+        match poll(&mut fds[..2 + usize::from(links.is_some())], Some(&timeout)) {
             Ok(_) => {}
             Err(Errno::INTR) => return Ok(None),
             Err(e) => return Err(e.into()),
         }
         let (tty_ready, woken) = (fds[0].revents(), fds[1].revents());
+        // A link event: the loop's update takes it from the link at once.
+        if let Some(links) = links
+            && !fds[2].revents().is_empty()
+        {
+            links.drain();
+        }
         if !woken.is_empty() {
             self.signals.drain();
             if self.signals.take_resized()

@@ -5,7 +5,8 @@
 //! topic beside it (route mode's tag camera), the newest calibration rides along.
 
 use super::config::Ros2Config;
-use super::participant::{Factory, Joined, join, qos_profile, take_all};
+use super::inbox::{Inbox, Urgency};
+use super::participant::{Factory, Joined, join, qos_profile};
 use crate::LinkError;
 use navdeck_core::perception::colour::{BgrFrame, CameraImage};
 use navdeck_core::perception::compressed::decode_compressed;
@@ -13,22 +14,22 @@ use navdeck_core::perception::frame::GrayFrame;
 use navdeck_core::perception::intrinsics::Intrinsics;
 use navdeck_core::perception::pipeline::FrameSource;
 use navdeck_msgs::ros as msgs;
-use ros2_client::{Context, Node, Subscription};
-use std::time::{Duration, Instant};
+use ros2_client::{Context, Node};
+use std::time::Duration;
 
 /// How long one `grab` waits for a frame.
 const GRAB_WAIT: Duration = Duration::from_millis(100);
 
 /// The topic's messages: raw or compressed.
 enum Images {
-    Raw(Subscription<msgs::Image>),
-    Compressed(Subscription<msgs::CompressedImage>),
+    Raw(Inbox<msgs::Image>),
+    Compressed(Inbox<msgs::CompressedImage>),
 }
 
 pub struct Ros2ImageSource {
     images: Images,
     /// The camera's sensor_msgs/CameraInfo and its topic, when asked for.
-    info: Option<(Subscription<msgs::CameraInfo>, String)>,
+    info: Option<(Inbox<msgs::CameraInfo>, String)>,
     /// The calibration last handed on (a driver repeats it with every frame).
     calibration: Option<Result<Intrinsics, String>>,
     _node: Node,
@@ -63,26 +64,26 @@ impl Ros2ImageSource {
         let qos = qos_profile(config.scan_qos, false);
         let images = if topic.ends_with("/compressed") {
             let kind = "CompressedImage";
-            Images::Compressed(factory.subscription(
+            Images::Compressed(factory.inbox(
                 "camera",
                 topic,
-                "sensor_msgs",
-                kind,
+                ("sensor_msgs", kind),
                 qos.clone(),
+                Urgency::Tick,
             )?)
         } else {
-            Images::Raw(factory.subscription(
+            Images::Raw(factory.inbox(
                 "camera",
                 topic,
-                "sensor_msgs",
-                "Image",
+                ("sensor_msgs", "Image"),
                 qos.clone(),
+                Urgency::Tick,
             )?)
         };
         let info = match info_topic {
             Some(t) => {
-                let sub =
-                    factory.subscription("camera_info", t, "sensor_msgs", "CameraInfo", qos)?;
+                let info = ("sensor_msgs", "CameraInfo");
+                let sub = factory.inbox("camera_info", t, info, qos, Urgency::Tick)?;
                 let shown = if t.starts_with('/') {
                     t.to_string()
                 } else {
@@ -108,28 +109,21 @@ impl FrameSource for Ros2ImageSource {
     }
 
     fn grab(&mut self) -> Result<Option<CameraImage>, String> {
-        let give_up = Instant::now() + GRAB_WAIT;
-        loop {
-            let mut notes = Vec::new();
-            let newest = match &self.images {
-                Images::Raw(sub) => take_all(sub, "image", &mut notes).pop().map(raw),
-                Images::Compressed(sub) => (take_all(sub, "image", &mut notes).pop())
-                    .map(|m| decode_compressed(&m.format, &m.data)),
-            };
-            if newest.is_none()
-                && let Some(e) = notes.pop()
-            {
-                return Err(e.text);
-            }
-            if let Some(frame) = newest {
-                return frame.map(Some);
-            }
-            if Instant::now() >= give_up {
-                return Ok(None);
-            }
-            // Edge of the system: the subscription has no blocking take.
-            std::thread::sleep(Duration::from_millis(5));
+        let mut notes = Vec::new();
+        let newest = match &mut self.images {
+            Images::Raw(inbox) => inbox
+                .wait_all("image", GRAB_WAIT, &mut notes)
+                .pop()
+                .map(raw),
+            Images::Compressed(inbox) => (inbox.wait_all("image", GRAB_WAIT, &mut notes).pop())
+                .map(|m| decode_compressed(&m.format, &m.data)),
+        };
+        if newest.is_none()
+            && let Some(e) = notes.pop()
+        {
+            return Err(e.text);
         }
+        newest.transpose()
     }
 }
 
@@ -137,9 +131,9 @@ impl Ros2ImageSource {
     /// The newest calibration on the camera_info topic, when it differs from the last
     /// one handed on.
     fn newest_calibration(&mut self) -> Option<Result<Intrinsics, String>> {
-        let (sub, topic) = self.info.as_ref()?;
+        let (inbox, topic) = self.info.as_mut()?;
         let mut notes = Vec::new();
-        let newest = match take_all(sub, "camera_info", &mut notes).pop() {
+        let newest = match inbox.take_all("camera_info", &mut notes).pop() {
             Some(m) => super::camera_info::intrinsics(&m, topic),
             None => Err(notes.pop()?.text),
         };

@@ -21,6 +21,7 @@ pub mod graph;
 #[cfg(feature = "vision")]
 pub mod image;
 pub mod inbound;
+pub mod inbox;
 pub mod initial_pose;
 pub mod participant;
 mod presence;

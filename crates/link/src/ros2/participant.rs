@@ -4,6 +4,7 @@
 
 use super::config::{Qos, Reliability, Ros2Config};
 use super::environment::{RosEnvironment, built_distro};
+use super::inbox::{Inbox, Urgency};
 use crate::{LinkError, Notice};
 use ros2_client::{
     Context, MessageTypeName, Name, Node, NodeName, NodeOptions, Publisher, QosProfile,
@@ -145,6 +146,19 @@ impl Factory<'_> {
         self.node
             .create_subscription(&topic, Some(qos))
             .map_err(|e| fail(format!("subscribe {name}"), e))
+    }
+
+    /// A subscription read by a task on the links' runtime (`inbox`).
+    pub fn inbox<M: DeserializeOwned + Send + Sync + 'static>(
+        &mut self,
+        field: &str,
+        name: &str,
+        (package, kind): (&str, &str),
+        qos: QosProfile,
+        urgency: Urgency,
+    ) -> Result<Inbox<M>, LinkError> {
+        let subscription = self.subscription(field, name, package, kind, qos)?;
+        Inbox::read(subscription, urgency)
     }
 
     pub fn qos(&self) -> QosProfile {

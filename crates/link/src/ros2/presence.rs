@@ -3,13 +3,14 @@
 //! robot's /rosout into the log pane, and the mission's state for other nodes.
 
 use super::config::{Qos, Ros2Config};
+use super::inbox::{Inbox, Urgency};
 use super::initial_pose::{self, BadPose};
-use super::participant::{Factory, qos_profile, take_all};
+use super::participant::{Factory, qos_profile};
 use super::rviz::RvizPublishers;
 use super::{msgs, now_stamp, rosout};
 use crate::{ConsoleLine, LinkError, Notice, Picture};
 use navdeck_core::geometry::Pose2;
-use ros2_client::{Publisher, QosProfile, Subscription};
+use ros2_client::{Publisher, QosProfile};
 use std::collections::BTreeMap;
 
 /// Refused poses logged one by one in a poll; the rest are counted.
@@ -22,10 +23,10 @@ const ROSOUT_PER_POLL: usize = 50;
 
 pub(super) struct Presence {
     rviz: RvizPublishers,
-    initial_pose_sub: Subscription<msgs::PoseWithCovarianceStamped>,
-    goal_sub: Subscription<msgs::PoseStamped>,
+    initial_pose_sub: Inbox<msgs::PoseWithCovarianceStamped>,
+    goal_sub: Inbox<msgs::PoseStamped>,
     rosout_out: Option<Publisher<msgs::Log>>,
-    rosout_in: Subscription<msgs::Log>,
+    rosout_in: Inbox<msgs::Log>,
     state: Publisher<msgs::StringMsg>,
     /// navdeck's logger name ("tb3.navdeck" in namespace /tb3).
     logger: String,
@@ -45,19 +46,19 @@ impl Presence {
         let rviz = RvizPublishers::open(f, qos.clone(), latched.clone())?;
         // Reliable, volatile, keep-last 10: what RViz's pose and goal tools write.
         let tools = qos_profile(Qos::default(), false);
-        let initial_pose_sub = f.subscription(
+        let initial_pose_sub = f.inbox(
             "initial_pose_topic",
             &c.initial_pose_topic,
-            "geometry_msgs",
-            "PoseWithCovarianceStamped",
+            ("geometry_msgs", "PoseWithCovarianceStamped"),
             tools.clone(),
+            Urgency::Wake,
         )?;
-        let goal_sub = f.subscription(
+        let goal_sub = f.inbox(
             "goal_topic",
             &c.goal_topic,
-            "geometry_msgs",
-            "PoseStamped",
+            ("geometry_msgs", "PoseStamped"),
             tools,
+            Urgency::Wake,
         )?;
         let rosout_qos = rosout_qos();
         let rosout_out = match c.rosout {
@@ -70,7 +71,13 @@ impl Presence {
             )?),
             false => None,
         };
-        let rosout_in = f.subscription("rosout", "/rosout", "rcl_interfaces", "Log", rosout_qos)?;
+        let rosout_in = f.inbox(
+            "rosout",
+            "/rosout",
+            ("rcl_interfaces", "Log"),
+            rosout_qos,
+            Urgency::Tick,
+        )?;
         let state = f.publisher(
             "state_topic",
             &c.state_topic,
@@ -102,12 +109,12 @@ impl Presence {
     ) {
         let frame = &config.map_frame;
         let topic = &config.initial_pose_topic;
-        let estimates = take_all(&self.initial_pose_sub, topic, notices);
+        let estimates = self.initial_pose_sub.take_all(topic, notices);
         let (pose, refused) = initial_pose::newest(&estimates, frame, initial_pose::initial_pose);
         self.initial_pose = pose.or(self.initial_pose);
         refusals(topic, "pose estimate", &refused, notices, dropped);
         let topic = &config.goal_topic;
-        let goals = take_all(&self.goal_sub, topic, notices);
+        let goals = self.goal_sub.take_all(topic, notices);
         let (goal, refused) = initial_pose::newest(&goals, frame, initial_pose::goal_pose);
         self.goal = goal.or(self.goal);
         refusals(topic, "goal", &refused, notices, dropped);
@@ -117,7 +124,7 @@ impl Presence {
     fn take_rosout(&mut self, config: &Ros2Config, notices: &mut Vec<Notice>) {
         let lowest = config.rosout_level.lowest();
         let mut taken = 0;
-        for msg in take_all(&self.rosout_in, "/rosout", notices) {
+        for msg in self.rosout_in.take_all("/rosout", notices) {
             match rosout::wanted(&msg, &self.logger, lowest) {
                 Some(note) if taken < ROSOUT_PER_POLL => {
                     taken += 1;

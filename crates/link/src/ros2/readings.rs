@@ -3,18 +3,19 @@
 //! and laser scans. A message that fails its checks is dropped and counted.
 
 use super::inbound::{self, Refusal};
-use super::participant::{Factory, qos_profile, take_all};
+use super::inbox::{Inbox, Urgency};
+use super::participant::{Factory, qos_profile};
 use super::{Ros2Link, arm_joints, msgs};
 use crate::rate::RateMeter;
 use crate::{LinkError, Notice, WheelTravel};
 use navdeck_core::geometry::Pose2;
-use ros2_client::{QosProfile, Subscription};
+use ros2_client::QosProfile;
 
 /// The robot's topics navdeck reads, and how often odometry and scans arrive.
 pub(super) struct Inbound {
-    odom: Subscription<msgs::Odometry>,
-    joints: Subscription<msgs::JointState>,
-    scan: Subscription<msgs::LaserScan>,
+    odom: Inbox<msgs::Odometry>,
+    joints: Inbox<msgs::JointState>,
+    scan: Inbox<msgs::LaserScan>,
     pub(super) odom_rate: RateMeter,
     pub(super) scan_rate: RateMeter,
 }
@@ -23,26 +24,26 @@ impl Inbound {
     /// Subscribes to odometry, joint states and scans, in that order.
     pub(super) fn open(f: &mut Factory<'_>, qos: &QosProfile) -> Result<Self, LinkError> {
         let c = f.config;
-        let odom = f.subscription(
+        let odom = f.inbox(
             "odom_topic",
             &c.odom_topic,
-            "nav_msgs",
-            "Odometry",
+            ("nav_msgs", "Odometry"),
             qos.clone(),
+            Urgency::Tick,
         )?;
-        let joints = f.subscription(
+        let joints = f.inbox(
             "joint_states_topic",
             &c.joint_states_topic,
-            "sensor_msgs",
-            "JointState",
+            ("sensor_msgs", "JointState"),
             qos.clone(),
+            Urgency::Tick,
         )?;
-        let scan = f.subscription(
+        let scan = f.inbox(
             "scan_topic",
             &c.scan_topic,
-            "sensor_msgs",
-            "LaserScan",
+            ("sensor_msgs", "LaserScan"),
             qos_profile(c.scan_qos, false),
+            Urgency::Tick,
         )?;
         Ok(Self {
             odom,
@@ -111,7 +112,7 @@ impl Ros2Link {
     }
 
     pub(super) fn take_odometry(&mut self, now: f64) {
-        for msg in take_all(&self.inbound.odom, "odometry", &mut self.notices) {
+        for msg in self.inbound.odom.take_all("odometry", &mut self.notices) {
             let pose = match inbound::odom_pose(&msg) {
                 Ok(p) => p,
                 Err(why) => {
@@ -154,7 +155,11 @@ impl Ros2Link {
     }
 
     pub(super) fn take_joints(&mut self, now: f64) {
-        for msg in take_all(&self.inbound.joints, "joint states", &mut self.notices) {
+        for msg in self
+            .inbound
+            .joints
+            .take_all("joint states", &mut self.notices)
+        {
             if let Some(arm) = &mut self.arm
                 && let Err(why) = arm.read(&msg)
             {
@@ -197,7 +202,7 @@ impl Ros2Link {
 
     pub(super) fn take_scan(&mut self, now: f64) -> Option<crate::LaserScan> {
         let mut newest = None;
-        for msg in take_all(&self.inbound.scan, "scan", &mut self.notices) {
+        for msg in self.inbound.scan.take_all("scan", &mut self.notices) {
             self.inbound.scan_rate.note(now);
             match inbound::scan(&msg) {
                 Ok(s) => newest = Some(s),

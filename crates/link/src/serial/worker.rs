@@ -1,4 +1,4 @@
-//! The thread that owns the serial port. It reads the encoders at the configured rate, turns
+//! The blocking task that owns the serial port (on the links' runtime's blocking pool). It reads the encoders at the configured rate, turns
 //! the latest twist into motor targets, refreshes them inside the firmware's 2 s auto-stop,
 //! stops the motors when the console goes quiet, and reopens a port that went away. It is
 //! the edge: it reads the wall clock for its own timing.
@@ -169,8 +169,12 @@ impl Worker {
     }
 
     fn say(&self, message: FromWorker) {
+        // Lines for the log wake the console; the wheels' travel waits for its tick.
+        let urgent = !matches!(message, FromWorker::Travel { .. });
         // The console may be gone already; then nobody is left to tell.
-        let _ = self.tx.send(message);
+        if self.tx.send(message).is_ok() && urgent {
+            crate::tasks::wake::notify();
+        }
     }
 
     fn note(&mut self, text: String) {

@@ -80,8 +80,8 @@ fn dated_file(dir: &std::path::Path, suffix: &str, ext: &str) -> PathBuf {
 
 /// Plays a recording on the real terminal until quit, a signal or a hang-up; opens on
 /// the view as recorded (`as_recorded`) or the re-run. Returns the exit status.
-pub fn run_replay_console(
-    replay: crate::replay::Replay,
+pub fn run_replay_console<R: crate::replay::screen::played::Played>(
+    replay: R,
     speed: f64,
     as_recorded: bool,
 ) -> Result<u8> {
@@ -239,10 +239,19 @@ pub fn run_fleet_console(
     if let Some(recruiter) = recruiter {
         fleet.set_recruiter(recruiter);
     }
+    if let Some((path, session)) = &options.record {
+        let epoch = std::time::SystemTime::now()
+            .duration_since(std::time::UNIX_EPOCH)
+            .map_or(0.0, |d| d.as_secs_f64())
+            - fleet.app().now();
+        let config = fleet.app().config().record.clone();
+        fleet.record_to(path, &config, epoch, session.clone(), false)?;
+    }
     let outcome = run_on_wall_clock(&mut fleet, &signals)?;
     let labels: Vec<String> = (fleet.members().iter())
         .map(|m| format!("{} on {}", m.name, m.app.link().label()))
         .collect();
+    let recorded = fleet.finish_recording();
     // Closes every link.
     drop(fleet);
     let outcome = signalled_failure(outcome, &signals);
@@ -251,6 +260,15 @@ pub fn run_fleet_console(
         labels.join(", "),
         why_ended(&outcome)
     ));
+    match (recorded, &options.record) {
+        (Some(Ok(summary)), Some((path, _))) => tell(&format!(
+            "navdeck: fleet recorded in {} ({} bytes)",
+            path.display(),
+            summary.bytes
+        )),
+        (Some(Err(why)), _) => tell(&format!("navdeck: {why}")),
+        _ => {}
+    }
     for path in logs {
         tell(&format!("navdeck: session log in {}", path.display()));
     }

@@ -92,7 +92,7 @@ pub(crate) fn run(cli: &Cli) -> Result<ExitCode> {
 }
 
 /// How the session was started, for its recording (a replay re-runs it the same way).
-fn recording_metadata(cli: &Cli) -> std::collections::BTreeMap<String, String> {
+pub(crate) fn recording_metadata(cli: &Cli) -> std::collections::BTreeMap<String, String> {
     let mut m = std::collections::BTreeMap::new();
     let path = |p: &Option<PathBuf>| p.as_ref().map(|p| p.display().to_string());
     m.insert("seed".into(), cli.twin.seed.to_string());

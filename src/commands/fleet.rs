@@ -21,7 +21,6 @@ pub(crate) fn run(cli: &Cli, spec: &SessionSpec) -> Result<ExitCode> {
         ("--sim-camera", cli.twin.sim_camera),
         ("--camera", cli.camera.is_some()),
         ("--ros2", cli.ros2),
-        ("--record", cli.record.is_some()),
         ("--fault", !cli.twin.fault.is_empty()),
         ("--tags", cli.twin.tags.is_some()),
     ];
@@ -62,12 +61,24 @@ pub(crate) fn run(cli: &Cli, spec: &SessionSpec) -> Result<ExitCode> {
         false => listed.iter().filter_map(|e| e.namespace.clone()).collect(),
     };
     let recruiter = participant.map(|p| recruiter(spec, cli.domain, p, known, &stopwatch));
+    // One file for the whole fleet, each robot under its own namespace.
+    let folder = members
+        .first()
+        .and_then(|(_, s)| s.config.record.folder.clone());
+    let record = match (&cli.record, folder) {
+        (Some(path), _) => Some((path.clone(), super::console::recording_metadata(cli))),
+        (None, Some(dir)) if !cli.headless => Some((
+            navdeck::console::dated_recording(&dir),
+            super::console::recording_metadata(cli),
+        )),
+        _ => None,
+    };
     if !cli.headless {
         let options = ConsoleOptions {
             maps_dir: cli.maps_dir.clone(),
             log_dir: cli.log_dir.clone(),
             braille: cli.braille,
-            record: None,
+            record,
         };
         return Ok(ExitCode::from(run_fleet_console(
             members, recruiter, &options, stopwatch,
@@ -94,6 +105,16 @@ pub(crate) fn run(cli: &Cli, spec: &SessionSpec) -> Result<ExitCode> {
         .map_or(0.0, |d| d.as_secs_f64());
     // Robots on ROS 2 live on the wall clock: pace the run by it, and stop on a signal.
     let simulated = (fleet.members().iter()).all(|m| m.app.link().ground_truth().is_some());
+    if let Some((path, meta)) = &record {
+        let config = fleet.app().config().record.clone();
+        fleet.record_to(
+            path,
+            &config,
+            epoch - fleet.app().now(),
+            meta.clone(),
+            simulated,
+        )?;
+    }
     let signals = match simulated {
         true => None,
         false => Some(Signals::watch().context("cannot watch for signals")?),
@@ -106,6 +127,11 @@ pub(crate) fn run(cli: &Cli, spec: &SessionSpec) -> Result<ExitCode> {
         }
     };
     navdeck::tui::deck::Deck::shutdown(&mut fleet, "headless run ended");
+    match fleet.finish_recording() {
+        Some(Ok(summary)) => report.recording = Some(summary),
+        Some(Err(why)) => say_err!("navdeck: {why}"),
+        None => {}
+    }
     let wall = started.elapsed().as_secs_f64();
     report.wall_time_s = Some(wall);
     report.epoch_unix = signals.as_ref().map(|_| epoch);

@@ -40,6 +40,7 @@ pub(crate) mod mission;
 pub(crate) mod mission_fleet;
 pub(crate) mod plan;
 pub(crate) mod replay;
+pub(crate) mod replay_fleet;
 pub(crate) mod ros2;
 pub(crate) mod ros2_robots;
 pub(crate) mod route;

@@ -3,6 +3,7 @@
 
 use super::tour::LocalizeArgs;
 use anyhow::Result;
+use navdeck::replay::fleet::Opened;
 use navdeck::replay::{Replay, ReplayOptions};
 use navdeck::runners::headless;
 use std::io::Write;
@@ -44,13 +45,16 @@ fn parse_speed(s: &str) -> Result<f64, String> {
 }
 
 pub fn run(args: &ReplayArgs) -> Result<ExitCode> {
-    let recorded = Arc::new(navdeck::replay::load(&args.file)?);
     let choice = args.localize.choice();
     let options = ReplayOptions {
         config: args.config.clone(),
         estimator: choice.estimator,
         map: choice.map,
         initial_pose: choice.initial_pose,
+    };
+    let recorded = match navdeck::replay::fleet::open(&args.file)? {
+        Opened::One(recorded) => Arc::new(recorded),
+        Opened::Fleet(fleet) => return super::replay_fleet::run(args, Arc::new(fleet), options),
     };
     let mut replay = Replay::new(recorded, options)?;
     if !args.headless {

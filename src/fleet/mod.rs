@@ -5,6 +5,7 @@
 
 pub mod config;
 pub mod panel;
+pub mod recording;
 pub mod recruit;
 
 use crate::app::fleet_view::{FleetAsk, FleetMark};
@@ -39,6 +40,8 @@ pub struct Fleet {
     recruiter: Option<recruit::Recruiter>,
     /// Which twin works on which block.
     claims: crate::mission::claims::Claims,
+    /// The fleet's own calls, into its recording (`recording.rs`).
+    recorder: Option<crate::record::Recorder>,
 }
 
 impl Fleet {
@@ -60,6 +63,7 @@ impl Fleet {
             stops: Vec::new(),
             recruiter: None,
             claims: Default::default(),
+            recorder: None,
         };
         let names: Vec<String> = fleet.members.iter().map(|m| m.name.clone()).collect();
         let text = format!(
@@ -266,6 +270,8 @@ impl Fleet {
 
 impl Deck for Fleet {
     fn resize(&mut self, width: u16, height: u16) {
+        let now = self.app().now();
+        self.record_input(crate::msgs::record::InputMsg::resize(now, width, height));
         self.screen = (width, height);
         let rest = height.saturating_sub(self.panel_rows(height));
         for m in &mut self.members {
@@ -275,6 +281,7 @@ impl Deck for Fleet {
     }
 
     fn update(&mut self, now: f64) {
+        self.record_input(crate::msgs::record::InputMsg::update(now));
         self.tell_peers();
         for i in 0..self.members.len() {
             // Each robot steps knowing what the others claimed before it.
@@ -294,6 +301,8 @@ impl Deck for Fleet {
     }
 
     fn handle_key(&mut self, key: Key, kind: KeyKind, now: f64) {
+        let event = crate::msgs::record::InputMsg::key(now, key.to_string(), kind as u8);
+        self.record_input(event);
         self.app_mut().handle_key(key, kind, now);
         self.take_ask();
         if self.app().should_quit() {
@@ -330,10 +339,34 @@ impl Deck for Fleet {
     }
 
     fn draw(&self, frame: &mut Frame, theme: Theme) {
-        let area = frame.area();
+        self.draw_in(frame, frame.area(), theme);
+    }
+}
+
+impl Fleet {
+    /// The selected robot's console above the fleet panel, in `area` (from the top of
+    /// the frame).
+    pub fn draw_in(&self, frame: &mut Frame, area: ratatui::layout::Rect, theme: Theme) {
+        self.draw_showing(frame, area, theme, self.selected);
+    }
+
+    /// Robot `shown`'s console (a replay may show another than the selected one) above
+    /// the fleet panel, in `area` (from the top of the frame).
+    pub fn draw_showing(
+        &self,
+        frame: &mut Frame,
+        area: ratatui::layout::Rect,
+        theme: Theme,
+        shown: usize,
+    ) {
         let rows = self.panel_rows(area.height);
         let top = ratatui::layout::Rect::new(0, 0, area.width, area.height - rows);
-        crate::tui::draw::draw_in(frame, top, self.app(), theme);
+        let app = &self
+            .members
+            .get(shown)
+            .unwrap_or(&self.members[self.selected])
+            .app;
+        crate::tui::draw::draw_in(frame, top, app, theme);
         let bottom = ratatui::layout::Rect::new(0, area.height - rows, area.width, rows);
         panel::render(self, theme, bottom, frame);
     }

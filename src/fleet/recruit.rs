@@ -70,6 +70,7 @@ impl Fleet {
                 let n = self.members.len();
                 self.app_mut()
                     .note(Level::Info, format!("robot {name} joined: {n} robots"));
+                self.note_unrecorded(&name);
             }
             Err(why) => {
                 let text = format!(":robot add {ns}: {why:#}");

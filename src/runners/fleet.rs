@@ -25,6 +25,12 @@ pub struct FleetReport {
     pub epoch_unix: Option<f64>,
     pub wall_time_s: Option<f64>,
     pub realtime_factor: Option<f64>,
+    /// What the run's recording holds (`--record`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub recording: Option<crate::record::Summary>,
+    /// A replay: the robots whose streams could not be replayed whole, and why.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub broken: Option<Vec<String>>,
 }
 
 /// One robot's report in a fleet's.
@@ -133,5 +139,7 @@ pub fn fleet_report(fleet: &Fleet, keys: usize) -> FleetReport {
         epoch_unix: None,
         wall_time_s: None,
         realtime_factor: None,
+        recording: None,
+        broken: None,
     }
 }

@@ -8,7 +8,7 @@ use ratatui::text::{Line, Span};
 use ratatui::widgets::{Block, Clear, Paragraph};
 
 /// The replay's keys, as (keys, what they do).
-pub const KEYS: [(&str, &str); 11] = [
+pub const KEYS: [(&str, &str); 12] = [
     ("space", "play or pause"),
     (", .", "step one control period back / forward"),
     ("← →", "5 s back / forward"),
@@ -20,6 +20,7 @@ pub const KEYS: [(&str, &str); 11] = [
     ("r", "as recorded or re-run view"),
     ("+ - 0 b g", "zoom, fit, braille, truth (re-run)"),
     ("L T f F", "scan, trail, log filter, source"),
+    ("^N ^P", "a fleet: show the next / previous robot"),
 ];
 
 /// Draws the help centred over `size`.

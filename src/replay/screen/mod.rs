@@ -3,14 +3,14 @@
 
 pub mod bar;
 pub mod help;
+pub mod played;
 pub mod recorded;
 pub mod run;
 
 use crate::app::screen::{Area, MIN_SIZE, layout};
-use crate::replay::Replay;
 use crate::replay::playback::{Playback, View};
-use crate::tui::draw::draw_in;
 use crate::tui::theme::Theme;
+use played::Played;
 use ratatui::Frame;
 use ratatui::layout::Rect;
 use ratatui::text::{Line, Span};
@@ -24,7 +24,7 @@ fn rect((x, y, w, h): Area) -> Rect {
 }
 
 /// One frame of the replay.
-pub fn draw(frame: &mut Frame, replay: &Replay, playback: &Playback, theme: Theme) {
+pub fn draw(frame: &mut Frame, replay: &impl Played, playback: &Playback, theme: Theme) {
     let size = frame.area();
     let body = Rect::new(0, 0, size.width, size.height.saturating_sub(BAR_ROWS));
     if size.width < MIN_SIZE.0 || body.height < MIN_SIZE.1 {
@@ -38,7 +38,7 @@ pub fn draw(frame: &mut Frame, replay: &Replay, playback: &Playback, theme: Them
     }
     match playback.view {
         View::Rerun => {
-            draw_in(frame, body, replay.app(), theme);
+            replay.draw_rerun(frame, body, theme);
             // The re-run's header says it is a replay too, as the recorded view's does.
             let mut title = crate::tui::widgets::title::line(replay.app(), theme);
             title
@@ -59,7 +59,7 @@ pub fn draw(frame: &mut Frame, replay: &Replay, playback: &Playback, theme: Them
     }
 }
 
-fn draw_as_recorded(frame: &mut Frame, body: Rect, replay: &Replay, t: f64, theme: Theme) {
+fn draw_as_recorded(frame: &mut Frame, body: Rect, replay: &impl Played, t: f64, theme: Theme) {
     let parts = layout((body.width, body.height));
     let recorded = replay.recorded();
     let app = replay.app();

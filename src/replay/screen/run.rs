@@ -2,6 +2,7 @@
 //! speed; the re-run follows it; a frame is drawn at most `FPS` times a second while
 //! playing, and when something changed while paused.
 
+use super::played::Played;
 use super::{BAR_ROWS, draw};
 use crate::replay::Replay;
 use crate::replay::playback::{Asked, Playback};
@@ -19,15 +20,15 @@ pub const FPS: f64 = 30.0;
 const MAX_WAIT: f64 = 0.1;
 
 /// A recording being played: the re-run and the playback's clock and controls.
-pub struct Player {
-    pub replay: Replay,
+pub struct Player<R: Played = Replay> {
+    pub replay: R,
     pub playback: Playback,
 }
 
 /// Plays `player`'s recording until quit, a signal or closed input.
-pub fn run<B: Backend>(
+pub fn run<B: Backend, R: Played>(
     terminal: &mut Terminal<B>,
-    player: &mut Player,
+    player: &mut Player<R>,
     events: &mut dyn EventSource,
     clock: &dyn Clock,
     signal: &AtomicUsize,
@@ -88,10 +89,16 @@ pub fn run<B: Backend>(
 
 /// Keys that change only how the map is shown go to the re-run's console (zoom, pan,
 /// braille, truth, scan, trail, log filter); anything that would steer it is refused.
-fn view_key(replay: &mut Replay, key: crate::keymap::Key) {
+fn view_key(replay: &mut impl Played, key: crate::keymap::Key) {
     use crate::keymap::Action;
+    let action = (replay.app().keymap()).lookup(crate::pilot::mode::Mode::Manual, key);
+    // A fleet's replay shows another robot; the recording's selection stays.
+    match action {
+        Some(Action::NextRobot) => return replay.show_next(1),
+        Some(Action::PreviousRobot) => return replay.show_next(-1),
+        _ => {}
+    }
     let app = replay.app_mut();
-    let action = app.keymap().lookup(crate::pilot::mode::Mode::Manual, key);
     let shown = matches!(
         action,
         Some(

@@ -6,6 +6,7 @@
 //! disk stall until the hand-over queue is full, messages are dropped and counted.
 
 pub mod config;
+pub mod fleet;
 pub mod landmarks;
 
 pub mod reader;
@@ -45,7 +46,8 @@ pub enum RecordError {
     Open { path: PathBuf, why: String },
 }
 
-/// A recording in progress.
+/// A recording in progress: one robot's, or one of a fleet's streams in a file it
+/// shares with the others (`fleet.rs`).
 pub struct Recorder {
     path: PathBuf,
     sender: Option<SyncSender<Vec<Packet>>>,
@@ -53,7 +55,12 @@ pub struct Recorder {
     pending: Vec<Packet>,
     /// Session time of the last hand-over.
     handed_at: f64,
-    thread: Option<std::thread::JoinHandle<Summary>>,
+    /// The writer's thread, shared by every stream of the file: the last to close joins it.
+    writer: Arc<Mutex<SharedWriter>>,
+    /// Where this stream's topics are: each topic's channel in the file, if it has one.
+    channels: Vec<Option<usize>>,
+    /// Put before this stream's attachment and metadata names (a fleet robot's name).
+    prefix: String,
     sequences: Vec<u32>,
     /// Wall time of session time 0, nanoseconds since the Unix epoch: log times and
     /// header stamps are wall time, as a robot's own bag would have them.
@@ -65,6 +72,20 @@ pub struct Recorder {
     /// simulated time, where nothing real waits.
     waits: bool,
     /// Bytes in the file so far, counted by the writer's thread.
+    written: Arc<std::sync::atomic::AtomicU64>,
+}
+
+/// The writer's thread and how many of the file's streams are still open.
+struct SharedWriter {
+    thread: Option<std::thread::JoinHandle<Summary>>,
+    open: usize,
+}
+
+/// A file being written: what every stream of it shares.
+struct Started {
+    sender: SyncSender<Vec<Packet>>,
+    writer: Arc<Mutex<SharedWriter>>,
+    problem: Arc<Mutex<Option<String>>>,
     written: Arc<std::sync::atomic::AtomicU64>,
 }
 
@@ -95,6 +116,22 @@ impl Recorder {
     /// Starts recording to `path`, which must not exist yet (a recording is never
     /// overwritten). `epoch` is the wall time of session time 0, seconds since the epoch.
     pub fn create(path: &Path, config: &RecordConfig, epoch: f64) -> Result<Self, RecordError> {
+        let channels: Vec<writer::Channel> = (topics::TOPICS.iter())
+            .map(|(_, name, ty)| (name.to_string(), *ty))
+            .collect();
+        let started = Self::start(path, config, channels, 1)?;
+        let every = (0..topics::TOPICS.len()).map(Some).collect();
+        Ok(Self::stream(path, &started, every, String::new(), epoch))
+    }
+
+    /// Opens `path` with `channels` and starts the writer's thread, which `streams`
+    /// recorders will share.
+    fn start(
+        path: &Path,
+        config: &RecordConfig,
+        channels: Vec<writer::Channel>,
+        streams: usize,
+    ) -> Result<Started, RecordError> {
         let fail = |why: String| RecordError::Open {
             path: path.to_path_buf(),
             why,
@@ -125,28 +162,49 @@ impl Recorder {
             written: written.clone(),
             position: 0,
         };
-        let mcap = writer::open(file, &options).map_err(|e| fail(e.to_string()))?;
+        let mcap = writer::open(file, &options, &channels).map_err(|e| fail(e.to_string()))?;
         let (sender, packets) = std::sync::mpsc::sync_channel(QUEUE);
         let problem = Arc::new(Mutex::new(None));
         let shared = problem.clone();
         let thread = std::thread::Builder::new()
             .name("navdeck-record".into())
-            .spawn(move || writer::run(mcap, packets, options, shared))
+            .spawn(move || writer::run(mcap, packets, options, channels, shared))
             .map_err(|e| fail(e.to_string()))?;
-        Ok(Self {
+        Ok(Started {
+            sender,
+            writer: Arc::new(Mutex::new(SharedWriter {
+                thread: Some(thread),
+                open: streams,
+            })),
+            problem,
+            written,
+        })
+    }
+
+    /// One stream into the file `started` writes: its topics on `channels`.
+    fn stream(
+        path: &Path,
+        started: &Started,
+        channels: Vec<Option<usize>>,
+        prefix: String,
+        epoch: f64,
+    ) -> Self {
+        Self {
             path: path.to_path_buf(),
-            sender: Some(sender),
+            sender: Some(started.sender.clone()),
             pending: Vec::new(),
             handed_at: f64::NEG_INFINITY,
-            thread: Some(thread),
+            writer: started.writer.clone(),
+            channels,
+            prefix,
             sequences: vec![0; topics::TOPICS.len()],
             epoch_ns: (epoch.max(0.0) * 1e9) as u64,
             dropped: 0,
-            problem,
+            problem: started.problem.clone(),
             reported: false,
             waits: false,
-            written,
-        })
+            written: started.written.clone(),
+        }
     }
 
     pub fn path(&self) -> &Path {
@@ -240,11 +298,15 @@ impl Recorder {
         make: impl FnOnce() -> T + Send + 'static,
     ) {
         let i = topic.index();
+        // A stream without this topic (a fleet's own) records none of it.
+        let Some(channel) = self.channels.get(i).copied().flatten() else {
+            return;
+        };
         let sequence = self.sequences[i];
         self.sequences[i] = sequence.wrapping_add(1);
         let time_ns = self.time_ns(t);
         self.send(Packet::Message {
-            topic: i,
+            channel,
             sequence,
             time_ns,
             data: Box::new(move || encode(&make())),
@@ -255,7 +317,7 @@ impl Recorder {
     pub fn attach(&mut self, name: &str, media_type: &str, data: Vec<u8>) {
         let time_ns = self.time_ns(0.0);
         self.send(Packet::Attachment {
-            name: name.to_string(),
+            name: format!("{}{name}", self.prefix),
             media_type: media_type.to_string(),
             time_ns,
             data,
@@ -265,7 +327,7 @@ impl Recorder {
     /// A metadata record (how the session was started).
     pub fn metadata(&mut self, name: &str, entries: BTreeMap<String, String>) {
         self.send(Packet::Metadata {
-            name: name.to_string(),
+            name: format!("{}{name}", self.prefix),
             entries,
         });
     }
@@ -289,11 +351,33 @@ impl Recorder {
         self.close()
     }
 
+    /// Closes this stream; the file's last stream to close waits for the writer to
+    /// finish the file, and says what it holds. The others say only how far it has got.
     fn close(&mut self) -> Result<Summary, String> {
         self.hand_over();
-        self.sender = None;
-        let Some(thread) = self.thread.take() else {
+        if self.sender.take().is_none() && self.channels.is_empty() {
             return Err("already closed".into());
+        }
+        // Marks this stream closed for good (a second close finds no channels).
+        self.channels.clear();
+        let thread = match self.writer.lock() {
+            Ok(mut shared) => {
+                shared.open = shared.open.saturating_sub(1);
+                if shared.open == 0 {
+                    shared.thread.take()
+                } else {
+                    None
+                }
+            }
+            Err(_) => None,
+        };
+        let Some(thread) = thread else {
+            return Ok(Summary {
+                path: self.path.display().to_string(),
+                bytes: self.bytes_written(),
+                dropped: self.dropped,
+                ..Summary::default()
+            });
         };
         let mut summary = thread
             .join()

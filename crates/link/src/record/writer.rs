@@ -3,7 +3,6 @@
 
 use super::config::Compression;
 use super::schema::schema;
-use super::topics::TOPICS;
 use mcap::records::MessageHeader;
 use std::collections::BTreeMap;
 use std::fs::File;
@@ -19,7 +18,8 @@ pub(super) type Encoder = Box<dyn FnOnce() -> Vec<u8> + Send>;
 /// What the control loop hands the writer.
 pub(super) enum Packet {
     Message {
-        topic: usize,
+        /// The channel's index in the file's channel list (its ID less one).
+        channel: usize,
         sequence: u32,
         time_ns: u64,
         data: Encoder,
@@ -85,8 +85,17 @@ impl std::io::Seek for CountedFile {
 
 type McapWriter = mcap::Writer<BufWriter<CountedFile>>;
 
-/// Opens the MCAP file on `file` and registers every topic.
-pub(super) fn open(file: CountedFile, options: &Options) -> Result<McapWriter, mcap::McapError> {
+/// One channel of the file: its topic and ROS 2 type. Channel IDs are the index in the
+/// list plus one.
+pub(super) type Channel = (String, &'static str);
+
+/// Opens the MCAP file on `file` and registers every channel of `channels`, each type's
+/// schema once.
+pub(super) fn open(
+    file: CountedFile,
+    options: &Options,
+    channels: &[Channel],
+) -> Result<McapWriter, mcap::McapError> {
     let compression = match options.compression {
         Compression::Zstd => Some(mcap::Compression::Zstd),
         Compression::Lz4 => Some(mcap::Compression::Lz4),
@@ -100,9 +109,17 @@ pub(super) fn open(file: CountedFile, options: &Options) -> Result<McapWriter, m
         // Chunks close on time (`chunk_period`); this only bounds a burst.
         .chunk_size(Some(4 << 20));
     let mut writer = mcap::Writer::with_options(BufWriter::new(file), write_options)?;
-    for (i, (_, topic, ty)) in TOPICS.iter().enumerate() {
-        let text = schema(ty).unwrap_or_default();
-        let schema_id = writer.add_schema(ty, "ros2msg", text.as_bytes())?;
+    let mut schemas = BTreeMap::new();
+    for (i, (topic, ty)) in channels.iter().enumerate() {
+        let schema_id = match schemas.get(ty) {
+            Some(id) => *id,
+            None => {
+                let text = schema(ty).unwrap_or_default();
+                let id = writer.add_schema(ty, "ros2msg", text.as_bytes())?;
+                schemas.insert(*ty, id);
+                id
+            }
+        };
         let id = writer.add_channel(schema_id, topic, "cdr", &BTreeMap::new())?;
         debug_assert_eq!(usize::from(id), i + 1);
     }
@@ -116,9 +133,10 @@ pub(super) fn run(
     mut writer: McapWriter,
     packets: Receiver<Vec<Packet>>,
     options: Options,
+    channels: Vec<Channel>,
     problem: Arc<Mutex<Option<String>>>,
 ) -> Summary {
-    let mut counts = vec![0u64; TOPICS.len()];
+    let mut counts = vec![0u64; channels.len()];
     let mut chunk_start: Option<u64> = None;
     let mut failed = None;
     for packet in packets.iter().flatten() {
@@ -130,14 +148,16 @@ pub(super) fn run(
         }
         let result = match packet {
             Packet::Message {
-                topic,
+                channel,
                 sequence,
                 time_ns,
                 data,
             } => {
-                counts[topic] += 1;
+                if let Some(count) = counts.get_mut(channel) {
+                    *count += 1;
+                }
                 let header = MessageHeader {
-                    channel_id: (topic + 1) as u16,
+                    channel_id: (channel + 1) as u16,
                     sequence,
                     log_time: time_ns,
                     publish_time: time_ns,
@@ -199,10 +219,10 @@ pub(super) fn run(
     Summary {
         path: String::new(),
         bytes,
-        topics: TOPICS
-            .iter()
+        topics: channels
+            .into_iter()
             .zip(counts)
-            .map(|((_, name, ty), n)| (name.to_string(), ty.to_string(), n))
+            .map(|((name, ty), n)| (name, ty.to_string(), n))
             .collect(),
         dropped: 0,
     }

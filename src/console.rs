@@ -12,8 +12,10 @@ use crate::tui::signals::{Signals, signal_name};
 use crate::tui::terminal::TerminalGuard;
 use crate::tui::theme::Theme;
 use anyhow::{Context, Result};
+use std::cell::RefCell;
 use std::io::Write;
 use std::path::PathBuf;
+use std::rc::Rc;
 use std::sync::Arc;
 
 /// How long the console may take to end once the robot has been told to stop: restoring
@@ -30,6 +32,7 @@ pub fn exit_deadline() -> std::time::Duration {
 }
 
 /// What the console takes from the command line.
+#[derive(Clone)]
 pub struct ConsoleOptions {
     /// Where maps are saved; `maps` when not given.
     pub maps_dir: Option<PathBuf>,
@@ -236,7 +239,10 @@ pub fn run_fleet_console(
         fleet_members.push(crate::fleet::Member { name, app });
     }
     let mut fleet = crate::fleet::Fleet::new(fleet_members);
-    if let Some(recruiter) = recruiter {
+    let joined = Rc::new(RefCell::new(Vec::new()));
+    if let Some(mut recruiter) = recruiter {
+        let (dir, logs) = (log_dir.clone(), joined.clone());
+        recruiter.add = prepared(recruiter.add, options, stopwatch.clone(), dir, logs);
         fleet.set_recruiter(recruiter);
     }
     if let Some((path, session)) = &options.record {
@@ -254,6 +260,7 @@ pub fn run_fleet_console(
     let recorded = fleet.finish_recording();
     // Closes every link.
     drop(fleet);
+    logs.extend(joined.take());
     let outcome = signalled_failure(outcome, &signals);
     tell(&format!(
         "navdeck: robots {} stopped; {}",
@@ -273,6 +280,29 @@ pub fn run_fleet_console(
         tell(&format!("navdeck: session log in {}", path.display()));
     }
     Ok(exit_status(&outcome) as u8)
+}
+
+/// A robot that joins with `:robot add` is prepared as those the console opened with:
+/// maps folder, clocks, braille, and a log file of its own (its path kept in `logs`).
+pub fn prepared(
+    mut add: crate::fleet::recruit::Enlist,
+    options: &ConsoleOptions,
+    stopwatch: Arc<dyn Clock>,
+    log_dir: PathBuf,
+    logs: Rc<RefCell<Vec<PathBuf>>>,
+) -> crate::fleet::recruit::Enlist {
+    let options = ConsoleOptions {
+        record: None,
+        ..options.clone()
+    };
+    Box::new(move |ns: &str, now: f64| {
+        let mut member = add(ns, now)?;
+        prepare(&mut member.app, &options, stopwatch.clone());
+        let suffix = format!("-{}", member.name);
+        logs.borrow_mut()
+            .extend(log_into(&mut member.app, &log_dir, &suffix));
+        Ok(member)
+    })
 }
 
 /// Runs `deck`'s main loop on the real terminal, its session time on the wall clock from

@@ -353,6 +353,56 @@ fn a_robot_that_appears_is_offered_once_and_joins_when_added() {
 }
 
 #[test]
+fn a_robot_added_in_the_console_writes_a_log_file_of_its_own() {
+    use navdeck::console::{ConsoleOptions, prepared};
+    use navdeck::fleet::recruit::Recruiter;
+    use std::cell::RefCell;
+    use std::rc::Rc;
+    let dir = crate::common::scratch::scratch("added-log");
+    let logs = Rc::new(RefCell::new(Vec::new()));
+    let options = ConsoleOptions {
+        maps_dir: Some(dir.join("maps")),
+        log_dir: None,
+        braille: false,
+        record: None,
+    };
+    let stopwatch: std::sync::Arc<dyn navdeck::clock::Clock> =
+        std::sync::Arc::new(navdeck::tui::events::ManualClock::default());
+    let add = Box::new(|ns: &str, now: f64| {
+        let (_, session) = fleet::twins(&SessionSpec::twin(None), 1)?.remove(0);
+        Ok(Member {
+            name: ns.trim_start_matches('/').into(),
+            app: session.into_app(now),
+        })
+    });
+    let mut fleet = twins(2);
+    fleet.set_recruiter(Recruiter {
+        seen: Box::new(Vec::new),
+        add: prepared(add, &options, stopwatch, dir.clone(), logs.clone()),
+        known: Vec::new(),
+        looked_at: f64::NEG_INFINITY,
+    });
+    let mut steps = typed("robot add /tb3_9");
+    steps.extend(typed("robot tb3_9"));
+    steps.push(Step::Wait(1.0));
+    play(&mut fleet, 100, 32, steps);
+    assert_eq!(fleet.members().len(), 3);
+    let files = logs.borrow().clone();
+    assert_eq!(files.len(), 1, "{files:?}");
+    let name = files[0].file_name().unwrap().to_string_lossy().into_owned();
+    assert!(
+        name.ends_with("-tb3_9.log") && files[0].starts_with(&dir),
+        "{name}"
+    );
+    drop(fleet);
+    let text = std::fs::read_to_string(&files[0]).unwrap();
+    assert!(
+        !text.trim().is_empty(),
+        "the added robot's log file is empty"
+    );
+}
+
+#[test]
 fn two_twins_deliver_a_generated_worlds_blocks_sooner_than_one_and_touch_nothing() {
     use navdeck::sim::generate::{GenerateOptions, generate};
     let world = generate(&GenerateOptions {

@@ -1,7 +1,8 @@
 //! Recording a session as MCAP with the ROS 2 profile (`ros2msg` schemas, CDR messages),
 //! so `ros2 bag`, Foxglove and any MCAP reader open it, and `navdeck replay` plays it.
 //!
-//! The links layer: the writer runs on a thread of its own (`writer.rs`). The control
+//! The links layer: the writer runs in the links' runtime's blocking pool (`writer.rs`,
+//! `tasks`), on a thread of its own while the file is open. The control
 //! loop encodes a message (microseconds) and hands it over without waiting; should the
 //! disk stall until the hand-over queue is full, messages are dropped and counted.
 
@@ -55,7 +56,7 @@ pub struct Recorder {
     pending: Vec<Packet>,
     /// Session time of the last hand-over.
     handed_at: f64,
-    /// The writer's thread, shared by every stream of the file: the last to close joins it.
+    /// The writer's task, shared by every stream of the file: the last to close joins it.
     writer: Arc<Mutex<SharedWriter>>,
     /// Where this stream's topics are: each topic's channel in the file, if it has one.
     channels: Vec<Option<usize>>,
@@ -75,9 +76,9 @@ pub struct Recorder {
     written: Arc<std::sync::atomic::AtomicU64>,
 }
 
-/// The writer's thread and how many of the file's streams are still open.
+/// The writer's task and how many of the file's streams are still open.
 struct SharedWriter {
-    thread: Option<std::thread::JoinHandle<Summary>>,
+    thread: Option<tokio::task::JoinHandle<Summary>>,
     open: usize,
 }
 
@@ -166,10 +167,10 @@ impl Recorder {
         let (sender, packets) = std::sync::mpsc::sync_channel(QUEUE);
         let problem = Arc::new(Mutex::new(None));
         let shared = problem.clone();
-        let thread = std::thread::Builder::new()
-            .name("navdeck-record".into())
-            .spawn(move || writer::run(mcap, packets, options, channels, shared))
-            .map_err(|e| fail(e.to_string()))?;
+        let thread = crate::tasks::spawn_blocking(move || {
+            writer::run(mcap, packets, options, channels, shared)
+        })
+        .map_err(|e| fail(e.to_string()))?;
         Ok(Started {
             sender,
             writer: Arc::new(Mutex::new(SharedWriter {
@@ -379,9 +380,8 @@ impl Recorder {
                 ..Summary::default()
             });
         };
-        let mut summary = thread
-            .join()
-            .map_err(|_| "the recording's writer panicked".to_string())?;
+        let mut summary = crate::tasks::join(thread)
+            .ok_or_else(|| "the recording's writer panicked".to_string())?;
         summary.dropped = self.dropped;
         summary.path = self.path.display().to_string();
         match self.problem.lock().ok().and_then(|p| p.clone()) {

@@ -1,4 +1,4 @@
-//! The recording's own thread: it owns the file and the MCAP writer, so the control loop
+//! The recording's writer, in the links' runtime's blocking pool: it owns the file and the MCAP writer, so the control loop
 //! only ever hands it a finished message and never waits on the disk.
 
 use super::config::Compression;

@@ -112,6 +112,29 @@ fn each_robot_records_under_its_own_namespace_in_one_file() {
         per_robot[i] += 1;
     }
     assert!(per_robot.iter().all(|&n| n > 1000), "{per_robot:?}");
+    // Each robot's tf tree is its own under the twins' one map, as RViz and Foxglove
+    // need to draw the robots apart.
+    let holds = |topic: &str, text: &str| {
+        (raw.messages.iter())
+            .any(|m| &*m.topic == topic && m.data.windows(text.len()).any(|w| w == text.as_bytes()))
+    };
+    for r in ["robot1", "robot2", "robot3"] {
+        let tf = format!("/{r}/tf");
+        for frame in [format!("{r}/odom"), format!("{r}/base_link"), "map".into()] {
+            assert!(
+                holds(&tf, &format!("{frame}\0")),
+                "{tf} has no frame {frame}"
+            );
+        }
+        assert!(
+            !holds(&tf, &format!("{r}/map")),
+            "{tf}: the twins share one map"
+        );
+        assert!(
+            holds(&format!("/{r}/scan"), &format!("{r}/base_scan")),
+            "{r}'s scan frame"
+        );
+    }
     let summary = &original["recording"];
     let count = |topic: &str| {
         (summary["topics"].as_array().unwrap().iter())

@@ -43,7 +43,8 @@ impl App {
         let earlier = self.log.expanded();
         self.log.keep_fresh();
         let (robot, record) = (self.config.robot.clone(), self.config.record.clone());
-        let recording = Recording::new(recorder, robot, record, blocks, now);
+        let shared_map = self.link().ground_truth().is_some();
+        let recording = Recording::new(recorder, robot, record, (blocks, now), shared_map);
         self.runtime.record_into(recording);
         self.record_lines(earlier);
         self.pass_log();

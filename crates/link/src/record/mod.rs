@@ -314,6 +314,12 @@ impl Recorder {
         });
     }
 
+    /// What this stream's attachment and metadata names start with: a fleet robot's name
+    /// and a slash, or nothing for one robot.
+    pub fn name_prefix(&self) -> &str {
+        &self.prefix
+    }
+
     /// Attaches a file (the session's config, the twin's world).
     pub fn attach(&mut self, name: &str, media_type: &str, data: Vec<u8>) {
         let time_ns = self.time_ns(0.0);

@@ -4,6 +4,7 @@
 //! a fleet is a `Vec` of runtimes. Time comes in from the caller: nothing here reads a
 //! clock.
 
+pub mod frames;
 pub mod localising;
 mod picture;
 pub mod recording;

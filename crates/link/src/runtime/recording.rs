@@ -3,6 +3,7 @@
 //! believed (estimate, tf, odometry, mode, landmarks, plan, map). The console records its
 //! own calls and log lines beside these (`navdeck` package, `app/recording.rs`).
 
+use super::frames::Frames;
 use crate::record::Recorder;
 use crate::record::Topic;
 use crate::record::config::RecordConfig;
@@ -39,28 +40,27 @@ pub struct Recording {
     twist: (f64, f64),
     /// Session time the recording started.
     started: f64,
+    /// The frames its messages are in.
+    frames: Arc<Frames>,
 }
 
 /// A path told apart from another: its points' count, first and last point, and the
 /// sum of its coordinates.
 type PathShape = Option<(usize, Option<Point2>, Option<Point2>, f64)>;
 
-/// Frame names (REP-105).
-const MAP: &str = "map";
-const ODOM: &str = "odom";
-const BASE: &str = "base_link";
-
 impl Recording {
     /// Records into `recorder` from session time `now`; `blocks` as the truth last
-    /// recorded showed them.
+    /// recorded showed them; `shared_map`: the robot's map frame is its fleet's one world.
     pub fn new(
         recorder: Recorder,
         robot: RobotConfig,
         config: RecordConfig,
-        blocks: Vec<BlockMsg>,
-        now: f64,
+        (blocks, now): (Vec<BlockMsg>, f64),
+        shared_map: bool,
     ) -> Self {
+        let frames = Arc::new(Frames::under(recorder.name_prefix(), shared_map));
         Self {
+            frames,
             recorder,
             robot,
             config,
@@ -160,19 +160,22 @@ impl Recording {
         let stamp = r.recorder.stamp(t);
         let pose = pilot.estimated_pose();
         let cov = pilot.pose_covariance();
+        let f = r.frames.clone();
         r.recorder.publish_with(Topic::Estimate, t, move || {
-            picture::pose_with_covariance(pose, &cov, stamp, MAP)
+            picture::pose_with_covariance(pose, &cov, stamp, &f.map)
         });
         let odom = pilot.odometry_pose();
+        let f = r.frames.clone();
         r.recorder.publish_with(Topic::Tf, t, move || {
-            let mut tf = picture::transform(MAP, ODOM, picture::map_to_odom(pose, odom), stamp);
+            let to_odom = picture::map_to_odom(pose, odom);
+            let mut tf = picture::transform(&f.map, &f.odom, to_odom, stamp);
             tf.transforms
-                .extend(picture::transform(ODOM, BASE, odom, stamp).transforms);
+                .extend(picture::transform(&f.odom, &f.base, odom, stamp).transforms);
             tf
         });
-        let twist = r.twist;
+        let (twist, f) = (r.twist, r.frames.clone());
         r.recorder
-            .publish_with(Topic::Odometry, t, move || odometry(odom, twist, stamp));
+            .publish_with(Topic::Odometry, t, move || odometry(odom, twist, stamp, &f));
         let mode = pilot.mode();
         if r.mode != Some(mode) {
             r.mode = Some(mode);
@@ -188,9 +191,10 @@ impl Recording {
         if t - r.picture_at >= ramp(config.picture_period, r.picture_at) - 1e-9 {
             r.picture_at = t;
             let landmarks: Vec<_> = pilot.slam().landmarks().collect();
+            let f = r.frames.clone();
             r.recorder
                 .publish_with(Topic::Landmarks, t, move || msgs::MarkerArray {
-                    markers: crate::record::landmarks::markers(&landmarks, stamp, MAP),
+                    markers: crate::record::landmarks::markers(&landmarks, stamp, &f.map),
                 });
         }
         // The path only when it changed: told apart by its points' count, ends and the sum
@@ -205,8 +209,10 @@ impl Recording {
         if r.path != Some(shape) {
             r.path = Some(shape);
             let points: Vec<_> = points.into_iter().flatten().map(|p| p.position).collect();
-            r.recorder
-                .publish_with(Topic::Plan, t, move || picture::path(&points, stamp, MAP));
+            let f = r.frames.clone();
+            r.recorder.publish_with(Topic::Plan, t, move || {
+                picture::path(&points, stamp, &f.map)
+            });
         }
         let belief = pilot.belief();
         if r.map_revision != Some(belief.revision())
@@ -216,8 +222,9 @@ impl Recording {
             r.map_revision = Some(belief.revision());
             // Two arrays copied here; the grid is made on the writer's thread.
             let evidence = belief.evidence_snapshot();
+            let f = r.frames.clone();
             r.recorder.publish_with(Topic::Map, t, move || {
-                picture::grid(&evidence.into_grid(), stamp, MAP)
+                picture::grid(&evidence.into_grid(), stamp, &f.map)
             });
         }
     }
@@ -236,23 +243,25 @@ impl Recording {
             let v = 0.5 * (w.left + w.right) / frame.elapsed;
             let omega = (w.right - w.left) / robot.track / frame.elapsed;
             self.twist = (v, omega);
-            let (wheels, arm) = (self.wheel_angles, frame.arm);
+            let (wheels, arm, f) = (self.wheel_angles, frame.arm, self.frames.clone());
             self.recorder.publish_with(Topic::JointStates, t, move || {
-                joint_states(wheels, arm, stamp)
+                joint_states(wheels, arm, stamp, &f.base)
             });
         }
         if frame.scan.is_some() {
-            let polled = polled.clone();
+            let (polled, frames) = (polled.clone(), self.frames.clone());
             self.recorder.publish_with(Topic::Scan, t, move || {
                 let scan = polled.as_ref().as_ref().and_then(|f| f.scan.as_ref());
-                scan.map(|s| laser_scan(s, stamp)).unwrap_or_default()
+                scan.map(|s| laser_scan(s, stamp, &frames.scan))
+                    .unwrap_or_default()
             });
         }
         if frame.sightings.is_some() {
+            let frames = self.frames.clone();
             self.recorder.publish_with(Topic::Sightings, t, move || {
                 let list = polled.as_ref().as_ref().and_then(|f| f.sightings.as_ref());
                 SightingsMsg {
-                    header: Header::new(stamp, BASE),
+                    header: Header::new(stamp, &frames.base),
                     sightings: list.into_iter().flatten().map(SightingMsg::from).collect(),
                 }
             });
@@ -271,9 +280,10 @@ fn joint_states(
     wheels: [f64; 2],
     arm: Option<navdeck_core::data::ArmState>,
     stamp: msgs::Time,
+    base: &str,
 ) -> msgs::JointState {
     let mut joints = msgs::JointState {
-        header: Header::new(stamp, BASE),
+        header: Header::new(stamp, base),
         name: vec!["wheel_left_joint".into(), "wheel_right_joint".into()],
         position: wheels.to_vec(),
         ..msgs::JointState::default()
@@ -288,10 +298,14 @@ fn joint_states(
 }
 
 /// A scan as sensor_msgs/LaserScan (its angles narrowed to float32).
-fn laser_scan(scan: &navdeck_core::data::LaserScan, stamp: msgs::Time) -> msgs::LaserScan {
+fn laser_scan(
+    scan: &navdeck_core::data::LaserScan,
+    stamp: msgs::Time,
+    frame: &str,
+) -> msgs::LaserScan {
     let n = scan.ranges.len().max(1) as f64;
     msgs::LaserScan {
-        header: Header::new(stamp, "base_scan"),
+        header: Header::new(stamp, frame),
         angle_min: scan.angle_min as f32,
         angle_max: (scan.angle_min + (n - 1.0) * scan.angle_increment) as f32,
         angle_increment: scan.angle_increment as f32,
@@ -303,10 +317,10 @@ fn laser_scan(scan: &navdeck_core::data::LaserScan, stamp: msgs::Time) -> msgs::
 }
 
 /// nav_msgs/Odometry of the wheels' dead reckoning.
-fn odometry(odom: Pose2, twist: (f64, f64), stamp: msgs::Time) -> msgs::Odometry {
+fn odometry(odom: Pose2, twist: (f64, f64), stamp: msgs::Time, f: &Frames) -> msgs::Odometry {
     msgs::Odometry {
-        header: Header::new(stamp, ODOM),
-        child_frame_id: BASE.into(),
+        header: Header::new(stamp, &f.odom),
+        child_frame_id: f.base.clone(),
         pose: msgs::PoseWithCovariance {
             pose: picture::pose(odom),
             ..msgs::PoseWithCovariance::default()

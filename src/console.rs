@@ -180,26 +180,50 @@ fn open_log_file(dir: &std::path::Path, suffix: &str) -> std::io::Result<(PathBu
     Ok((path, file))
 }
 
+/// A ROS 2 console that grows into a fleet when a robot joins with `:robot add`: its
+/// robot's name, and what watches the domain for others.
+pub type Growth = (String, crate::fleet::recruit::Recruiter);
+
 /// Runs the console on the real terminal until quit, a signal, a hang-up or a terminal
 /// error; the robot stopped and the link closed in every case. Returns the exit status.
+/// With `growth`, robots that appear are offered and join as a fleet's do.
 pub fn run_console(
     session: Session,
     options: &ConsoleOptions,
     stopwatch: Arc<dyn Clock>,
+    growth: Option<Growth>,
 ) -> Result<u8> {
     let signals = Signals::watch().context("cannot watch signals")?;
     let mut app = session.into_app(0.0);
-    prepare(&mut app, options, stopwatch);
+    prepare(&mut app, options, stopwatch.clone());
     if let Some((path, session)) = &options.record {
         start_recording(&mut app, path, session.clone(), false)?;
     }
     let log_dir = (options.log_dir.clone()).unwrap_or_else(|| PathBuf::from("logs"));
-    let log_file = log_into(&mut app, &log_dir, "");
-    let outcome = run_on_wall_clock(&mut app, &signals)?;
-    let label = app.link().label();
+    let mut log_files: Vec<PathBuf> = log_into(&mut app, &log_dir, "").into_iter().collect();
+    let (outcome, mut app, joined) = match growth {
+        None => (run_on_wall_clock(&mut app, &signals)?, app, Vec::new()),
+        Some((name, mut recruiter)) => {
+            let logs = Rc::new(RefCell::new(Vec::new()));
+            let (dir, kept) = (log_dir.clone(), logs.clone());
+            recruiter.add = prepared(recruiter.add, options, stopwatch, dir, kept);
+            let mut fleet = crate::fleet::Fleet::new(vec![crate::fleet::Member { name, app }]);
+            fleet.set_recruiter(recruiter);
+            let outcome = run_on_wall_clock(&mut fleet, &signals)?;
+            let mut members = fleet.into_members();
+            log_files.extend(logs.take());
+            let first = members.remove(0).app;
+            (outcome, first, members)
+        }
+    };
+    let mut label = app.link().label();
+    for m in &joined {
+        label += &format!(", {} on {}", m.name, m.app.link().label());
+    }
     let recorded = app.finish_recording();
-    // Closes the link: the serial port, the DDS participant.
+    // Closes the links: the serial port, the DDS participant.
     drop(app);
+    drop(joined);
     let outcome = signalled_failure(outcome, &signals);
     tell(&format!(
         "navdeck: robot on {label} stopped; {}",
@@ -214,7 +238,7 @@ pub fn run_console(
         (Some(Err(why)), _) => tell(&format!("navdeck: {why}")),
         _ => {}
     }
-    if let Some(path) = log_file {
+    for path in log_files {
         tell(&format!("navdeck: session log in {}", path.display()));
     }
     Ok(exit_status(&outcome) as u8)
@@ -298,7 +322,12 @@ pub fn prepared(
     Box::new(move |ns: &str, now: f64| {
         let mut member = add(ns, now)?;
         prepare(&mut member.app, &options, stopwatch.clone());
-        let suffix = format!("-{}", member.name);
+        // A file name: the root namespace's robot ("/") is "root", a nested one's
+        // slashes become underscores.
+        let suffix = match member.name.trim_matches('/') {
+            "" => "-root".to_string(),
+            name => format!("-{}", name.replace('/', "_")),
+        };
         logs.borrow_mut()
             .extend(log_into(&mut member.app, &log_dir, &suffix));
         Ok(member)

@@ -114,6 +114,7 @@ mod record_console;
 mod record_python;
 mod record_replay;
 mod replay_screen;
+mod ros2_grow;
 mod ros2_link;
 mod ros2_topics;
 mod route_cli;

@@ -52,11 +52,32 @@ pub(crate) fn run(cli: &Cli) -> Result<ExitCode> {
     {
         return super::fleet::run(cli, &spec);
     }
-    // Everything is loaded and validated before the terminal is touched.
-    let mut session = Session::load_with_tags(&spec, cli.twin.tags.as_deref())?;
-    session.inject_faults(&cli.twin.fault, spec.seed)?;
     // One monotonic clock times planning and camera detection alike.
     let stopwatch: std::sync::Arc<dyn Clock> = std::sync::Arc::new(WallClock::start());
+    // A ROS 2 robot's console joins on a participant that also watches the domain, so
+    // that robots appearing on it are offered and can join as a fleet's.
+    let grows = matches!(spec.link, LinkChoice::Ros2(_)) && !cli.headless;
+    let participant = match grows && cli.twin.tags.is_none() {
+        true => Some(navdeck::session::fleet::shared_participant(
+            &spec, cli.domain,
+        )?),
+        false => None,
+    };
+    // Everything is loaded and validated before the terminal is touched.
+    let mut session = match &participant {
+        Some(p) => Session::load_on(&spec, p)?,
+        None => Session::load_with_tags(&spec, cli.twin.tags.as_deref())?,
+    };
+    session.inject_faults(&cli.twin.fault, spec.seed)?;
+    let growth = participant.map(|p| {
+        let ns = cli.ns.first().cloned().unwrap_or_else(|| "/".into());
+        let name = match ns.trim_matches('/') {
+            "" => "robot1".to_string(),
+            trimmed => trimmed.to_string(),
+        };
+        let recruiter = super::fleet::recruiter(&spec, cli.domain, p, vec![ns], &stopwatch);
+        (name, recruiter)
+    });
     if cli.twin.sim_camera {
         session.use_sim_camera(Some(stopwatch.clone()), CameraFrames::Whole)?;
     }
@@ -88,7 +109,9 @@ pub(crate) fn run(cli: &Cli) -> Result<ExitCode> {
         braille: cli.braille,
         record,
     };
-    Ok(ExitCode::from(run_console(session, &options, stopwatch)?))
+    Ok(ExitCode::from(run_console(
+        session, &options, stopwatch, growth,
+    )?))
 }
 
 /// How the session was started, for its recording (a replay re-runs it the same way).

@@ -157,7 +157,7 @@ pub(crate) fn run(cli: &Cli, spec: &SessionSpec) -> Result<ExitCode> {
 
 /// Watches `participant`'s domain for robots not in the fleet (`known`), and opens a
 /// console on the one `:robot add NS` names.
-fn recruiter(
+pub(crate) fn recruiter(
     spec: &SessionSpec,
     domain: Option<u16>,
     participant: navdeck::link::ros2::Participant,

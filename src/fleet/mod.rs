@@ -71,11 +71,16 @@ impl Fleet {
             names.len(),
             names.join(", ")
         );
-        for m in &mut fleet.members {
+        for m in (fleet.members.iter_mut()).filter(|_| names.len() > 1) {
             m.app.note(Level::Info, text.clone());
         }
         fleet.mark_others();
         fleet
+    }
+
+    /// The fleet's robots, the first first, for the end of a session.
+    pub fn into_members(self) -> Vec<Member> {
+        self.members
     }
 
     /// A fleet of the consoles on `sessions`, each starting at session time `now`.
@@ -367,6 +372,9 @@ impl Fleet {
             .unwrap_or(&self.members[self.selected])
             .app;
         crate::tui::draw::draw_in(frame, top, app, theme);
+        if rows == 0 {
+            return;
+        }
         let bottom = ratatui::layout::Rect::new(0, area.height - rows, area.width, rows);
         panel::render(self, theme, bottom, frame);
     }

@@ -14,6 +14,10 @@ use ratatui::widgets::{Block, Paragraph};
 /// Rows the panel takes for `robots` robots on a `height`-row terminal: one per robot and
 /// its border, at most a third of the screen (the list scrolls to keep the selected one).
 pub fn rows_for(robots: usize, height: u16) -> u16 {
+    // One robot (a ROS 2 console that may grow into a fleet) needs no panel.
+    if robots < 2 {
+        return 0;
+    }
     let wanted = u16::try_from(robots).unwrap_or(u16::MAX).saturating_add(2);
     wanted.min((height / 3).max(3)).min(height)
 }

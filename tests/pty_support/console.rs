@@ -118,7 +118,7 @@ impl Console {
     }
 
     /// Takes what the console wrote so far; answers its terminal queries.
-    fn collect(&mut self, wait: Duration) {
+    pub fn collect(&mut self, wait: Duration) {
         if let Ok(chunk) = self.output.recv_timeout(wait) {
             self.seen.extend_from_slice(&chunk);
         }

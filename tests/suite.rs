@@ -84,6 +84,7 @@ mod dead_terminal;
 mod degradation;
 mod faults;
 mod fleet;
+mod fleet_explore;
 mod fleet_record;
 mod generated_sweep;
 mod gripper;

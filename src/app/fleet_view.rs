@@ -66,6 +66,12 @@ impl App {
         self.runtime.pilot_mut().share_work(taken, elsewhere);
     }
 
+    /// The exploration goals the fleet's other robots claim, what they explored and where
+    /// they stand, for this robot's mission.
+    pub fn share_exploration(&mut self, share: crate::mission::shared::FleetShare) {
+        self.runtime.pilot_mut().share_exploration(share);
+    }
+
     pub fn fleet_marks(&self) -> &[FleetMark] {
         &self.fleet.marks
     }

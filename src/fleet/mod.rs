@@ -7,6 +7,7 @@ pub mod config;
 pub mod panel;
 pub mod recording;
 pub mod recruit;
+mod share;
 
 use crate::app::fleet_view::{FleetAsk, FleetMark};
 use crate::app::log::Level;
@@ -40,6 +41,8 @@ pub struct Fleet {
     recruiter: Option<recruit::Recruiter>,
     /// Which twin works on which block.
     claims: crate::mission::claims::Claims,
+    /// Which twin explores which ground.
+    frontiers: crate::mission::frontier_claims::FrontierClaims,
     /// The fleet's own calls, into its recording (`recording.rs`).
     recorder: Option<crate::record::Recorder>,
 }
@@ -63,6 +66,7 @@ impl Fleet {
             stops: Vec::new(),
             recruiter: None,
             claims: Default::default(),
+            frontiers: Default::default(),
             recorder: None,
         };
         let names: Vec<String> = fleet.members.iter().map(|m| m.name.clone()).collect();
@@ -246,27 +250,6 @@ impl Fleet {
         }
     }
 
-    /// Tells twin `i`'s mission the blocks the fleet's other twins claim and those they
-    /// delivered; its own claim is settled first come, first served.
-    fn share_work(&mut self, i: usize) {
-        if self.members[i].app.link().ground_truth().is_none() {
-            return;
-        }
-        let twins: Vec<bool> = (self.members.iter())
-            .map(|m| m.app.link().ground_truth().is_some())
-            .collect();
-        let wants: Vec<Option<u32>> = (self.members.iter().zip(&twins))
-            .map(|(m, &twin)| m.app.pilot().fleet_claim().filter(|_| twin))
-            .collect();
-        self.claims.settle(&wants);
-        let taken = self.claims.taken_for(i);
-        let elsewhere: Vec<u32> = (self.members.iter().enumerate())
-            .filter(|(k, _)| *k != i && twins[*k])
-            .flat_map(|(_, m)| m.app.pilot().delivered_ids())
-            .collect();
-        self.members[i].app.share_work(taken, &elsewhere);
-    }
-
     /// Rows the fleet panel takes at the bottom of a `height`-row terminal.
     fn panel_rows(&self, height: u16) -> u16 {
         panel::rows_for(self.members.len(), height)
@@ -288,9 +271,11 @@ impl Deck for Fleet {
     fn update(&mut self, now: f64) {
         self.record_input(crate::msgs::record::InputMsg::update(now));
         self.tell_peers();
+        let explored = self.explored_layers();
         for i in 0..self.members.len() {
             // Each robot steps knowing what the others claimed before it.
             self.share_work(i);
+            self.share_exploration(i, &explored);
             self.members[i].app.update(now);
         }
         if let Some(m) = self.members.iter().find(|m| m.app.should_quit()) {

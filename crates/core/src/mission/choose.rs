@@ -7,6 +7,7 @@ use super::config::{
 };
 use super::drive::{Turn, towards};
 use super::explored::Unexplained;
+use super::fleet_explored::{mapped_by, seen_by};
 use super::leg::Leg;
 use super::machine::Mission;
 use super::objects::Block;
@@ -20,6 +21,7 @@ use crate::geometry::Point2;
 impl Mission {
     pub(super) fn choose(&mut self, inputs: &Inputs, log: &mut Vec<(Level, String)>) {
         self.explored.candidates.clear();
+        self.shared.claimed_out = false;
         let robot = inputs.pose.position();
         let total = self.config.total_blocks as usize;
         if total > 0 && self.objects.delivered() >= total {
@@ -55,6 +57,8 @@ impl Mission {
             .explore_target(self.config.target_rule, inputs, &reach)
             .or_else(|| self.unseen_target(inputs, &reach));
         if let Some((goal, target, label)) = found {
+            (self.shared.waiting, self.shared.boxed_since) = (false, None);
+            self.shared.home_reached = false;
             self.phase = Phase::Explore {
                 leg: Leg::replaceable(goal, label),
                 target,
@@ -65,7 +69,7 @@ impl Mission {
         let potential = self
             .objects
             .blocks()
-            .filter(|b| !b.confirmed && !b.delivered && !self.taken.contains(&b.markers[0]))
+            .filter(|b| !b.confirmed && !b.delivered && !self.shared.blocks.contains(&b.markers[0]))
             .filter(|b| self.looks_at(b.markers[0]) < POTENTIAL_LOOKS)
             .min_by(|a, b| {
                 let (da, db) = (a.position.distance(robot), b.position.distance(robot));
@@ -100,6 +104,10 @@ impl Mission {
             };
             return;
         }
+        // In a fleet, what is left to explore may all lie in ground another robot claims.
+        if self.wait_for_claims(inputs, log) {
+            return;
+        }
         // Seed 001 "Path Planning Failure": turn a little and try again. navdeck turns once
         // for every target given up, then tries them all again, a few rounds at most.
         if !self.given_up.goals.is_empty() && self.given_up.retry_rounds < GIVE_UP_ROUNDS {
@@ -128,6 +136,10 @@ impl Mission {
                 "Nothing left to explore and the arm does not answer - waiting for it".into(),
             ));
             self.phase = Phase::WaitArm;
+            return;
+        }
+        // In a fleet, another robot may be what keeps the rest out of reach.
+        if self.wait_for_the_boxed_in(inputs, &reach, log) || self.go_home(inputs, log) {
             return;
         }
         log.push((Level::Info, "Exploration complete".into()));
@@ -167,7 +179,7 @@ impl Mission {
             .filter(|b| b.confirmed && !b.delivered && self.held != Some(b.markers[0]))
             .filter(|b| self.objects.gate_for(b.colour).is_some())
             .filter(|b| !self.demoted.contains_key(&b.markers[0]))
-            .filter(|b| !self.taken.contains(&b.markers[0]))
+            .filter(|b| !self.shared.blocks.contains(&b.markers[0]))
             .filter(|b| self.attempts.get(&b.markers[0]).copied().unwrap_or(0) < MAX_BLOCK_ATTEMPTS)
             .min_by(|a, b| {
                 let (da, db) = (a.position.distance(robot), b.position.distance(robot));
@@ -185,8 +197,11 @@ impl Mission {
         let robot = inputs.pose.position();
         match rule {
             TargetRule::Frontiers => {
-                let found: Vec<Point2> = frontiers(inputs.map, reach, FRONTIER_MIN_CELLS)
-                    .into_iter()
+                let others = self.explored_elsewhere();
+                let mapped_elsewhere = |p| mapped_by(&others, p);
+                let found: Vec<Point2> =
+                    (frontiers(inputs.map, reach, FRONTIER_MIN_CELLS, mapped_elsewhere)
+                        .into_iter())
                     .map(|f| f.target)
                     .filter(|p| p.distance(robot) >= TARGET_TOO_CLOSE)
                     .filter(|p| {
@@ -196,6 +211,7 @@ impl Mission {
                     })
                     .collect();
                 self.explored.candidates.extend(&found);
+                let found = self.shared.unclaimed(found);
                 (found.into_iter())
                     .min_by(|a, b| a.distance(robot).total_cmp(&b.distance(robot)))
                     .map(|p| {
@@ -230,17 +246,17 @@ impl Mission {
             .chain(&self.given_up.goals)
             .copied()
             .collect();
+        let others = self.explored_elsewhere();
         let unseen = self.explored.coverage.unseen(
             inputs.map,
             reach,
             UNSEEN_MIN_CELLS,
-            &tried,
-            TARGET_TOO_CLOSE,
+            (&tried, TARGET_TOO_CLOSE),
+            |p| seen_by(&others, p),
         );
-        self.explored
-            .candidates
-            .extend(unseen.iter().map(|u| u.target));
-        (unseen.into_iter().map(|u| u.target))
+        let unseen: Vec<Point2> = unseen.into_iter().map(|u| u.target).collect();
+        self.explored.candidates.extend(&unseen);
+        (self.shared.unclaimed(unseen).into_iter())
             .min_by(|a, b| a.distance(robot).total_cmp(&b.distance(robot)))
             .map(|p| {
                 let label = format!("unseen space ({:.2}, {:.2})", p.x, p.y);
@@ -253,8 +269,10 @@ impl Mission {
     /// looked at from four sides, the first from the robot's side.
     fn object_look(&mut self, inputs: &Inputs) -> Option<(Point2, usize)> {
         let robot = inputs.pose.position();
+        // A fleet's other robots are small objects to the lidar too.
         let explainers: Vec<Point2> = (inputs.landmarks.values().copied())
             .chain(self.objects.blocks().map(|b| b.position))
+            .chain(self.shared.fleet.peers.iter().copied())
             .collect();
         let present = small_objects(inputs.map, inputs.occupied, self.config.object_size);
         let mut open = Vec::new();
@@ -309,6 +327,7 @@ impl Mission {
             // A side that cannot be reached counts as a look: the next side is tried.
             Target::Potential(odd) => *self.explored.potential_looks.entry(odd).or_default() += 1,
             Target::Object(i) => self.explored.unexplained[i].looks += 1,
+            Target::Home => self.shared.home_reached = true,
         }
     }
 
@@ -321,6 +340,7 @@ impl Mission {
             Target::Marker(id) => self.explored.visited_markers.push(id),
             Target::Potential(odd) => *self.explored.potential_looks.entry(odd).or_default() += 1,
             Target::Object(i) => self.explored.unexplained[i].looks += 1,
+            Target::Home => self.shared.home_reached = true,
             Target::Frontier | Target::Unseen => {}
         }
     }

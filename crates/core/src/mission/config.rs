@@ -43,6 +43,9 @@ pub const POTENTIAL_VIEW: f64 = 1.5;
 /// Targets closer to the robot than this are ignored, metres (seed 001
 /// `get_furthest_marker`, < 0.3 m).
 pub const TARGET_TOO_CLOSE: f64 = 0.3;
+/// How far a robot of a fleet turns while what is left to explore is another robot's
+/// before it chooses again, radians (navdeck's: a quarter turn looks round meanwhile).
+pub const WAIT_TURN: f64 = std::f64::consts::FRAC_PI_2;
 /// Seed 001 section 8: backing off after a drop, m/s.
 pub const BACK_OFF_SPEED: f64 = 0.1;
 /// Progress along the path that counts as not stuck, metres.

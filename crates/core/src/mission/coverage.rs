@@ -62,14 +62,15 @@ impl Coverage {
     /// yet seen that the robot can reach (`reach`, from `targets::reachable` on the same
     /// map), each with the
     /// reachable cell nearest its centroid as the place to go and look, leaving out cells
-    /// within `keep_off` of an `avoid` point (places already tried).
+    /// within `keep_off` of an `avoid` point (places already tried). A cell that
+    /// `seen_elsewhere` says was looked at (by another robot of a fleet) counts as seen.
     pub fn unseen(
         &self,
         map: &Costmap,
         reach: &[bool],
         min_cells: usize,
-        avoid: &[Point2],
-        keep_off: f64,
+        (avoid, keep_off): (&[Point2], f64),
+        seen_elsewhere: impl Fn(Point2) -> bool,
     ) -> Vec<Unseen> {
         if self.seen.is_empty() {
             return Vec::new();
@@ -79,7 +80,9 @@ impl Coverage {
             map.cell_of(self.center(x, y))
                 .is_some_and(|(mx, my)| reach[map.index(mx, my)] && map.get(mx, my) < INFLATED)
         };
-        let open = |x: usize, y: usize| !self.seen[y * w + x] && reachable(x, y);
+        let open = |x: usize, y: usize| {
+            !self.seen[y * w + x] && reachable(x, y) && !seen_elsewhere(self.center(x, y))
+        };
         let allowed = |&(x, y): &(usize, usize)| {
             let c = self.center(x, y);
             avoid.iter().all(|a| a.distance(c) >= keep_off)
@@ -190,7 +193,7 @@ mod tests {
                 60f64.to_radians(),
             );
         }
-        let left = seen.unseen(&map, &reach, 4, &[], 0.0);
+        let left = seen.unseen(&map, &reach, 4, (&[], 0.0), |_| false);
         assert!(!left.is_empty());
         assert!(
             left.iter()
@@ -204,7 +207,10 @@ mod tests {
                 seen.look(&map, Pose2::new(x, y, heading), 1.5, 60f64.to_radians());
             }
         }
-        assert!(seen.unseen(&map, &reach, 4, &[], 0.0).is_empty());
+        assert!(
+            seen.unseen(&map, &reach, 4, (&[], 0.0), |_| false)
+                .is_empty()
+        );
     }
 
     #[test]
@@ -216,6 +222,9 @@ mod tests {
             s.look(&map, Pose2::new(0.5, 0.5, 0.0), 0.2, 1.0);
             s
         };
-        assert!(seen.unseen(&map, &nowhere, 1, &[], 0.0).is_empty());
+        assert!(
+            seen.unseen(&map, &nowhere, 1, (&[], 0.0), |_| false)
+                .is_empty()
+        );
     }
 }

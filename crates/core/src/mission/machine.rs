@@ -49,8 +49,8 @@ pub struct Mission {
     pub(super) relocated: bool,
     /// The arm that picks and places blocks, when the robot has one.
     pub(super) arm: Option<ArmMoves>,
-    /// Blocks a fleet's other robots claim (`shared.rs`): never chosen here.
-    pub(super) taken: std::collections::BTreeSet<u32>,
+    /// What a fleet's other robots claim and explored (`shared.rs`).
+    pub(super) shared: super::shared::Shared,
 }
 
 pub(super) enum Tick {
@@ -76,7 +76,7 @@ impl Mission {
             timeline: Vec::new(),
             held: None,
             delivered_markers: Vec::new(),
-            taken: std::collections::BTreeSet::new(),
+            shared: Default::default(),
             drop_slots: BTreeMap::new(),
             relocated: false,
             arm: None,
@@ -98,6 +98,7 @@ impl Mission {
             self.last_marker = inputs.t;
         }
         self.note_found(inputs, &mut log);
+        self.shared.home.get_or_insert(inputs.pose.position());
         let fov = self.config.view_fov_deg.to_radians();
         (self.explored.coverage).look(inputs.map, inputs.pose, self.config.view_range, fov);
         let mut out = Outputs::new(Motion::Stop);

@@ -17,6 +17,8 @@ pub(super) enum Target {
     Potential(u32),
     /// An unexplained small object (index into `Mission::unexplained`).
     Object(usize),
+    /// Back where the mission started, out of a fleet's way, once it has nothing left.
+    Home,
 }
 
 #[derive(Clone, Debug)]

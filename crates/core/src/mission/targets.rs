@@ -90,8 +90,14 @@ pub fn reachable(map: &Costmap, from: Point2) -> Vec<bool> {
 /// Frontier clusters of at least `min_cells` cells among those `reach` marks (from
 /// `reachable`): known cells below the 0.7 ring that touch an unknown cell, grouped
 /// 8-connected. A frontier beyond a wall, or one only unknown space leads to, is no place
-/// to go.
-pub fn frontiers(map: &Costmap, reach: &[bool], min_cells: usize) -> Vec<Frontier> {
+/// to go. An unknown cell that `known_elsewhere` says is known (another robot of a
+/// fleet mapped it) makes no frontier.
+pub fn frontiers(
+    map: &Costmap,
+    reach: &[bool],
+    min_cells: usize,
+    known_elsewhere: impl Fn(Point2) -> bool,
+) -> Vec<Frontier> {
     let (w, h) = (map.width, map.height);
     let passable = |c: u8| c < INFLATED;
     let is_frontier = |x: usize, y: usize| {
@@ -99,7 +105,9 @@ pub fn frontiers(map: &Costmap, reach: &[bool], min_cells: usize) -> Vec<Frontie
         if c == NO_INFORMATION || !passable(c) || !reach[y * w + x] {
             return false;
         }
-        let unknown = |nx: usize, ny: usize| map.get(nx, ny) == NO_INFORMATION;
+        let unknown = |nx: usize, ny: usize| {
+            map.get(nx, ny) == NO_INFORMATION && !known_elsewhere(map.center_of(nx, ny))
+        };
         (x > 0 && unknown(x - 1, y))
             || (x + 1 < w && unknown(x + 1, y))
             || (y > 0 && unknown(x, y - 1))
@@ -149,12 +157,12 @@ mod tests {
         }
         map.set(7, 0, LETHAL);
         let robot = Point2::new(0.25, 0.55);
-        let found = frontiers(&map, &reachable(&map, robot), 3);
+        let found = frontiers(&map, &reachable(&map, robot), 3, |_| false);
         assert_eq!(found.len(), 1, "{found:?}");
         assert_eq!(found[0].cells, 9, "the lethal cell is no frontier");
         assert!((found[0].target.x - 0.75).abs() < 1e-9);
         assert!(
-            frontiers(&map, &reachable(&map, robot), 10).is_empty(),
+            frontiers(&map, &reachable(&map, robot), 10, |_| false).is_empty(),
             "too small a cluster"
         );
     }
@@ -181,7 +189,7 @@ mod tests {
         let map = walled_room();
         let inside = Point2::new(1.45, 1.45);
         assert!(
-            frontiers(&map, &reachable(&map, inside), 3).is_empty(),
+            frontiers(&map, &reachable(&map, inside), 3, |_| false).is_empty(),
             "the room is closed"
         );
         let reach = reachable(&map, inside);
@@ -198,7 +206,7 @@ mod tests {
             map.set(25, y, FREE);
         }
         let inside = Point2::new(1.45, 1.45);
-        let found = frontiers(&map, &reachable(&map, inside), 3);
+        let found = frontiers(&map, &reachable(&map, inside), 3, |_| false);
         assert!(!found.is_empty());
         assert!(found.iter().all(|f| f.target.x > 2.5), "{found:?}");
     }

@@ -18,6 +18,7 @@ impl Mission {
             Phase::Explore { leg, target } => {
                 let what = match target {
                     Target::Potential(_) | Target::Object(_) => "look at",
+                    Target::Home => "back to",
                     _ => "explore",
                 };
                 match leg.retrying() {
@@ -92,6 +93,7 @@ impl Mission {
                     "lidar sees it, no marker; look {}/{OBJECT_LOOKS}",
                     self.explored.unexplained.get(*i).map_or(0, |u| u.looks) + 1
                 ),
+                Target::Home => "nothing left: out of the other robots' way".into(),
             },
             Phase::Lost(..) if self.config.lost_position_std > 0.0 => {
                 format!(

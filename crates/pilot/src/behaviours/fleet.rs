@@ -7,6 +7,8 @@ use crate::Pilot;
 use navdeck_core::control::fleet_yield::{Peer, Right, YieldRule, judge, narrow_at};
 use navdeck_core::geometry::{Point2, Twist};
 use navdeck_core::map::costmap::is_lethal;
+use navdeck_core::mission::fleet_explored::ExploredLayer;
+use navdeck_core::mission::shared::FleetShare;
 
 /// Cells within this of a robot's centre are that robot, not a wall, metres (a
 /// TurtleBot3's 0.105 m half-width and a cell).
@@ -87,6 +89,33 @@ impl Pilot {
     pub fn share_work(&mut self, taken: std::collections::BTreeSet<u32>, elsewhere: &[u32]) {
         if let Some(m) = self.exploring.mission.as_mut() {
             m.share(taken, elsewhere);
+        }
+    }
+}
+
+impl Pilot {
+    /// The exploration goal this robot's mission drives to, for the fleet's frontier
+    /// claims: none unless it is exploring, so a robot that stops or leaves exploration
+    /// lets its claim go.
+    pub fn fleet_frontier(&self) -> Option<Point2> {
+        if self.mode() != crate::mode::Mode::Exploration {
+            return None;
+        }
+        self.exploring.mission.as_ref()?.frontier_claim()
+    }
+
+    /// What this robot has explored (its map's mapped cells, what its camera looked at),
+    /// for the fleet's other robots; none before its mission started.
+    pub fn explored_layer(&self) -> Option<ExploredLayer> {
+        let mission = self.exploring.mission.as_ref()?;
+        Some(mission.explored_layer(self.belief.costmap()))
+    }
+
+    /// The exploration goals the fleet's other robots claim, what they explored and where
+    /// they stand, for this robot's mission (`Mission::share_exploration`).
+    pub fn share_exploration(&mut self, share: FleetShare) {
+        if let Some(m) = self.exploring.mission.as_mut() {
+            m.share_exploration(share);
         }
     }
 }

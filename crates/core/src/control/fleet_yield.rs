@@ -4,8 +4,10 @@
 //! doorway (a passage narrower than `doorway`) goes first, so that it clears it; between
 //! two robots equally placed, the lower number goes. A robot standing still is an
 //! obstacle like any other, left to the collision monitor and the planner, except that
-//! no robot moves towards another closer than `keep_clear`, however slowly: there the
-//! monitor's zones no longer tell a robot from the one it touches.
+//! no robot moves towards another closer than `keep_clear`, however slowly (there the
+//! monitor's zones no longer tell a robot from the one it touches); and while two close
+//! on each other, the one that owes the way holds once nearer than `keep_clear` plus the
+//! ground they cover before they can stop.
 
 use crate::geometry::{Point2, Pose2, wrap_angle};
 
@@ -33,13 +35,43 @@ pub struct YieldRule {
     pub standing: f64,
     /// Nearer than this (centre to centre), metres, a robot moves towards no other.
     pub keep_clear: f64,
+    /// How long a robot takes to act on where another is, seconds: the peer's pose is a
+    /// control period old and a hold takes effect at the next.
+    pub reaction: f64,
+    /// How hard a robot brakes, m/s² (`[robot] max_linear_accel`).
+    pub braking: f64,
+}
+
+impl YieldRule {
+    /// The rule for robots that act every `control_period` and brake at `braking`.
+    pub fn for_robot(control_period: f64, braking: f64) -> Self {
+        Self {
+            reaction: 2.0 * control_period,
+            braking,
+            ..Self::default()
+        }
+    }
+
+    /// How near robot `me`, moving at `linear`, may come to `p` (centre to centre): at
+    /// the speed v at which the two close, `keep_clear` plus v·t + v²/2a, the distance
+    /// covered in the reaction time t and then braking at a (uniform deceleration).
+    pub fn clearance(&self, me: Pose2, linear: f64, p: &Peer) -> f64 {
+        let (dx, dy) = (p.pose.x - me.x, p.pose.y - me.y);
+        let gap = dx.hypot(dy).max(1e-9);
+        let (ux, uy) = (dx / gap, dy / gap);
+        let mine = linear * (me.theta.cos() * ux + me.theta.sin() * uy);
+        let theirs = -p.linear * (p.pose.theta.cos() * ux + p.pose.theta.sin() * uy);
+        let v = (mine + theirs).max(0.0);
+        self.keep_clear + v * self.reaction + v * v / (2.0 * self.braking.max(1e-3))
+    }
 }
 
 impl Default for YieldRule {
     /// navdeck's figures for TurtleBot3-sized robots (0.08 m footprint radius): 0.6 m is
     /// about two robots' stopping distance at 0.22 m/s plus both footprints; a doorway
     /// under 0.8 m lets one robot through at a time; 0.22 m keeps 6 cm
-    /// between two footprints.
+    /// between two footprints; a reaction of two 0.1 s control periods; braking at
+    /// `[robot] max_linear_accel`'s default, 1 m/s².
     fn default() -> Self {
         Self {
             radius: 0.6,
@@ -47,6 +79,8 @@ impl Default for YieldRule {
             doorway: 0.8,
             standing: 0.02,
             keep_clear: 0.22,
+            reaction: 0.2,
+            braking: 1.0,
         }
     }
 }
@@ -74,6 +108,17 @@ fn within(cone: f64, from: Pose2, linear: f64, target: Point2) -> bool {
     wrap_angle(bearing - way).abs() <= cone
 }
 
+/// Why robot `me_number` owes robot `them` the way, if it does: the robot in a doorway
+/// (`theirs`, against `mine` for this one) goes first, then the lower number.
+fn owes(mine: bool, theirs: bool, them: usize, me_number: usize) -> Option<&'static str> {
+    match (mine, theirs) {
+        (false, true) => Some("it is in the doorway"),
+        (true, false) => None,
+        _ if them < me_number => Some("it has the lower number"),
+        _ => None,
+    }
+}
+
 /// Whether `target` lies within `rule.ahead` of the way `from` travels.
 fn in_the_way(rule: &YieldRule, from: Pose2, linear: f64, target: Point2) -> bool {
     within(rule.ahead, from, linear, target)
@@ -94,11 +139,19 @@ pub fn judge(
         return Right::Go;
     }
     let here = me.position();
-    let crowded = (peers.iter())
-        .filter(|p| p.number != me_number)
-        .filter(|p| here.distance(p.pose.position()) < rule.keep_clear)
-        // Any motion that brings the two nearer: within a right angle of the way.
-        .find(|p| within(std::f64::consts::FRAC_PI_2, me, linear, p.pose.position()));
+    // Any motion that brings the two nearer: within a right angle of the way.
+    let nearing = |p: &&Peer| {
+        p.number != me_number && within(std::f64::consts::FRAC_PI_2, me, linear, p.pose.position())
+    };
+    let crowded = (peers.iter().filter(nearing))
+        .find(|p| here.distance(p.pose.position()) < rule.keep_clear)
+        .or_else(|| {
+            (peers.iter().filter(nearing))
+                .filter(|p| here.distance(p.pose.position()) < rule.clearance(me, linear, p))
+                .find(|p| {
+                    owes(narrow(here), narrow(p.pose.position()), p.number, me_number).is_some()
+                })
+        });
     if let Some(p) = crowded {
         return Right::Yield {
             to: p.number,
@@ -116,19 +169,10 @@ pub fn judge(
         if gap > rule.radius || !moving || !in_the_way(rule, me, linear, there) {
             continue;
         }
-        let (mine, theirs) = (narrow(here), narrow(there));
-        let right = match (mine, theirs) {
-            (false, true) => Right::Yield {
-                to: p.number,
-                why: "it is in the doorway",
-            },
-            (true, false) => continue,
-            _ if p.number < me_number => Right::Yield {
-                to: p.number,
-                why: "it has the lower number",
-            },
-            _ => continue,
+        let Some(why) = owes(narrow(here), narrow(there), p.number, me_number) else {
+            continue;
         };
+        let right = Right::Yield { to: p.number, why };
         // The nearest robot owed way is the one named.
         if first.as_ref().is_none_or(|(g, _)| gap < *g) {
             first = Some((gap, right));

@@ -147,3 +147,35 @@ fn nobody_moves_towards_a_robot_closer_than_keep_clear_even_slowly_or_standing()
     assert_eq!(judge(&rule, 1, me.pose, -0.1, &peers, &open), Right::Go);
     assert_eq!(judge(&rule, 1, me.pose, 0.0, &peers, &open), Right::Go);
 }
+
+#[test]
+fn the_robot_owing_the_way_keeps_its_stopping_distance_when_closing_fast() {
+    let rule = YieldRule::for_robot(0.1, 1.0);
+    // Robot 3 drives at 62° off the line to robot 2, which drives at it: outside the
+    // way cone, but the two close at 0.3 m/s. v·t + v²/2a = 0.06 + 0.045 m.
+    let two = peer(2, 0.0, 0.0, 0.0, 0.2);
+    let theta = std::f64::consts::PI - 62f64.to_radians();
+    let three = peer(3, 0.3, 0.0, theta, 0.2);
+    let closing = 0.2 + 0.2 * 62f64.to_radians().cos();
+    let expected = 0.22 + closing * 0.2 + closing * closing / 2.0;
+    assert!((rule.clearance(three.pose, 0.2, &two) - expected).abs() < 1e-9);
+    let peers = [two, three];
+    assert_eq!(
+        judge(&rule, 3, three.pose, 0.2, &peers, &open),
+        Right::Yield {
+            to: 2,
+            why: "it is too close"
+        }
+    );
+    // Robot 2 has the right of way: it goes, and only one of the two waits.
+    assert_eq!(judge(&rule, 2, two.pose, 0.2, &peers, &open), Right::Go);
+    // The same gap with robot 2 standing and robot 3 creeping: only keep_clear holds.
+    let standing = peer(2, 0.0, 0.0, 0.0, 0.0);
+    assert_eq!(
+        judge(&rule, 3, three.pose, 0.03, &[standing, three], &open),
+        Right::Go
+    );
+    // Moving apart needs no room at all beyond keep_clear.
+    let away = peer(2, 0.0, 0.0, std::f64::consts::PI, 0.2);
+    assert!((rule.clearance(three.pose, 0.0, &away) - 0.22).abs() < 1e-9);
+}

@@ -38,10 +38,11 @@ impl Pilot {
     /// This robot is number `number` (from 1) of a fleet whose other robots stand as
     /// `peers`; told again every control period while they move.
     pub fn set_fleet(&mut self, number: usize, peers: Vec<Peer>) {
+        let robot = &self.settings.robot;
         self.behaviours.fleet = FleetWatch {
             number,
             peers,
-            rule: YieldRule::default(),
+            rule: YieldRule::for_robot(robot.control_period, robot.max_linear_accel),
         };
     }
 

@@ -136,17 +136,7 @@ pub(crate) fn run(cli: &Cli, spec: &SessionSpec) -> Result<ExitCode> {
     report.wall_time_s = Some(wall);
     report.epoch_unix = signals.as_ref().map(|_| epoch);
     report.realtime_factor = Some(report.sim_time / wall.max(1e-9));
-    if cli.json {
-        sayln!("{}", serde_json::to_string(&report)?);
-    } else {
-        for r in &report.robots {
-            say!(
-                "{}: {}",
-                r.name,
-                navdeck::runners::headless::human(&r.report)
-            );
-        }
-    }
+    print_report(&report, cli.json)?;
     let status = signals
         .as_ref()
         .and_then(Signals::pending)
@@ -189,4 +179,23 @@ pub(crate) fn recruiter(
         known,
         looked_at: f64::NEG_INFINITY,
     }
+}
+
+/// A fleet's headless report: one JSON object with `json`, else a line per robot.
+pub(crate) fn print_report(
+    report: &navdeck::runners::fleet::FleetReport,
+    json: bool,
+) -> Result<()> {
+    if json {
+        sayln!("{}", serde_json::to_string(report)?);
+        return Ok(());
+    }
+    for r in &report.robots {
+        say!(
+            "{}: {}",
+            r.name,
+            navdeck::runners::headless::human(&r.report)
+        );
+    }
+    Ok(())
 }

@@ -39,16 +39,6 @@ pub fn run(
         say_err!("navdeck: {why}");
     }
     report.broken = Some(broken);
-    if args.json {
-        sayln!("{}", serde_json::to_string(&report)?);
-    } else {
-        for r in &report.robots {
-            say!(
-                "{}: {}",
-                r.name,
-                navdeck::runners::headless::human(&r.report)
-            );
-        }
-    }
+    super::fleet::print_report(&report, args.json)?;
     Ok(ExitCode::SUCCESS)
 }

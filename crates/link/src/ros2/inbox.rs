@@ -86,7 +86,9 @@ impl<M: DeserializeOwned + Send + Sync + 'static> Inbox<M> {
         let Ok(runtime) = tasks::handle() else {
             return out;
         };
-        if let Ok(Some(first)) = runtime.block_on(time::timeout(timeout, self.waiting.recv())) {
+        // The timer is made inside the runtime: it needs the runtime's clock.
+        let waited = runtime.block_on(async { time::timeout(timeout, self.waiting.recv()).await });
+        if let Ok(Some(first)) = waited {
             accept(first, topic, &mut out, notices);
             out.extend(self.take_all(topic, notices));
         }

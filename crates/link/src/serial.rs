@@ -9,6 +9,7 @@
 
 pub mod arm;
 pub mod config;
+pub mod open;
 pub mod protocol;
 pub mod transport;
 pub mod wheels;

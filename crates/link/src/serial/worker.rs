@@ -1,13 +1,14 @@
-//! The blocking task that owns the serial port (on the links' runtime's blocking pool). It reads the encoders at the configured rate, turns
-//! the latest twist into motor targets, refreshes them inside the firmware's 2 s auto-stop,
-//! stops the motors when the console goes quiet, and reopens a port that went away. It is
-//! the edge: it reads the wall clock for its own timing.
+//! The blocking task that owns the serial port (in the links' runtime's blocking pool).
+//! It reads the encoders at the configured rate, turns the latest twist into motor
+//! targets, refreshes them inside the firmware's 2 s auto-stop, stops the motors when the
+//! console goes quiet, and reopens a port that went away (`open.rs`). It is the edge: it
+//! reads the wall clock for its own timing.
 
 use super::arm::ServoQueue;
-use super::config::SerialConfig;
+pub use super::open::{SerialTransport, Settings, open};
 use super::protocol::{Reply, Request};
-use super::transport::{Counters, TransactError, Transport};
-use super::wheels::{Dither, Odometer, Reading, WheelGeometry};
+use super::transport::{Counters, TransactError};
+use super::wheels::{Dither, Odometer, Reading};
 use crate::{GripperCommand, GripperState, WheelTravel};
 use navdeck_core::geometry::Twist;
 use std::sync::Arc;
@@ -20,8 +21,6 @@ const DITHER_PERIOD: f64 = 0.1;
 const NOTE_EVERY: f64 = 2.0;
 /// A servo within this many degrees of its target has arrived.
 const SERVO_TOLERANCE: i64 = 2;
-
-pub type SerialTransport = Transport<Box<dyn serialport::SerialPort>>;
 
 /// The console's wishes, latest first served.
 pub enum ToWorker {
@@ -40,66 +39,6 @@ pub enum FromWorker {
     Connected,
     Lost(String),
     Note(String),
-}
-
-/// Everything the worker needs to know about the port and the robot.
-#[derive(Clone, Debug)]
-pub struct Settings {
-    pub path: String,
-    pub baud: u32,
-    pub serial: SerialConfig,
-    pub geometry: WheelGeometry,
-    /// Fastest believable rim speed, m/s, for rejecting encoder jumps.
-    pub max_wheel_speed: f64,
-}
-
-impl Settings {
-    fn reply_timeout(&self) -> Duration {
-        Duration::from_secs_f64(self.serial.reply_timeout)
-    }
-}
-
-/// Opens the port (8N1, no flow control) and waits for the firmware to answer `b`; then
-/// stops the motors, which also resets the firmware's PID.
-pub fn open(settings: &Settings, counters: &Counters) -> Result<SerialTransport, String> {
-    let port = serialport::new(settings.path.as_str(), settings.baud)
-        .data_bits(serialport::DataBits::Eight)
-        .parity(serialport::Parity::None)
-        .stop_bits(serialport::StopBits::One)
-        .flow_control(serialport::FlowControl::None)
-        .timeout(settings.reply_timeout())
-        .open()
-        .map_err(|e| e.to_string())?;
-    let mut transport = Transport::new(port);
-    // An Arduino resets when the port opens: its bootloader's noise is not counted.
-    let boot = Counters::default();
-    let deadline = Instant::now() + Duration::from_secs_f64(settings.serial.boot_wait);
-    loop {
-        match transport.transact(Request::Baud, settings.reply_timeout(), 0, &boot) {
-            Ok(_) => break,
-            Err(TransactError::Io(e)) => return Err(e.to_string()),
-            Err(_) if Instant::now() >= deadline => {
-                return Err(format!(
-                    "no answer to `b` within {} s: is ROSArduinoBridge running at {} baud?",
-                    settings.serial.boot_wait, settings.baud
-                ));
-            }
-            Err(_) => {}
-        }
-    }
-    let retries = settings.serial.retries;
-    match transport.transact(
-        Request::Motors(0, 0),
-        settings.reply_timeout(),
-        retries,
-        counters,
-    ) {
-        Ok(_) => Ok(transport),
-        Err(TransactError::Refused(_)) => {
-            Err("the firmware refuses `m`: build ROSArduinoBridge with USE_BASE".into())
-        }
-        Err(e) => Err(e.to_string()),
-    }
 }
 
 /// How a connection ended.

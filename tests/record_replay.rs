@@ -12,6 +12,7 @@ use navdeck::keymap::parse_key_sequence;
 use navdeck::record::reader::read;
 use navdeck::record::recorded::Recorded;
 use navdeck::record::{RecordConfig, Recorder};
+use navdeck::replay::screen::played::Played;
 use navdeck::replay::{Replay, ReplayOptions};
 use navdeck::runners::headless;
 use navdeck::session::{Session, SessionSpec};

@@ -296,15 +296,6 @@ impl FleetReplay {
         Ok(())
     }
 
-    /// Goes to session time `t`, forwards or (re-running from the start) backwards.
-    pub fn seek(&mut self, t: f64) -> Result<()> {
-        if t + 1e-9 < self.position() {
-            self.restart()?;
-        }
-        self.run_to(t);
-        Ok(())
-    }
-
     /// Each robot's comparison with its stream so far, in the fleet's order.
     pub fn comparisons(&self) -> Vec<Comparison> {
         self.comparers.iter().map(Comparer::comparison).collect()

@@ -160,15 +160,6 @@ impl Replay {
         Ok(())
     }
 
-    /// Goes to session time `t`, forwards or (re-running from the start) backwards.
-    pub fn seek(&mut self, t: f64) -> Result<()> {
-        if t + 1e-9 < self.position() {
-            self.restart()?;
-        }
-        self.run_to(t);
-        Ok(())
-    }
-
     /// How the re-run compares so far.
     pub fn comparison(&self) -> Comparison {
         self.comparer.comparison()

@@ -20,7 +20,18 @@ pub trait Played {
     /// Session time of the first and the last thing recorded.
     fn span(&self) -> (f64, f64);
     fn run_to(&mut self, t: f64);
-    fn seek(&mut self, t: f64) -> anyhow::Result<()>;
+    /// Session time the re-run has reached.
+    fn position(&self) -> f64;
+    /// Back to the start.
+    fn restart(&mut self) -> anyhow::Result<()>;
+    /// Goes to session time `t`, forwards or (re-running from the start) backwards.
+    fn seek(&mut self, t: f64) -> anyhow::Result<()> {
+        if t + 1e-9 < self.position() {
+            self.restart()?;
+        }
+        self.run_to(t);
+        Ok(())
+    }
     /// The terminal's size: from now on the recorded sizes are not applied.
     fn show_on_screen(&mut self, width: u16, height: u16);
     /// The re-run's screen in `area`.
@@ -45,8 +56,11 @@ impl Played for Replay {
     fn run_to(&mut self, t: f64) {
         Replay::run_to(self, t);
     }
-    fn seek(&mut self, t: f64) -> anyhow::Result<()> {
-        Replay::seek(self, t)
+    fn position(&self) -> f64 {
+        Replay::position(self)
+    }
+    fn restart(&mut self) -> anyhow::Result<()> {
+        Replay::restart(self)
     }
     fn show_on_screen(&mut self, width: u16, height: u16) {
         Replay::show_on_screen(self, width, height);
@@ -72,8 +86,11 @@ impl Played for FleetReplay {
     fn run_to(&mut self, t: f64) {
         FleetReplay::run_to(self, t);
     }
-    fn seek(&mut self, t: f64) -> anyhow::Result<()> {
-        FleetReplay::seek(self, t)
+    fn position(&self) -> f64 {
+        FleetReplay::position(self)
+    }
+    fn restart(&mut self) -> anyhow::Result<()> {
+        FleetReplay::restart(self)
     }
     fn show_on_screen(&mut self, width: u16, height: u16) {
         FleetReplay::show_on_screen(self, width, height);

@@ -42,6 +42,7 @@ impl Claims {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use rand::{Rng, SeedableRng};
 
     #[test]
     fn the_first_to_want_a_block_holds_it_until_it_wants_another() {
@@ -60,16 +61,10 @@ mod tests {
     fn no_block_is_ever_held_by_two_robots() {
         // Five robots wanting among four blocks, drawn anew each round for 2000 rounds.
         let mut claims = Claims::default();
-        let mut state = 12345u64;
-        let mut draw = || {
-            state = state
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (state >> 33) as u32
-        };
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(12345);
         for _ in 0..2000 {
             let wants: Vec<Option<u32>> = (0..5)
-                .map(|_| match draw() % 5 {
+                .map(|_| match rng.random_range(0..5) {
                     0 => None,
                     k => Some(419 + 2 * k),
                 })

@@ -83,6 +83,7 @@ pub fn is_free(goal: Point2, taken: &[Point2], reach: f64) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use rand::{Rng, SeedableRng};
 
     fn p(x: f64, y: f64) -> Option<Point2> {
         Some(Point2::new(x, y))
@@ -122,16 +123,10 @@ mod tests {
         // Five robots wanting among six goals on a line 0.6 m apart (each within 1 m of
         // its neighbours), drawn anew each round for 2000 rounds.
         let mut claims = FrontierClaims::new(1.0);
-        let mut state = 987654321u64;
-        let mut draw = || {
-            state = state
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (state >> 33) as u32
-        };
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(987654321);
         for _ in 0..2000 {
             let wants: Vec<Option<Point2>> = (0..5)
-                .map(|_| match draw() % 7 {
+                .map(|_| match rng.random_range(0..7) {
                     0 => None,
                     k => p(0.6 * f64::from(k), 0.0),
                 })

@@ -229,15 +229,7 @@ pub fn run_console(
         "navdeck: robot on {label} stopped; {}",
         why_ended(&outcome)
     ));
-    match (recorded, &options.record) {
-        (Some(Ok(summary)), Some((path, _))) => tell(&format!(
-            "navdeck: session recorded in {} ({} bytes)",
-            path.display(),
-            summary.bytes
-        )),
-        (Some(Err(why)), _) => tell(&format!("navdeck: {why}")),
-        _ => {}
-    }
+    tell_recorded(recorded, options, "session");
     for path in log_files {
         tell(&format!("navdeck: session log in {}", path.display()));
     }
@@ -291,19 +283,29 @@ pub fn run_fleet_console(
         labels.join(", "),
         why_ended(&outcome)
     ));
+    tell_recorded(recorded, options, "fleet");
+    for path in logs {
+        tell(&format!("navdeck: session log in {}", path.display()));
+    }
+    Ok(exit_status(&outcome) as u8)
+}
+
+/// Says where `what` (the session, the fleet) was recorded and how big the file is, or
+/// why the recording failed.
+fn tell_recorded(
+    recorded: Option<std::result::Result<crate::record::Summary, String>>,
+    options: &ConsoleOptions,
+    what: &str,
+) {
     match (recorded, &options.record) {
         (Some(Ok(summary)), Some((path, _))) => tell(&format!(
-            "navdeck: fleet recorded in {} ({} bytes)",
+            "navdeck: {what} recorded in {} ({} bytes)",
             path.display(),
             summary.bytes
         )),
         (Some(Err(why)), _) => tell(&format!("navdeck: {why}")),
         _ => {}
     }
-    for path in logs {
-        tell(&format!("navdeck: session log in {}", path.display()));
-    }
-    Ok(exit_status(&outcome) as u8)
 }
 
 /// A robot that joins with `:robot add` is prepared as those the console opened with:

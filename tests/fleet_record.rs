@@ -165,18 +165,7 @@ fn each_robot_records_under_its_own_namespace_in_one_file() {
     else {
         return;
     };
-    let script = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/interop/mcap_check.py");
-    let out = std::process::Command::new(python)
-        .arg(script)
-        .arg(file)
-        .output()
-        .expect("run the Python MCAP check");
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let seen: Value = serde_json::from_slice(&out.stdout).unwrap();
+    let seen = crate::record_python::check(&python, file);
     assert_eq!(seen["decode_errors"], serde_json::json!([]), "{seen}");
     assert_eq!(seen["profile"], "ros2");
     for r in ["robot1", "robot2", "robot3"] {

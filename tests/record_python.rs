@@ -39,7 +39,7 @@ fn record(keys: &str, file: &Path) -> Value {
 }
 
 /// What tests/interop/mcap_check.py makes of `file`.
-fn check(python: &str, file: &Path) -> Value {
+pub(crate) fn check(python: &str, file: &Path) -> Value {
     let script = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/interop/mcap_check.py");
     let out = Command::new(python)
         .arg(script)
